@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "arguments.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "tinlod/error.h"
+
+namespace tinlod::cli {
+
+bool Arguments::flag(const std::string& name) {
+  auto it = std::find(args_.begin(), args_.end(), name);
+  if (it == args_.end()) return false;
+  args_.erase(it);
+  return true;
+}
+
+bool Arguments::take(const std::string& name, std::vector<std::string>& values, std::size_t count) {
+  auto it = std::find(args_.begin(), args_.end(), name);
+  if (it == args_.end()) return false;
+  if (std::size_t(args_.end() - it) <= count)
+    throw Error(name + " needs " + std::to_string(count) + (count == 1 ? " value" : " values"));
+  values.assign(it + 1, it + 1 + count);
+  args_.erase(it, it + 1 + count);
+  return true;
+}
+
+bool Arguments::take(const std::string& name, std::string& value) {
+  std::vector<std::string> values;
+  if (!take(name, values, 1)) return false;
+  value = values[0];
+  return true;
+}
+
+int Arguments::parseInteger(const std::string& name, const std::string& value) {
+  char* end = nullptr;
+  const long parsed = std::strtol(value.c_str(), &end, 10);
+  if (value.empty() || *end != '\0' || parsed < INT32_MIN || parsed > INT32_MAX)
+    throw Error(name + " expects a whole number, got '" + value + "'");
+  return static_cast<int>(parsed);
+}
+
+std::vector<int> Arguments::integers(const std::string& name, std::size_t count, std::vector<int> fallback) {
+  std::vector<std::string> values;
+  if (!take(name, values, count)) return fallback;
+  std::vector<int> parsed;
+  for (const std::string& v : values) parsed.push_back(parseInteger(name, v));
+  return parsed;
+}
+
+std::string Arguments::text(const std::string& name, const std::string& fallback) {
+  std::string value;
+  return take(name, value) ? value : fallback;
+}
+
+int Arguments::integer(const std::string& name, int fallback) {
+  std::string value;
+  return take(name, value) ? parseInteger(name, value) : fallback;
+}
+
+double Arguments::number(const std::string& name, double fallback) {
+  std::string value;
+  if (!take(name, value)) return fallback;
+  char* end = nullptr;
+  const double parsed = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end != '\0' || !std::isfinite(parsed))
+    throw Error(name + " expects a number, got '" + value + "'");
+  return parsed;
+}
+
+std::uint64_t Arguments::unsignedInteger(const std::string& name, std::uint64_t fallback) {
+  std::string value;
+  if (!take(name, value)) return fallback;
+  char* end = nullptr;
+  const unsigned long long parsed = std::strtoull(value.c_str(), &end, 10);
+  if (value.empty() || value[0] == '-' || *end != '\0')
+    throw Error(name + " expects a whole number of 0 or more, got '" + value + "'");
+  return parsed;
+}
+
+std::vector<std::string> Arguments::operands(std::size_t count, const std::string& usage) {
+  for (const std::string& a : args_)
+    if (a.size() > 1 && a[0] == '-' && !std::isdigit(static_cast<unsigned char>(a[1])))
+      throw Error("unknown option '" + a + "'\nUsage: " + usage);
+  if (args_.size() != count)
+    throw Error("expected " + std::to_string(count) + " file names, got " + std::to_string(args_.size()) +
+                "\nUsage: " + usage);
+  return args_;
+}
+
+}  // namespace tinlod::cli

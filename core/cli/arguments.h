@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tinlod::cli {
+
+// gdal-style arguments: "-name value" options, "-flag" switches and positional
+// operands. Each accessor consumes what it reads; finish() rejects what is left.
+class Arguments {
+ public:
+  explicit Arguments(std::vector<std::string> args) : args_(std::move(args)) {}
+
+  bool flag(const std::string& name);
+  std::string text(const std::string& name, const std::string& fallback);
+  int integer(const std::string& name, int fallback);
+  // An option with several whole-number values, "-size 360 300"; fallback when absent.
+  std::vector<int> integers(const std::string& name, std::size_t count, std::vector<int> fallback);
+  double number(const std::string& name, double fallback);
+  std::uint64_t unsignedInteger(const std::string& name, std::uint64_t fallback);
+  // The remaining operands; throws Error for an unknown option or a wrong count.
+  std::vector<std::string> operands(std::size_t count, const std::string& usage);
+
+ private:
+  bool take(const std::string& name, std::vector<std::string>& values, std::size_t count);
+  bool take(const std::string& name, std::string& value);
+  static int parseInteger(const std::string& name, const std::string& value);
+  std::vector<std::string> args_;
+};
+
+}  // namespace tinlod::cli

@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tinlod::cli {
+
+// Each command takes the arguments after its name and returns the exit code;
+// failures are thrown as tinlod::Error and reported once by main().
+int sampleCommand(std::vector<std::string> args);
+int makeDemCommand(std::vector<std::string> args);
+
+}  // namespace tinlod::cli

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The tinlod command line: a thin adapter over the core library, in the manner of
+// GDAL's utilities (exit 0 on success, 1 with "ERROR: ..." otherwise).
+#include <gdal_priv.h>
+
+#include <exception>
+#include <iostream>
+#include <map>
+
+#include "commands.h"
+#include "tinlod/error.h"
+#include "tinlod/version.h"
+
+namespace {
+
+const char* const kHelp = R"(tinlod: simplified, hierarchical TINs from raster DEMs
+
+Usage: tinlod COMMAND [options]   (tinlod COMMAND --help for its options)
+
+Commands:
+  sample    sample a DEM into a Delaunay TIN, written to a GeoPackage
+  makedem   write the project's synthetic default DEM (a GeoTIFF)
+
+  --version print the version
+)";
+
+using Command = int (*)(std::vector<std::string>);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::map<std::string, Command> commands{{"sample", tinlod::cli::sampleCommand},
+                                                 {"makedem", tinlod::cli::makeDemCommand}};
+  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+    std::cout << kHelp;
+    return argc < 2 ? 1 : 0;
+  }
+  const std::string name = argv[1];
+  if (name == "--version") {
+    std::cout << "tinlod " << tinlod::kVersion << " (GDAL " << GDALVersionInfo("RELEASE_NAME") << ")\n";
+    return 0;
+  }
+  const auto command = commands.find(name);
+  if (command == commands.end()) {
+    std::cerr << "ERROR: unknown command '" << name << "'\n" << kHelp;
+    return 1;
+  }
+  try {
+    return command->second(std::vector<std::string>(argv + 2, argv + argc));
+  } catch (const std::exception& e) {
+    std::cerr << "ERROR: " << e.what() << std::endl;
+    return 1;
+  }
+}

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <iostream>
+
+#include "arguments.h"
+#include "commands.h"
+#include "terminal_feedback.h"
+#include "tinlod/sample_job.h"
+
+namespace tinlod::cli {
+namespace {
+
+const char* const kUsage = "tinlod sample DEM OUT.gpkg [-b band] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-q] [-overwrite]";
+
+const char* const kHelp = R"(Samples a DEM into a Delaunay TIN and writes it to a GeoPackage.
+
+Usage: tinlod sample DEM OUT.gpkg [options]
+
+  DEM            any raster GDAL reads (GeoTIFF, SRTM .hgt, ENVI .bil, ASCII grid, VRT ...)
+  OUT.gpkg       GeoPackage with layers 'vertices' (PointZ: id, row, col, outline) and
+                 'triangles' (PolygonZ, one feature per triangle: id, v0, v1, v2)
+
+Options:
+  -b band        band holding the heights (default 1)
+  -t_srs srs     metric CRS of the TIN, e.g. EPSG:32632 (default: the DEM's own CRS if it
+                 is in metres, else the UTM zone of the DEM's centre)
+  -block k       one random valid cell per k x k block (default 3, as in the study; 1 takes
+                 every cell). The outline of the valid area is always taken whole.
+  -jitter m      x and y of each point moved by a random offset in [0, m) metres so that no
+                 four points are cocircular (default 0.99)
+  -seed n        random seed; the same seed gives the same TIN (default 1)
+  -overwrite     replace the 'vertices' and 'triangles' layers of an existing GeoPackage;
+                 its other layers are kept
+  -q             quiet: no progress or information, warnings only
+
+Nodata cells (declared nodata, NaN, masks) never become vertices, and no triangle spans
+them: holes stay holes. Heights are never resampled; a geographic DEM only has its points'
+x and y transformed to metres.
+)";
+
+}  // namespace
+
+int sampleCommand(std::vector<std::string> args) {
+  Arguments a(std::move(args));
+  if (a.flag("--help") || a.flag("-h")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  SampleOptions options;
+  options.band = a.integer("-b", options.band);
+  options.targetSrs = a.text("-t_srs", options.targetSrs);
+  options.block = a.integer("-block", options.block);
+  options.jitter = a.number("-jitter", options.jitter);
+  options.seed = a.unsignedInteger("-seed", options.seed);
+  const bool overwrite = a.flag("-overwrite");
+  const bool quiet = a.flag("-q");
+  const std::vector<std::string> files = a.operands(2, kUsage);
+
+  const SampleSummary s = runSampleJob(files[0], files[1], options, overwrite, terminalFeedback(quiet));
+  if (!quiet)
+    std::cout << "Wrote " << s.vertices << " vertices and " << s.triangles << " triangles ("
+              << s.outlineVertices << " vertices on the outline) covering " << s.area / 1e6
+              << " km2 in " << s.crsName << " to " << files[1] << std::endl;
+  return 0;
+}
+
+}  // namespace tinlod::cli

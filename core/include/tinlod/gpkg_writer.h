@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "tinlod/feedback.h"
+#include "tinlod/tin.h"
+
+namespace tinlod {
+
+struct GpkgWriteOptions {
+  // Replace tinlod's layers in an existing GeoPackage (its other layers are kept);
+  // without it an existing file is an error.
+  bool overwrite = false;
+  // Stored as GeoPackage metadata (parameters, source) so a file explains itself.
+  std::map<std::string, std::string> metadata;
+};
+
+// Throws Error when `path` exists and overwrite is off, or its folder is missing.
+void checkOutputPath(const std::string& path, const GpkgWriteOptions& options);
+
+// Writes layers `vertices` (PointZ) and `triangles` (PolygonZ, one feature per
+// triangle). Works on a temporary copy and renames it into place at the end, so a
+// failed or cancelled run leaves `path` as it was.
+void writeTinGpkg(const Tin& tin, const std::string& path, const GpkgWriteOptions& options,
+                  const ProgressRange& progress);
+
+}  // namespace tinlod

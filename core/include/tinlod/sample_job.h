@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "tinlod/dem.h"
+#include "tinlod/feedback.h"
+#include "tinlod/gpkg_writer.h"
+#include "tinlod/sample_options.h"
+#include "tinlod/tin.h"
+
+namespace tinlod {
+
+struct SampleSummary {
+  std::size_t validCells = 0;
+  std::size_t vertices = 0;
+  std::size_t triangles = 0;
+  std::size_t outlineVertices = 0;
+  double area = 0;  // square metres covered by the TIN
+  std::string crsName;
+};
+
+// DEM in memory to TIN: sample cells, transform to the metric CRS, perturb, triangulate,
+// cut out nodata holes.
+Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange& progress);
+
+// The whole `tinlod sample` job: read, sample, triangulate, write the GeoPackage.
+SampleSummary runSampleJob(const std::string& demPath, const std::string& outPath,
+                           const SampleOptions& options, bool overwrite, const Feedback& feedback);
+
+SampleSummary summarize(const Tin& tin, std::size_t validCells);
+
+}  // namespace tinlod

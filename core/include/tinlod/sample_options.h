@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace tinlod {
+
+// Options of the sampling step, shared by `tinlod sample`, `tinlod build` and the
+// QGIS algorithms. Defaults are those of the study.
+struct SampleOptions {
+  int band = 1;               // raster band holding the heights (1-based)
+  int block = 3;              // one random valid cell per block x block cells; 1 takes every cell
+  double jitter = 0.99;       // x and y each moved by a uniform offset in [0, jitter) metres
+  std::uint64_t seed = 1;     // random seed: the same seed gives the same TIN
+  std::string targetSrs;      // output CRS (any GDAL/PROJ definition); empty: automatic
+
+  // Throws Error naming the option when a value is out of range.
+  void validate() const;
+};
+
+}  // namespace tinlod

@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "tinlod/dem.h"
+
+namespace tinlod {
+
+// The project's own default DEM, so that the quick start and tests need no data:
+// fractal hills and a ridge, a flat lake and a nodata void, in UTM zone 32N.
+struct SyntheticDemOptions {
+  int width = 360;
+  int height = 300;
+  double cellSize = 25.0;  // metres
+  std::uint64_t seed = 7;
+  bool withVoid = true;    // a nodata hole inside the raster
+  bool withLake = true;    // an exactly flat area
+};
+
+Dem makeSyntheticDem(const SyntheticDemOptions& options);
+
+// Writes any in-memory DEM as a GeoTIFF (Float32, nodata -9999). Throws Error.
+void writeDemGeoTiff(const Dem& dem, const std::string& path);
+
+}  // namespace tinlod

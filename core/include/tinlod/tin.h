@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tinlod {
+
+using VertexId = std::uint32_t;
+
+struct TinVertex {
+  double x = 0;  // metric CRS of the TIN
+  double y = 0;
+  double z = 0;
+  std::int32_t row = 0;  // source DEM cell
+  std::int32_t col = 0;
+  bool outline = false;  // on the edge of the valid area (raster edge or nodata)
+};
+
+// Counter-clockwise in the TIN's x/y plane.
+using Triangle = std::array<VertexId, 3>;
+
+// A triangulated irregular network: vertex ids are indices into `vertices`.
+struct Tin {
+  std::vector<TinVertex> vertices;
+  std::vector<Triangle> triangles;
+  std::string crsWkt;   // the metric CRS of x and y; empty when the DEM had none
+  std::string crsName;  // for messages: "WGS 84 / UTM zone 32N (EPSG:32632)"
+};
+
+double triangleArea(const Tin& tin, const Triangle& t);  // signed, positive when CCW
+double totalArea(const Tin& tin);
+
+}  // namespace tinlod

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/crs_transform.h"
+
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+
+struct CrsTransform::Impl {
+  std::unique_ptr<OGRCoordinateTransformation> transform;  // null: identity
+  std::string wkt;
+  std::string name;
+};
+
+namespace {
+
+std::string toWkt(const OGRSpatialReference& srs) {
+  char* wkt = nullptr;
+  const char* options[] = {"FORMAT=WKT2_2019", nullptr};
+  srs.exportToWkt(&wkt, options);
+  std::string out = wkt ? wkt : "";
+  CPLFree(wkt);
+  return out;
+}
+
+std::string describe(const OGRSpatialReference& srs) {
+  std::string name = srs.GetName() ? srs.GetName() : "unnamed CRS";
+  const char* authority = srs.GetAuthorityName(nullptr);
+  const char* code = srs.GetAuthorityCode(nullptr);
+  if (authority && code) name += std::string(" (") + authority + ":" + code + ")";
+  return name;
+}
+
+bool isMetric(const OGRSpatialReference& srs) {
+  return (srs.IsProjected() || srs.IsLocal()) && std::fabs(srs.GetLinearUnits() - 1.0) < 1e-9;
+}
+
+// The DEM's centre in longitude/latitude of its own datum, close enough to pick a UTM zone.
+void centreLonLat(const Dem& dem, const OGRSpatialReference& src, double& lon, double& lat) {
+  lon = dem.geotransform[0] + 0.5 * dem.width * dem.geotransform[1];
+  lat = dem.geotransform[3] + 0.5 * dem.height * dem.geotransform[5];
+  if (src.IsGeographic()) return;
+  std::unique_ptr<OGRSpatialReference> geog(src.CloneGeogCS());
+  geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&src, geog.get()));
+  if (!ct || !ct->Transform(1, &lon, &lat))
+    throw Error("cannot find the longitude and latitude of the centre of '" + dem.path +
+                "': name a projected CRS with -t_srs");
+}
+
+OGRSpatialReference parseTarget(const std::string& targetSrs) {
+  OGRSpatialReference dst;
+  if (dst.SetFromUserInput(targetSrs.c_str()) != OGRERR_NONE)
+    throw Error("target CRS '" + targetSrs + "' is not a CRS GDAL understands: use e.g. EPSG:32632");
+  if (!isMetric(dst))
+    throw Error("target CRS '" + targetSrs +
+                "' is not a projected CRS in metres: tinlod needs metric x and y, e.g. a UTM zone");
+  return dst;
+}
+
+}  // namespace
+
+int utmEpsgFor(double lon, double lat) {
+  const double wrapped = std::fmod(std::fmod(lon + 180.0, 360.0) + 360.0, 360.0);
+  const int zone = std::clamp(static_cast<int>(std::floor(wrapped / 6.0)) + 1, 1, 60);
+  return (lat >= 0 ? 32600 : 32700) + zone;
+}
+
+CrsTransform::CrsTransform(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+CrsTransform::CrsTransform(CrsTransform&&) noexcept = default;
+CrsTransform& CrsTransform::operator=(CrsTransform&&) noexcept = default;
+CrsTransform::~CrsTransform() = default;
+
+bool CrsTransform::isIdentity() const { return !impl_->transform; }
+const std::string& CrsTransform::targetWkt() const { return impl_->wkt; }
+const std::string& CrsTransform::targetName() const { return impl_->name; }
+
+CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& targetSrs,
+                                  const ProgressRange& progress) {
+  auto impl = std::make_unique<Impl>();
+  OGRSpatialReference src;
+  const bool hasSrc = !dem.crsWkt.empty() && src.importFromWkt(dem.crsWkt.c_str()) == OGRERR_NONE;
+  src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+
+  OGRSpatialReference dst;
+  if (!targetSrs.empty()) {
+    if (!hasSrc)
+      throw Error("'" + dem.path + "' has no CRS, so it cannot be transformed to '" + targetSrs +
+                  "': assign its CRS first, e.g. gdal_edit.py -a_srs EPSG:4326 " + dem.path);
+    dst = parseTarget(targetSrs);
+  } else if (!hasSrc) {
+    progress.warn("'" + dem.path + "' has no CRS: its x and y units are taken as metres");
+    impl->name = "no CRS";
+    return CrsTransform(std::move(impl));
+  } else if (isMetric(src)) {
+    dst = src;
+  } else {
+    double lon = 0, lat = 0;
+    centreLonLat(dem, src, lon, lat);
+    dst.importFromEPSG(utmEpsgFor(lon, lat));
+    progress.inform("'" + dem.path + "' is in " + describe(src) +
+                    ", which is not metric: points are transformed to " + describe(dst));
+  }
+  dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  impl->wkt = toWkt(dst);
+  impl->name = describe(dst);
+  if (!src.IsSame(&dst)) {
+    impl->transform.reset(OGRCreateCoordinateTransformation(&src, &dst));
+    if (!impl->transform)
+      throw Error("no transformation from " + describe(src) + " to " + impl->name + ": " +
+                  CPLGetLastErrorMsg());
+  }
+  return CrsTransform(std::move(impl));
+}
+
+void CrsTransform::apply(std::vector<double>& x, std::vector<double>& y) const {
+  if (!impl_->transform) return;
+  std::vector<int> ok(x.size());
+  if (!impl_->transform->Transform(x.size(), x.data(), y.data(), nullptr, ok.data()) ||
+      std::find(ok.begin(), ok.end(), 0) != ok.end())
+    throw Error("PROJ could not transform every sample point to " + impl_->name +
+                ": choose a CRS that covers the DEM with -t_srs");
+}
+
+}  // namespace tinlod

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/dem_reader.h"
+
+#include <gdal_priv.h>
+
+#include <cmath>
+#include <memory>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+struct GdalCloser {
+  void operator()(GDALDataset* ds) const { GDALClose(ds); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, GdalCloser>;
+
+DatasetPtr openRaster(const std::string& path) {
+  GDALAllRegister();
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  auto* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  const std::string gdalMessage = CPLGetLastErrorMsg();
+  CPLPopErrorHandler();
+  if (!ds) {
+    std::string msg = "'" + path + "' is not a raster GDAL can read";
+    if (!gdalMessage.empty()) msg += " (" + gdalMessage + ")";
+    throw Error(msg);
+  }
+  if (ds->GetRasterCount() < 1) {
+    GDALClose(ds);
+    throw Error("'" + path + "' has no raster band");
+  }
+  return DatasetPtr(ds);
+}
+
+void readGeoreferencing(GDALDataset& ds, Dem& dem, const ProgressRange& progress) {
+  double gt[6];
+  dem.hasGeotransform = ds.GetGeoTransform(gt) == CE_None;
+  if (dem.hasGeotransform) {
+    if (gt[2] != 0.0 || gt[4] != 0.0)
+      throw Error("'" + dem.path +
+                  "' has a rotated geotransform, which tinlod does not support: "
+                  "make it north-up first, e.g. gdalwarp in.tif northup.tif");
+    if (gt[1] == 0.0 || gt[5] == 0.0)
+      throw Error("'" + dem.path + "' has a zero pixel size in its geotransform");
+    for (int i = 0; i < 6; ++i) dem.geotransform[i] = gt[i];
+  } else {
+    progress.warn("'" + dem.path + "' has no geotransform: cells are taken as 1 x 1 metre");
+  }
+  if (const OGRSpatialReference* srs = ds.GetSpatialRef()) {
+    char* wkt = nullptr;
+    srs->exportToWkt(&wkt);
+    dem.crsWkt = wkt ? wkt : "";
+    CPLFree(wkt);
+  }
+}
+
+// Marks missing cells as NaN. Declared nodata is compared as float, the type the
+// heights are read in, so that e.g. -3.4e38 given in double still matches.
+void applyMask(GDALRasterBand& band, Dem& dem) {
+  const int flags = band.GetMaskFlags();
+  if (flags & GMF_NODATA) {
+    int has = 0;
+    const float nodata = static_cast<float>(band.GetNoDataValue(&has));
+    if (has) {
+      for (float& v : dem.z)
+        if (v == nodata) v = NAN;
+    }
+    return;
+  }
+  if (flags & GMF_ALL_VALID) return;
+  std::vector<unsigned char> mask(dem.z.size());
+  if (band.GetMaskBand()->RasterIO(GF_Read, 0, 0, dem.width, dem.height, mask.data(), dem.width,
+                                   dem.height, GDT_Byte, 0, 0) != CE_None)
+    throw Error("cannot read the mask of '" + dem.path + "': " + CPLGetLastErrorMsg());
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    if (mask[i] == 0) dem.z[i] = NAN;
+}
+
+void readHeights(GDALRasterBand& band, Dem& dem, const ProgressRange& progress) {
+  dem.z.resize(static_cast<std::size_t>(dem.width) * dem.height);
+  const int chunk = std::max(1, (1 << 22) / std::max(1, dem.width));  // about 4 M cells a read
+  for (int row = 0; row < dem.height; row += chunk) {
+    const int rows = std::min(chunk, dem.height - row);
+    float* dst = dem.z.data() + static_cast<std::size_t>(row) * dem.width;
+    if (band.RasterIO(GF_Read, 0, row, dem.width, rows, dst, dem.width, rows, GDT_Float32, 0, 0) !=
+        CE_None)
+      throw Error("cannot read '" + dem.path + "': " + CPLGetLastErrorMsg());
+    progress.report(double(row + rows) / dem.height, "Reading DEM");
+  }
+}
+
+}  // namespace
+
+Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progress) {
+  DatasetPtr ds = openRaster(path);
+  if (bandNumber < 1 || bandNumber > ds->GetRasterCount())
+    throw Error("invalid band number " + std::to_string(bandNumber) + ": '" + path + "' has bands 1 to " +
+                std::to_string(ds->GetRasterCount()));
+  Dem dem;
+  dem.path = path;
+  dem.band = bandNumber;
+  dem.width = ds->GetRasterXSize();
+  dem.height = ds->GetRasterYSize();
+  readGeoreferencing(*ds, dem, progress);
+  GDALRasterBand* band = ds->GetRasterBand(bandNumber);
+  readHeights(*band, dem, progress);
+  applyMask(*band, dem);
+  const std::size_t valid = dem.validCount();
+  if (valid < 3)
+    throw Error("'" + path + "' band " + std::to_string(bandNumber) + " has " + std::to_string(valid) +
+                " valid cell(s): a TIN needs at least 3");
+  return dem;
+}
+
+}  // namespace tinlod

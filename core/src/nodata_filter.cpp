@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/nodata_filter.h"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace tinlod {
+namespace {
+
+// Missing cells counted per row prefix, so that a row segment is counted in O(1) and a
+// triangle in O(rows it spans), however large the hole under it.
+class MissingCounts {
+ public:
+  explicit MissingCounts(const Dem& dem) : width_(dem.width), counts_((dem.width + 1) * std::size_t(dem.height)) {
+    for (int row = 0; row < dem.height; ++row) {
+      std::uint32_t* c = &counts_[row * std::size_t(width_ + 1)];
+      c[0] = 0;
+      for (int col = 0; col < width_; ++col) c[col + 1] = c[col] + !dem.valid(row, col);
+    }
+  }
+  // Missing cells in columns [c0, c1] of a row; off-raster columns count as missing.
+  std::int64_t inRow(int row, std::int64_t c0, std::int64_t c1) const {
+    if (c0 > c1) return 0;
+    std::int64_t outside = std::max<std::int64_t>(0, -c0) + std::max<std::int64_t>(0, c1 - (width_ - 1));
+    c0 = std::max<std::int64_t>(c0, 0);
+    c1 = std::min<std::int64_t>(c1, width_ - 1);
+    const std::uint32_t* c = &counts_[row * std::size_t(width_ + 1)];
+    return outside + (c0 <= c1 ? c[c1 + 1] - c[c0] : 0);
+  }
+
+ private:
+  int width_;
+  std::vector<std::uint32_t> counts_;
+};
+
+std::int64_t floorDiv(std::int64_t n, std::int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
+std::int64_t ceilDiv(std::int64_t n, std::int64_t d) { return -floorDiv(-n, d); }
+
+struct GridPoint {
+  std::int64_t col, row;
+};
+
+// The columns where a closed triangle with lattice-point corners meets an integer row,
+// exactly: integer arithmetic on cell indices, no rounding anywhere. ceil and floor
+// are monotone, so the extreme lattice columns are the extremes over the edges.
+bool rowSpan(const GridPoint (&p)[3], std::int64_t row, std::int64_t& lo, std::int64_t& hi) {
+  lo = INT64_MAX;
+  hi = INT64_MIN;
+  for (int i = 0; i < 3; ++i) {
+    GridPoint a = p[i], b = p[(i + 1) % 3];
+    if (row < std::min(a.row, b.row) || row > std::max(a.row, b.row)) continue;
+    if (a.row == b.row) {
+      lo = std::min({lo, a.col, b.col});
+      hi = std::max({hi, a.col, b.col});
+      continue;
+    }
+    if (a.row > b.row) std::swap(a, b);
+    const std::int64_t num = a.col * (b.row - a.row) + (row - a.row) * (b.col - a.col);
+    const std::int64_t den = b.row - a.row;
+    lo = std::min(lo, ceilDiv(num, den));
+    hi = std::max(hi, floorDiv(num, den));
+  }
+  return lo <= hi;
+}
+
+bool coversMissing(const MissingCounts& missing, const GridPoint (&p)[3]) {
+  const std::int64_t r0 = std::min({p[0].row, p[1].row, p[2].row});
+  const std::int64_t r1 = std::max({p[0].row, p[1].row, p[2].row});
+  for (std::int64_t row = r0; row <= r1; ++row) {
+    std::int64_t lo, hi;
+    if (rowSpan(p, row, lo, hi) && missing.inRow(static_cast<int>(row), lo, hi) > 0) return true;
+  }
+  return false;
+}
+
+std::size_t dropUnusedVertices(Tin& tin) {
+  constexpr VertexId kUnused = UINT32_MAX;
+  std::vector<VertexId> newId(tin.vertices.size(), kUnused);
+  for (const Triangle& t : tin.triangles)
+    for (VertexId v : t) newId[v] = 0;
+  VertexId next = 0;
+  std::vector<TinVertex> kept;
+  for (std::size_t i = 0; i < tin.vertices.size(); ++i)
+    if (newId[i] != kUnused) {
+      newId[i] = next++;
+      kept.push_back(tin.vertices[i]);
+    }
+  for (Triangle& t : tin.triangles)
+    for (VertexId& v : t) v = newId[v];
+  const std::size_t dropped = tin.vertices.size() - kept.size();
+  tin.vertices = std::move(kept);
+  return dropped;
+}
+
+}  // namespace
+
+std::size_t removeTrianglesOverNodata(const Dem& dem, Tin& tin, const ProgressRange& progress) {
+  const MissingCounts missing(dem);
+  progress.report(0.3, "Cutting out nodata");
+  auto spansNodata = [&](const Triangle& t) {
+    GridPoint p[3];
+    for (int i = 0; i < 3; ++i) p[i] = {tin.vertices[t[i]].col, tin.vertices[t[i]].row};
+    return coversMissing(missing, p);
+  };
+  tin.triangles.erase(std::remove_if(tin.triangles.begin(), tin.triangles.end(), spansNodata),
+                      tin.triangles.end());
+  progress.report(0.9, "Cutting out nodata");
+  return dropUnusedVertices(tin);
+}
+
+}  // namespace tinlod

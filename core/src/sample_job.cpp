@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/sample_job.h"
+
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "tinlod/crs_transform.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
+#include "tinlod/nodata_filter.h"
+#include "tinlod/sampler.h"
+#include "tinlod/triangulation.h"
+#include "tinlod/version.h"
+
+namespace tinlod {
+namespace {
+
+// Uniform in [0, 1) from the top 53 bits: reproducible on every platform.
+double unitRandom(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+
+std::vector<TinVertex> toVertices(const Dem& dem, const std::vector<SampleCell>& cells,
+                                  const CrsTransform& transform, double jitter, std::uint64_t seed) {
+  std::vector<double> x(cells.size()), y(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    x[i] = dem.centreX(cells[i].col);
+    y[i] = dem.centreY(cells[i].row);
+  }
+  transform.apply(x, y);
+  // A stream apart from the sampler's, so that changing the jitter moves no sample.
+  std::mt19937_64 rng(seed ^ 0x9E3779B97F4A7C15ULL);
+  std::vector<TinVertex> vertices(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    TinVertex& v = vertices[i];
+    v.x = x[i] + unitRandom(rng) * jitter;
+    v.y = y[i] + unitRandom(rng) * jitter;
+    v.z = dem.at(cells[i].row, cells[i].col);
+    v.row = cells[i].row;
+    v.col = cells[i].col;
+    v.outline = cells[i].outline;
+  }
+  return vertices;
+}
+
+// The distance between two neighbouring cell centres in the TIN's metric CRS.
+double cellSizeMetres(const Dem& dem, const CrsTransform& transform) {
+  const int row = dem.height / 2, col = std::max(0, dem.width / 2 - 1);
+  std::vector<double> x{dem.centreX(col), dem.centreX(col + 1)};
+  std::vector<double> y{dem.centreY(row), dem.centreY(row)};
+  transform.apply(x, y);
+  return std::hypot(x[1] - x[0], y[1] - y[0]);
+}
+
+void warnAboutJitter(const Dem& dem, const CrsTransform& transform, double jitter,
+                     const ProgressRange& progress) {
+  if (dem.width < 2) return;
+  const double cell = cellSizeMetres(dem, transform);
+  if (jitter > 0.5 * cell) {
+    std::ostringstream msg;
+    msg << "jitter " << jitter << " m is more than half the cell size (" << cell
+        << " m): points may pass their neighbours; consider a smaller -jitter";
+    progress.warn(msg.str());
+  }
+}
+
+std::map<std::string, std::string> jobMetadata(const std::string& demPath, const SampleOptions& o) {
+  return {{"TINLOD_VERSION", kVersion},
+          {"TINLOD_SOURCE", demPath},
+          {"TINLOD_BAND", std::to_string(o.band)},
+          {"TINLOD_BLOCK", std::to_string(o.block)},
+          {"TINLOD_JITTER", std::to_string(o.jitter)},
+          {"TINLOD_SEED", std::to_string(o.seed)},
+          {"TINLOD_TARGET_SRS", o.targetSrs.empty() ? "auto" : o.targetSrs}};
+}
+
+}  // namespace
+
+Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange& progress) {
+  options.validate();
+  const CrsTransform transform = CrsTransform::forDem(dem, options.targetSrs, progress);
+  warnAboutJitter(dem, transform, options.jitter, progress);
+  const std::vector<SampleCell> cells = sampleCells(dem, options.block, options.seed, progress.sub(0, 0.2));
+  Tin tin;
+  tin.crsWkt = transform.targetWkt();
+  tin.crsName = transform.targetName();
+  tin.vertices = toVertices(dem, cells, transform, options.jitter, options.seed);
+  progress.report(0.3, "Transforming points");
+  tin.triangles = delaunayTriangles(tin.vertices, progress.sub(0.3, 0.9));
+  const std::size_t isolated = removeTrianglesOverNodata(dem, tin, progress.sub(0.9, 1));
+  if (isolated > 0)
+    progress.inform(std::to_string(isolated) + " sampled cells touch no triangle (isolated valid cells) and were left out");
+  if (tin.triangles.empty())
+    throw Error("'" + dem.path + "' gives no triangle: its valid cells are isolated or in a line");
+  return tin;
+}
+
+SampleSummary summarize(const Tin& tin, std::size_t validCells) {
+  SampleSummary s;
+  s.validCells = validCells;
+  s.vertices = tin.vertices.size();
+  s.triangles = tin.triangles.size();
+  for (const TinVertex& v : tin.vertices) s.outlineVertices += v.outline;
+  s.area = totalArea(tin);
+  s.crsName = tin.crsName;
+  return s;
+}
+
+SampleSummary runSampleJob(const std::string& demPath, const std::string& outPath,
+                           const SampleOptions& options, bool overwrite, const Feedback& feedback) {
+  options.validate();
+  GpkgWriteOptions writeOptions{overwrite, jobMetadata(demPath, options)};
+  checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  const ProgressRange all(feedback, 0, 1);
+  const Dem dem = readDem(demPath, options.band, all.sub(0, 0.1));
+  const Tin tin = sampleTin(dem, options, all.sub(0.1, 0.6));
+  writeTinGpkg(tin, outPath, writeOptions, all.sub(0.6, 1));
+  all.report(1, "Done");
+  return summarize(tin, dem.validCount());
+}
+
+}  // namespace tinlod

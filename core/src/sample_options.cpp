@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/sample_options.h"
+
+#include <cmath>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+
+void SampleOptions::validate() const {
+  if (band < 1) throw Error("band must be 1 or more (got " + std::to_string(band) + ")");
+  if (block < 1 || block > 1000)
+    throw Error("block must be a whole number from 1 to 1000 (got " + std::to_string(block) +
+                "); 3 is the study's choice, 1 takes every cell");
+  if (!std::isfinite(jitter) || jitter < 0 || jitter > 1000)
+    throw Error("jitter must be from 0 to 1000 metres (got " + std::to_string(jitter) +
+                "); the default 0.99 keeps points off common circles");
+}
+
+}  // namespace tinlod

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/triangulation.h"
+
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/spatial_sort.h>
+
+#include <numeric>
+
+#include "cgal_types.h"
+
+namespace tinlod {
+namespace {
+
+std::vector<cgal::Point> toPoints(const std::vector<TinVertex>& vertices) {
+  std::vector<cgal::Point> points;
+  points.reserve(vertices.size());
+  for (const TinVertex& v : vertices) points.emplace_back(v.x, v.y, v.z);
+  return points;
+}
+
+// Spatially sorted insertion with the previous vertex as hint, as CGAL's own bulk
+// insertion does, but in our loop so that progress and cancellation reach the user.
+void insertSorted(cgal::Delaunay& dt, const std::vector<cgal::Point>& points,
+                  const ProgressRange& progress) {
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  using Pmap = CGAL::Pointer_property_map<cgal::Point>::const_type;
+  using SortTraits = CGAL::Spatial_sort_traits_adapter_2<cgal::Traits, Pmap>;
+  CGAL::spatial_sort(order.begin(), order.end(), SortTraits(CGAL::make_property_map(points)));
+  progress.report(0.1, "Triangulating");
+
+  cgal::Delaunay::Face_handle hint;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t before = dt.number_of_vertices();
+    cgal::Delaunay::Vertex_handle v = dt.insert(points[order[k]], hint);
+    if (dt.number_of_vertices() > before) v->info() = static_cast<VertexId>(order[k]);
+    hint = v->face();
+    if ((k & 0xFFFF) == 0) progress.report(0.1 + 0.8 * double(k) / order.size(), "Triangulating");
+  }
+}
+
+}  // namespace
+
+std::vector<Triangle> delaunayTriangles(const std::vector<TinVertex>& vertices,
+                                        const ProgressRange& progress) {
+  cgal::Delaunay dt;
+  insertSorted(dt, toPoints(vertices), progress);
+  std::vector<Triangle> triangles;
+  triangles.reserve(dt.number_of_faces());
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+    triangles.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+  progress.report(1.0, "Triangulating");
+  return triangles;
+}
+
+}  // namespace tinlod

@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "provider.h"
+
+#include <qgsapplication.h>
+
+#include "sample_tin_algorithm.h"
+#include "tinlod/version.h"
+
+namespace tinlod::qgis {
+
+QString Provider::id() const { return QStringLiteral("tinlod"); }
+QString Provider::name() const { return QStringLiteral("TIN hierarchy"); }
+QString Provider::longName() const { return QStringLiteral("TIN hierarchy (tinlod %1)").arg(kVersion); }
+QString Provider::versionInfo() const { return QString::fromLatin1(kVersion); }
+QIcon Provider::icon() const { return QgsApplication::getThemeIcon(QStringLiteral("/mActionNewMeshLayer.svg")); }
+
+void Provider::loadAlgorithms() { addAlgorithm(new SampleTinAlgorithm()); }
+
+}  // namespace tinlod::qgis

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <qgsprocessingalgorithm.h>
+
+#include "tinlod/sample_options.h"
+
+namespace tinlod::qgis {
+
+// tinlod:sampletin, "Sample TIN from DEM": the Processing face of `tinlod sample`.
+class SampleTinAlgorithm : public QgsProcessingAlgorithm {
+ public:
+  QString name() const override;
+  QString displayName() const override;
+  QString group() const override;
+  QString groupId() const override;
+  QStringList tags() const override;
+  QString shortHelpString() const override;
+  SampleTinAlgorithm* createInstance() const override;
+  void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
+
+ protected:
+  bool prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                        QgsProcessingFeedback* feedback) override;
+  QVariantMap processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                               QgsProcessingFeedback* feedback) override;
+
+ private:
+  std::string demSource_;  // read on the main thread in prepareAlgorithm
+  SampleOptions options_;
+};
+
+}  // namespace tinlod::qgis
