@@ -45,8 +45,10 @@ SampleTinAlgorithm* SampleTinAlgorithm::createInstance() const { return new Samp
 void SampleTinAlgorithm::initAlgorithm(const QVariantMap&) {
   const SampleOptions defaults;
   addParameter(new QgsProcessingParameterRasterLayer(QStringLiteral("INPUT"), QStringLiteral("DEM")));
+  // Optional with a default: qgis_process 3.22 reports a mandatory band as missing
+  // even when it has a default value.
   addParameter(new QgsProcessingParameterBand(QStringLiteral("BAND"), QStringLiteral("Band"), defaults.band,
-                                              QStringLiteral("INPUT")));
+                                              QStringLiteral("INPUT"), true));
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("BLOCK"), QStringLiteral("Block size k (one sample per k x k cells)"),
                                                 QgsProcessingParameterNumber::Integer, defaults.block, false, 1, 1000));
   auto jitter = std::make_unique<QgsProcessingParameterNumber>(
@@ -77,7 +79,10 @@ bool SampleTinAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProc
   if (layer->providerType() != QLatin1String("gdal"))
     throw QgsProcessingException(QStringLiteral("INPUT must be a raster file GDAL reads; '%1' comes from the %2 provider: "
                                                 "save it as a GeoTIFF first").arg(layer->name(), layer->providerType()));
-  const int band = parameterAsInt(parameters, QStringLiteral("BAND"), context);
+  const QVariant bandValue = parameters.value(QStringLiteral("BAND"));
+  const int band = bandValue.isValid() && !bandValue.toString().isEmpty()
+                       ? parameterAsInt(parameters, QStringLiteral("BAND"), context)
+                       : SampleOptions().band;
   if (band < 1 || band > layer->bandCount())
     throw QgsProcessingException(QStringLiteral("Invalid band number for BAND (%1): valid values for input raster are 1 to %2")
                                      .arg(band).arg(layer->bandCount()));
@@ -100,7 +105,7 @@ QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, 
   });
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3")
                          .arg(summary.vertices).arg(summary.triangles).arg(QString::fromStdString(summary.crsName)));
-  for (const QString layer : {QStringLiteral("triangles"), QStringLiteral("vertices")})
+  for (const QString& layer : {QStringLiteral("triangles"), QStringLiteral("vertices")})
     context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=") + layer,
                                        QgsProcessingContext::LayerDetails(layer, context.project(), QStringLiteral("OUTPUT"),
                                                                           QgsProcessingUtils::LayerHint::Vector));

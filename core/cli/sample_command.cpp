@@ -9,7 +9,7 @@
 namespace tinlod::cli {
 namespace {
 
-const char* const kUsage = "tinlod sample DEM OUT.gpkg [-b band] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-q] [-overwrite]";
+const char* const kUsage = "tinlod sample DEM OUT.gpkg [-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-q] [-overwrite]";
 
 const char* const kHelp = R"(Samples a DEM into a Delaunay TIN and writes it to a GeoPackage.
 
@@ -21,6 +21,8 @@ Usage: tinlod sample DEM OUT.gpkg [options]
 
 Options:
   -b band        band holding the heights (default 1)
+  -s_srs srs     CRS of the DEM, for a file with none or a wrong one (e.g. an .asc grid
+                 in degrees without .prj: -s_srs EPSG:4326)
   -t_srs srs     metric CRS of the TIN, e.g. EPSG:32632 (default: the DEM's own CRS if it
                  is in metres, else the UTM zone of the DEM's centre)
   -block k       one random valid cell per k x k block (default 3, as in the study; 1 takes
@@ -47,6 +49,7 @@ int sampleCommand(std::vector<std::string> args) {
   }
   SampleOptions options;
   options.band = a.integer("-b", options.band);
+  options.sourceSrs = a.text("-s_srs", options.sourceSrs);
   options.targetSrs = a.text("-t_srs", options.targetSrs);
   options.block = a.integer("-block", options.block);
   options.jitter = a.number("-jitter", options.jitter);

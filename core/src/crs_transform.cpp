@@ -52,10 +52,29 @@ void centreLonLat(const Dem& dem, const OGRSpatialReference& src, double& lon, d
                 "': name a projected CRS with -t_srs");
 }
 
+OGRSpatialReference parseSrs(const std::string& definition, const std::string& role) {
+  OGRSpatialReference srs;
+  if (srs.SetFromUserInput(definition.c_str()) != OGRERR_NONE)
+    throw Error(role + " '" + definition + "' is not a CRS GDAL understands: use e.g. EPSG:4326 or EPSG:32632");
+  return srs;
+}
+
+// Degrees stored without a CRS (an .asc without .prj) would give a TIN a millionth of
+// the right size: say so plainly.
+void warnAboutMissingCrs(const Dem& dem, const ProgressRange& progress) {
+  const double x0 = dem.geotransform[0], x1 = x0 + dem.width * dem.geotransform[1];
+  const double y0 = dem.geotransform[3], y1 = y0 + dem.height * dem.geotransform[5];
+  const bool looksGeographic = dem.hasGeotransform && std::fabs(dem.geotransform[1]) < 0.1 &&
+                               std::min(x0, x1) >= -180 && std::max(x0, x1) <= 360 &&
+                               std::min(y0, y1) >= -90 && std::max(y0, y1) <= 90;
+  if (looksGeographic)
+    progress.warn("'" + dem.path + "' has no CRS and its coordinates look like degrees: name its CRS with -s_srs EPSG:4326 (QGIS: assign the layer's CRS), or the TIN will be in degrees");
+  else
+    progress.warn("'" + dem.path + "' has no CRS: its x and y units are taken as metres");
+}
+
 OGRSpatialReference parseTarget(const std::string& targetSrs) {
-  OGRSpatialReference dst;
-  if (dst.SetFromUserInput(targetSrs.c_str()) != OGRERR_NONE)
-    throw Error("target CRS '" + targetSrs + "' is not a CRS GDAL understands: use e.g. EPSG:32632");
+  OGRSpatialReference dst = parseSrs(targetSrs, "target CRS");
   if (!isMetric(dst))
     throw Error("target CRS '" + targetSrs +
                 "' is not a projected CRS in metres: tinlod needs metric x and y, e.g. a UTM zone");
@@ -79,21 +98,25 @@ bool CrsTransform::isIdentity() const { return !impl_->transform; }
 const std::string& CrsTransform::targetWkt() const { return impl_->wkt; }
 const std::string& CrsTransform::targetName() const { return impl_->name; }
 
-CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& targetSrs,
+CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, const std::string& targetSrs,
                                   const ProgressRange& progress) {
   auto impl = std::make_unique<Impl>();
   OGRSpatialReference src;
-  const bool hasSrc = !dem.crsWkt.empty() && src.importFromWkt(dem.crsWkt.c_str()) == OGRERR_NONE;
+  bool hasSrc = !dem.crsWkt.empty() && src.importFromWkt(dem.crsWkt.c_str()) == OGRERR_NONE;
+  if (!sourceSrs.empty()) {
+    src = parseSrs(sourceSrs, "source CRS");
+    hasSrc = true;
+  }
   src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
 
   OGRSpatialReference dst;
   if (!targetSrs.empty()) {
     if (!hasSrc)
       throw Error("'" + dem.path + "' has no CRS, so it cannot be transformed to '" + targetSrs +
-                  "': assign its CRS first, e.g. gdal_edit.py -a_srs EPSG:4326 " + dem.path);
+                  "': name its CRS with -s_srs, e.g. -s_srs EPSG:4326");
     dst = parseTarget(targetSrs);
   } else if (!hasSrc) {
-    progress.warn("'" + dem.path + "' has no CRS: its x and y units are taken as metres");
+    warnAboutMissingCrs(dem, progress);
     impl->name = "no CRS";
     return CrsTransform(std::move(impl));
   } else if (isMetric(src)) {

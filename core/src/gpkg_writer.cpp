@@ -111,6 +111,7 @@ void writeLayers(GDALDataset& ds, const Tin& tin, const GpkgWriteOptions& option
   const double share = double(tin.vertices.size()) / (tin.vertices.size() + 2.0 * tin.triangles.size());
   writeVertices(tin, *vertices, progress.sub(0, share));
   writeTriangles(tin, *triangles, progress.sub(share, 1));
+  progress.report(1, "Writing triangles");  // the last moment a cancel can still be honoured
   if (ds.CommitTransaction() != OGRERR_NONE) throw Error("cannot commit to the GeoPackage");
   for (const auto& [key, value] : options.metadata) ds.SetMetadataItem(key.c_str(), value.c_str());
 }

@@ -73,6 +73,62 @@ bool coversMissing(const MissingCounts& missing, const GridPoint (&p)[3]) {
   return false;
 }
 
+GridPoint gridPoint(const TinVertex& v) { return {v.col, v.row}; }
+
+bool collinearInGrid(const GridPoint (&p)[3]) {
+  return (p[1].col - p[0].col) * (p[2].row - p[0].row) == (p[2].col - p[0].col) * (p[1].row - p[0].row);
+}
+
+class TriangleFilter {
+ public:
+  TriangleFilter(const Dem& dem, const Triangulation& triangulation, const Tin& tin)
+      : missing_(dem), triangulation_(triangulation), tin_(tin), keep_(triangulation.triangles.size(), true) {}
+
+  void dropOverNodata() {
+    for (std::size_t t = 0; t < keep_.size(); ++t) keep_[t] = !coversMissing(missing_, corners(t));
+  }
+
+  void peelBoundarySlivers() {
+    std::vector<std::int32_t> queue;
+    for (std::size_t t = 0; t < keep_.size(); ++t)
+      if (isBoundarySliver(t)) queue.push_back(static_cast<std::int32_t>(t));
+    while (!queue.empty()) {
+      const std::int32_t t = queue.back();
+      queue.pop_back();
+      if (!isBoundarySliver(t)) continue;
+      keep_[t] = false;
+      for (std::int32_t n : triangulation_.neighbours[t])
+        if (n != kNoNeighbour && isBoundarySliver(n)) queue.push_back(n);
+    }
+  }
+
+  std::vector<Triangle> kept() const {
+    std::vector<Triangle> out;
+    for (std::size_t t = 0; t < keep_.size(); ++t)
+      if (keep_[t]) out.push_back(triangulation_.triangles[t]);
+    return out;
+  }
+
+ private:
+  using Corners = GridPoint[3];
+  const Corners& corners(std::size_t t) {
+    for (int k = 0; k < 3; ++k) scratch_[k] = gridPoint(tin_.vertices[triangulation_.triangles[t][k]]);
+    return scratch_;
+  }
+  bool isBoundarySliver(std::size_t t) {
+    if (!keep_[t] || !collinearInGrid(corners(t))) return false;
+    for (std::int32_t n : triangulation_.neighbours[t])
+      if (n == kNoNeighbour || !keep_[n]) return true;
+    return false;
+  }
+
+  MissingCounts missing_;
+  const Triangulation& triangulation_;
+  const Tin& tin_;
+  std::vector<bool> keep_;
+  Corners scratch_;
+};
+
 std::size_t dropUnusedVertices(Tin& tin) {
   constexpr VertexId kUnused = UINT32_MAX;
   std::vector<VertexId> newId(tin.vertices.size(), kUnused);
@@ -94,16 +150,14 @@ std::size_t dropUnusedVertices(Tin& tin) {
 
 }  // namespace
 
-std::size_t removeTrianglesOverNodata(const Dem& dem, Tin& tin, const ProgressRange& progress) {
-  const MissingCounts missing(dem);
-  progress.report(0.3, "Cutting out nodata");
-  auto spansNodata = [&](const Triangle& t) {
-    GridPoint p[3];
-    for (int i = 0; i < 3; ++i) p[i] = {tin.vertices[t[i]].col, tin.vertices[t[i]].row};
-    return coversMissing(missing, p);
-  };
-  tin.triangles.erase(std::remove_if(tin.triangles.begin(), tin.triangles.end(), spansNodata),
-                      tin.triangles.end());
+std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triangulation, Tin& tin,
+                                     const ProgressRange& progress) {
+  progress.report(0, "Cutting out nodata");
+  TriangleFilter filter(dem, triangulation, tin);
+  filter.dropOverNodata();
+  progress.report(0.7, "Cutting out nodata");
+  filter.peelBoundarySlivers();
+  tin.triangles = filter.kept();
   progress.report(0.9, "Cutting out nodata");
   return dropUnusedVertices(tin);
 }

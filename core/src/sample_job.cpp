@@ -70,6 +70,7 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
           {"TINLOD_BLOCK", std::to_string(o.block)},
           {"TINLOD_JITTER", std::to_string(o.jitter)},
           {"TINLOD_SEED", std::to_string(o.seed)},
+          {"TINLOD_SOURCE_SRS", o.sourceSrs.empty() ? "from file" : o.sourceSrs},
           {"TINLOD_TARGET_SRS", o.targetSrs.empty() ? "auto" : o.targetSrs}};
 }
 
@@ -77,16 +78,16 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
 
 Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange& progress) {
   options.validate();
-  const CrsTransform transform = CrsTransform::forDem(dem, options.targetSrs, progress);
+  const CrsTransform transform = CrsTransform::forDem(dem, options.sourceSrs, options.targetSrs, progress);
   warnAboutJitter(dem, transform, options.jitter, progress);
   const std::vector<SampleCell> cells = sampleCells(dem, options.block, options.seed, progress.sub(0, 0.2));
   Tin tin;
   tin.crsWkt = transform.targetWkt();
   tin.crsName = transform.targetName();
+  progress.report(0.2, "Transforming points");
   tin.vertices = toVertices(dem, cells, transform, options.jitter, options.seed);
-  progress.report(0.3, "Transforming points");
-  tin.triangles = delaunayTriangles(tin.vertices, progress.sub(0.3, 0.9));
-  const std::size_t isolated = removeTrianglesOverNodata(dem, tin, progress.sub(0.9, 1));
+  const Triangulation triangulation = delaunayTriangles(tin.vertices, progress.sub(0.3, 0.9));
+  const std::size_t isolated = keepTrianglesOnValidData(dem, triangulation, tin, progress.sub(0.9, 1));
   if (isolated > 0)
     progress.inform(std::to_string(isolated) + " sampled cells touch no triangle (isolated valid cells) and were left out");
   if (tin.triangles.empty())
@@ -114,7 +115,7 @@ SampleSummary runSampleJob(const std::string& demPath, const std::string& outPat
   const Dem dem = readDem(demPath, options.band, all.sub(0, 0.1));
   const Tin tin = sampleTin(dem, options, all.sub(0.1, 0.6));
   writeTinGpkg(tin, outPath, writeOptions, all.sub(0.6, 1));
-  all.report(1, "Done");
+  all.finish("Done");
   return summarize(tin, dem.validCount());
 }
 

@@ -22,6 +22,7 @@ std::vector<cgal::Point> toPoints(const std::vector<TinVertex>& vertices) {
 // insertion does, but in our loop so that progress and cancellation reach the user.
 void insertSorted(cgal::Delaunay& dt, const std::vector<cgal::Point>& points,
                   const ProgressRange& progress) {
+  progress.report(0, "Triangulating");
   std::vector<std::size_t> order(points.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   using Pmap = CGAL::Pointer_property_map<cgal::Point>::const_type;
@@ -41,16 +42,21 @@ void insertSorted(cgal::Delaunay& dt, const std::vector<cgal::Point>& points,
 
 }  // namespace
 
-std::vector<Triangle> delaunayTriangles(const std::vector<TinVertex>& vertices,
-                                        const ProgressRange& progress) {
+Triangulation delaunayTriangles(const std::vector<TinVertex>& vertices, const ProgressRange& progress) {
   cgal::Delaunay dt;
   insertSorted(dt, toPoints(vertices), progress);
-  std::vector<Triangle> triangles;
-  triangles.reserve(dt.number_of_faces());
+  Triangulation out;
+  out.triangles.reserve(dt.number_of_faces());
+  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = kNoNeighbour;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    f->info() = static_cast<std::int32_t>(out.triangles.size());
+    out.triangles.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+  }
+  out.neighbours.reserve(out.triangles.size());
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
-    triangles.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+    out.neighbours.push_back({f->neighbor(0)->info(), f->neighbor(1)->info(), f->neighbor(2)->info()});
   progress.report(1.0, "Triangulating");
-  return triangles;
+  return out;
 }
 
 }  // namespace tinlod

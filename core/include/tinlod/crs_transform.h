@@ -17,8 +17,10 @@ class CrsTransform {
   // The target is `targetSrs` when given (any GDAL/PROJ definition: "EPSG:32632",
   // WKT, PROJ string); otherwise the DEM's own CRS when its units are metres, and
   // else the UTM zone of the DEM's centre. A DEM without a CRS stays in its own
-  // units, which are assumed to be metres (a warning says so).
-  static CrsTransform forDem(const Dem& dem, const std::string& targetSrs, const ProgressRange& progress);
+  // units, which are assumed to be metres (a warning says so). `sourceSrs`, when
+  // given, replaces the DEM's own CRS.
+  static CrsTransform forDem(const Dem& dem, const std::string& sourceSrs, const std::string& targetSrs,
+                             const ProgressRange& progress);
 
   CrsTransform(CrsTransform&&) noexcept;
   CrsTransform& operator=(CrsTransform&&) noexcept;

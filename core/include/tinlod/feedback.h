@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace tinlod {
@@ -19,18 +20,23 @@ struct Feedback {
 
 // A view of a Feedback that maps [0, 1] onto [start, end] of the parent's range, so
 // that a step can report its own progress without knowing where it sits in the job.
+// Holds its own (shared) copy of the Feedback, so a temporary is safe to pass.
 class ProgressRange {
  public:
-  ProgressRange(const Feedback& feedback, double start, double end);
+  ProgressRange(Feedback feedback, double start, double end);
 
   // Reports progress; throws Cancelled when the callback asks to stop.
   void report(double fraction, const std::string& phase) const;
+  // Reports the end of the range once the work is committed: a cancel asked for now
+  // comes too late to honour, so it is not turned into Cancelled.
+  void finish(const std::string& phase) const;
   void warn(const std::string& message) const;
   void inform(const std::string& message) const;
   ProgressRange sub(double start, double end) const;
 
  private:
-  const Feedback* feedback_;
+  ProgressRange(std::shared_ptr<const Feedback> feedback, double start, double end);
+  std::shared_ptr<const Feedback> feedback_;
   double start_;
   double end_;
 };

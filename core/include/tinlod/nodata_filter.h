@@ -6,13 +6,20 @@
 #include "tinlod/dem.h"
 #include "tinlod/feedback.h"
 #include "tinlod/tin.h"
+#include "tinlod/triangulation.h"
 
 namespace tinlod {
 
-// Cuts nodata holes out of a TIN sampled from `dem`: drops every triangle whose
-// closed footprint in the DEM grid (its vertices' cell centres) contains the centre
-// of a missing or off-raster cell, then drops vertices left in no triangle and
-// renumbers the rest. Returns the number of vertices dropped.
-std::size_t removeTrianglesOverNodata(const Dem& dem, Tin& tin, const ProgressRange& progress);
+// Sets tin.triangles to the triangles of `triangulation` (of tin.vertices, sampled
+// from `dem`) that lie on valid data:
+// - a triangle whose closed footprint in the DEM grid (its vertices' cell centres)
+//   contains the centre of a missing cell would bridge a nodata hole: it goes;
+// - a triangle whose cells are collinear in the grid covers no cell; where it is on
+//   the TIN's boundary it is a sliver the jitter made along a straight edge: peeled
+//   off, as are the slivers that its removal exposes.
+// Then drops vertices left in no triangle and renumbers the rest. Returns the number
+// of vertices dropped.
+std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triangulation, Tin& tin,
+                                     const ProgressRange& progress);
 
 }  // namespace tinlod

@@ -13,6 +13,7 @@ struct SampleOptions {
   int block = 3;              // one random valid cell per block x block cells; 1 takes every cell
   double jitter = 0.99;       // x and y each moved by a uniform offset in [0, jitter) metres
   std::uint64_t seed = 1;     // random seed: the same seed gives the same TIN
+  std::string sourceSrs;      // CRS of the DEM when its file has none or a wrong one; empty: the file's
   std::string targetSrs;      // output CRS (any GDAL/PROJ definition); empty: automatic
 
   // Throws Error naming the option when a value is out of range.

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "test_support.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+const Feedback kQuiet;
+const ProgressRange kRange(kQuiet, 0, 1);
+
+struct RasterSpec {
+  int width = 6, height = 5, bands = 1;
+  GDALDataType type = GDT_Float32;
+  double gt[6] = {500000, 10, 0, 5000000, 0, -10};
+  bool setNodata = false;
+  double nodata = 0;
+  std::function<double(int, int)> value = [](int r, int c) { return 100 + r + c; };
+};
+
+std::string writeRaster(const RasterSpec& s, const std::string& name = "dem.tif") {
+  GDALAllRegister();
+  const std::string path = test::tempDir() + "/" + name;
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), s.width, s.height,
+                                                                            s.bands, s.type, nullptr);
+  ds->SetGeoTransform(const_cast<double*>(s.gt));
+  ds->SetProjection("EPSG:32632");
+  std::vector<double> v(std::size_t(s.width) * s.height);
+  for (int r = 0; r < s.height; ++r)
+    for (int c = 0; c < s.width; ++c) v[std::size_t(r) * s.width + c] = s.value(r, c);
+  for (int b = 1; b <= s.bands; ++b) {
+    GDALRasterBand* band = ds->GetRasterBand(b);
+    if (s.setNodata) band->SetNoDataValue(s.nodata);
+    EXPECT_EQ(band->RasterIO(GF_Write, 0, 0, s.width, s.height, v.data(), s.width, s.height, GDT_Float64, 0, 0), CE_None);
+  }
+  GDALClose(ds);
+  return path;
+}
+
+void expectError(const std::string& path, int band, const std::string& fragment) {
+  try {
+    readDem(path, band, kRange);
+    FAIL() << "expected an error containing '" << fragment << "'";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST(DemReader, ReadsHeightsGeoreferencingAndCrs) {
+  RasterSpec s;
+  s.type = GDT_Int16;
+  const Dem dem = readDem(writeRaster(s), 1, kRange);
+  EXPECT_EQ(dem.width, 6);
+  EXPECT_EQ(dem.height, 5);
+  EXPECT_FLOAT_EQ(dem.at(2, 3), 105.0f);
+  EXPECT_DOUBLE_EQ(dem.centreX(0), 500005.0);
+  EXPECT_DOUBLE_EQ(dem.centreY(0), 4999995.0);
+  EXPECT_NE(dem.crsWkt.find("32632"), std::string::npos);
+  EXPECT_EQ(dem.validCount(), 30u);
+}
+
+TEST(DemReader, DeclaredNodataBecomesMissing) {
+  RasterSpec s;
+  s.type = GDT_Int16;
+  s.setNodata = true;
+  s.nodata = -32767;
+  s.value = [](int r, int c) { return r == 1 && c == 1 ? -32767 : 10; };
+  const Dem dem = readDem(writeRaster(s), 1, kRange);
+  EXPECT_FALSE(dem.valid(1, 1));
+  EXPECT_EQ(dem.validCount(), 29u);
+}
+
+TEST(DemReader, FloatNodataGivenAsDoubleStillMatches) {
+  RasterSpec s;
+  s.setNodata = true;
+  s.nodata = -3.4028234663852886e+38;
+  s.value = [](int r, int) { return r == 0 ? -3.4028234663852886e+38 : 1.0; };
+  EXPECT_EQ(readDem(writeRaster(s), 1, kRange).validCount(), 24u);
+}
+
+TEST(DemReader, NanIsMissingWithoutDeclaredNodata) {
+  RasterSpec s;
+  s.value = [](int r, int c) { return r == 2 && c < 3 ? NAN : 1.0; };
+  EXPECT_EQ(readDem(writeRaster(s), 1, kRange).validCount(), 27u);
+}
+
+TEST(DemReader, ChosenBandIsRead) {
+  RasterSpec s;
+  s.bands = 3;
+  const std::string path = writeRaster(s);
+  {
+    GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_Update));
+    float v = 777;
+    ASSERT_EQ(ds->GetRasterBand(2)->RasterIO(GF_Write, 0, 0, 1, 1, &v, 1, 1, GDT_Float32, 0, 0), CE_None);
+    GDALClose(ds);
+  }
+  EXPECT_FLOAT_EQ(readDem(path, 2, kRange).at(0, 0), 777.0f);
+  expectError(path, 4, "invalid band number 4");
+  expectError(path, 0, "bands 1 to 3");
+}
+
+TEST(DemReader, BottomUpGeotransformIsKept) {
+  RasterSpec s;
+  s.gt[3] = 4999950;
+  s.gt[5] = 10;  // rows go north
+  const Dem dem = readDem(writeRaster(s), 1, kRange);
+  EXPECT_DOUBLE_EQ(dem.centreY(0), 4999955.0);
+  EXPECT_DOUBLE_EQ(dem.centreY(4), 4999995.0);
+}
+
+TEST(DemReader, RotatedGeotransformIsAnError) {
+  RasterSpec s;
+  s.gt[2] = 0.5;
+  expectError(writeRaster(s), 1, "rotated geotransform");
+}
+
+TEST(DemReader, FewerThanThreeValidCellsIsAnError) {
+  RasterSpec s;
+  s.setNodata = true;
+  s.nodata = -9999;
+  s.value = [](int r, int c) { return r == 0 && c < 2 ? 1 : -9999; };
+  expectError(writeRaster(s), 1, "has 2 valid cell(s)");
+}
+
+TEST(DemReader, FileThatIsNoRasterIsAnError) {
+  const std::string path = test::tempDir() + "/notes.txt";
+  std::ofstream(path) << "this is not a DEM\n";
+  expectError(path, 1, "is not a raster GDAL can read");
+  expectError(test::tempDir() + "/missing.tif", 1, "missing.tif' is not a raster");
+}
+
+TEST(DemReader, AsciiGridIsRead) {
+  const std::string dir = test::tempDir();
+  std::ofstream(dir + "/g.asc") << "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 5\nNODATA_value -1\n"
+                                   "1 2 3\n4 -1 6\n";
+  const Dem dem = readDem(dir + "/g.asc", 1, kRange);
+  EXPECT_EQ(dem.validCount(), 5u);
+  EXPECT_FLOAT_EQ(dem.at(1, 2), 6.0f);
+}
+
+}  // namespace
+}  // namespace tinlod

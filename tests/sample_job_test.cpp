@@ -1,0 +1,184 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
+
+#include <filesystem>
+
+#include "mesh_checks.h"
+#include "test_support.h"
+#include "tinlod/error.h"
+#include "tinlod/sample_job.h"
+#include "tinlod/synthetic_dem.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+std::string defaultDem() {
+  static const std::string path = [] {
+    const std::string p = test::tempDir() + "/default_dem.tif";
+    writeDemGeoTiff(makeSyntheticDem({}), p);
+    return p;
+  }();
+  return path;
+}
+
+struct GpkgLayer {
+  long long features = -1;
+  std::string geometry;
+  std::string crs;
+};
+
+GpkgLayer layerInfo(const std::string& path, const std::string& layer) {
+  GDALAllRegister();
+  GpkgLayer info;
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  if (!ds) return info;
+  if (OGRLayer* l = ds->GetLayerByName(layer.c_str())) {
+    info.features = l->GetFeatureCount();
+    info.geometry = OGRGeometryTypeToName(l->GetGeomType());
+    if (l->GetSpatialRef()) info.crs = l->GetSpatialRef()->GetName();
+  }
+  GDALClose(ds);
+  return info;
+}
+
+void addLayer(const std::string& path, const char* name) {
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* l = ds->CreateLayer(name, nullptr, wkbPoint, nullptr);
+  OGRFeature f(l->GetLayerDefn());
+  f.SetGeometryDirectly(new OGRPoint(1, 2));
+  ASSERT_EQ(l->CreateFeature(&f), OGRERR_NONE);
+  GDALClose(ds);
+}
+
+std::size_t filesIn(const std::string& dir) {
+  return std::distance(fs::directory_iterator(dir), fs::directory_iterator());
+}
+
+TEST(SampleJob, WritesVerticesAndTrianglesLayersWithCrs) {
+  const std::string out = test::tempDir() + "/tin.gpkg";
+  const SampleSummary s = runSampleJob(defaultDem(), out, {}, false, {});
+  EXPECT_GT(s.vertices, 360u * 300u / 9);
+  EXPECT_EQ(layerInfo(out, "vertices").features, (long long)s.vertices);
+  EXPECT_EQ(layerInfo(out, "triangles").features, (long long)s.triangles);
+  EXPECT_EQ(layerInfo(out, "triangles").geometry, "3D Polygon");
+  EXPECT_EQ(layerInfo(out, "vertices").geometry, "3D Point");
+  EXPECT_EQ(layerInfo(out, "triangles").crs, "WGS 84 / UTM zone 32N");
+}
+
+TEST(SampleJob, SameSeedSameTinOtherSeedOtherTin) {
+  const Dem dem = makeSyntheticDem({});
+  const ProgressRange quiet(Feedback{}, 0, 1);
+  SampleOptions o;
+  const Tin a = sampleTin(dem, o, quiet), b = sampleTin(dem, o, quiet);
+  ASSERT_EQ(a.vertices.size(), b.vertices.size());
+  EXPECT_EQ(a.triangles, b.triangles);
+  for (std::size_t i = 0; i < a.vertices.size(); ++i) ASSERT_EQ(a.vertices[i].x, b.vertices[i].x);
+  o.seed = 2;
+  const Tin c = sampleTin(dem, o, quiet);
+  EXPECT_NE(a.triangles, c.triangles);
+}
+
+TEST(SampleJob, JitterStaysInItsBounds) {
+  const Dem dem = makeSyntheticDem({});
+  SampleOptions o;
+  o.jitter = 0.5;
+  const Tin tin = sampleTin(dem, o, ProgressRange(Feedback{}, 0, 1));
+  double maxDx = 0, maxDy = 0, minD = 1;
+  for (const TinVertex& v : tin.vertices) {
+    const double dx = v.x - dem.centreX(v.col), dy = v.y - dem.centreY(v.row);
+    ASSERT_GE(dx, 0.0);
+    ASSERT_LT(dx, 0.5);
+    ASSERT_GE(dy, 0.0);
+    ASSERT_LT(dy, 0.5);
+    maxDx = std::max(maxDx, dx), maxDy = std::max(maxDy, dy), minD = std::min({minD, dx, dy});
+  }
+  EXPECT_GT(maxDx, 0.49);  // the offsets fill the range
+  EXPECT_GT(maxDy, 0.49);
+  EXPECT_LT(minD, 0.01);
+}
+
+TEST(SampleJob, DefaultDemTinIsValid) {
+  const Dem dem = makeSyntheticDem({});
+  const Tin tin = sampleTin(dem, {}, ProgressRange(Feedback{}, 0, 1));
+  test::expectValidTin(dem, tin, SampleOptions().jitter);
+  const test::Topology t = test::analyseTopology(tin);
+  EXPECT_EQ(t.components, 1u);
+  EXPECT_EQ(t.boundaryLoops, 2u);  // the outline and the void
+}
+
+TEST(SampleJob, ExistingOutputNeedsOverwriteAndKeepsOtherLayers) {
+  const std::string out = test::tempDir() + "/tin.gpkg";
+  runSampleJob(defaultDem(), out, {}, false, {});
+  addLayer(out, "roads");
+  const std::string before = test::readFile(out);
+  try {
+    runSampleJob(defaultDem(), out, {}, false, {});
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("-overwrite"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(test::readFile(out), before);
+  SampleOptions o;
+  o.block = 5;
+  const SampleSummary s = runSampleJob(defaultDem(), out, o, true, {});
+  EXPECT_EQ(layerInfo(out, "roads").features, 1);
+  EXPECT_EQ(layerInfo(out, "triangles").features, (long long)s.triangles);
+}
+
+TEST(SampleJob, CancelLeavesNothingBehindInEveryPhase) {
+  for (const double stopAt : {0.05, 0.3, 0.55, 0.8, 0.97}) {
+    const std::string dir = test::tempDir();
+    const std::string out = dir + "/tin.gpkg";
+    Feedback cancelling;
+    cancelling.progress = [stopAt](double f, const std::string&) { return f < stopAt; };
+    EXPECT_THROW(runSampleJob(defaultDem(), out, {}, false, cancelling), Cancelled) << stopAt;
+    EXPECT_EQ(filesIn(dir), 0u) << "after cancelling at " << stopAt;
+  }
+}
+
+TEST(SampleJob, CancelWhileReplacingLeavesTheOldFileUntouched) {
+  const std::string dir = test::tempDir();
+  const std::string out = dir + "/tin.gpkg";
+  runSampleJob(defaultDem(), out, {}, false, {});
+  const std::string before = test::readFile(out);
+  Feedback cancelling;
+  cancelling.progress = [](double f, const std::string&) { return f < 0.8; };
+  EXPECT_THROW(runSampleJob(defaultDem(), out, {}, true, cancelling), Cancelled);
+  EXPECT_EQ(test::readFile(out), before);
+  EXPECT_EQ(filesIn(dir), 1u);
+}
+
+TEST(SampleJob, BadOutputPathsFailBeforeAnyWork) {
+  int calls = 0;
+  Feedback counting;
+  counting.progress = [&calls](double, const std::string&) { return ++calls > 0; };
+  EXPECT_THROW(runSampleJob(defaultDem(), test::tempDir() + "/tin.shp", {}, false, counting), Error);
+  EXPECT_THROW(runSampleJob(defaultDem(), test::tempDir() + "/no/such/dir/tin.gpkg", {}, false, counting), Error);
+  SampleOptions bad;
+  bad.block = 0;
+  EXPECT_THROW(runSampleJob(defaultDem(), test::tempDir() + "/tin.gpkg", bad, false, counting), Error);
+  EXPECT_EQ(calls, 0);
+}
+
+TEST(SampleJob, ProgressRisesToOne) {
+  double last = -1;
+  bool monotone = true;
+  Feedback watching;
+  watching.progress = [&](double f, const std::string&) {
+    monotone = monotone && f >= last;
+    last = f;
+    return true;
+  };
+  runSampleJob(defaultDem(), test::tempDir() + "/tin.gpkg", {}, false, watching);
+  EXPECT_TRUE(monotone);
+  EXPECT_DOUBLE_EQ(last, 1.0);
+}
+
+}  // namespace
+}  // namespace tinlod

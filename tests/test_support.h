@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tinlod/dem.h"
+#include "tinlod/feedback.h"
+
+namespace tinlod::test {
+
+// ../shared/data beside the checkout, or $TINLOD_TEST_DATA; empty when absent.
+std::string dataDir();
+
+// A fresh folder for one test, removed when the test binary ends.
+std::string tempDir();
+
+// A Feedback that records warnings and information and never cancels.
+struct RecordingFeedback {
+  std::vector<std::string> warnings;
+  std::vector<std::string> infos;
+  Feedback feedback();
+  bool warned(const std::string& fragment) const;
+};
+
+// An in-memory DEM in UTM zone 32N (EPSG:32632) with north-up cells of `cell` metres;
+// `height(row, col)` gives the height, NaN for nodata.
+Dem makeDem(int width, int height, double cell, const std::function<float(int, int)>& heightAt);
+
+// A DEM whose cells are 1/1200 degree in EPSG:4326, upper-left corner at (lon0, lat0).
+Dem makeGeographicDem(int width, int height, double lon0, double lat0);
+
+std::string readFile(const std::string& path);
+
+}  // namespace tinlod::test
