@@ -43,6 +43,8 @@ const RealDem kDems[] = {
     {"patagonia_coast_S46W066.tif", "", "EPSG:32720"},
 };
 
+void PrintTo(const RealDem& dem, std::ostream* os) { *os << dem.file; }
+
 class RealDemTest : public ::testing::TestWithParam<RealDem> {};
 
 TEST_P(RealDemTest, GivesAValidDelaunayTinCoveringTheValidExtent) {

@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The tinlod command line, end to end: the real binary, its exit codes and output.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+struct CliRun {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+CliRun tinlod(const std::string& args) {
+  const std::string dir = test::tempDir();
+  const std::string cmd = std::string(TINLOD_CLI) + " " + args + " >" + dir + "/out 2>" + dir + "/err";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::readFile(dir + "/out"), test::readFile(dir + "/err")};
+}
+
+bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
+
+std::string defaultDem() {
+  static const std::string path = [] {
+    const std::string p = test::tempDir() + "/default_dem.tif";
+    EXPECT_EQ(tinlod("makedem " + p).exitCode, 0);
+    return p;
+  }();
+  return path;
+}
+
+TEST(Cli, HelpAndVersion) {
+  const CliRun top = tinlod("--help");
+  EXPECT_EQ(top.exitCode, 0);
+  EXPECT_TRUE(has(top.out, "sample"));
+  const CliRun sample = tinlod("sample --help");
+  EXPECT_EQ(sample.exitCode, 0);
+  for (const char* option : {"-b ", "-s_srs", "-t_srs", "-block", "-jitter", "-seed", "-overwrite", "-q"})
+    EXPECT_TRUE(has(sample.out, option)) << option;
+  EXPECT_TRUE(has(tinlod("--version").out, "tinlod 0."));
+  const CliRun none = tinlod("");
+  EXPECT_EQ(none.exitCode, 1);
+}
+
+TEST(Cli, SampleWritesTheGeoPackageWithGdalStyleProgress) {
+  const std::string out = test::tempDir() + "/tin.gpkg";
+  const CliRun r = tinlod("sample " + defaultDem() + " " + out);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "0...10...20...30...40...50...60...70...80...90...100 - done.")) << r.err;
+  EXPECT_TRUE(has(r.out, "Wrote ")) << r.out;
+  EXPECT_TRUE(has(r.out, "EPSG:32632")) << r.out;
+  EXPECT_TRUE(fs::exists(out));
+}
+
+TEST(Cli, QuietPrintsNothingButWarnings) {
+  const CliRun r = tinlod("sample -q " + defaultDem() + " " + test::tempDir() + "/tin.gpkg");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(Cli, OptionsReachTheCore) {
+  const std::string dir = test::tempDir();
+  const CliRun k1 = tinlod("sample -q -block 1 -seed 5 -jitter 0.1 -t_srs EPSG:32633 " + defaultDem() + " " + dir + "/a.gpkg");
+  EXPECT_EQ(k1.exitCode, 0) << k1.err;
+  const CliRun k3 = tinlod("sample " + defaultDem() + " " + dir + "/b.gpkg");
+  auto vertices = [](const std::string& out) { return std::stol(out.substr(out.find("Wrote ") + 6)); };
+  const CliRun k1Loud = tinlod("sample -block 1 -overwrite " + defaultDem() + " " + dir + "/a.gpkg");
+  EXPECT_GT(vertices(k1Loud.out), 5 * vertices(k3.out));
+}
+
+TEST(Cli, ErrorsExitOneWithAMessageAndWriteNothing) {
+  const std::string dir = test::tempDir();
+  const std::string out = dir + "/tin.gpkg";
+  struct Case {
+    std::string args, message;
+  };
+  const Case cases[] = {
+      {"sample " + dir + "/missing.tif " + out, "is not a raster GDAL can read"},
+      {"sample -b 2 " + defaultDem() + " " + out, "invalid band number 2"},
+      {"sample -block 0 " + defaultDem() + " " + out, "block must be"},
+      {"sample -block x " + defaultDem() + " " + out, "-block expects a whole number"},
+      {"sample -jitter -1 " + defaultDem() + " " + out, "jitter must be"},
+      {"sample -seed -3 " + defaultDem() + " " + out, "-seed expects a whole number"},
+      {"sample -t_srs EPSG:4326 " + defaultDem() + " " + out, "not a projected CRS in metres"},
+      {"sample -frobnicate " + defaultDem() + " " + out, "unknown option '-frobnicate'"},
+      {"sample " + defaultDem(), "expected 2 file names"},
+      {"sample " + defaultDem() + " " + dir + "/tin.shp", "must be a GeoPackage"},
+      {"sample -b", "-b needs 1 value"},
+      {"frobnicate", "unknown command"},
+  };
+  for (const Case& c : cases) {
+    const CliRun r = tinlod(c.args);
+    EXPECT_EQ(r.exitCode, 1) << c.args;
+    EXPECT_TRUE(has(r.err, "ERROR: ")) << c.args << ": " << r.err;
+    EXPECT_TRUE(has(r.err, c.message)) << c.args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+TEST(Cli, ExistingOutputNeedsOverwrite) {
+  const std::string out = test::tempDir() + "/tin.gpkg";
+  ASSERT_EQ(tinlod("sample -q " + defaultDem() + " " + out).exitCode, 0);
+  const std::string before = test::readFile(out);
+  const CliRun again = tinlod("sample -q " + defaultDem() + " " + out);
+  EXPECT_EQ(again.exitCode, 1);
+  EXPECT_TRUE(has(again.err, "add -overwrite")) << again.err;
+  EXPECT_EQ(test::readFile(out), before);
+  EXPECT_EQ(tinlod("sample -q -overwrite -seed 2 " + defaultDem() + " " + out).exitCode, 0);
+  EXPECT_NE(test::readFile(out), before);
+}
+
+TEST(Cli, RealGeographicDemIsTransformedToUtm) {
+  const std::string dir = test::dataDir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM run skipped";
+  const CliRun r = tinlod("sample " + dir + "/zion_srtm3.tif " + test::tempDir() + "/zion.gpkg");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "points are transformed to WGS 84 / UTM zone 12N (EPSG:32612)")) << r.err;
+  const CliRun asc = tinlod("sample -s_srs EPSG:4326 " + dir + "/boulder_srtmgl3_144.asc " + test::tempDir() + "/b.gpkg");
+  EXPECT_EQ(asc.exitCode, 0) << asc.err;
+  EXPECT_TRUE(has(asc.out, "EPSG:32613")) << asc.out;
+}
+
+}  // namespace
+}  // namespace tinlod

@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The Processing algorithms in a headless QgsApplication, registered through the same
+// C entry point the plugin calls.
+#include <gtest/gtest.h>
+#include <qgsapplication.h>
+#include <qgsnativealgorithms.h>
+#include <qgsprocessingalgorithm.h>
+#include <qgsprocessingcontext.h>
+#include <qgsprocessingfeedback.h>
+#include <qgsprocessingregistry.h>
+#include <qgsvectorlayer.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "test_support.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/sample_job.h"
+#include "tinlod/synthetic_dem.h"
+
+extern "C" int tinlod_register_provider();
+extern "C" void tinlod_unregister_provider();
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+std::string defaultDem() {
+  static const std::string path = [] {
+    const std::string p = test::tempDir() + "/default_dem.tif";
+    writeDemGeoTiff(makeSyntheticDem({}), p);
+    return p;
+  }();
+  return path;
+}
+
+// QgsProcessingAlgorithm::run catches the algorithm's exception and reports it here.
+class RecordingFeedback : public QgsProcessingFeedback {
+ public:
+  void reportError(const QString& error, bool fatal) override {
+    errors += error;
+    QgsProcessingFeedback::reportError(error, fatal);
+  }
+  QString errors;
+};
+
+struct Result {
+  bool ok = false;
+  QVariantMap outputs;
+  QString error;
+};
+
+Result runAlgorithm(const QString& id, const QVariantMap& parameters, RecordingFeedback* feedback = nullptr) {
+  std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById(id));
+  EXPECT_NE(alg, nullptr) << id.toStdString();
+  if (!alg) return {};
+  QgsProcessingContext context;
+  RecordingFeedback defaultFeedback;
+  RecordingFeedback* f = feedback ? feedback : &defaultFeedback;
+  Result r;
+  try {
+    r.outputs = alg->run(parameters, context, f, &r.ok);
+  } catch (const QgsProcessingException& e) {
+    r.error = e.what();
+  }
+  r.error += f->errors;
+  return r;
+}
+
+long long featureCount(const QString& gpkg, const QString& layer) {
+  QgsVectorLayer l(gpkg + "|layername=" + layer, layer, QStringLiteral("ogr"));
+  return l.isValid() ? l.featureCount() : -1;
+}
+
+TEST(Processing, ProviderListsTheAlgorithm) {
+  QgsProcessingProvider* provider = QgsApplication::processingRegistry()->providerById(QStringLiteral("tinlod"));
+  ASSERT_NE(provider, nullptr);
+  EXPECT_EQ(provider->name(), QStringLiteral("TIN hierarchy"));
+  const QgsProcessingAlgorithm* alg = QgsApplication::processingRegistry()->algorithmById(QStringLiteral("tinlod:sampletin"));
+  ASSERT_NE(alg, nullptr);
+  EXPECT_EQ(alg->displayName(), QStringLiteral("Sample TIN from DEM"));
+  EXPECT_TRUE(alg->shortHelpString().contains(QStringLiteral("geographic CRS")));
+  for (const char* key : {"INPUT", "BAND", "BLOCK", "JITTER", "SEED", "TARGET_CRS", "OUTPUT"})
+    EXPECT_NE(alg->parameterDefinition(QString(key)), nullptr) << key;
+  EXPECT_EQ(tinlod_register_provider(), 1);  // a second call is harmless
+}
+
+TEST(Processing, SampleTinMatchesTheCore) {
+  const QString out = QString::fromStdString(test::tempDir() + "/tin.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
+                                {{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  const Tin core = sampleTin(readDem(defaultDem(), 1, ProgressRange(Feedback{}, 0, 1)), {}, ProgressRange(Feedback{}, 0, 1));
+  EXPECT_EQ(r.outputs.value("VERTICES").toLongLong(), (long long)core.vertices.size());
+  EXPECT_EQ(r.outputs.value("TRIANGLES").toLongLong(), (long long)core.triangles.size());
+  EXPECT_EQ(featureCount(out, "triangles"), (long long)core.triangles.size());
+  EXPECT_EQ(r.outputs.value("OUTPUT").toString(), out);
+}
+
+TEST(Processing, ParametersReachTheCore) {
+  const QString out = QString::fromStdString(test::tempDir() + "/tin.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
+                                {{"INPUT", QString::fromStdString(defaultDem())},
+                                 {"BAND", 1},
+                                 {"BLOCK", 5},
+                                 {"JITTER", 0.2},
+                                 {"SEED", 3},
+                                 {"TARGET_CRS", "EPSG:32633"},
+                                 {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  SampleOptions o;
+  o.block = 5, o.jitter = 0.2, o.seed = 3, o.targetSrs = "EPSG:32633";
+  const Tin core = sampleTin(readDem(defaultDem(), 1, ProgressRange(Feedback{}, 0, 1)), o, ProgressRange(Feedback{}, 0, 1));
+  EXPECT_EQ(r.outputs.value("TRIANGLES").toLongLong(), (long long)core.triangles.size());
+  QgsVectorLayer layer(out + "|layername=triangles", "t", QStringLiteral("ogr"));
+  EXPECT_EQ(layer.crs().authid(), QStringLiteral("EPSG:32633"));
+}
+
+TEST(Processing, BadBandIsAProcessingErrorNamingTheParameter) {
+  const QString out = QString::fromStdString(test::tempDir() + "/tin.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
+                                {{"INPUT", QString::fromStdString(defaultDem())}, {"BAND", 2}, {"OUTPUT", out}});
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.error.contains("BAND")) << r.error.toStdString();
+  EXPECT_FALSE(fs::exists(out.toStdString()));
+}
+
+TEST(Processing, CoreErrorsBecomeProcessingExceptions) {
+  const QString out = QString::fromStdString(test::tempDir() + "/tin.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                     {"TARGET_CRS", "EPSG:4326"},
+                                                                     {"OUTPUT", out}});
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.error.contains("not a projected CRS in metres")) << r.error.toStdString();
+  EXPECT_FALSE(fs::exists(out.toStdString()));
+}
+
+TEST(Processing, CancelStopsAndLeavesNoFile) {
+  const QString out = QString::fromStdString(test::tempDir() + "/tin.gpkg");
+  RecordingFeedback feedback;
+  QObject::connect(&feedback, &QgsFeedback::progressChanged, [&feedback](double p) {
+    if (p > 30) feedback.cancel();
+  });
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
+                                {{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", out}}, &feedback);
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.error.contains("cancel")) << r.error.toStdString();
+  EXPECT_FALSE(fs::exists(out.toStdString()));
+}
+
+TEST(Processing, ExistingGeoPackageKeepsItsOtherLayers) {
+  const std::string dir = test::tempDir();
+  const QString out = QString::fromStdString(dir + "/tin.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", out}}).ok);
+  // Another tool adds a layer to the same file.
+  const Result copy = runAlgorithm(QStringLiteral("native:centroids"),
+                                   {{"INPUT", out + "|layername=triangles"},
+                                    {"ALL_PARTS", false},
+                                    {"OUTPUT", QStringLiteral("ogr:dbname='%1' table=\"centroids\" (geom)").arg(out)}});
+  ASSERT_TRUE(copy.ok) << copy.error.toStdString();
+  ASSERT_GT(featureCount(out, "centroids"), 0);
+  const Result again = runAlgorithm(QStringLiteral("tinlod:sampletin"),
+                                    {{"INPUT", QString::fromStdString(defaultDem())}, {"BLOCK", 4}, {"OUTPUT", out}});
+  ASSERT_TRUE(again.ok) << again.error.toStdString();
+  EXPECT_GT(featureCount(out, "centroids"), 0);
+  EXPECT_EQ(featureCount(out, "triangles"), again.outputs.value("TRIANGLES").toLongLong());
+}
+
+TEST(Processing, RealDemRuns) {
+  const std::string dir = test::dataDir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM run skipped";
+  const QString out = QString::fromStdString(test::tempDir() + "/vancouver.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
+                                {{"INPUT", QString::fromStdString(dir + "/vancouver_N49W123.tif")}, {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  QgsVectorLayer layer(out + "|layername=triangles", "t", QStringLiteral("ogr"));
+  EXPECT_EQ(layer.crs().authid(), QStringLiteral("EPSG:32610"));
+  EXPECT_EQ(layer.featureCount(), r.outputs.value("TRIANGLES").toLongLong());
+}
+
+}  // namespace
+}  // namespace tinlod
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  if (::testing::GTEST_FLAG(list_tests)) return RUN_ALL_TESTS();  // test discovery: no QGIS needed
+  QgsApplication app(argc, argv, false);
+  QgsApplication::init();
+  QgsApplication::initQgis();
+  QgsApplication::processingRegistry()->addProvider(new QgsNativeAlgorithms(QgsApplication::processingRegistry()));
+  if (!tinlod_register_provider()) return 2;
+  const int result = RUN_ALL_TESTS();
+  tinlod_unregister_provider();
+  QgsApplication::exitQgis();
+  return result;
+}

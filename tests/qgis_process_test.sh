@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# qgis_process.bin with the assembled plugin, as a batch user runs it: list, help, run
+# with --json on a real DEM (the default DEM when ../shared/data is absent), and an error.
+# Usage: qgis_process_test.sh PLUGIN_DIR TINLOD_CLI
+set -euo pipefail
+plugin_dir=$1
+tinlod_cli=$2
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# An isolated QGIS profile holding the plugin, as `plugins enable` would leave it.
+export QGIS_CUSTOM_CONFIG_PATH=$work/config QT_QPA_PLATFORM=offscreen HOME=$work XDG_RUNTIME_DIR=$work/xdg
+mkdir -p -m 700 "$XDG_RUNTIME_DIR" "$QGIS_CUSTOM_CONFIG_PATH/profiles/default/python/plugins"
+cp -r "$plugin_dir" "$QGIS_CUSTOM_CONFIG_PATH/profiles/default/python/plugins/tinlod"
+qp=/usr/bin/qgis_process.bin
+"$qp" plugins enable tinlod > /dev/null 2>&1
+
+passes=0
+failures=0
+check() {  # check DESCRIPTION COMMAND...: passes when the command succeeds
+  local what=$1; shift
+  if "$@"; then echo "ok: $what"; passes=$((passes + 1)); else echo "FAILED: $what"; failures=$((failures + 1)); fi
+}
+
+"$qp" list > "$work/list.txt" 2>/dev/null
+check "qgis_process list shows tinlod:sampletin" grep -q "tinlod:sampletin" "$work/list.txt"
+
+"$qp" help tinlod:sampletin > "$work/help.txt" 2>/dev/null
+check "qgis_process help describes the parameters" grep -q "TARGET_CRS" "$work/help.txt"
+
+data=${TINLOD_TEST_DATA:-$here/../../shared/data}
+if [[ -f $data/dead_sea_N31E035.tif ]]; then
+  dem=$data/dead_sea_N31E035.tif
+  crs=EPSG:32636
+else
+  echo "note: ../shared/data is absent: qgis_process runs on the default DEM instead of a real one"
+  dem=$work/default_dem.tif
+  "$tinlod_cli" makedem "$dem" > /dev/null
+  crs=EPSG:32632
+fi
+out=$work/out.gpkg
+"$qp" --json run tinlod:sampletin --INPUT="$dem" --BLOCK=3 --OUTPUT="$out" > "$work/run.json" 2> "$work/run.err" || true
+check "qgis_process --json run succeeds and reports the counts" /usr/bin/python3 - "$work/run.json" "$out" "$crs" <<'PY'
+import json, sys
+from osgeo import ogr
+result = json.load(open(sys.argv[1]))
+outputs = result["results"]
+ds = ogr.Open(sys.argv[2])
+triangles = ds.GetLayerByName("triangles")
+assert outputs["OUTPUT"] == sys.argv[2], outputs
+assert int(outputs["TRIANGLES"]) == triangles.GetFeatureCount() > 1000, (outputs, triangles.GetFeatureCount())
+assert int(outputs["VERTICES"]) == ds.GetLayerByName("vertices").GetFeatureCount()
+srs = triangles.GetSpatialRef()
+assert "%s:%s" % (srs.GetAuthorityName(None), srs.GetAuthorityCode(None)) == sys.argv[3], srs.GetName()
+print("  %s triangles in %s" % (outputs["TRIANGLES"], srs.GetName()))
+PY
+
+if "$qp" run tinlod:sampletin --INPUT="$dem" --BAND=9 --OUTPUT="$work/bad.gpkg" > "$work/bad.out" 2> "$work/bad.err"; then
+  bad_rc=0
+else
+  bad_rc=$?
+fi
+check "a bad band exits 1" test "$bad_rc" -eq 1
+check "a bad band names BAND on stderr" grep -q "Invalid band number for BAND (9)" "$work/bad.err"
+check "a bad band writes nothing" test ! -e "$work/bad.gpkg"
+
+echo "qgis_process: $passes passed, $failures failed"
+exit $((failures > 0))
