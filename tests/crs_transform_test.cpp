@@ -75,6 +75,26 @@ TEST(Crs, MetricDemStaysAsItIs) {
   EXPECT_NE(t.targetName().find("32632"), std::string::npos);
 }
 
+TEST(Crs, DistortingCrsDrawsAWarningNamingTheUtmZone) {
+  Dem dem = test::makeDem(5, 5, 10, [](int, int) { return 1.0f; });
+  // Web Mercator around San Francisco (37.8 N): distances stretched by 1 / cos(lat).
+  dem.geotransform = {-13627000.0, 10.0, 0.0, 4551000.0, 0.0, -10.0};
+  OGRSpatialReference s;
+  s.importFromEPSG(3857);
+  char* wkt = nullptr;
+  s.exportToWkt(&wkt);
+  dem.crsWkt = wkt;
+  CPLFree(wkt);
+  test::RecordingFeedback fb;
+  CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
+  ASSERT_EQ(fb.warnings.size(), 1u);
+  EXPECT_TRUE(fb.warned("stretches distances by 27 %")) << fb.warnings[0];
+  EXPECT_TRUE(fb.warned("-t_srs EPSG:32610")) << fb.warnings[0];
+  test::RecordingFeedback utm;
+  CrsTransform::forDem(dem, "", "EPSG:32610", ProgressRange(utm.feedback(), 0, 1));
+  EXPECT_TRUE(utm.warnings.empty());
+}
+
 TEST(Crs, TargetSrsIsUsed) {
   const Dem dem = test::makeDem(5, 5, 10, [](int, int) { return 1.0f; });
   const CrsTransform t = CrsTransform::forDem(dem, "", "EPSG:32633", ProgressRange(Feedback{}, 0, 1));

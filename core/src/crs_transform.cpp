@@ -2,6 +2,7 @@
 #include "tinlod/crs_transform.h"
 
 #include <ogr_spatialref.h>
+#include <proj.h>
 
 #include <algorithm>
 #include <cmath>
@@ -73,6 +74,41 @@ void warnAboutMissingCrs(const Dem& dem, const ProgressRange& progress) {
     progress.warn("'" + dem.path + "' has no CRS: its x and y units are taken as metres");
 }
 
+// The larger of the meridional and parallel scale errors of a projected CRS at a point,
+// from PROJ: 0.27 for Web Mercator at San Francisco, 0.001 at the edge of a UTM zone.
+double scaleError(const std::string& wkt, double lon, double lat) {
+  PJ_CONTEXT* ctx = proj_context_create();
+  PJ* crs = proj_create(ctx, wkt.c_str());
+  double error = 0;
+  if (crs) {
+    const PJ_FACTORS f = proj_factors(crs, proj_coord(proj_torad(lon), proj_torad(lat), 0, 0));
+    if (proj_errno(crs) == 0)
+      error = std::max(std::fabs(f.meridional_scale - 1), std::fabs(f.parallel_scale - 1));
+    proj_destroy(crs);
+  }
+  proj_context_destroy(ctx);
+  return error;
+}
+
+// Metres in a CRS that stretches distances are not metres on the ground: slopes, areas
+// and volumes come out wrong by the same factor.
+void warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpatialReference& dst,
+                    const std::string& dstWkt, const ProgressRange& progress) {
+  if (!dst.IsProjected()) return;
+  double lon = 0, lat = 0;
+  try {
+    centreLonLat(dem, src, lon, lat);
+  } catch (const Error&) {
+    return;
+  }
+  const double error = scaleError(dstWkt, lon, lat);
+  if (error <= 0.01) return;
+  const int percent = static_cast<int>(std::lround(error * 100));
+  progress.warn(describe(dst) + " stretches distances by " + std::to_string(percent) +
+                " % at the DEM's centre, so slopes, areas and volumes of the TIN are off by as much: "
+                "use -t_srs EPSG:" + std::to_string(utmEpsgFor(lon, lat)) + " (the UTM zone of the centre)");
+}
+
 OGRSpatialReference parseTarget(const std::string& targetSrs) {
   OGRSpatialReference dst = parseSrs(targetSrs, "target CRS");
   if (!isMetric(dst))
@@ -131,6 +167,7 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
   dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   impl->wkt = toWkt(dst);
   impl->name = describe(dst);
+  warnAboutScale(dem, src, dst, impl->wkt, progress);
   if (!src.IsSame(&dst)) {
     impl->transform.reset(OGRCreateCoordinateTransformation(&src, &dst));
     if (!impl->transform)
