@@ -132,7 +132,9 @@ TEST(SampleJob, ExistingOutputNeedsOverwriteAndKeepsOtherLayers) {
 }
 
 TEST(SampleJob, CancelLeavesNothingBehindInEveryPhase) {
-  for (const double stopAt : {0.05, 0.3, 0.55, 0.8, 0.97}) {
+  // Reading, sampling, triangulating, writing vertices, writing triangles, and the
+  // last check before GDAL builds the spatial index (at 0.6 + 0.4 * 0.7 = 0.88).
+  for (const double stopAt : {0.05, 0.3, 0.55, 0.65, 0.8, 0.879}) {
     const std::string dir = test::tempDir();
     const std::string out = dir + "/tin.gpkg";
     Feedback cancelling;
@@ -140,6 +142,14 @@ TEST(SampleJob, CancelLeavesNothingBehindInEveryPhase) {
     EXPECT_THROW(runSampleJob(defaultDem(), out, {}, false, cancelling), Cancelled) << stopAt;
     EXPECT_EQ(filesIn(dir), 0u) << "after cancelling at " << stopAt;
   }
+}
+
+TEST(SampleJob, CancelDuringTheSpatialIndexComesTooLateAndTheFileIsComplete) {
+  const std::string out = test::tempDir() + "/tin.gpkg";
+  Feedback cancelling;
+  cancelling.progress = [](double f, const std::string&) { return f < 0.9; };
+  const SampleSummary s = runSampleJob(defaultDem(), out, {}, false, cancelling);
+  EXPECT_EQ(layerInfo(out, "triangles").features, (long long)s.triangles);
 }
 
 TEST(SampleJob, CancelWhileReplacingLeavesTheOldFileUntouched) {

@@ -111,7 +111,6 @@ void writeLayers(GDALDataset& ds, const Tin& tin, const GpkgWriteOptions& option
   const double share = double(tin.vertices.size()) / (tin.vertices.size() + 2.0 * tin.triangles.size());
   writeVertices(tin, *vertices, progress.sub(0, share));
   writeTriangles(tin, *triangles, progress.sub(share, 1));
-  progress.report(1, "Writing triangles");  // the last moment a cancel can still be honoured
   if (ds.CommitTransaction() != OGRERR_NONE) throw Error("cannot commit to the GeoPackage");
   for (const auto& [key, value] : options.metadata) ds.SetMetadataItem(key.c_str(), value.c_str());
 }
@@ -140,7 +139,11 @@ void writeTinGpkg(const Tin& tin, const std::string& path, const GpkgWriteOption
     if (fromCopy) fs::copy_file(out, tmp, fs::copy_options::overwrite_existing);
     ds = openOrCreate(tmp, fromCopy);
     if (!ds) throw Error("cannot write GeoPackage '" + path + "': " + CPLGetLastErrorMsg());
-    writeLayers(*ds, tin, options, progress);
+    // Features take the first 70 %; GDAL builds the spatial indexes when the file is
+    // closed, in one SQLite statement that cannot be interrupted: this is the last
+    // moment a cancel can be honoured.
+    writeLayers(*ds, tin, options, progress.sub(0, 0.7));
+    progress.report(0.7, "Building the spatial index");
     // GDAL 3.6's GDALClose returns nothing: a failed final write shows as a CPL error.
     CPLErrorReset();
     GDALClose(ds);
