@@ -128,11 +128,47 @@ TEST(DemReader, FewerThanThreeValidCellsIsAnError) {
   expectError(writeRaster(s), 1, "has 2 valid cell(s)");
 }
 
+TEST(DemReader, ScaleAndOffsetAreApplied) {
+  RasterSpec s;
+  s.type = GDT_Int16;
+  s.setNodata = true;
+  s.nodata = -1;
+  s.value = [](int r, int c) { return r == 0 && c == 0 ? -1 : r * 10 + c; };
+  const std::string path = writeRaster(s);
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_Update));
+  ds->GetRasterBand(1)->SetScale(0.1);
+  ds->GetRasterBand(1)->SetOffset(100);
+  GDALClose(ds);
+  const Dem dem = readDem(path, 1, kRange);
+  EXPECT_FALSE(dem.valid(0, 0));  // nodata applies to the stored value
+  EXPECT_FLOAT_EQ(dem.at(2, 3), 102.3f);
+}
+
+TEST(DemReader, HeightsInFeetBecomeMetres) {
+  RasterSpec s;
+  const std::string path = writeRaster(s);
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_Update));
+  ds->GetRasterBand(1)->SetUnitType("ft");
+  GDALClose(ds);
+  test::RecordingFeedback fb;
+  const Dem dem = readDem(path, 1, ProgressRange(fb.feedback(), 0, 1));
+  EXPECT_FLOAT_EQ(dem.at(1, 1), float(102 * 0.3048));
+  ASSERT_FALSE(fb.infos.empty());
+  EXPECT_NE(fb.infos[0].find("converted to metres"), std::string::npos);
+
+  ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_Update));
+  ds->GetRasterBand(1)->SetUnitType("furlong");
+  GDALClose(ds);
+  test::RecordingFeedback unknown;
+  EXPECT_FLOAT_EQ(readDem(path, 1, ProgressRange(unknown.feedback(), 0, 1)).at(1, 1), 102.0f);
+  EXPECT_TRUE(unknown.warned("'furlong', a unit tinlod does not know"));
+}
+
 TEST(DemReader, FileThatIsNoRasterIsAnError) {
   const std::string path = test::tempDir() + "/notes.txt";
   std::ofstream(path) << "this is not a DEM\n";
   expectError(path, 1, "is not a raster GDAL can read");
-  expectError(test::tempDir() + "/missing.tif", 1, "missing.tif' is not a raster");
+  expectError(test::tempDir() + "/missing.tif", 1, "missing.tif' does not exist");
 }
 
 TEST(DemReader, AsciiGridIsRead) {

@@ -4,6 +4,7 @@
 #include <ogrsf_frmts.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "mesh_checks.h"
 #include "test_support.h"
@@ -144,12 +145,104 @@ TEST(SampleJob, CancelLeavesNothingBehindInEveryPhase) {
   }
 }
 
-TEST(SampleJob, CancelDuringTheSpatialIndexComesTooLateAndTheFileIsComplete) {
-  const std::string out = test::tempDir() + "/tin.gpkg";
+TEST(SampleJob, CancelDuringTheSpatialIndexIsHonouredBeforeTheRename) {
+  const std::string dir = test::tempDir();
   Feedback cancelling;
   cancelling.progress = [](double f, const std::string&) { return f < 0.9; };
+  EXPECT_THROW(runSampleJob(defaultDem(), dir + "/tin.gpkg", {}, false, cancelling), Cancelled);
+  EXPECT_EQ(filesIn(dir), 0u);
+}
+
+TEST(SampleJob, CancelAfterTheFileIsInPlaceIsIgnored) {
+  const std::string out = test::tempDir() + "/tin.gpkg";
+  bool sawEnd = false;
+  Feedback cancelling;
+  cancelling.progress = [&sawEnd](double f, const std::string&) {
+    sawEnd = sawEnd || f >= 1.0;
+    return f < 1.0;
+  };
   const SampleSummary s = runSampleJob(defaultDem(), out, {}, false, cancelling);
+  EXPECT_TRUE(sawEnd);
   EXPECT_EQ(layerInfo(out, "triangles").features, (long long)s.triangles);
+}
+
+TEST(SampleJob, IdsCountFromOneAndEqualTheFid) {
+  const std::string out = test::tempDir() + "/tin.gpkg";
+  runSampleJob(defaultDem(), out, {}, false, {});
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(out.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  for (const char* name : {"vertices", "triangles"}) {
+    OGRLayer* layer = ds->GetLayerByName(name);
+    long long expected = 1;
+    for (auto& f : *layer) {
+      ASSERT_EQ(f->GetFID(), expected);
+      ASSERT_EQ(f->GetFieldAsInteger64("id"), expected);
+      ++expected;
+    }
+  }
+  // A triangle's corners are the vertices with those fids, at the same place.
+  OGRLayer* triangles = ds->GetLayerByName("triangles");
+  OGRLayer* vertices = ds->GetLayerByName("vertices");
+  triangles->ResetReading();
+  OGRFeature* t = triangles->GetNextFeature();
+  const OGRLinearRing* ring = t->GetGeometryRef()->toPolygon()->getExteriorRing();
+  for (int k = 0; k < 3; ++k) {
+    OGRFeature* v = vertices->GetFeature(t->GetFieldAsInteger64(("v" + std::to_string(k)).c_str()));
+    ASSERT_NE(v, nullptr);
+    EXPECT_DOUBLE_EQ(v->GetGeometryRef()->toPoint()->getX(), ring->getX(k));
+    OGRFeature::DestroyFeature(v);
+  }
+  OGRFeature::DestroyFeature(t);
+  GDALClose(ds);
+}
+
+TEST(SampleJob, StaleTemporaryFilesOfDeadRunsAreRemoved) {
+  const std::string dir = test::tempDir();
+  const std::string stale = dir + "/.tin.tmp-999999999.gpkg";  // no such process
+  std::ofstream(stale) << "left by a killed run";
+  std::ofstream(stale + "-journal") << "x";
+  runSampleJob(defaultDem(), dir + "/tin.gpkg", {}, false, {});
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_FALSE(fs::exists(stale + "-journal"));
+  EXPECT_EQ(filesIn(dir), 1u);
+}
+
+TEST(SampleJob, SymlinkedOutputReplacesItsTarget) {
+  const std::string dir = test::tempDir();
+  fs::create_directories(dir + "/store");
+  runSampleJob(defaultDem(), dir + "/store/tin.gpkg", {}, false, {});
+  fs::create_symlink(dir + "/store/tin.gpkg", dir + "/link.gpkg");
+  SampleOptions o;
+  o.block = 6;
+  const SampleSummary s = runSampleJob(defaultDem(), dir + "/link.gpkg", o, true, {});
+  EXPECT_TRUE(fs::is_symlink(dir + "/link.gpkg"));
+  EXPECT_EQ(layerInfo(dir + "/store/tin.gpkg", "triangles").features, (long long)s.triangles);
+}
+
+TEST(SampleJob, OutputThatIsAFolderOrNotAGeoPackageIsRefused) {
+  const std::string dir = test::tempDir();
+  fs::create_directories(dir + "/folder.gpkg");
+  EXPECT_THROW(runSampleJob(defaultDem(), dir + "/folder.gpkg", {}, true, {}), Error);
+  std::ofstream(dir + "/text.gpkg") << "hello";
+  try {
+    runSampleJob(defaultDem(), dir + "/text.gpkg", {}, true, {});
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a GeoPackage"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find(".tmp-"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(test::readFile(dir + "/text.gpkg"), "hello");
+  EXPECT_EQ(filesIn(dir), 2u);
+}
+
+TEST(SampleJob, JitterOfACellOrMoreIsRefused) {
+  SampleOptions o;
+  o.jitter = 25;  // the default DEM's cell size
+  EXPECT_THROW(sampleTin(makeSyntheticDem({}), o, ProgressRange(Feedback{}, 0, 1)), Error);
+  o.jitter = 24;
+  test::RecordingFeedback fb;
+  EXPECT_NO_THROW(sampleTin(makeSyntheticDem({}), o, ProgressRange(fb.feedback(), 0, 1)));
+  EXPECT_TRUE(fb.warned("more than half the cell size"));
 }
 
 TEST(SampleJob, CancelWhileReplacingLeavesTheOldFileUntouched) {

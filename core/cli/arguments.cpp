@@ -23,6 +23,7 @@ bool Arguments::take(const std::string& name, std::vector<std::string>& values, 
     throw Error(name + " needs " + std::to_string(count) + (count == 1 ? " value" : " values"));
   values.assign(it + 1, it + 1 + count);
   args_.erase(it, it + 1 + count);
+  if (std::find(args_.begin(), args_.end(), name) != args_.end()) throw Error(name + " is given more than once");
   return true;
 }
 

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "commands.h"
+#include "terminal_feedback.h"
 #include "tinlod/error.h"
 #include "tinlod/version.h"
 
@@ -47,7 +48,12 @@ int main(int argc, char** argv) {
   }
   try {
     return command->second(std::vector<std::string>(argv + 2, argv + argc));
+  } catch (const tinlod::Cancelled&) {
+    tinlod::cli::breakProgressLine();
+    std::cerr << "ERROR: stopped before the end; nothing was written" << std::endl;
+    return 130;  // as a shell reports a run ended by Ctrl-C
   } catch (const std::exception& e) {
+    tinlod::cli::breakProgressLine();
     std::cerr << "ERROR: " << e.what() << std::endl;
     return 1;
   }

@@ -10,9 +10,9 @@
 namespace tinlod::cli {
 namespace {
 
-const char* const kUsage = "tinlod makedem OUT.tif [-size width height] [-cell m] [-seed n] [-no_void] [-no_lake] [-overwrite]";
+const char* const kUsage = "tinlod makedem OUT.tif [-size width height] [-cell m] [-seed n] [-no_void] [-no_lake] [-overwrite] [-q]";
 
-const char* const kHelp = R"(Writes the project's default DEM: a synthetic terrain of fractal hills and a
+const char* const kHelp = R"(Writes the project's default DEM (with the default options): a synthetic terrain of fractal hills and a
 ridge, with an exactly flat lake and a nodata void, in UTM zone 32N (Float32 GeoTIFF,
 nodata -9999). Real DEMs are not shipped with tinlod; this one needs no download.
 
@@ -24,6 +24,7 @@ Usage: tinlod makedem OUT.tif [options]
   -no_void       no nodata hole
   -no_lake       no flat lake
   -overwrite     replace OUT.tif if it exists
+  -q             quiet
 )";
 
 }  // namespace
@@ -43,12 +44,19 @@ int makeDemCommand(std::vector<std::string> args) {
   o.withVoid = !a.flag("-no_void");
   o.withLake = !a.flag("-no_lake");
   const bool overwrite = a.flag("-overwrite");
+  const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(1, kUsage);
+  const std::string extension = std::filesystem::path(files[0]).extension().string();
+  if (extension != ".tif" && extension != ".tiff" && extension != ".TIF")
+    throw Error("output '" + files[0] + "' must be a GeoTIFF file ending in .tif");
   if (std::filesystem::exists(files[0]) && !overwrite)
     throw Error("output '" + files[0] + "' exists: add -overwrite to replace it");
+  if (o.width < 2 || o.height < 2 || double(o.width) * o.height > 1e8)
+    throw Error("-size must be at least 2 x 2 and at most 100 million cells");
   writeDemGeoTiff(makeSyntheticDem(o), files[0]);
-  std::cout << "Wrote the default DEM (" << o.width << " x " << o.height << " cells of " << o.cellSize
-            << " m) to " << files[0] << std::endl;
+  if (!quiet)
+    std::cout << "Wrote a synthetic DEM (" << o.width << " x " << o.height << " cells of " << o.cellSize
+              << " m) to " << files[0] << std::endl;
   return 0;
 }
 

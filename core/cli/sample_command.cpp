@@ -9,7 +9,7 @@
 namespace tinlod::cli {
 namespace {
 
-const char* const kUsage = "tinlod sample DEM OUT.gpkg [-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-q] [-overwrite]";
+const char* const kUsage = "tinlod sample DEM OUT.gpkg [-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Samples a DEM into a Delaunay TIN and writes it to a GeoPackage.
 
@@ -17,7 +17,8 @@ Usage: tinlod sample DEM OUT.gpkg [options]
 
   DEM            any raster GDAL reads (GeoTIFF, SRTM .hgt, ENVI .bil, ASCII grid, VRT ...)
   OUT.gpkg       GeoPackage with layers 'vertices' (PointZ: id, row, col, outline) and
-                 'triangles' (PolygonZ, one feature per triangle: id, v0, v1, v2)
+                 'triangles' (PolygonZ, one feature per triangle: id, v0, v1, v2); ids
+                 equal the features' fid, so v0, v1, v2 join to vertices.fid
 
 Options:
   -b band        band holding the heights (default 1)
@@ -28,15 +29,17 @@ Options:
   -block k       one random valid cell per k x k block (default 3, as in the study; 1 takes
                  every cell). The outline of the valid area is always taken whole.
   -jitter m      x and y of each point moved by a random offset in [0, m) metres so that no
-                 four points are cocircular (default 0.99)
+                 four points are cocircular (default 0.99); must be less than the cell
+                 size, and is best well under half of it (e.g. 0.1 for 1 m LiDAR)
   -seed n        random seed; the same seed gives the same TIN (default 1)
   -overwrite     replace the 'vertices' and 'triangles' layers of an existing GeoPackage;
                  its other layers are kept
   -q             quiet: no progress or information, warnings only
 
 Nodata cells (declared nodata, NaN, masks) never become vertices, and no triangle spans
-them: holes stay holes. Heights are never resampled; a geographic DEM only has its points'
-x and y transformed to metres.
+them: holes stay holes. Heights are never resampled (band scale and offset are applied,
+heights in feet converted to metres); a geographic DEM only has its points' x and y
+transformed to metres. Ctrl-C stops the run and leaves no file behind.
 )";
 
 }  // namespace

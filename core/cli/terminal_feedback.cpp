@@ -3,29 +3,55 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <iostream>
 #include <memory>
 
 namespace tinlod::cli {
 namespace {
 
+volatile std::sig_atomic_t gStopRequested = 0;
+bool gMidLine = false;  // a progress line is open on stderr
+
+void onSignal(int signal) {
+  if (gStopRequested) {  // asked twice: stop now, as the user insists
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+  }
+  gStopRequested = 1;
+}
+
+void catchStopSignals() {
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, onSignal);
+}
+
+}  // namespace
+void breakProgressLine();
+namespace {
+
 // GDALTermProgress's format ("0...10...20...", one mark per 2.5 %), but on stderr:
-// stdout carries the command's results.
+// stdout carries the command's results. A message in mid-line starts on a new line.
 class TermProgress {
  public:
-  bool operator()(double fraction) {
+  bool update(double fraction) {
     const int step = static_cast<int>(std::floor(std::clamp(fraction, 0.0, 1.0) * 40 + 1e-9));
     while (printed_ < step) {  // step 0 prints the opening "0"
       ++printed_;
       if (printed_ % 4 == 0) std::cerr << printed_ / 4 * 10;
       else std::cerr << '.';
+      gMidLine = true;
     }
     if (step == 40 && !done_) {
       std::cerr << " - done." << std::endl;
       done_ = true;
+      gMidLine = false;
     }
     std::cerr.flush();
-    return true;
+    return !gStopRequested;
+  }
+  void message(const std::string& prefix, const std::string& text) {
+    breakProgressLine();
+    std::cerr << prefix << text << std::endl;
   }
 
  private:
@@ -35,13 +61,22 @@ class TermProgress {
 
 }  // namespace
 
+void breakProgressLine() {
+  if (gMidLine) std::cerr << '\n';
+  gMidLine = false;
+}
+
 Feedback terminalFeedback(bool quiet) {
+  catchStopSignals();
+  auto term = std::make_shared<TermProgress>();
   Feedback feedback;
-  feedback.warning = [](const std::string& m) { std::cerr << "Warning: " << m << std::endl; };
-  if (quiet) return feedback;
-  feedback.info = [](const std::string& m) { std::cerr << m << std::endl; };
-  auto progress = std::make_shared<TermProgress>();
-  feedback.progress = [progress](double fraction, const std::string&) { return (*progress)(fraction); };
+  feedback.warning = [term](const std::string& m) { term->message("Warning: ", m); };
+  if (quiet) {
+    feedback.progress = [](double, const std::string&) { return !gStopRequested; };
+    return feedback;
+  }
+  feedback.info = [term](const std::string& m) { term->message("", m); };
+  feedback.progress = [term](double fraction, const std::string&) { return term->update(fraction); };
   return feedback;
 }
 

@@ -53,10 +53,13 @@ void centreLonLat(const Dem& dem, const OGRSpatialReference& src, double& lon, d
                 "': name a projected CRS with -t_srs");
 }
 
-OGRSpatialReference parseSrs(const std::string& definition, const std::string& role) {
+OGRSpatialReference parseSrs(const std::string& definition, const std::string& role, const std::string& example) {
   OGRSpatialReference srs;
-  if (srs.SetFromUserInput(definition.c_str()) != OGRERR_NONE)
-    throw Error(role + " '" + definition + "' is not a CRS GDAL understands: use e.g. EPSG:4326 or EPSG:32632");
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  const OGRErr err = srs.SetFromUserInput(definition.c_str());
+  CPLPopErrorHandler();
+  if (err != OGRERR_NONE)
+    throw Error(role + " '" + definition + "' is not a CRS GDAL understands: use e.g. " + example);
   return srs;
 }
 
@@ -110,7 +113,7 @@ void warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpa
 }
 
 OGRSpatialReference parseTarget(const std::string& targetSrs) {
-  OGRSpatialReference dst = parseSrs(targetSrs, "target CRS");
+  OGRSpatialReference dst = parseSrs(targetSrs, "target CRS", "EPSG:32632 (a UTM zone)");
   if (!isMetric(dst))
     throw Error("target CRS '" + targetSrs +
                 "' is not a projected CRS in metres: tinlod needs metric x and y, e.g. a UTM zone");
@@ -140,7 +143,7 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
   OGRSpatialReference src;
   bool hasSrc = !dem.crsWkt.empty() && src.importFromWkt(dem.crsWkt.c_str()) == OGRERR_NONE;
   if (!sourceSrs.empty()) {
-    src = parseSrs(sourceSrs, "source CRS");
+    src = parseSrs(sourceSrs, "source CRS", "EPSG:4326 (longitude/latitude)");
     hasSrc = true;
   }
   src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);

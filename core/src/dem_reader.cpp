@@ -3,6 +3,7 @@
 
 #include <gdal_priv.h>
 
+#include <cctype>
 #include <cmath>
 #include <memory>
 
@@ -16,8 +17,16 @@ struct GdalCloser {
 };
 using DatasetPtr = std::unique_ptr<GDALDataset, GdalCloser>;
 
+// A plain path that is not there says so; GDAL's own wording would not.
+void checkExists(const std::string& path) {
+  const bool special = path.rfind("/vsi", 0) == 0 || path.find(':') != std::string::npos;
+  VSIStatBufL stat;
+  if (!special && VSIStatL(path.c_str(), &stat) != 0) throw Error("DEM '" + path + "' does not exist");
+}
+
 DatasetPtr openRaster(const std::string& path) {
   GDALAllRegister();
+  checkExists(path);
   CPLPushErrorHandler(CPLQuietErrorHandler);
   auto* ds = static_cast<GDALDataset*>(
       GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
@@ -79,6 +88,38 @@ void applyMask(GDALRasterBand& band, Dem& dem) {
     if (mask[i] == 0) dem.z[i] = NAN;
 }
 
+// Metres per unit of the band's heights, from its unit name; 0 when unknown.
+double metresPerUnit(std::string unit) {
+  for (char& c : unit) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" || unit == "meters")
+    return 1.0;
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot") return 0.3048;
+  if (unit == "us-ft" || unit == "ftus" || unit == "us survey foot" || unit == "foot_us" || unit == "us_survey_foot")
+    return 1200.0 / 3937.0;
+  if (unit == "cm" || unit == "centimetre" || unit == "centimeter") return 0.01;
+  if (unit == "mm" || unit == "millimetre" || unit == "millimeter") return 0.001;
+  return 0.0;
+}
+
+// Packed DEMs store heights as integers with a scale and offset, and some store them in
+// feet: both are turned into metres here, once.
+void toMetres(GDALRasterBand& band, Dem& dem, const ProgressRange& progress) {
+  int hasScale = 0, hasOffset = 0;
+  const double scale = band.GetScale(&hasScale), offset = band.GetOffset(&hasOffset);
+  const char* unitType = band.GetUnitType();
+  const std::string unit = unitType ? unitType : "";
+  double perUnit = metresPerUnit(unit);
+  if (perUnit == 0.0) {
+    progress.warn("'" + dem.path + "' gives its heights in '" + unit + "', a unit tinlod does not know: taken as metres");
+    perUnit = 1.0;
+  } else if (perUnit != 1.0) {
+    progress.inform("'" + dem.path + "' gives its heights in '" + unit + "': converted to metres");
+  }
+  const double a = (hasScale ? scale : 1.0) * perUnit, b = (hasOffset ? offset : 0.0) * perUnit;
+  if (a == 1.0 && b == 0.0) return;
+  for (float& v : dem.z) v = static_cast<float>(v * a + b);  // NaN stays NaN
+}
+
 void readHeights(GDALRasterBand& band, Dem& dem, const ProgressRange& progress) {
   dem.z.resize(static_cast<std::size_t>(dem.width) * dem.height);
   const int chunk = std::max(1, (1 << 22) / std::max(1, dem.width));  // about 4 M cells a read
@@ -107,7 +148,8 @@ Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progre
   readGeoreferencing(*ds, dem, progress);
   GDALRasterBand* band = ds->GetRasterBand(bandNumber);
   readHeights(*band, dem, progress);
-  applyMask(*band, dem);
+  applyMask(*band, dem);  // on the stored values, where declared nodata applies
+  toMetres(*band, dem, progress);
   const std::size_t valid = dem.validCount();
   if (valid < 3)
     throw Error("'" + path + "' band " + std::to_string(bandNumber) + " has " + std::to_string(valid) +

@@ -9,6 +9,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "temporary_output.h"
 #include "tinlod/error.h"
 
 namespace fs = std::filesystem;
@@ -23,19 +24,19 @@ std::string lower(std::string s) {
   return s;
 }
 
-// A sibling of the output, so that the final rename never crosses file systems.
-fs::path temporaryPath(const fs::path& out) {
-  return out.parent_path() / ("." + out.stem().string() + ".tmp-" + std::to_string(getpid()) + ".gpkg");
-}
-
+// GDAL's own messages would print the temporary file's name: they are kept quiet and
+// the caller words the error in terms of the user's file.
 GDALDataset* openOrCreate(const fs::path& tmp, bool fromCopy) {
   GDALAllRegister();
-  if (fromCopy)
-    return static_cast<GDALDataset*>(
-        GDALOpenEx(tmp.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
   if (!driver) throw Error("GDAL was built without the GeoPackage driver");
-  return driver->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  const char* const gpkgOnly[] = {"GPKG", nullptr};
+  GDALDataset* ds = fromCopy ? static_cast<GDALDataset*>(GDALOpenEx(tmp.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE,
+                                                                    gpkgOnly, nullptr, nullptr))
+                             : driver->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+  CPLPopErrorHandler();
+  return ds;
 }
 
 void deleteOurLayers(GDALDataset& ds) {
@@ -67,8 +68,8 @@ void writeVertices(const Tin& tin, OGRLayer& layer, const ProgressRange& progres
   OGRFeature feature(layer.GetLayerDefn());
   for (std::size_t i = 0; i < tin.vertices.size(); ++i) {
     const TinVertex& v = tin.vertices[i];
-    feature.SetFID(OGRNullFID);
-    feature.SetField(0, static_cast<int>(i));
+    feature.SetFID(static_cast<GIntBig>(i) + 1);
+    feature.SetField(0, static_cast<int>(i) + 1);
     feature.SetField(1, v.row);
     feature.SetField(2, v.col);
     feature.SetField(3, v.outline ? 1 : 0);
@@ -90,9 +91,9 @@ void writeTriangles(const Tin& tin, OGRLayer& layer, const ProgressRange& progre
     }
     auto* polygon = new OGRPolygon();
     polygon->addRingDirectly(ring);
-    feature.SetFID(OGRNullFID);
-    feature.SetField(0, static_cast<int>(i));
-    for (int k = 0; k < 3; ++k) feature.SetField(k + 1, static_cast<int>(t[k]));
+    feature.SetFID(static_cast<GIntBig>(i) + 1);
+    feature.SetField(0, static_cast<int>(i) + 1);
+    for (int k = 0; k < 3; ++k) feature.SetField(k + 1, static_cast<int>(t[k]) + 1);
     feature.SetGeometryDirectly(polygon);
     writeFeature(layer, feature);
     if ((i & 0x3FFF) == 0) progress.report(double(i) / tin.triangles.size(), "Writing triangles");
@@ -123,6 +124,8 @@ void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
     throw Error("output '" + path + "' must be a GeoPackage file ending in .gpkg");
   const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
   if (!fs::is_directory(dir)) throw Error("the folder of output '" + path + "' does not exist");
+  if (access(dir.c_str(), W_OK) != 0) throw Error("the folder of output '" + path + "' is not writable");
+  if (fs::is_directory(out)) throw Error("output '" + path + "' is a folder: name a .gpkg file");
   if (fs::exists(out) && !options.overwrite)
     throw Error("output '" + path +
                 "' exists: add -overwrite to replace its tinlod layers (its other layers are kept)");
@@ -131,31 +134,36 @@ void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
 void writeTinGpkg(const Tin& tin, const std::string& path, const GpkgWriteOptions& options,
                   const ProgressRange& progress) {
   checkOutputPath(path, options);
-  const fs::path out(path);
-  const fs::path tmp = temporaryPath(out);
-  const bool fromCopy = fs::exists(out);
-  GDALDataset* ds = nullptr;
+  TemporaryOutput::removeStale(path);
+  TemporaryOutput tmp{fs::path(path)};
+  const bool fromCopy = fs::exists(tmp.output());
+  if (fromCopy) {
+    std::error_code ec;
+    fs::copy_file(tmp.output(), tmp.path(), fs::copy_options::overwrite_existing, ec);
+    if (ec) throw Error("cannot copy '" + path + "' to update it: " + ec.message());
+  }
+  GDALDataset* ds = openOrCreate(tmp.path(), fromCopy);
+  if (!ds)
+    throw Error(fromCopy ? "'" + path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name"
+                         : "cannot create GeoPackage '" + path + "': " + CPLGetLastErrorMsg());
   try {
-    if (fromCopy) fs::copy_file(out, tmp, fs::copy_options::overwrite_existing);
-    ds = openOrCreate(tmp, fromCopy);
-    if (!ds) throw Error("cannot write GeoPackage '" + path + "': " + CPLGetLastErrorMsg());
-    // Features take the first 70 %; GDAL builds the spatial indexes when the file is
-    // closed, in one SQLite statement that cannot be interrupted: this is the last
-    // moment a cancel can be honoured.
+    // Features take the first 70 %; GDAL builds the spatial indexes while closing the
+    // file, in SQLite statements that cannot be interrupted.
     writeLayers(*ds, tin, options, progress.sub(0, 0.7));
     progress.report(0.7, "Building the spatial index");
-    // GDAL 3.6's GDALClose returns nothing: a failed final write shows as a CPL error.
-    CPLErrorReset();
-    GDALClose(ds);
-    ds = nullptr;
-    if (CPLGetLastErrorType() >= CE_Failure) throw Error("cannot finish GeoPackage '" + path + "': " + CPLGetLastErrorMsg());
-    fs::rename(tmp, out);
   } catch (...) {
-    if (ds) GDALClose(ds);
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
+    GDALClose(ds);
     throw;
   }
+  // GDAL 3.6's GDALClose returns nothing: a failed final write shows as a CPL error.
+  CPLErrorReset();
+  GDALClose(ds);
+  if (CPLGetLastErrorType() >= CE_Failure)
+    throw Error("cannot finish GeoPackage '" + path + "': " + CPLGetLastErrorMsg());
+  // Nothing is committed before the rename: a cancel asked for during the index build
+  // is still honoured here.
+  progress.report(0.99, "Building the spatial index");
+  tmp.commit();
 }
 
 }  // namespace tinlod

@@ -2,6 +2,7 @@
 #include "tinlod/sample_job.h"
 
 #include <cmath>
+#include <iomanip>
 #include <random>
 #include <sstream>
 
@@ -51,10 +52,19 @@ double cellSizeMetres(const Dem& dem, const CrsTransform& transform) {
   return std::hypot(x[1] - x[0], y[1] - y[0]);
 }
 
-void warnAboutJitter(const Dem& dem, const CrsTransform& transform, double jitter,
-                     const ProgressRange& progress) {
+// Jitter is meant to break ties, not to move points: beyond a cell it moves them past
+// their neighbours and out of the DEM's extent (and a DEM in degrees without a CRS
+// has cells of a thousandth of a "metre").
+void checkJitter(const Dem& dem, const CrsTransform& transform, double jitter, const ProgressRange& progress) {
   if (dem.width < 2) return;
   const double cell = cellSizeMetres(dem, transform);
+  if (jitter >= cell) {
+    std::ostringstream msg;
+    msg << "jitter " << jitter << " m is not smaller than the cell size (" << cell << " m): points would leave their cells; ";
+    if (transform.targetWkt().empty()) msg << "if the DEM is in degrees, name its CRS with -s_srs EPSG:4326; otherwise ";
+    msg << "use e.g. -jitter " << std::setprecision(2) << 0.1 * cell;
+    throw Error(msg.str());
+  }
   if (jitter > 0.5 * cell) {
     std::ostringstream msg;
     msg << "jitter " << jitter << " m is more than half the cell size (" << cell
@@ -74,12 +84,18 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
           {"TINLOD_TARGET_SRS", o.targetSrs.empty() ? "auto" : o.targetSrs}};
 }
 
+std::string megabytes(double bytes) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(0) << bytes / 1e6 << " MB";
+  return s.str();
+}
+
 }  // namespace
 
 Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange& progress) {
   options.validate();
   const CrsTransform transform = CrsTransform::forDem(dem, options.sourceSrs, options.targetSrs, progress);
-  warnAboutJitter(dem, transform, options.jitter, progress);
+  checkJitter(dem, transform, options.jitter, progress);
   const std::vector<SampleCell> cells = sampleCells(dem, options.block, options.seed, progress.sub(0, 0.2));
   Tin tin;
   tin.crsWkt = transform.targetWkt();
@@ -89,7 +105,8 @@ Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange&
   const Triangulation triangulation = delaunayTriangles(tin.vertices, progress.sub(0.3, 0.9));
   const std::size_t isolated = keepTrianglesOnValidData(dem, triangulation, tin, progress.sub(0.9, 1));
   if (isolated > 0)
-    progress.inform(std::to_string(isolated) + " sampled cells touch no triangle (isolated valid cells) and were left out");
+    progress.inform(std::to_string(isolated) + " sampled cells are in no triangle (isolated valid cells, or slivers "
+                    "along a straight edge) and were left out");
   if (tin.triangles.empty())
     throw Error("'" + dem.path + "' gives no triangle: its valid cells are isolated or in a line");
   return tin;
@@ -114,6 +131,10 @@ SampleSummary runSampleJob(const std::string& demPath, const std::string& outPat
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readDem(demPath, options.band, all.sub(0, 0.1));
   const Tin tin = sampleTin(dem, options, all.sub(0.1, 0.6));
+  writeOptions.metadata["TINLOD_CRS"] = tin.crsName;
+  // About 200 bytes a triangle and 150 a vertex in GeoPackage, spatial index included.
+  all.inform("Writing " + std::to_string(tin.triangles.size()) + " triangles and " + std::to_string(tin.vertices.size()) +
+             " vertices (about " + megabytes(200.0 * tin.triangles.size() + 150.0 * tin.vertices.size()) + ")");
   writeTinGpkg(tin, outPath, writeOptions, all.sub(0.6, 1));
   all.finish("Done");
   return summarize(tin, dem.validCount());

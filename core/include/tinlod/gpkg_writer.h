@@ -21,7 +21,8 @@ struct GpkgWriteOptions {
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options);
 
 // Writes layers `vertices` (PointZ) and `triangles` (PolygonZ, one feature per
-// triangle). Works on a temporary copy and renames it into place at the end, so a
+// triangle). In the file, ids count from 1 and equal the feature ids (fid), so
+// v0, v1, v2 join to vertices.fid: vertex index i is written as id i + 1. Works on a temporary copy and renames it into place at the end, so a
 // failed or cancelled run leaves `path` as it was.
 void writeTinGpkg(const Tin& tin, const std::string& path, const GpkgWriteOptions& options,
                   const ProgressRange& progress);
