@@ -6,6 +6,7 @@
 #include <qgsrasterlayer.h>
 
 #include "processing_feedback.h"
+#include "tin_layer_style.h"
 #include "tinlod/sample_job.h"
 
 namespace tinlod::qgis {
@@ -34,11 +35,28 @@ QString SampleTinAlgorithm::shortHelpString() const {
       "(most SRTM data) has its points' x and y transformed to the UTM zone of its centre, or to "
       "the target CRS given, which must be projected and in metres. A DEM without a CRS is taken "
       "as metric.\n\n"
+      "Band: empty means band 1. Target CRS: empty means automatic (the DEM's own CRS when it is "
+      "metric, else the UTM zone of its centre); a CRS that distorts distances by more than 1 % "
+      "there draws a warning.\n\n"
       "Output: a GeoPackage with a 'vertices' layer (PointZ: id, source row and column, outline "
       "flag) and a 'triangles' layer (PolygonZ, one feature per triangle with its three vertex "
       "ids). An existing GeoPackage keeps its other layers; tinlod's own layers are replaced. A "
       "failed or cancelled run leaves the file as it was.");
 }
+
+namespace {
+
+// The definition handed to the core: the authority id where there is one (short in
+// messages), WKT otherwise. Geographic or non-metre CRSs are refused before the run.
+std::string targetSrs(const QgsCoordinateReferenceSystem& crs) {
+  if (!crs.isValid()) return {};
+  if (crs.isGeographic() || crs.mapUnits() != QgsUnitTypes::DistanceMeters)
+    throw QgsProcessingException(QStringLiteral("TARGET_CRS must be a projected CRS in metres, such as a UTM zone; "
+                                                "%1 is not").arg(crs.userFriendlyIdentifier()));
+  return (crs.authid().isEmpty() ? crs.toWkt(QgsCoordinateReferenceSystem::WKT_PREFERRED) : crs.authid()).toStdString();
+}
+
+}  // namespace
 
 SampleTinAlgorithm* SampleTinAlgorithm::createInstance() const { return new SampleTinAlgorithm(); }
 
@@ -53,12 +71,13 @@ void SampleTinAlgorithm::initAlgorithm(const QVariantMap&) {
                                                 QgsProcessingParameterNumber::Integer, defaults.block, false, 1, 1000));
   auto jitter = std::make_unique<QgsProcessingParameterNumber>(
       QStringLiteral("JITTER"), QStringLiteral("Jitter (metres)"), QgsProcessingParameterNumber::Double,
-      defaults.jitter, false, 0.0, 1000.0);
+      defaults.jitter, false, 0.0, 100.0);
+  jitter->setMetadata({{QStringLiteral("widget_wrapper"), QVariantMap{{QStringLiteral("decimals"), 2}}}});
   auto seed = std::make_unique<QgsProcessingParameterNumber>(
       QStringLiteral("SEED"), QStringLiteral("Random seed"), QgsProcessingParameterNumber::Integer,
-      static_cast<int>(defaults.seed), false, 0);
+      static_cast<int>(defaults.seed), false, 0, 2147483647);
   auto crs = std::make_unique<QgsProcessingParameterCrs>(
-      QStringLiteral("TARGET_CRS"), QStringLiteral("Target CRS (projected, metres; default: automatic)"), QVariant(), true);
+      QStringLiteral("TARGET_CRS"), QStringLiteral("Target CRS (default: automatic)"), QVariant(), true);
   for (QgsProcessingParameterDefinition* p : {static_cast<QgsProcessingParameterDefinition*>(jitter.get()),
                                               static_cast<QgsProcessingParameterDefinition*>(seed.get()),
                                               static_cast<QgsProcessingParameterDefinition*>(crs.get())})
@@ -91,8 +110,7 @@ bool SampleTinAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProc
   options_.block = parameterAsInt(parameters, QStringLiteral("BLOCK"), context);
   options_.jitter = parameterAsDouble(parameters, QStringLiteral("JITTER"), context);
   options_.seed = static_cast<std::uint64_t>(parameterAsInt(parameters, QStringLiteral("SEED"), context));
-  const QgsCoordinateReferenceSystem crs = parameterAsCrs(parameters, QStringLiteral("TARGET_CRS"), context);
-  options_.targetSrs = crs.isValid() ? crs.toWkt(QgsCoordinateReferenceSystem::WKT_PREFERRED).toStdString() : std::string();
+  options_.targetSrs = targetSrs(parameterAsCrs(parameters, QStringLiteral("TARGET_CRS"), context));
   return true;
 }
 
@@ -105,10 +123,8 @@ QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, 
   });
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3")
                          .arg(summary.vertices).arg(summary.triangles).arg(QString::fromStdString(summary.crsName)));
-  for (const QString& layer : {QStringLiteral("triangles"), QStringLiteral("vertices")})
-    context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=") + layer,
-                                       QgsProcessingContext::LayerDetails(layer, context.project(), QStringLiteral("OUTPUT"),
-                                                                          QgsProcessingUtils::LayerHint::Vector));
+  for (const QString& layer : {QStringLiteral("vertices"), QStringLiteral("triangles")})
+    loadTinLayerOnCompletion(context, output, layer, QStringLiteral("OUTPUT"));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(summary.vertices));

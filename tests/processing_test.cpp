@@ -8,6 +8,7 @@
 #include <qgsprocessingcontext.h>
 #include <qgsprocessingfeedback.h>
 #include <qgsprocessingregistry.h>
+#include <qgsproject.h>
 #include <qgsvectorlayer.h>
 
 #include <filesystem>
@@ -132,8 +133,31 @@ TEST(Processing, CoreErrorsBecomeProcessingExceptions) {
                                                                      {"TARGET_CRS", "EPSG:4326"},
                                                                      {"OUTPUT", out}});
   EXPECT_FALSE(r.ok);
-  EXPECT_TRUE(r.error.contains("not a projected CRS in metres")) << r.error.toStdString();
+  EXPECT_TRUE(r.error.contains("TARGET_CRS must be a projected CRS in metres")) << r.error.toStdString();
+  EXPECT_TRUE(r.error.contains("EPSG:4326")) << r.error.toStdString();
+  EXPECT_LT(r.error.size(), 200) << "no WKT dump: " << r.error.toStdString();
   EXPECT_FALSE(fs::exists(out.toStdString()));
+}
+
+TEST(Processing, OutputLayersAreLoadedNamedAndStyled) {
+  const QString out = QString::fromStdString(test::tempDir() + "/my_tin.gpkg");
+  std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:sampletin"));
+  QgsProcessingContext context;
+  QgsProject project;
+  context.setProject(&project);
+  RecordingFeedback feedback;
+  bool ok = false;
+  alg->run({{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", out}}, context, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  const auto layers = context.layersToLoadOnCompletion();
+  ASSERT_EQ(layers.size(), 2);
+  QStringList names;
+  for (auto it = layers.constBegin(); it != layers.constEnd(); ++it) {
+    names << it.value().name;
+    EXPECT_NE(it.value().postProcessor(), nullptr);
+  }
+  names.sort();
+  EXPECT_EQ(names, QStringList({"my_tin triangles", "my_tin vertices"}));
 }
 
 TEST(Processing, CancelStopsAndLeavesNoFile) {

@@ -115,8 +115,8 @@ void warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpa
 OGRSpatialReference parseTarget(const std::string& targetSrs) {
   OGRSpatialReference dst = parseSrs(targetSrs, "target CRS", "EPSG:32632 (a UTM zone)");
   if (!isMetric(dst))
-    throw Error("target CRS '" + targetSrs +
-                "' is not a projected CRS in metres: tinlod needs metric x and y, e.g. a UTM zone");
+    throw Error("target CRS " + describe(dst) +
+                " is not a projected CRS in metres: tinlod needs metric x and y, e.g. a UTM zone");
   return dst;
 }
 
