@@ -11,6 +11,9 @@
 
 #include <cstdint>
 
+#include <vector>
+
+#include "tinlod/feedback.h"
 #include "tinlod/tin.h"
 
 namespace tinlod::cgal {
@@ -19,10 +22,24 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 // Delaunay in x/y with z carried along: a 2.5D terrain.
 using Traits = CGAL::Projection_traits_xy_3<Kernel>;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<VertexId, Traits>;
-// Faces carry their index in the output, so adjacency is read without a lookup table.
-using FaceBase = CGAL::Triangulation_face_base_with_info_2<std::int32_t, Traits>;
+// What a face is to tinlod. The default marks a face CGAL has just created.
+struct FaceTag {
+  static constexpr std::int32_t kFresh = -2;    // created by CGAL, not yet numbered
+  static constexpr std::int32_t kOutside = -1;  // over nodata or outside the convex hull of data
+  static constexpr std::int32_t kDying = -3;    // in the star of a vertex being removed
+  std::int32_t id = kFresh;                     // >= 0: a triangle of the TIN
+};
+// Faces carry their tag, so adjacency and membership are read without lookup tables.
+using FaceBase = CGAL::Triangulation_face_base_with_info_2<FaceTag, Traits>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Delaunay = CGAL::Delaunay_triangulation_2<Traits, Tds>;
 using Point = Traits::Point_2;
+using VertexHandle = Delaunay::Vertex_handle;
+using FaceHandle = Delaunay::Face_handle;
+
+// Inserts every vertex (id = index), spatially sorted, reporting progress; vertices at
+// an x/y already taken keep no handle. Returns the handle of each vertex.
+std::vector<VertexHandle> insertVertices(Delaunay& dt, const std::vector<TinVertex>& vertices,
+                                         const ProgressRange& progress);
 
 }  // namespace tinlod::cgal

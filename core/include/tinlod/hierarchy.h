@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "tinlod/hierarchy_options.h"
+#include "tinlod/tin.h"
+
+namespace tinlod {
+
+constexpr std::int32_t kNoGroup = -1;
+
+// A triangle of some level: it appears at firstLevel and is replaced after lastLevel.
+struct HierarchyTriangle {
+  Triangle v{};                     // counter-clockwise
+  std::int32_t firstLevel = 0;
+  std::int32_t lastLevel = 0;       // the coarsest level for triangles never replaced
+  std::int32_t group = kNoGroup;    // the group whose reject triangle it is (none at level 0)
+  std::int32_t replacedBy = kNoGroup;  // the group whose accept triangle it is
+  double error = 0;                 // largest vertical distance to the level-0 samples under it
+};
+
+// One deleted vertex: its star at the finer level (accept triangles) and the triangles
+// that replaced it at the coarser level `level` (reject triangles).
+struct Group {
+  VertexId vertex = 0;
+  std::int32_t level = 0;           // the coarser level: the vertex is in levels 0 .. level - 1
+  double importance = 0;            // by the measure, when it was selected
+  double error = 0;                 // largest vertical distance of the reject triangles to level 0
+  std::uint32_t acceptBegin = 0, acceptEnd = 0;  // ranges in Hierarchy::links
+  std::uint32_t rejectBegin = 0, rejectEnd = 0;
+  std::uint32_t ringBegin = 0, ringEnd = 0;      // the star's outline, in Hierarchy::rings
+};
+
+struct LevelStats {
+  std::int32_t level = 0;
+  std::size_t vertices = 0, triangles = 0, deleted = 0;
+  double selectSeconds = 0, deleteSeconds = 0;
+  double maxError = 0;              // largest vertical distance of the level to the level-0 samples
+};
+
+// Kirkpatrick's hierarchy of TINs: level 0 is the original, each level above has an
+// independent set of vertices deleted.
+struct Hierarchy {
+  Tin base;                                 // level 0 (vertices, triangles, CRS)
+  std::vector<std::int32_t> vertexLevel;    // the highest level that contains each vertex
+  std::vector<std::uint8_t> fixed;          // 1: never deleted
+  std::vector<HierarchyTriangle> triangles; // every distinct triangle of every level
+  std::vector<Group> groups;
+  std::vector<std::uint32_t> links;         // triangle ids of the groups' accept and reject ranges
+  std::vector<VertexId> rings;              // vertex ids of the groups' outlines
+  std::vector<LevelStats> levels;
+  HierarchyOptions options;
+
+  std::int32_t coarsest() const { return static_cast<std::int32_t>(levels.size()) - 1; }
+  // The triangles (indices into `triangles`) of one level.
+  std::vector<std::uint32_t> levelTriangles(std::int32_t level) const;
+  // One level as a TIN of its own vertices (renumbered) and triangles.
+  Tin levelTin(std::int32_t level) const;
+  std::pair<const std::uint32_t*, const std::uint32_t*> accept(const Group& g) const {
+    return {links.data() + g.acceptBegin, links.data() + g.acceptEnd};
+  }
+  std::pair<const std::uint32_t*, const std::uint32_t*> reject(const Group& g) const {
+    return {links.data() + g.rejectBegin, links.data() + g.rejectEnd};
+  }
+};
+
+}  // namespace tinlod

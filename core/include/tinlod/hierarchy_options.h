@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "tinlod/importance.h"
+
+namespace tinlod {
+
+// Options of the delete simplification, shared by `tinlod build` and the QGIS algorithm.
+struct HierarchyOptions {
+  Measure measure = Measure::Volume;  // how importance is measured
+  double deletePct = 20;              // at most this % of the current vertices deleted per level
+  double stopPct = 5;                 // stop when this % of the original vertices remain
+  int maxLevels = 0;                  // stop after this many levels above level 0; 0: no limit
+  int maxDegree = 11;                 // degree measure: only vertices of at most this degree go
+  double maxError = INFINITY;         // error measure: no level's error may exceed this (metres)
+  bool thresholdMode = false;         // the study's threshold mode: one pass per level, every
+  double threshold = 0;               //   independent vertex with importance below `threshold`
+  bool fixPeaksPits = false;          // keep strict local maxima and minima of the DEM (3 x 3)
+  std::string fixedPoints;            // vector file of points to keep (snapped to the nearest vertex)
+
+  // Throws Error naming the option when a value is out of range.
+  void validate() const;
+};
+
+}  // namespace tinlod

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace tinlod {
+
+struct Point3 {
+  double x = 0, y = 0, z = 0;
+};
+
+// How a vertex's importance is measured; the least important vertices go first.
+enum class Measure { Degree, Volume, Normal, Error };
+
+std::string measureName(Measure measure);
+Measure parseMeasure(const std::string& name);  // throws Error listing the choices
+
+// A vertex and its neighbours in counter-clockwise order: its star in the TIN.
+struct Star {
+  Point3 centre;
+  std::vector<Point3> ring;
+};
+
+using LocalTriangle = std::array<int, 3>;  // indices into Star::ring, counter-clockwise
+
+// The Delaunay triangulation of the star's polygon without its centre, by Devillers'
+// ear queue: repeatedly cut the convex ear whose circumcircle has the greatest power with
+// respect to the centre (the centre is inside every such circle; the Delaunay ear's is
+// the one it is least inside). Checked against CGAL's own removal in the tests. The ranking uses floating point (a near tie only changes an
+// importance value a little); convexity uses exact orientation, so the result is always
+// a triangulation of the polygon.
+std::vector<LocalTriangle> retriangulateStar(const Star& star);
+
+// |volume under the star - volume under its retriangulation| (cubic metres).
+double volumeChange(const Star& star, const std::vector<LocalTriangle>& without);
+
+// Mean dot product of the star triangles' unit normals with their normalised mean: 1 on
+// a plane, less where the star bends.
+double normalFlatness(const Star& star);
+
+// Largest vertical distance from the retriangulated star to the samples (which must
+// lie in the star's polygon) and to the centre itself.
+double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
+                        const std::vector<Point3>& samples);
+
+// The measure's importance of the star's centre: degree, volume change, 1 - flatness,
+// or vertical error. Smaller means less important.
+double importance(Measure measure, const Star& star, const std::vector<Point3>& samples);
+
+}  // namespace tinlod

@@ -1,0 +1,325 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/hierarchy_builder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "cgal_types.h"
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+using cgal::FaceHandle;
+using cgal::FaceTag;
+using cgal::VertexHandle;
+using Clock = std::chrono::steady_clock;
+
+constexpr std::int32_t kOpenLevel = std::numeric_limits<std::int32_t>::max();
+constexpr std::int32_t kNoSample = -1;
+
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+bool containsXY(const cgal::Point& a, const cgal::Point& b, const cgal::Point& c, const cgal::Point& p) {
+  const cgal::Traits traits;
+  const auto orientation = traits.orientation_2_object();
+  return orientation(a, b, p) != CGAL::RIGHT_TURN && orientation(b, c, p) != CGAL::RIGHT_TURN &&
+         orientation(c, a, p) != CGAL::RIGHT_TURN;
+}
+
+double planeZ(const cgal::Point& a, const cgal::Point& b, const cgal::Point& c, double x, double y) {
+  const double d = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+  const double wb = ((x - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (y - a.y())) / d;
+  const double wc = ((b.x() - a.x()) * (y - a.y()) - (x - a.x()) * (b.y() - a.y())) / d;
+  return a.z() + wb * (b.z() - a.z()) + wc * (c.z() - a.z());
+}
+
+// Deletes independent sets of vertices level by level from a CGAL Delaunay
+// triangulation of level 0, recording the hierarchy. Faces carry their triangle id;
+// faces over holes or outside the data carry kOutside and never change, because only
+// vertices whose whole star is data are deleted.
+class Simplifier {
+ public:
+  Simplifier(const Tin& base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
+             const ProgressRange& progress)
+      : options_(options), progress_(progress) {
+    h_.base = base;
+    h_.options = options;
+    h_.fixed = std::move(fixed);
+    h_.fixed.resize(base.vertices.size(), 0);
+  }
+
+  Hierarchy run() {
+    buildTriangulation();
+    fixOutline();
+    const std::size_t original = dt_.number_of_vertices();
+    const std::size_t stopCount = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original));
+    h_.levels.push_back({0, original, h_.base.triangles.size(), 0, 0, 0, 0});
+    current_ = original;
+    triangles_ = h_.base.triangles.size();
+    while (current_ > stopCount && (options_.maxLevels == 0 || h_.coarsest() < options_.maxLevels)) {
+      const std::int32_t level = h_.coarsest() + 1;
+      const Clock::time_point t0 = Clock::now();
+      const std::vector<std::pair<double, VertexId>> selected = select(level, stopCount);
+      const Clock::time_point t1 = Clock::now();
+      if (selected.empty()) break;
+      for (std::size_t k = 0; k < selected.size(); ++k) {
+        remove(selected[k].second, selected[k].first, level);
+        if ((k & 0xFFF) == 0) reportProgress(original, stopCount);
+      }
+      const Clock::time_point t2 = Clock::now();
+      current_ -= selected.size();
+      h_.levels.push_back({level, current_, triangles_, selected.size(), seconds(t0, t1), seconds(t1, t2), levelError()});
+      reportProgress(original, stopCount);
+    }
+    finish();
+    return std::move(h_);
+  }
+
+ private:
+  void buildTriangulation() {
+    handles_ = cgal::insertVertices(dt_, h_.base.vertices, progress_.sub(0, 0.1));
+    for (auto f = dt_.all_faces_begin(); f != dt_.all_faces_end(); ++f) f->info().id = FaceTag::kOutside;
+    h_.triangles.reserve(h_.base.triangles.size() * 3);
+    for (std::size_t t = 0; t < h_.base.triangles.size(); ++t) {
+      const Triangle& tri = h_.base.triangles[t];
+      FaceHandle f;
+      if (!dt_.is_face(handles_[tri[0]], handles_[tri[1]], handles_[tri[2]], f))
+        throw Error("a level-0 triangle is not Delaunay: the TIN was not made by tinlod sample");
+      f->info().id = static_cast<std::int32_t>(t);
+      HierarchyTriangle ht;
+      ht.v = tri;
+      ht.lastLevel = kOpenLevel;
+      h_.triangles.push_back(ht);
+    }
+    bucketHead_.assign(h_.triangles.size(), kNoSample);
+    bucketNext_.assign(h_.base.vertices.size(), kNoSample);
+    importance_.assign(h_.base.vertices.size(), 0);
+    stale_.assign(h_.base.vertices.size(), 1);
+    stamp_.assign(h_.base.vertices.size(), -1);
+    h_.vertexLevel.assign(h_.base.vertices.size(), 0);
+  }
+
+  // A vertex on the outline or on a hole's edge has a face that is not data: deleting it
+  // would change the TIN's extent.
+  void fixOutline() {
+    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) {
+      auto f = dt_.incident_faces(v), done = f;
+      do {
+        if (dt_.is_infinite(f) || f->info().id < 0) {
+          h_.fixed[v->info()] = 1;
+          break;
+        }
+      } while (++f != done);
+    }
+  }
+
+  bool eligible(VertexHandle v) const {
+    if (h_.fixed[v->info()]) return false;
+    return options_.measure != Measure::Degree || static_cast<int>(dt_.degree(v)) <= options_.maxDegree;
+  }
+
+  Star starOf(VertexHandle v) const {
+    Star star;
+    star.centre = point3(v->point());
+    auto n = dt_.incident_vertices(v), done = n;
+    do star.ring.push_back(point3(n->point()));
+    while (++n != done);
+    return star;
+  }
+
+  std::vector<Point3> samplesAround(VertexHandle v) const {
+    std::vector<Point3> samples;
+    auto f = dt_.incident_faces(v), done = f;
+    do
+      for (std::int32_t s = bucketHead_[f->info().id]; s != kNoSample; s = bucketNext_[s])
+        samples.push_back(point3(h_.base.vertices[s]));
+    while (++f != done);
+    return samples;
+  }
+
+  double importanceOf(VertexHandle v) {
+    const VertexId id = v->info();
+    if (stale_[id]) {
+      const std::vector<Point3> samples = options_.measure == Measure::Error ? samplesAround(v) : std::vector<Point3>();
+      importance_[id] = importance(options_.measure, starOf(v), samples);
+      stale_[id] = 0;
+    }
+    return importance_[id];
+  }
+
+  bool wanted(double importance) const {
+    if (options_.measure == Measure::Error && importance > options_.maxError) return false;
+    return !options_.thresholdMode || importance < options_.threshold;
+  }
+
+  // Best first, ties broken by vertex id: the result never depends on memory layout.
+  // Each pick blocks its neighbours, so the set is independent.
+  std::vector<std::pair<double, VertexId>> select(std::int32_t level, std::size_t stopCount) {
+    std::vector<std::pair<double, VertexId>> candidates;
+    std::size_t k = 0;
+    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v, ++k) {
+      if (!eligible(v)) continue;
+      const double imp = importanceOf(v);
+      if (wanted(imp)) candidates.emplace_back(imp, v->info());
+      if ((k & 0xFFFF) == 0) progress_.report(lastFraction_, "Selecting level " + std::to_string(level));
+    }
+    std::sort(candidates.begin(), candidates.end());
+    std::size_t limit = current_ - stopCount;
+    if (!options_.thresholdMode)
+      limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
+    std::vector<std::pair<double, VertexId>> selected;
+    for (const auto& [imp, id] : candidates) {
+      if (selected.size() >= limit) break;
+      if (stamp_[id] == level) continue;
+      selected.emplace_back(imp, id);
+      stamp_[id] = level;
+      auto n = dt_.incident_vertices(handles_[id]), done = n;
+      do stamp_[n->info()] = level;
+      while (++n != done);
+    }
+    return selected;
+  }
+
+  void remove(VertexId id, double importance, std::int32_t level) {
+    const VertexHandle v = handles_[id];
+    const std::int32_t g = static_cast<std::int32_t>(h_.groups.size());
+    Group group;
+    group.vertex = id;
+    group.level = level;
+    group.importance = importance;
+
+    std::vector<VertexHandle> ring;
+    auto n = dt_.incident_vertices(v), done = n;
+    do ring.push_back(n);
+    while (++n != done);
+    group.ringBegin = static_cast<std::uint32_t>(h_.rings.size());
+    for (VertexHandle u : ring) h_.rings.push_back(u->info());
+    group.ringEnd = static_cast<std::uint32_t>(h_.rings.size());
+
+    // The star's faces become the accept triangles; their samples and the vertex itself
+    // go to the reject triangles.
+    std::vector<std::int32_t> samples{static_cast<std::int32_t>(id)};
+    group.acceptBegin = static_cast<std::uint32_t>(h_.links.size());
+    auto f = dt_.incident_faces(v), fdone = f;
+    do {
+      const std::int32_t t = f->info().id;
+      h_.links.push_back(static_cast<std::uint32_t>(t));
+      h_.triangles[t].lastLevel = level - 1;
+      h_.triangles[t].replacedBy = g;
+      for (std::int32_t s = bucketHead_[t]; s != kNoSample; s = bucketNext_[s]) samples.push_back(s);
+      f->info().id = FaceTag::kDying;  // CGAL may reuse a star face for a new one
+    } while (++f != fdone);
+    group.acceptEnd = static_cast<std::uint32_t>(h_.links.size());
+
+    dt_.remove(v);
+    handles_[id] = VertexHandle();
+    h_.vertexLevel[id] = level - 1;
+
+    group.rejectBegin = static_cast<std::uint32_t>(h_.links.size());
+    std::vector<FaceHandle> created = numberNewFaces(ring, level, g);
+    group.rejectEnd = static_cast<std::uint32_t>(h_.links.size());
+    if (created.size() + 2 != ring.size())
+      throw Error("internal error: deleting a vertex of degree " + std::to_string(ring.size()) + " made " +
+                  std::to_string(created.size()) + " triangles");
+    group.error = redistribute(samples, created);
+    for (VertexHandle u : ring) stale_[u->info()] = 1;
+    h_.groups.push_back(group);
+    triangles_ -= 2;
+  }
+
+  std::vector<FaceHandle> numberNewFaces(const std::vector<VertexHandle>& ring, std::int32_t level, std::int32_t g) {
+    std::vector<FaceHandle> created;
+    for (VertexHandle u : ring) {
+      auto f = dt_.incident_faces(u), done = f;
+      do {
+        if (f->info().id != FaceTag::kFresh && f->info().id != FaceTag::kDying) continue;
+        const std::int32_t t = static_cast<std::int32_t>(h_.triangles.size());
+        f->info().id = t;
+        HierarchyTriangle ht;
+        ht.v = {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
+        ht.firstLevel = level;
+        ht.lastLevel = kOpenLevel;
+        ht.group = g;
+        h_.triangles.push_back(ht);
+        bucketHead_.push_back(kNoSample);
+        h_.links.push_back(static_cast<std::uint32_t>(t));
+        created.push_back(f);
+      } while (++f != done);
+    }
+    return created;
+  }
+
+  // Puts each sample in the new triangle that holds it, and measures its vertical
+  // distance there: the certified error of the level, whatever the measure.
+  double redistribute(const std::vector<std::int32_t>& samples, const std::vector<FaceHandle>& created) {
+    double worst = 0;
+    for (std::int32_t s : samples) {
+      const TinVertex& sv = h_.base.vertices[s];
+      const cgal::Point p(sv.x, sv.y, sv.z);
+      FaceHandle home;
+      for (FaceHandle f : created)
+        if (containsXY(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(), p)) {
+          home = f;
+          break;
+        }
+      if (home == FaceHandle()) throw Error("internal error: a sample left its star");
+      const std::int32_t t = home->info().id;
+      bucketNext_[s] = bucketHead_[t];
+      bucketHead_[t] = s;
+      const double e = std::fabs(sv.z - planeZ(home->vertex(0)->point(), home->vertex(1)->point(),
+                                               home->vertex(2)->point(), sv.x, sv.y));
+      h_.triangles[t].error = std::max(h_.triangles[t].error, e);
+      worst = std::max(worst, e);
+    }
+    return worst;
+  }
+
+  double levelError() const {
+    double worst = 0;
+    for (auto f = dt_.finite_faces_begin(); f != dt_.finite_faces_end(); ++f)
+      if (f->info().id >= 0) worst = std::max(worst, h_.triangles[f->info().id].error);
+    return worst;
+  }
+
+  void reportProgress(std::size_t original, std::size_t stopCount) {
+    const double span = std::max<double>(1.0, double(original) - double(stopCount));
+    lastFraction_ = std::clamp(0.1 + 0.9 * (double(original) - double(current_)) / span, 0.1, 1.0);
+    progress_.report(lastFraction_, "Simplifying level " + std::to_string(h_.coarsest() + 1));
+  }
+
+  void finish() {
+    const std::int32_t top = h_.coarsest();
+    for (HierarchyTriangle& t : h_.triangles)
+      if (t.lastLevel == kOpenLevel) t.lastLevel = top;
+    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) h_.vertexLevel[v->info()] = top;
+  }
+
+  static Point3 point3(const cgal::Point& p) { return {p.x(), p.y(), p.z()}; }
+  static Point3 point3(const TinVertex& v) { return {v.x, v.y, v.z}; }
+
+  const HierarchyOptions& options_;
+  ProgressRange progress_;
+  Hierarchy h_;
+  cgal::Delaunay dt_;
+  std::vector<VertexHandle> handles_;         // by vertex id; null once deleted
+  std::vector<std::int32_t> bucketHead_;      // by triangle id: first deleted sample under it
+  std::vector<std::int32_t> bucketNext_;      // by vertex id: next sample in the same bucket
+  std::vector<double> importance_;            // by vertex id, valid unless stale
+  std::vector<std::uint8_t> stale_;
+  std::vector<std::int32_t> stamp_;           // by vertex id: the level it was blocked in
+  std::size_t current_ = 0, triangles_ = 0;
+  double lastFraction_ = 0.1;
+};
+
+}  // namespace
+
+Hierarchy buildHierarchy(const Tin& base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
+                         const ProgressRange& progress) {
+  options.validate();
+  return Simplifier(base, std::move(fixed), options, progress).run();
+}
+
+}  // namespace tinlod

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/hierarchy_options.h"
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+
+void HierarchyOptions::validate() const {
+  if (!(deletePct > 0 && deletePct <= 100))
+    throw Error("delete_pct must be more than 0 and at most 100 (got " + std::to_string(deletePct) + "); the study used 10 and 20");
+  if (!(stopPct >= 0 && stopPct < 100))
+    throw Error("stop_pct must be from 0 to less than 100 (got " + std::to_string(stopPct) + "); the study used 5");
+  if (maxLevels < 0) throw Error("max_levels must be 0 (no limit) or more (got " + std::to_string(maxLevels) + ")");
+  if (maxDegree < 3) throw Error("max_degree must be 3 or more (got " + std::to_string(maxDegree) + "); Kirkpatrick used 11");
+  if (!(maxError > 0)) throw Error("max_error must be more than 0 metres");
+  if (maxError != INFINITY && measure != Measure::Error)
+    throw Error("max_error applies to the error method only: add -method error");
+}
+
+}  // namespace tinlod

@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/importance.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <cmath>
+#include <limits>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+K::Point_2 xy(const Point3& p) { return K::Point_2(p.x, p.y); }
+
+bool leftTurn(const Point3& a, const Point3& b, const Point3& c) {
+  return CGAL::orientation(xy(a), xy(b), xy(c)) == CGAL::LEFT_TURN;
+}
+
+// Power of p with respect to the circle through a, b, c (counter-clockwise): negative
+// inside. From the in-circle determinant D and the orientation O, both relative to p:
+// D = O (r^2 - |p - centre|^2).
+double power(const Point3& p, const Point3& a, const Point3& b, const Point3& c) {
+  const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y, cx = c.x - p.x, cy = c.y - p.y;
+  const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  const double d = ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
+  const double o = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+  return -d / o;
+}
+
+double area2(const Point3& a, const Point3& b, const Point3& c) {
+  return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+}
+
+double prismVolume(const Point3& a, const Point3& b, const Point3& c) {
+  return 0.5 * area2(a, b, c) * (a.z + b.z + c.z) / 3.0;
+}
+
+// Height of the plane through a, b, c at (x, y).
+double planeZ(const Point3& a, const Point3& b, const Point3& c, double x, double y) {
+  const double d = area2(a, b, c);
+  const double wb = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / d;
+  const double wc = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / d;
+  return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
+}
+
+bool contains(const Point3& a, const Point3& b, const Point3& c, const Point3& s) {
+  const K::Point_2 p = xy(s);
+  return CGAL::orientation(xy(a), xy(b), p) != CGAL::RIGHT_TURN &&
+         CGAL::orientation(xy(b), xy(c), p) != CGAL::RIGHT_TURN &&
+         CGAL::orientation(xy(c), xy(a), p) != CGAL::RIGHT_TURN;
+}
+
+}  // namespace
+
+std::string measureName(Measure measure) {
+  switch (measure) {
+    case Measure::Degree: return "degree";
+    case Measure::Volume: return "volume";
+    case Measure::Normal: return "normal";
+    case Measure::Error: return "error";
+  }
+  return "?";
+}
+
+Measure parseMeasure(const std::string& name) {
+  for (Measure m : {Measure::Degree, Measure::Volume, Measure::Normal, Measure::Error})
+    if (measureName(m) == name) return m;
+  throw Error("unknown method '" + name + "': choose degree, volume, normal or error");
+}
+
+std::vector<LocalTriangle> retriangulateStar(const Star& star) {
+  const std::vector<Point3>& ring = star.ring;
+  std::vector<int> polygon(ring.size());
+  for (std::size_t i = 0; i < ring.size(); ++i) polygon[i] = static_cast<int>(i);
+  std::vector<LocalTriangle> out;
+  while (polygon.size() > 3) {
+    const std::size_t m = polygon.size();
+    std::size_t best = m;
+    double bestPower = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < m; ++i) {
+      const int a = polygon[(i + m - 1) % m], b = polygon[i], c = polygon[(i + 1) % m];
+      if (!leftTurn(ring[a], ring[b], ring[c])) continue;
+      const double pw = power(star.centre, ring[a], ring[b], ring[c]);
+      if (best == m || pw > bestPower) best = i, bestPower = pw;
+    }
+    if (best == m) break;  // no convex ear: not a star polygon (cannot happen for a star)
+    out.push_back({polygon[(best + m - 1) % m], polygon[best], polygon[(best + 1) % m]});
+    polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(best));
+  }
+  if (polygon.size() == 3) out.push_back({polygon[0], polygon[1], polygon[2]});
+  return out;
+}
+
+double volumeChange(const Star& star, const std::vector<LocalTriangle>& without) {
+  double with = 0, after = 0;
+  const std::size_t n = star.ring.size();
+  for (std::size_t i = 0; i < n; ++i) with += prismVolume(star.centre, star.ring[i], star.ring[(i + 1) % n]);
+  for (const LocalTriangle& t : without) after += prismVolume(star.ring[t[0]], star.ring[t[1]], star.ring[t[2]]);
+  return std::fabs(with - after);
+}
+
+double normalFlatness(const Star& star) {
+  const std::size_t n = star.ring.size();
+  std::vector<std::array<double, 3>> normals;
+  double mx = 0, my = 0, mz = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point3 &p = star.centre, &a = star.ring[i], &b = star.ring[(i + 1) % n];
+    const double ux = a.x - p.x, uy = a.y - p.y, uz = a.z - p.z, vx = b.x - p.x, vy = b.y - p.y, vz = b.z - p.z;
+    std::array<double, 3> nrm{uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
+    const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+    if (len == 0) continue;
+    for (double& c : nrm) c /= len;
+    mx += nrm[0], my += nrm[1], mz += nrm[2];
+    normals.push_back(nrm);
+  }
+  const double mlen = std::sqrt(mx * mx + my * my + mz * mz);
+  if (normals.empty() || mlen == 0) return 0;
+  double sum = 0;
+  for (const auto& nrm : normals) sum += (nrm[0] * mx + nrm[1] * my + nrm[2] * mz) / mlen;
+  return sum / normals.size();
+}
+
+double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
+                        const std::vector<Point3>& samples) {
+  double worst = 0;
+  auto measure = [&](const Point3& s) {
+    for (const LocalTriangle& t : without) {
+      const Point3 &a = star.ring[t[0]], &b = star.ring[t[1]], &c = star.ring[t[2]];
+      if (contains(a, b, c, s)) {
+        worst = std::max(worst, std::fabs(s.z - planeZ(a, b, c, s.x, s.y)));
+        return;
+      }
+    }
+  };
+  measure(star.centre);
+  for (const Point3& s : samples) measure(s);
+  return worst;
+}
+
+double importance(Measure measure, const Star& star, const std::vector<Point3>& samples) {
+  switch (measure) {
+    case Measure::Degree: return static_cast<double>(star.ring.size());
+    case Measure::Normal: return 1.0 - normalFlatness(star);
+    case Measure::Volume: return volumeChange(star, retriangulateStar(star));
+    case Measure::Error: return maxVerticalError(star, retriangulateStar(star), samples);
+  }
+  return 0;
+}
+
+}  // namespace tinlod

@@ -1,0 +1,241 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The delete simplification's invariants at every level, for every measure.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "mesh_checks.h"
+#include "test_support.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_builder.h"
+#include "tinlod/sample_job.h"
+#include "tinlod/synthetic_dem.h"
+
+namespace tinlod {
+namespace {
+
+const ProgressRange kQuiet(Feedback{}, 0, 1);
+
+using EdgeSet = std::multiset<std::pair<VertexId, VertexId>>;
+
+// Directed edges of a set of triangles that no other triangle of the set shares.
+EdgeSet outline(const Hierarchy& h, const std::uint32_t* begin, const std::uint32_t* end) {
+  std::set<std::pair<VertexId, VertexId>> directed;
+  for (const std::uint32_t* t = begin; t != end; ++t)
+    for (int k = 0; k < 3; ++k) directed.insert({h.triangles[*t].v[k], h.triangles[*t].v[(k + 1) % 3]});
+  EdgeSet out;
+  for (const auto& [a, b] : directed)
+    if (!directed.count({b, a})) out.insert({a, b});
+  return out;
+}
+
+void expectValidHierarchy(const Dem& dem, const Hierarchy& h) {
+  ASSERT_GE(h.levels.size(), 2u);
+  const Tin level0 = h.levelTin(0);
+  const double area0 = totalArea(level0);
+  const test::Topology top0 = test::analyseTopology(level0);
+  std::size_t previous = level0.vertices.size();
+  for (std::int32_t L = 0; L <= h.coarsest(); ++L) {
+    SCOPED_TRACE("level " + std::to_string(L));
+    const Tin tin = h.levelTin(L);
+    EXPECT_EQ(tin.vertices.size(), h.levels[L].vertices);
+    EXPECT_EQ(tin.triangles.size(), h.levels[L].triangles);
+    EXPECT_EQ(test::delaunayViolations(tin), 0u);
+    EXPECT_EQ(test::clockwiseTriangles(tin), 0u);
+    EXPECT_EQ(test::trianglesOverNodata(dem, tin), 0u);
+    EXPECT_NEAR(totalArea(tin), area0, 1e-9 * area0);
+    const test::Topology t = test::analyseTopology(tin);
+    EXPECT_EQ(t.problem, "");
+    EXPECT_EQ(t.unusedVertices, 0u);
+    EXPECT_EQ(t.eulerCharacteristic(), t.expectedEuler());
+    EXPECT_EQ(t.components, top0.components);  // holes stay holes, parts stay parts
+    EXPECT_EQ(t.boundaryLoops, top0.boundaryLoops);
+    if (L > 0) {
+      EXPECT_LE(h.levels[L].deleted, static_cast<std::size_t>(std::floor(h.options.deletePct / 100 * previous)));
+      EXPECT_EQ(h.levels[L].vertices + h.levels[L].deleted, previous);
+      EXPECT_GE(h.levels[L].maxError, h.levels[L - 1].maxError * 0);  // recorded
+    }
+    previous = tin.vertices.size();
+  }
+  // The deleted set of each level was independent at the finer level.
+  for (std::int32_t L = 1; L <= h.coarsest(); ++L) {
+    std::set<VertexId> deleted;
+    for (const Group& g : h.groups)
+      if (g.level == L) deleted.insert(g.vertex);
+    for (std::uint32_t t : h.levelTriangles(L - 1)) {
+      const Triangle& v = h.triangles[t].v;
+      for (int k = 0; k < 3; ++k)
+        EXPECT_FALSE(deleted.count(v[k]) && deleted.count(v[(k + 1) % 3])) << "adjacent deleted vertices at level " << L;
+    }
+  }
+  for (const Group& g : h.groups) {
+    const auto [a0, a1] = h.accept(g);
+    const auto [r0, r1] = h.reject(g);
+    EXPECT_EQ(outline(h, a0, a1), outline(h, r0, r1)) << "group of vertex " << g.vertex;  // same star polygon
+    EXPECT_EQ(std::size_t(a1 - a0), std::size_t(r1 - r0) + 2);
+    EXPECT_EQ(h.vertexLevel[g.vertex], g.level - 1);
+    for (const std::uint32_t* t = a0; t != a1; ++t) EXPECT_EQ(h.triangles[*t].lastLevel, g.level - 1);
+    for (const std::uint32_t* t = r0; t != r1; ++t) EXPECT_EQ(h.triangles[*t].firstLevel, g.level);
+  }
+  for (std::size_t v = 0; v < h.fixed.size(); ++v)
+    if (h.fixed[v]) EXPECT_EQ(h.vertexLevel[v], h.coarsest()) << "fixed vertex " << v << " was deleted";
+}
+
+Hierarchy build(const Dem& dem, Measure measure, double deletePct = 20) {
+  HierarchyOptions o;
+  o.measure = measure;
+  o.deletePct = deletePct;
+  const Tin tin = sampleTin(dem, {}, kQuiet);
+  return buildHierarchy(tin, {}, o, kQuiet);
+}
+
+class EveryMeasure : public ::testing::TestWithParam<Measure> {};
+
+TEST_P(EveryMeasure, DefaultDemHierarchyKeepsEveryInvariant) {
+  const Dem dem = makeSyntheticDem({});
+  const Hierarchy h = build(dem, GetParam());
+  expectValidHierarchy(dem, h);
+  const std::size_t original = h.levels[0].vertices;
+  // Stops at 5 % of the original vertices, unless the fixed outline alone is more.
+  std::size_t fixedCount = std::count(h.fixed.begin(), h.fixed.end(), 1);
+  EXPECT_LE(h.levels.back().vertices, std::max<std::size_t>(std::ceil(0.05 * original), fixedCount) + original / 50);
+  std::printf("  %s: %zu levels, %zu -> %zu vertices, max error %.2f m\n", measureName(GetParam()).c_str(),
+              h.levels.size(), original, h.levels.back().vertices, h.levels.back().maxError);
+}
+
+INSTANTIATE_TEST_SUITE_P(Measures, EveryMeasure,
+                         ::testing::Values(Measure::Degree, Measure::Volume, Measure::Normal, Measure::Error),
+                         [](const auto& info) { return measureName(info.param); });
+
+// Brute force: the vertical distance from every level-0 sample to each level's surface.
+double bruteForceError(const Hierarchy& h, std::int32_t level) {
+  const Tin tin = h.levelTin(level);
+  double worst = 0;
+  for (const TinVertex& s : h.base.vertices) {
+    for (const Triangle& t : tin.triangles) {
+      const TinVertex &a = tin.vertices[t[0]], &b = tin.vertices[t[1]], &c = tin.vertices[t[2]];
+      const double d = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+      const double wb = ((s.x - a.x) * (c.y - a.y) - (c.x - a.x) * (s.y - a.y)) / d;
+      const double wc = ((b.x - a.x) * (s.y - a.y) - (s.x - a.x) * (b.y - a.y)) / d;
+      if (wb < -1e-12 || wc < -1e-12 || wb + wc > 1 + 1e-12) continue;
+      worst = std::max(worst, std::fabs(s.z - (a.z + wb * (b.z - a.z) + wc * (c.z - a.z))));
+      break;
+    }
+  }
+  return worst;
+}
+
+TEST(Hierarchy, RecordedErrorIsTheTrueMaximumAtEveryLevel) {
+  SyntheticDemOptions small;
+  small.width = 60, small.height = 50;
+  const Dem dem = makeSyntheticDem(small);
+  for (Measure m : {Measure::Error, Measure::Volume}) {
+    const Hierarchy h = build(dem, m);
+    for (std::int32_t L = 0; L <= h.coarsest(); ++L)
+      EXPECT_NEAR(h.levels[L].maxError, bruteForceError(h, L), 1e-6) << measureName(m) << " level " << L;
+  }
+}
+
+TEST(Hierarchy, MaxErrorBoundsEveryLevel) {
+  const Dem dem = makeSyntheticDem({});
+  HierarchyOptions o;
+  o.measure = Measure::Error;
+  o.maxError = 5;
+  const Hierarchy h = buildHierarchy(sampleTin(dem, {}, kQuiet), {}, o, kQuiet);
+  for (const LevelStats& l : h.levels) EXPECT_LE(l.maxError, 5.0);
+  EXPECT_GT(h.levels.back().vertices, std::size_t(0.05 * h.levels[0].vertices));  // stopped by the error
+  expectValidHierarchy(dem, h);
+}
+
+TEST(Hierarchy, DegreeMeasureDeletesOnlyLowDegreeVertices) {
+  const Dem dem = makeSyntheticDem({});
+  const Hierarchy h = build(dem, Measure::Degree);
+  for (const Group& g : h.groups) EXPECT_LE(g.ringEnd - g.ringBegin, 11u);
+}
+
+TEST(Hierarchy, FixedVerticesSurvive) {
+  const Dem dem = makeSyntheticDem({});
+  const Tin tin = sampleTin(dem, {}, kQuiet);
+  std::vector<std::uint8_t> fixed(tin.vertices.size(), 0);
+  for (std::size_t v = 0; v < fixed.size(); v += 7) fixed[v] = 1;
+  const Hierarchy h = buildHierarchy(tin, fixed, {}, kQuiet);
+  for (std::size_t v = 0; v < fixed.size(); v += 7) EXPECT_EQ(h.vertexLevel[v], h.coarsest());
+  expectValidHierarchy(dem, h);
+}
+
+TEST(Hierarchy, ThresholdModeDeletesOnlyBelowTheThreshold) {
+  const Dem dem = makeSyntheticDem({});
+  HierarchyOptions o;
+  o.thresholdMode = true;
+  o.threshold = 2000;  // cubic metres of volume change
+  const Hierarchy h = buildHierarchy(sampleTin(dem, {}, kQuiet), {}, o, kQuiet);
+  ASSERT_FALSE(h.groups.empty());
+  for (const Group& g : h.groups) EXPECT_LT(g.importance, 2000.0);
+  expectValidHierarchy(dem, h);
+}
+
+TEST(Hierarchy, FlatDemSimplifiesDeterministically) {
+  const Dem dem = test::makeDem(90, 80, 10, [](int, int) { return 250.0f; });
+  const Hierarchy a = build(dem, Measure::Volume), b = build(dem, Measure::Volume);
+  ASSERT_EQ(a.groups.size(), b.groups.size());
+  for (std::size_t i = 0; i < a.groups.size(); ++i) ASSERT_EQ(a.groups[i].vertex, b.groups[i].vertex);
+  EXPECT_EQ(a.levels.back().maxError, 0.0);
+  expectValidHierarchy(dem, a);
+}
+
+TEST(Hierarchy, BadOptionsNameTheOption) {
+  HierarchyOptions o;
+  o.deletePct = 0;
+  EXPECT_THROW(o.validate(), Error);
+  o = {};
+  o.stopPct = 100;
+  EXPECT_THROW(o.validate(), Error);
+  o = {};
+  o.maxError = 3;  // volume measure
+  try {
+    o.validate();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("-method error"), std::string::npos);
+  }
+  EXPECT_THROW(parseMeasure("curvature"), Error);
+}
+
+TEST(Hierarchy, RealDemsEveryMeasure) {
+  const std::string dir = test::dataDir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";
+  for (const char* file : {"tntn_sf_valid_raster.tif", "dc_lidar2m_dtm.tif", "bavaria_dgm5_bottomup.tif"}) {
+    const Dem dem = readDem(dir + "/" + file, 1, kQuiet);
+    SampleOptions so;
+    so.jitter = 0.1;
+    const Tin tin = sampleTin(dem, so, kQuiet);
+    for (Measure m : {Measure::Degree, Measure::Volume, Measure::Normal, Measure::Error}) {
+      SCOPED_TRACE(std::string(file) + " " + measureName(m));
+      HierarchyOptions o;
+      o.measure = m;
+      expectValidHierarchy(dem, buildHierarchy(tin, {}, o, kQuiet));
+    }
+  }
+}
+
+TEST(Hierarchy, PatagoniaSeaSimplifiesDeterministically) {
+  const std::string dir = test::dataDir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";
+  const Dem dem = readDem(dir + "/patagonia_coast_S46W066.tif", 1, kQuiet);
+  SampleOptions so;
+  so.block = 9;  // 160 k vertices: the flat sea is what matters here
+  const Tin tin = sampleTin(dem, so, kQuiet);
+  const Hierarchy a = buildHierarchy(tin, {}, {}, kQuiet), b = buildHierarchy(tin, {}, {}, kQuiet);
+  ASSERT_EQ(a.groups.size(), b.groups.size());
+  for (std::size_t i = 0; i < a.groups.size(); i += 97) ASSERT_EQ(a.groups[i].vertex, b.groups[i].vertex);
+  const Tin top = a.levelTin(a.coarsest());
+  EXPECT_EQ(test::delaunayViolations(top), 0u);
+  EXPECT_NEAR(totalArea(top), totalArea(tin), 1e-9 * totalArea(tin));
+}
+
+}  // namespace
+}  // namespace tinlod

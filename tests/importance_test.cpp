@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "tinlod/importance.h"
+
+namespace tinlod {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+using Dt = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb>>;
+
+// A regular polygon of n vertices of radius r on the plane z = 0, around a centre at
+// height h: a pyramid.
+Star pyramid(int n, double r, double h) {
+  Star s;
+  s.centre = {0, 0, h};
+  for (int i = 0; i < n; ++i) s.ring.push_back({r * std::cos(2 * M_PI * i / n), r * std::sin(2 * M_PI * i / n), 0});
+  return s;
+}
+
+TEST(Importance, RetriangulationIsCgalsDelaunayRemoval) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 100);
+  int compared = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    Dt dt;
+    std::vector<std::pair<K::Point_2, int>> points;
+    for (int i = 0; i < 200; ++i) points.push_back({K::Point_2(u(rng), u(rng)), i});
+    dt.insert(points.begin(), points.end());
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+      bool onHull = false;
+      auto f = dt.incident_faces(v), fd = f;
+      do onHull = onHull || dt.is_infinite(f);
+      while (++f != fd);
+      if (onHull || compared > 400 * (trial + 1) / 40) continue;
+      // The star, and what CGAL makes of it when the centre is removed.
+      Star star;
+      star.centre = {v->point().x(), v->point().y(), 0};
+      std::vector<int> ids;
+      auto n = dt.incident_vertices(v), nd = n;
+      do {
+        star.ring.push_back({n->point().x(), n->point().y(), 0});
+        ids.push_back(n->info());
+      } while (++n != nd);
+      std::set<std::set<int>> mine;
+      for (const LocalTriangle& t : retriangulateStar(star)) mine.insert({ids[t[0]], ids[t[1]], ids[t[2]]});
+      Dt copy;
+      std::vector<std::pair<K::Point_2, int>> others;
+      for (auto w = dt.finite_vertices_begin(); w != dt.finite_vertices_end(); ++w)
+        if (w != v) others.push_back({w->point(), w->info()});
+      copy.insert(others.begin(), others.end());
+      // CGAL's new faces are those whose centroid lies in the old star's fan.
+      auto inStar = [&](const K::Point_2& c) {
+        for (std::size_t i = 0; i < star.ring.size(); ++i) {
+          const Point3 &a = star.ring[i], &b = star.ring[(i + 1) % star.ring.size()];
+          const K::Point_2 pa(a.x, a.y), pb(b.x, b.y);
+          if (CGAL::orientation(v->point(), pa, c) != CGAL::RIGHT_TURN && CGAL::orientation(pa, pb, c) != CGAL::RIGHT_TURN &&
+              CGAL::orientation(pb, v->point(), c) != CGAL::RIGHT_TURN)
+            return true;
+        }
+        return false;
+      };
+      std::set<std::set<int>> cgal;
+      for (auto g = copy.finite_faces_begin(); g != copy.finite_faces_end(); ++g)
+        if (inStar(CGAL::centroid(g->vertex(0)->point(), g->vertex(1)->point(), g->vertex(2)->point())))
+          cgal.insert({g->vertex(0)->info(), g->vertex(1)->info(), g->vertex(2)->info()});
+      ASSERT_EQ(mine.size(), star.ring.size() - 2);
+      ASSERT_EQ(cgal, mine) << "star of degree " << star.ring.size();
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 300);
+}
+
+TEST(Importance, PlaneAndPyramidVolumes) {
+  EXPECT_NEAR(volumeChange(pyramid(6, 10, 0), retriangulateStar(pyramid(6, 10, 0))), 0, 1e-9);
+  // A cone of height h over a polygon of area A: volume A h / 3.
+  const Star p = pyramid(8, 10, 3);
+  const double area = 0.5 * 8 * 100 * std::sin(2 * M_PI / 8);
+  EXPECT_NEAR(volumeChange(p, retriangulateStar(p)), area * 3 / 3, 1e-9);
+}
+
+TEST(Importance, FlatnessIsOneOnAPlaneAndCosOfTheSlopeOnAPyramid) {
+  EXPECT_NEAR(normalFlatness(pyramid(7, 5, 0)), 1.0, 1e-12);
+  // Each face of a regular pyramid leans by atan(h / apothem); the mean normal is vertical.
+  const int n = 6;
+  const double r = 10, h = 4, apothem = r * std::cos(M_PI / n);
+  EXPECT_NEAR(normalFlatness(pyramid(n, r, h)), std::cos(std::atan(h / apothem)), 1e-12);
+  Star tilted = pyramid(5, 10, 0);  // a tilted plane is still flat
+  for (Point3& q : tilted.ring) q.z = 0.3 * q.x + 0.2 * q.y;
+  EXPECT_NEAR(normalFlatness(tilted), 1.0, 1e-12);
+  EXPECT_NEAR(importance(Measure::Normal, tilted, {}), 0.0, 1e-12);
+}
+
+TEST(Importance, VerticalErrorOfTheCentreAndOfSamples) {
+  const Star p = pyramid(6, 10, 2.5);
+  const auto tris = retriangulateStar(p);
+  EXPECT_NEAR(maxVerticalError(p, tris, {}), 2.5, 1e-12);
+  EXPECT_NEAR(maxVerticalError(p, tris, {{1, 1, -4}}), 4.0, 1e-12);
+  EXPECT_EQ(importance(Measure::Degree, p, {}), 6.0);
+}
+
+}  // namespace
+}  // namespace tinlod
