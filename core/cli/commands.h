@@ -9,6 +9,8 @@ namespace tinlod::cli {
 // Each command takes the arguments after its name and returns the exit code;
 // failures are thrown as tinlod::Error and reported once by main().
 int sampleCommand(std::vector<std::string> args);
+int buildCommand(std::vector<std::string> args);
+int infoCommand(std::vector<std::string> args);
 int makeDemCommand(std::vector<std::string> args);
 
 }  // namespace tinlod::cli

@@ -19,6 +19,8 @@ const char* const kHelp = R"(tinlod: simplified, hierarchical TINs from raster D
 Usage: tinlod COMMAND [options]   (tinlod COMMAND --help for its options)
 
 Commands:
+  build     sample a DEM and simplify it into a TIN hierarchy, written to a GeoPackage
+  info      describe a GeoPackage written by tinlod
   sample    sample a DEM into a Delaunay TIN, written to a GeoPackage
   makedem   write the project's synthetic default DEM (a GeoTIFF)
 
@@ -30,7 +32,9 @@ using Command = int (*)(std::vector<std::string>);
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::map<std::string, Command> commands{{"sample", tinlod::cli::sampleCommand},
+  const std::map<std::string, Command> commands{{"build", tinlod::cli::buildCommand},
+                                                 {"info", tinlod::cli::infoCommand},
+                                                 {"sample", tinlod::cli::sampleCommand},
                                                  {"makedem", tinlod::cli::makeDemCommand}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::cout << kHelp;

@@ -3,6 +3,7 @@
 
 #include "arguments.h"
 #include "commands.h"
+#include "sample_arguments.h"
 #include "terminal_feedback.h"
 #include "tinlod/sample_job.h"
 
@@ -50,13 +51,7 @@ int sampleCommand(std::vector<std::string> args) {
     std::cout << kHelp;
     return 0;
   }
-  SampleOptions options;
-  options.band = a.integer("-b", options.band);
-  options.sourceSrs = a.text("-s_srs", options.sourceSrs);
-  options.targetSrs = a.text("-t_srs", options.targetSrs);
-  options.block = a.integer("-block", options.block);
-  options.jitter = a.number("-jitter", options.jitter);
-  options.seed = a.unsignedInteger("-seed", options.seed);
+  const SampleOptions options = sampleOptions(a);
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);

@@ -21,7 +21,17 @@ namespace tinlod::cgal {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 // Delaunay in x/y with z carried along: a 2.5D terrain.
 using Traits = CGAL::Projection_traits_xy_3<Kernel>;
-using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<VertexId, Traits>;
+// What a vertex is to tinlod: its id, and the simplifier's per-vertex state kept on the
+// vertex itself, where the circulators already are (side arrays indexed by id would be
+// read in random order).
+struct VertexTag {
+  VertexId id = 0;
+  std::int32_t stamp = -1;     // the level in which the vertex or a neighbour was selected
+  bool fixed = false;
+  bool stale = true;           // its importance must be recomputed
+  double importance = 0;
+};
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<VertexTag, Traits>;
 // What a face is to tinlod. The default marks a face CGAL has just created.
 struct FaceTag {
   static constexpr std::int32_t kFresh = -2;    // created by CGAL, not yet numbered

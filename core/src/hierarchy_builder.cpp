@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <queue>
 
 #include "cgal_types.h"
 #include "tinlod/error.h"
@@ -51,9 +52,10 @@ class Simplifier {
     h_.fixed.resize(base.vertices.size(), 0);
   }
 
-  Hierarchy run() {
+  Hierarchy run(const std::vector<PointXY>& keep) {
     buildTriangulation();
     fixOutline();
+    fixNearest(keep);
     const std::size_t original = dt_.number_of_vertices();
     const std::size_t stopCount = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original));
     h_.levels.push_back({0, original, h_.base.triangles.size(), 0, 0, 0, 0});
@@ -96,9 +98,6 @@ class Simplifier {
     }
     bucketHead_.assign(h_.triangles.size(), kNoSample);
     bucketNext_.assign(h_.base.vertices.size(), kNoSample);
-    importance_.assign(h_.base.vertices.size(), 0);
-    stale_.assign(h_.base.vertices.size(), 1);
-    stamp_.assign(h_.base.vertices.size(), -1);
     h_.vertexLevel.assign(h_.base.vertices.size(), 0);
   }
 
@@ -106,28 +105,51 @@ class Simplifier {
   // would change the TIN's extent.
   void fixOutline() {
     for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) {
+      v->info().fixed = h_.fixed[v->info().id];
       auto f = dt_.incident_faces(v), done = f;
       do {
         if (dt_.is_infinite(f) || f->info().id < 0) {
-          h_.fixed[v->info()] = 1;
+          h_.fixed[v->info().id] = 1;
+          v->info().fixed = true;
           break;
         }
       } while (++f != done);
     }
   }
 
+  // Each point keeps the vertex nearest to it, if it falls on the TIN's data.
+  void fixNearest(const std::vector<PointXY>& keep) {
+    std::size_t off = 0;
+    FaceHandle hint;
+    for (const PointXY& p : keep) {
+      const cgal::Point q(p[0], p[1], 0);
+      const FaceHandle f = dt_.locate(q, hint);
+      hint = f;
+      if (dt_.is_infinite(f) || f->info().id < 0) {
+        ++off;
+        continue;
+      }
+      const VertexHandle v = dt_.nearest_vertex(q, f);
+      v->info().fixed = true;
+      h_.fixed[v->info().id] = 1;
+    }
+    if (off > 0)
+      progress_.warn(std::to_string(off) + " of the " + std::to_string(keep.size()) +
+                     " points to keep fall outside the TIN's data and were ignored");
+  }
+
   bool eligible(VertexHandle v) const {
-    if (h_.fixed[v->info()]) return false;
+    if (v->info().fixed) return false;
     return options_.measure != Measure::Degree || static_cast<int>(dt_.degree(v)) <= options_.maxDegree;
   }
 
-  Star starOf(VertexHandle v) const {
-    Star star;
-    star.centre = point3(v->point());
+  const Star& starOf(VertexHandle v) {
+    star_.centre = point3(v->point());
+    star_.ring.clear();
     auto n = dt_.incident_vertices(v), done = n;
-    do star.ring.push_back(point3(n->point()));
+    do star_.ring.push_back(point3(n->point()));
     while (++n != done);
-    return star;
+    return star_;
   }
 
   std::vector<Point3> samplesAround(VertexHandle v) const {
@@ -141,13 +163,13 @@ class Simplifier {
   }
 
   double importanceOf(VertexHandle v) {
-    const VertexId id = v->info();
-    if (stale_[id]) {
+    cgal::VertexTag& tag = v->info();
+    if (tag.stale) {
       const std::vector<Point3> samples = options_.measure == Measure::Error ? samplesAround(v) : std::vector<Point3>();
-      importance_[id] = importance(options_.measure, starOf(v), samples);
-      stale_[id] = 0;
+      tag.importance = importance(options_.measure, starOf(v), samples);
+      tag.stale = false;
     }
-    return importance_[id];
+    return tag.importance;
   }
 
   bool wanted(double importance) const {
@@ -163,7 +185,7 @@ class Simplifier {
     for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v, ++k) {
       if (!eligible(v)) continue;
       const double imp = importanceOf(v);
-      if (wanted(imp)) candidates.emplace_back(imp, v->info());
+      if (wanted(imp)) candidates.emplace_back(imp, v->info().id);
       if ((k & 0xFFFF) == 0) progress_.report(lastFraction_, "Selecting level " + std::to_string(level));
     }
     std::sort(candidates.begin(), candidates.end());
@@ -173,11 +195,12 @@ class Simplifier {
     std::vector<std::pair<double, VertexId>> selected;
     for (const auto& [imp, id] : candidates) {
       if (selected.size() >= limit) break;
-      if (stamp_[id] == level) continue;
+      const VertexHandle v = handles_[id];
+      if (v->info().stamp == level) continue;
       selected.emplace_back(imp, id);
-      stamp_[id] = level;
-      auto n = dt_.incident_vertices(handles_[id]), done = n;
-      do stamp_[n->info()] = level;
+      v->info().stamp = level;
+      auto n = dt_.incident_vertices(v), done = n;
+      do n->info().stamp = level;
       while (++n != done);
     }
     return selected;
@@ -191,17 +214,19 @@ class Simplifier {
     group.level = level;
     group.importance = importance;
 
-    std::vector<VertexHandle> ring;
+    std::vector<VertexHandle>& ring = ring_;
+    ring.clear();
     auto n = dt_.incident_vertices(v), done = n;
     do ring.push_back(n);
     while (++n != done);
     group.ringBegin = static_cast<std::uint32_t>(h_.rings.size());
-    for (VertexHandle u : ring) h_.rings.push_back(u->info());
+    for (VertexHandle u : ring) h_.rings.push_back(u->info().id);
     group.ringEnd = static_cast<std::uint32_t>(h_.rings.size());
 
     // The star's faces become the accept triangles; their samples and the vertex itself
     // go to the reject triangles.
-    std::vector<std::int32_t> samples{static_cast<std::int32_t>(id)};
+    std::vector<std::int32_t>& samples = samples_;
+    samples.assign(1, static_cast<std::int32_t>(id));
     group.acceptBegin = static_cast<std::uint32_t>(h_.links.size());
     auto f = dt_.incident_faces(v), fdone = f;
     do {
@@ -219,37 +244,52 @@ class Simplifier {
     h_.vertexLevel[id] = level - 1;
 
     group.rejectBegin = static_cast<std::uint32_t>(h_.links.size());
-    std::vector<FaceHandle> created = numberNewFaces(ring, level, g);
+    const std::vector<FaceHandle>& created = numberNewFaces(ring.front(), level, g);
     group.rejectEnd = static_cast<std::uint32_t>(h_.links.size());
     if (created.size() + 2 != ring.size())
       throw Error("internal error: deleting a vertex of degree " + std::to_string(ring.size()) + " made " +
                   std::to_string(created.size()) + " triangles");
     group.error = redistribute(samples, created);
-    for (VertexHandle u : ring) stale_[u->info()] = 1;
+    for (FaceHandle f : created) errorHeap_.push({h_.triangles[f->info().id].error, f->info().id});
+    for (VertexHandle u : ring) u->info().stale = true;
     h_.groups.push_back(group);
     triangles_ -= 2;
   }
 
-  std::vector<FaceHandle> numberNewFaces(const std::vector<VertexHandle>& ring, std::int32_t level, std::int32_t g) {
-    std::vector<FaceHandle> created;
-    for (VertexHandle u : ring) {
-      auto f = dt_.incident_faces(u), done = f;
-      do {
-        if (f->info().id != FaceTag::kFresh && f->info().id != FaceTag::kDying) continue;
-        const std::int32_t t = static_cast<std::int32_t>(h_.triangles.size());
-        f->info().id = t;
-        HierarchyTriangle ht;
-        ht.v = {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
-        ht.firstLevel = level;
-        ht.lastLevel = kOpenLevel;
-        ht.group = g;
-        h_.triangles.push_back(ht);
-        bucketHead_.push_back(kNoSample);
-        h_.links.push_back(static_cast<std::uint32_t>(t));
-        created.push_back(f);
-      } while (++f != done);
-    }
+  static bool isNew(FaceHandle f) { return f->info().id == FaceTag::kFresh || f->info().id == FaceTag::kDying; }
+
+  // The faces that filled the hole are connected and each touches the ring: find one
+  // around a ring vertex, then walk across edges to the others.
+  const std::vector<FaceHandle>& numberNewFaces(VertexHandle ringVertex, std::int32_t level, std::int32_t g) {
+    std::vector<FaceHandle>& created = created_;
+    created.clear();
+    auto f = dt_.incident_faces(ringVertex), done = f;
+    do
+      if (isNew(f)) {
+        number(f, level, g);
+        break;
+      }
+    while (++f != done);
+    for (std::size_t k = 0; k < created.size(); ++k)
+      for (int i = 0; i < 3; ++i) {
+        const FaceHandle n = created[k]->neighbor(i);
+        if (isNew(n)) number(n, level, g);
+      }
     return created;
+  }
+
+  void number(FaceHandle f, std::int32_t level, std::int32_t g) {
+    const std::int32_t t = static_cast<std::int32_t>(h_.triangles.size());
+    f->info().id = t;
+    HierarchyTriangle ht;
+    ht.v = {f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id};
+    ht.firstLevel = level;
+    ht.lastLevel = kOpenLevel;
+    ht.group = g;
+    h_.triangles.push_back(ht);
+    bucketHead_.push_back(kNoSample);
+    h_.links.push_back(static_cast<std::uint32_t>(t));
+    created_.push_back(f);
   }
 
   // Puts each sample in the new triangle that holds it, and measures its vertical
@@ -277,11 +317,11 @@ class Simplifier {
     return worst;
   }
 
-  double levelError() const {
-    double worst = 0;
-    for (auto f = dt_.finite_faces_begin(); f != dt_.finite_faces_end(); ++f)
-      if (f->info().id >= 0) worst = std::max(worst, h_.triangles[f->info().id].error);
-    return worst;
+  // The largest error of the current triangles: a max-heap of every triangle made, whose
+  // top is dropped while it belongs to a replaced triangle.
+  double levelError() {
+    while (!errorHeap_.empty() && h_.triangles[errorHeap_.top().second].lastLevel != kOpenLevel) errorHeap_.pop();
+    return errorHeap_.empty() ? 0.0 : errorHeap_.top().first;
   }
 
   void reportProgress(std::size_t original, std::size_t stopCount) {
@@ -294,7 +334,7 @@ class Simplifier {
     const std::int32_t top = h_.coarsest();
     for (HierarchyTriangle& t : h_.triangles)
       if (t.lastLevel == kOpenLevel) t.lastLevel = top;
-    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) h_.vertexLevel[v->info()] = top;
+    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) h_.vertexLevel[v->info().id] = top;
   }
 
   static Point3 point3(const cgal::Point& p) { return {p.x(), p.y(), p.z()}; }
@@ -307,9 +347,11 @@ class Simplifier {
   std::vector<VertexHandle> handles_;         // by vertex id; null once deleted
   std::vector<std::int32_t> bucketHead_;      // by triangle id: first deleted sample under it
   std::vector<std::int32_t> bucketNext_;      // by vertex id: next sample in the same bucket
-  std::vector<double> importance_;            // by vertex id, valid unless stale
-  std::vector<std::uint8_t> stale_;
-  std::vector<std::int32_t> stamp_;           // by vertex id: the level it was blocked in
+  std::priority_queue<std::pair<double, std::int32_t>> errorHeap_;  // (error, triangle id)
+  Star star_;                                 // scratch buffers, reused to spare allocations
+  std::vector<VertexHandle> ring_;
+  std::vector<std::int32_t> samples_;
+  std::vector<FaceHandle> created_;
   std::size_t current_ = 0, triangles_ = 0;
   double lastFraction_ = 0.1;
 };
@@ -317,9 +359,9 @@ class Simplifier {
 }  // namespace
 
 Hierarchy buildHierarchy(const Tin& base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
-                         const ProgressRange& progress) {
+                         const ProgressRange& progress, const std::vector<PointXY>& keep) {
   options.validate();
-  return Simplifier(base, std::move(fixed), options, progress).run();
+  return Simplifier(base, std::move(fixed), options, progress).run(keep);
 }
 
 }  // namespace tinlod

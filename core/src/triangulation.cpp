@@ -39,7 +39,7 @@ std::vector<cgal::VertexHandle> cgal::insertVertices(cgal::Delaunay& dt, const s
     const std::size_t before = dt.number_of_vertices();
     cgal::Delaunay::Vertex_handle v = dt.insert(points[order[k]], hint);
     if (dt.number_of_vertices() > before) {
-      v->info() = static_cast<VertexId>(order[k]);
+      v->info().id = static_cast<VertexId>(order[k]);
       handles[order[k]] = v;
     }
     hint = v->face();
@@ -56,7 +56,7 @@ Triangulation delaunayTriangles(const std::vector<TinVertex>& vertices, const Pr
   for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info().id = kNoNeighbour;
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
     f->info().id = static_cast<std::int32_t>(out.triangles.size());
-    out.triangles.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+    out.triangles.push_back({f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id});
   }
   out.neighbours.reserve(out.triangles.size());
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)

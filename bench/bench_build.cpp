@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Prints the figures of the delete simplification: time per level split into select and
+// delete, vertices removed per second, peak memory; and CGAL's bare remove() rate on the
+// same TIN for comparison. Not a timed test:
+//   bench_build [DEM] [-method m] [-delete_pct p] [-stop_pct s] [-out OUT.gpkg]
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "tinlod/dem_reader.h"
+#include "tinlod/hierarchy_builder.h"
+#include "tinlod/sample_job.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+double peakMegabytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+}  // namespace
+
+double bareRemoveRate(const tinlod::Tin& tin, std::size_t count);  // bench_bare_remove.cpp
+
+int main(int argc, char** argv) {
+  const char* env = std::getenv("TINLOD_TEST_DATA");
+  std::string path = std::string(env ? env : "../shared/data") + "/alps_2x2_N46E007_N47E008.tif";
+  tinlod::HierarchyOptions options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-method" && i + 1 < argc) options.measure = tinlod::parseMeasure(argv[++i]);
+    else if (a == "-delete_pct" && i + 1 < argc) options.deletePct = std::atof(argv[++i]);
+    else if (a == "-stop_pct" && i + 1 < argc) options.stopPct = std::atof(argv[++i]);
+    else path = a;
+  }
+  if (!std::filesystem::exists(path)) {
+    std::printf("bench_build: %s not found (set TINLOD_TEST_DATA or pass a DEM)\n", path.c_str());
+    return 1;
+  }
+  const tinlod::ProgressRange quiet(tinlod::Feedback{}, 0, 1);
+  const tinlod::Tin tin = tinlod::sampleTin(tinlod::readDem(path, 1, quiet), {}, quiet);
+  const Clock::time_point t0 = Clock::now();
+  const tinlod::Hierarchy h = tinlod::buildHierarchy(tin, {}, options, quiet);
+  const Clock::time_point t1 = Clock::now();
+  std::size_t removed = h.levels.front().vertices - h.levels.back().vertices;
+  std::printf("DEM %s: %zu vertices at level 0, method %s, delete %g %%, stop %g %%\n", path.c_str(),
+              h.levels[0].vertices, tinlod::measureName(options.measure).c_str(), options.deletePct, options.stopPct);
+  std::printf("%6s %10s %10s %9s %10s %10s %10s\n", "level", "vertices", "triangles", "deleted", "select s", "delete s",
+              "max err m");
+  double select = 0, remove = 0;
+  for (const tinlod::LevelStats& l : h.levels) {
+    std::printf("%6d %10zu %10zu %9zu %10.3f %10.3f %10.2f\n", l.level, l.vertices, l.triangles, l.deleted,
+                l.selectSeconds, l.deleteSeconds, l.maxError);
+    select += l.selectSeconds, remove += l.deleteSeconds;
+  }
+  const double total = seconds(t0, t1);
+  std::printf("build: %.3f s in all (%.3f select, %.3f delete, %.3f set-up); %.3f M vertices removed/s\n", total, select,
+              remove, total - select - remove, removed / total / 1e6);
+  std::printf("select %s delete (the study found select slower)\n", select > remove ? "slower than" : "faster than");
+  std::printf("CGAL bare remove() on the same TIN: %.3f M vertices/s\n", bareRemoveRate(tin, removed));
+  std::printf("peak memory: %.1f MB\n", peakMegabytes());
+  return 0;
+}

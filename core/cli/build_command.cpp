@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+#include <iostream>
+
+#include "arguments.h"
+#include "commands.h"
+#include "sample_arguments.h"
+#include "terminal_feedback.h"
+#include "tinlod/build_job.h"
+
+namespace tinlod::cli {
+namespace {
+
+const char* const kUsage =
+    "tinlod build DEM OUT.gpkg [-method degree|volume|normal|error] [-delete_pct p] [-stop_pct s] "
+    "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-fixed POINTS] [-fix_peaks_pits] "
+    "[sampling options] [-overwrite] [-q]";
+
+const char* const kHelp = R"(Samples a DEM into a TIN and simplifies it level by level into a triangulation
+hierarchy (Kirkpatrick's, as adapted to terrains by de Berg and Dobrindt), written to one
+GeoPackage.
+
+Usage: tinlod build DEM OUT.gpkg [options]
+
+Simplification:
+  -method m        importance of a vertex, least important deleted first (default volume):
+                   degree  its degree; only vertices of degree <= -max_degree go
+                   volume  |change of the volume under its neighbourhood| when deleted
+                   normal  1 - mean dot product of its triangles' unit normals with their mean
+                   error   largest vertical distance, after its deletion, to every original
+                           sample under its neighbourhood (every level's error is certified)
+  -delete_pct p    at most p % of the current vertices deleted per level (default 20)
+  -stop_pct s      stop when s % of the original vertices remain (default 5)
+  -max_levels n    stop after n levels above level 0 (default: no limit)
+  -max_degree d    degree method: largest degree deleted (default 11, Kirkpatrick's)
+  -max_error m     error method: no level's vertical error may exceed m metres
+  -threshold t     the study's threshold mode: per level, delete every independent vertex
+                   whose importance is below t (instead of -delete_pct)
+  -fixed POINTS    vector file of points whose nearest vertices are never deleted
+  -fix_peaks_pits  never delete strict local maxima and minima of the DEM (3 x 3)
+Vertices on the outline of the data and on the edges of nodata holes are never deleted:
+every level covers the same area, with the same holes.
+
+Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, -jitter m,
+  -seed n
+  -overwrite       replace tinlod's layers in an existing GeoPackage; its other layers are kept
+  -q               quiet: no progress or information, warnings only
+
+Output layers: vertices (with level and fixed), triangles (each distinct triangle once, with
+first_level, last_level, group_id, replaced_by, error), level_0, level_1, ... (views: add any
+level to the map), groups (outline of each deleted vertex's neighbourhood), levels (counts,
+times and maximum error per level). `tinlod info OUT.gpkg` describes the file.
+)";
+
+}  // namespace
+
+int buildCommand(std::vector<std::string> args) {
+  Arguments a(std::move(args));
+  if (a.flag("--help") || a.flag("-h")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  HierarchyOptions o;
+  o.measure = parseMeasure(a.text("-method", measureName(o.measure)));
+  o.deletePct = a.number("-delete_pct", o.deletePct);
+  o.stopPct = a.number("-stop_pct", o.stopPct);
+  o.maxLevels = a.integer("-max_levels", o.maxLevels);
+  o.maxDegree = a.integer("-max_degree", o.maxDegree);
+  o.maxError = a.number("-max_error", o.maxError);
+  const double threshold = a.number("-threshold", NAN);
+  o.thresholdMode = !std::isnan(threshold);
+  o.threshold = threshold;
+  o.fixedPoints = a.text("-fixed", "");
+  o.fixPeaksPits = a.flag("-fix_peaks_pits");
+  const SampleOptions sample = sampleOptions(a);
+  const bool overwrite = a.flag("-overwrite");
+  const bool quiet = a.flag("-q");
+  const std::vector<std::string> files = a.operands(2, kUsage);
+
+  const BuildSummary s = runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet));
+  if (!quiet)
+    std::cout << "Wrote " << s.levels + 1 << " levels (" << s.originalVertices << " -> " << s.coarsestVertices
+              << " vertices, " << s.fixedVertices << " fixed; maximum error of the coarsest level "
+              << s.coarsestError << " m) in " << s.crsName << " to " << files[1] << " (" << s.fileBytes / 1000000
+              << " MB)" << std::endl;
+  return 0;
+}
+
+}  // namespace tinlod::cli

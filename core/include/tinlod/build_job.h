@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tinlod/dem.h"
+#include "tinlod/feedback.h"
+#include "tinlod/hierarchy.h"
+#include "tinlod/sample_options.h"
+
+namespace tinlod {
+
+struct BuildSummary {
+  std::size_t originalVertices = 0, coarsestVertices = 0, coarsestTriangles = 0, fixedVertices = 0;
+  std::int32_t levels = 0;  // levels above level 0
+  double coarsestError = 0;
+  std::uintmax_t fileBytes = 0;
+  std::string crsName;
+};
+
+// Strict local maxima and minima of the DEM (3 x 3 window, valid neighbours) among the
+// TIN's vertices: the study's surface-specific points.
+std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin);
+
+// The whole `tinlod build` job: read, sample, simplify into a hierarchy, write it.
+BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
+                         const HierarchyOptions& options, bool overwrite, const Feedback& feedback);
+
+}  // namespace tinlod

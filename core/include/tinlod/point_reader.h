@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tinlod/feedback.h"
+
+namespace tinlod {
+
+// The points of every point feature (and multipoint part) of the first layer of a
+// vector file GDAL reads, transformed to the CRS `targetWkt`. A layer without a CRS is
+// taken to be in it already (a warning says so). Throws Error naming the file.
+std::vector<std::array<double, 2>> readPoints(const std::string& path, const std::string& targetWkt,
+                                              const ProgressRange& progress);
+
+}  // namespace tinlod

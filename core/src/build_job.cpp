@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/build_job.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "tinlod/dem_reader.h"
+#include "tinlod/hierarchy_builder.h"
+#include "tinlod/hierarchy_writer.h"
+#include "tinlod/point_reader.h"
+#include "tinlod/sample_job.h"
+#include "tinlod/version.h"
+
+namespace tinlod {
+namespace {
+
+bool strictExtreme(const Dem& dem, int row, int col, bool maximum) {
+  const float z = dem.at(row, col);
+  int neighbours = 0;
+  for (int dr = -1; dr <= 1; ++dr)
+    for (int dc = -1; dc <= 1; ++dc) {
+      if ((!dr && !dc) || !dem.valid(row + dr, col + dc)) continue;
+      const float n = dem.at(row + dr, col + dc);
+      if (maximum ? n >= z : n <= z) return false;
+      ++neighbours;
+    }
+  return neighbours > 0;
+}
+
+std::map<std::string, std::string> buildMetadata(const std::string& demPath, const SampleOptions& s,
+                                                 const HierarchyOptions& o, const std::string& crsName) {
+  return {{"TINLOD_VERSION", kVersion},
+          {"TINLOD_KIND", "hierarchy"},
+          {"TINLOD_SOURCE", demPath},
+          {"TINLOD_CRS", crsName},
+          {"TINLOD_BAND", std::to_string(s.band)},
+          {"TINLOD_BLOCK", std::to_string(s.block)},
+          {"TINLOD_JITTER", std::to_string(s.jitter)},
+          {"TINLOD_SEED", std::to_string(s.seed)},
+          {"TINLOD_METHOD", measureName(o.measure)},
+          {"TINLOD_DELETE_PCT", std::to_string(o.deletePct)},
+          {"TINLOD_STOP_PCT", std::to_string(o.stopPct)},
+          {"TINLOD_MAX_LEVELS", std::to_string(o.maxLevels)},
+          {"TINLOD_MAX_DEGREE", std::to_string(o.maxDegree)},
+          {"TINLOD_MAX_ERROR", o.maxError == INFINITY ? "none" : std::to_string(o.maxError)},
+          {"TINLOD_THRESHOLD", o.thresholdMode ? std::to_string(o.threshold) : "none"},
+          {"TINLOD_FIX_PEAKS_PITS", o.fixPeaksPits ? "yes" : "no"},
+          {"TINLOD_FIXED_POINTS", o.fixedPoints.empty() ? "none" : o.fixedPoints}};
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
+  std::vector<std::uint8_t> fixed(tin.vertices.size(), 0);
+  for (std::size_t i = 0; i < tin.vertices.size(); ++i) {
+    const TinVertex& v = tin.vertices[i];
+    fixed[i] = strictExtreme(dem, v.row, v.col, true) || strictExtreme(dem, v.row, v.col, false);
+  }
+  return fixed;
+}
+
+BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
+                         const HierarchyOptions& options, bool overwrite, const Feedback& feedback) {
+  sample.validate();
+  options.validate();
+  GpkgWriteOptions writeOptions{overwrite, {}};
+  checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  const ProgressRange all(feedback, 0, 1);
+  const Dem dem = readDem(demPath, sample.band, all.sub(0, 0.05));
+  const Tin tin = sampleTin(dem, sample, all.sub(0.05, 0.2));
+  std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
+  const std::vector<PointXY> keep =
+      options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all);
+  const Hierarchy h = buildHierarchy(tin, std::move(fixed), options, all.sub(0.2, 0.75), keep);
+  writeOptions.metadata = buildMetadata(demPath, sample, options, tin.crsName);
+  all.inform("Writing " + std::to_string(h.coarsest() + 1) + " levels: " + std::to_string(h.triangles.size()) +
+             " distinct triangles, " + std::to_string(h.groups.size()) + " groups");
+  writeHierarchyGpkg(h, outPath, writeOptions, all.sub(0.75, 1));
+  all.finish("Done");
+
+  BuildSummary s;
+  s.originalVertices = h.levels.front().vertices;
+  s.coarsestVertices = h.levels.back().vertices;
+  s.coarsestTriangles = h.levels.back().triangles;
+  s.fixedVertices = static_cast<std::size_t>(std::count(h.fixed.begin(), h.fixed.end(), 1));
+  s.levels = h.coarsest();
+  s.coarsestError = h.levels.back().maxError;
+  s.fileBytes = std::filesystem::file_size(outPath);
+  s.crsName = tin.crsName;
+  return s;
+}
+
+}  // namespace tinlod

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "gpkg_output.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "tinlod/error.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+// GDAL's own messages would print the temporary file's name: they are kept quiet and
+// the caller words the error in terms of the user's file.
+GDALDataset* openOrCreate(const fs::path& tmp, bool fromCopy) {
+  GDALAllRegister();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+  if (!driver) throw Error("GDAL was built without the GeoPackage driver");
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  const char* const gpkgOnly[] = {"GPKG", nullptr};
+  GDALDataset* ds = fromCopy ? static_cast<GDALDataset*>(GDALOpenEx(tmp.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE,
+                                                                    gpkgOnly, nullptr, nullptr))
+                             : driver->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+  CPLPopErrorHandler();
+  return ds;
+}
+
+}  // namespace
+
+void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
+  const fs::path out(path);
+  if (lower(out.extension().string()) != ".gpkg")
+    throw Error("output '" + path + "' must be a GeoPackage file ending in .gpkg");
+  const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+  if (!fs::is_directory(dir)) throw Error("the folder of output '" + path + "' does not exist");
+  if (access(dir.c_str(), W_OK) != 0) throw Error("the folder of output '" + path + "' is not writable");
+  if (fs::is_directory(out)) throw Error("output '" + path + "' is a folder: name a .gpkg file");
+  if (fs::exists(out) && !options.overwrite)
+    throw Error("output '" + path +
+                "' exists: add -overwrite to replace its tinlod layers (its other layers are kept)");
+}
+
+void writeFeature(OGRLayer& layer, OGRFeature& feature) {
+  if (layer.CreateFeature(&feature) != OGRERR_NONE)
+    throw Error(std::string("cannot write to layer '") + layer.GetName() + "': " + CPLGetLastErrorMsg());
+}
+
+GpkgOutput::GpkgOutput(const std::string& path, const GpkgWriteOptions& options,
+                       std::function<bool(const std::string&)> ours)
+    : path_(path), options_(options), tmp_((checkOutputPath(path, options), TemporaryOutput::removeStale(path), fs::path(path))) {
+  const bool fromCopy = fs::exists(tmp_.output());
+  if (fromCopy) {
+    std::error_code ec;
+    fs::copy_file(tmp_.output(), tmp_.path(), fs::copy_options::overwrite_existing, ec);
+    if (ec) throw Error("cannot copy '" + path + "' to update it: " + ec.message());
+  }
+  ds_ = openOrCreate(tmp_.path(), fromCopy);
+  if (!ds_)
+    throw Error(fromCopy ? "'" + path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name"
+                         : "cannot create GeoPackage '" + path + "': " + CPLGetLastErrorMsg());
+  dropOurs(ours);
+}
+
+GpkgOutput::~GpkgOutput() {
+  if (ds_) GDALClose(ds_);
+}
+
+void GpkgOutput::dropOurs(const std::function<bool(const std::string&)>& ours) {
+  // Views first (GDAL lists them as layers but cannot drop them), then tables.
+  std::vector<std::string> views;
+  if (OGRLayer* r = ds_->ExecuteSQL("SELECT name FROM sqlite_master WHERE type = 'view'", nullptr, nullptr)) {
+    for (auto& f : *r) views.push_back(f->GetFieldAsString(0));
+    ds_->ReleaseResultSet(r);
+  }
+  for (const std::string& v : views)
+    if (ours(v)) {
+      execute("DROP VIEW \"" + v + "\"");
+      execute("DELETE FROM gpkg_geometry_columns WHERE table_name = " + quoted(v));
+      execute("DELETE FROM gpkg_contents WHERE table_name = " + quoted(v));
+    }
+  for (int i = ds_->GetLayerCount() - 1; i >= 0; --i) {
+    const std::string name = ds_->GetLayer(i)->GetName();
+    if (ours(name) && std::find(views.begin(), views.end(), name) == views.end())
+      if (ds_->DeleteLayer(i) != OGRERR_NONE) throw Error("cannot replace layer '" + name + "' of '" + path_ + "'");
+  }
+}
+
+OGRLayer* GpkgOutput::createLayer(const char* name, OGRwkbGeometryType type, const std::string& crsWkt,
+                                  const std::vector<FieldSpec>& fields) {
+  OGRSpatialReference srs;
+  OGRSpatialReference* srsPtr = nullptr;
+  if (type != wkbNone && !crsWkt.empty() && srs.importFromWkt(crsWkt.c_str()) == OGRERR_NONE) srsPtr = &srs;
+  OGRLayer* layer = ds_->CreateLayer(name, srsPtr, type, nullptr);
+  if (!layer) throw Error(std::string("cannot create layer '") + name + "': " + CPLGetLastErrorMsg());
+  for (const FieldSpec& field : fields) {
+    OGRFieldDefn defn(field.name, field.type);
+    defn.SetSubType(field.subType);
+    if (layer->CreateField(&defn) != OGRERR_NONE) throw Error(std::string("cannot create field ") + field.name);
+  }
+  return layer;
+}
+
+void GpkgOutput::execute(const std::string& sql) {
+  CPLErrorReset();
+  OGRLayer* result = ds_->ExecuteSQL(sql.c_str(), nullptr, nullptr);
+  if (result) ds_->ReleaseResultSet(result);
+  if (CPLGetLastErrorType() >= CE_Failure) throw Error("GeoPackage statement failed: " + std::string(CPLGetLastErrorMsg()));
+}
+
+void GpkgOutput::createFeatureView(const std::string& name, const std::string& select, const std::string& baseTable,
+                                   const std::string& description) {
+  execute("CREATE VIEW \"" + name + "\" AS " + select);
+  execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, srs_id) SELECT " + quoted(name) +
+          ", 'features', " + quoted(name) + ", " + quoted(description) + ", srs_id FROM gpkg_contents WHERE table_name = " +
+          quoted(baseTable));
+  execute("INSERT INTO gpkg_geometry_columns (table_name, column_name, geometry_type_name, srs_id, z, m) SELECT " +
+          quoted(name) + ", column_name, geometry_type_name, srs_id, z, m FROM gpkg_geometry_columns WHERE table_name = " +
+          quoted(baseTable));
+}
+
+void GpkgOutput::begin() {
+  if (ds_->StartTransaction() != OGRERR_NONE) throw Error("cannot start a GeoPackage transaction");
+}
+
+void GpkgOutput::commit() {
+  if (ds_->CommitTransaction() != OGRERR_NONE) throw Error("cannot commit to GeoPackage '" + path_ + "'");
+}
+
+void GpkgOutput::finish(const ProgressRange& progress) {
+  for (const auto& [key, value] : options_.metadata) ds_->SetMetadataItem(key.c_str(), value.c_str());
+  progress.report(0.7, "Building the spatial index");
+  // GDAL 3.6's GDALClose returns nothing: a failed final write shows as a CPL error.
+  CPLErrorReset();
+  GDALClose(ds_);
+  ds_ = nullptr;
+  if (CPLGetLastErrorType() >= CE_Failure)
+    throw Error("cannot finish GeoPackage '" + path_ + "': " + CPLGetLastErrorMsg());
+  // Nothing is committed before the rename: a cancel asked for during the index build
+  // is still honoured here.
+  progress.report(0.99, "Building the spatial index");
+  tmp_.commit();
+}
+
+}  // namespace tinlod

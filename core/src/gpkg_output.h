@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: a GeoPackage being written for one tinlod job. GDAL stays in the I/O files.
+#pragma once
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "temporary_output.h"
+#include "tinlod/feedback.h"
+#include "tinlod/gpkg_writer.h"
+
+namespace tinlod {
+
+struct FieldSpec {
+  const char* name;
+  OGRFieldType type = OFTInteger;
+  OGRFieldSubType subType = OFSTNone;
+};
+
+// Works on a temporary copy of the output (or a new GeoPackage): the job's own layers
+// and views, those for which `ours` is true, are dropped first, the rest is kept.
+// finish() closes it and renames it into place; without finish() nothing changes.
+class GpkgOutput {
+ public:
+  GpkgOutput(const std::string& path, const GpkgWriteOptions& options, std::function<bool(const std::string&)> ours);
+  ~GpkgOutput();
+  GpkgOutput(const GpkgOutput&) = delete;
+  GpkgOutput& operator=(const GpkgOutput&) = delete;
+
+  OGRLayer* createLayer(const char* name, OGRwkbGeometryType type, const std::string& crsWkt,
+                        const std::vector<FieldSpec>& fields);
+  void execute(const std::string& sql);
+  // A GeoPackage view registered as a feature layer with the geometry of `baseTable`,
+  // so that GDAL and QGIS list it beside the tables.
+  void createFeatureView(const std::string& name, const std::string& select, const std::string& baseTable,
+                         const std::string& description);
+  void begin();
+  void commit();
+  // The last 30 % of `progress`: GDAL builds spatial indexes while closing.
+  void finish(const ProgressRange& progress);
+
+ private:
+  void dropOurs(const std::function<bool(const std::string&)>& ours);
+  std::string path_;
+  GpkgWriteOptions options_;
+  TemporaryOutput tmp_;
+  GDALDataset* ds_ = nullptr;
+};
+
+void writeFeature(OGRLayer& layer, OGRFeature& feature);
+
+}  // namespace tinlod

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/hierarchy_info.h"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <cctype>
+#include <filesystem>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+std::string jsonString(const std::string& s) {
+  std::ostringstream out;
+  out << '"';
+  for (char c : s) {
+    if (c == '"' || c == '\\') out << '\\' << c;
+    else if (static_cast<unsigned char>(c) < 0x20) out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
+    else out << c;
+  }
+  return out.str() + '"';
+}
+
+void readLevels(GDALDataset& ds, HierarchyInfo& info) {
+  if (OGRLayer* levels = ds.GetLayerByName("levels")) {
+    for (auto& f : *levels) {
+      LevelStats l;
+      l.level = f->GetFieldAsInteger("level");
+      l.vertices = static_cast<std::size_t>(f->GetFieldAsInteger64("vertices"));
+      l.triangles = static_cast<std::size_t>(f->GetFieldAsInteger64("triangles"));
+      l.deleted = static_cast<std::size_t>(f->GetFieldAsInteger64("deleted"));
+      l.selectSeconds = f->GetFieldAsDouble("select_seconds");
+      l.deleteSeconds = f->GetFieldAsDouble("delete_seconds");
+      l.maxError = f->GetFieldAsDouble("max_error");
+      info.levels.push_back(l);
+    }
+    return;
+  }
+  LevelStats l;  // a plain TIN: one level
+  if (OGRLayer* v = ds.GetLayerByName("vertices")) l.vertices = static_cast<std::size_t>(v->GetFeatureCount());
+  if (OGRLayer* t = ds.GetLayerByName("triangles")) l.triangles = static_cast<std::size_t>(t->GetFeatureCount());
+  info.levels.push_back(l);
+}
+
+}  // namespace
+
+HierarchyInfo readHierarchyInfo(const std::string& path) {
+  GDALAllRegister();
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  const char* const gpkgOnly[] = {"GPKG", nullptr};
+  std::unique_ptr<GDALDataset, void (*)(GDALDataset*)> ds(
+      static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, gpkgOnly, nullptr, nullptr)),
+      [](GDALDataset* d) { GDALClose(d); });
+  CPLPopErrorHandler();
+  if (!ds) throw Error("'" + path + "' is not a GeoPackage GDAL can read");
+  HierarchyInfo info;
+  info.path = path;
+  if (char** md = ds->GetMetadata()) {
+    for (char** item = md; *item; ++item) {
+      std::string kv = *item;
+      const auto eq = kv.find('=');
+      if (kv.rfind("TINLOD_", 0) != 0 || eq == std::string::npos) continue;
+      std::string key = kv.substr(7, eq - 7);
+      for (char& c : key) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      info.metadata[key] = kv.substr(eq + 1);
+    }
+  }
+  if (!ds->GetLayerByName("triangles") || info.metadata.empty())
+    throw Error("'" + path + "' was not written by tinlod (no tinlod metadata or triangles layer)");
+  info.kind = info.metadata.count("kind") ? info.metadata["kind"] : "tin";
+  if (const OGRSpatialReference* srs = ds->GetLayerByName("triangles")->GetSpatialRef())
+    info.crsName = srs->GetName() ? srs->GetName() : "";
+  for (int i = 0; i < ds->GetLayerCount(); ++i) info.layers.push_back(ds->GetLayer(i)->GetName());
+  readLevels(*ds, info);
+  info.bytes = std::filesystem::file_size(path);
+  return info;
+}
+
+std::string toJson(const HierarchyInfo& info) {
+  std::ostringstream out;
+  out << std::setprecision(10);
+  out << "{\n  \"path\": " << jsonString(info.path) << ",\n  \"kind\": " << jsonString(info.kind)
+      << ",\n  \"crs\": " << jsonString(info.crsName) << ",\n  \"bytes\": " << info.bytes << ",\n  \"parameters\": {";
+  bool first = true;
+  for (const auto& [k, v] : info.metadata) {
+    out << (first ? "\n" : ",\n") << "    " << jsonString(k) << ": " << jsonString(v);
+    first = false;
+  }
+  out << "\n  },\n  \"layers\": [";
+  for (std::size_t i = 0; i < info.layers.size(); ++i) out << (i ? ", " : "") << jsonString(info.layers[i]);
+  out << "],\n  \"levels\": [";
+  for (std::size_t i = 0; i < info.levels.size(); ++i) {
+    const LevelStats& l = info.levels[i];
+    out << (i ? ",\n" : "\n") << "    {\"level\": " << l.level << ", \"vertices\": " << l.vertices
+        << ", \"triangles\": " << l.triangles << ", \"deleted\": " << l.deleted
+        << ", \"select_seconds\": " << l.selectSeconds << ", \"delete_seconds\": " << l.deleteSeconds
+        << ", \"max_error\": " << l.maxError << "}";
+  }
+  out << "\n  ]\n}\n";
+  return out.str();
+}
+
+std::string toText(const HierarchyInfo& info) {
+  std::ostringstream out;
+  out << info.path << ": tinlod " << info.kind << ", " << info.crsName << ", " << std::fixed << std::setprecision(1)
+      << info.bytes / 1e6 << " MB\n";
+  for (const auto& [k, v] : info.metadata) out << "  " << k << " = " << v << "\n";
+  out << std::setw(6) << "level" << std::setw(11) << "vertices" << std::setw(11) << "triangles" << std::setw(10)
+      << "deleted" << std::setw(10) << "select s" << std::setw(10) << "delete s" << std::setw(12) << "max error m" << "\n";
+  for (const LevelStats& l : info.levels)
+    out << std::setw(6) << l.level << std::setw(11) << l.vertices << std::setw(11) << l.triangles << std::setw(10)
+        << l.deleted << std::setprecision(3) << std::setw(10) << l.selectSeconds << std::setw(10) << l.deleteSeconds
+        << std::setprecision(2) << std::setw(12) << l.maxError << "\n";
+  return out.str();
+}
+
+}  // namespace tinlod
