@@ -3,6 +3,7 @@
 
 #include <qgsapplication.h>
 
+#include "build_hierarchy_algorithm.h"
 #include "sample_tin_algorithm.h"
 #include "tinlod/version.h"
 
@@ -14,6 +15,9 @@ QString Provider::longName() const { return QStringLiteral("TIN hierarchy (tinlo
 QString Provider::versionInfo() const { return QString::fromLatin1(kVersion); }
 QIcon Provider::icon() const { return QgsApplication::getThemeIcon(QStringLiteral("/mActionNewMeshLayer.svg")); }
 
-void Provider::loadAlgorithms() { addAlgorithm(new SampleTinAlgorithm()); }
+void Provider::loadAlgorithms() {
+  addAlgorithm(new BuildHierarchyAlgorithm());
+  addAlgorithm(new SampleTinAlgorithm());
+}
 
 }  // namespace tinlod::qgis

@@ -1,14 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
-#include <qgsprocessingalgorithm.h>
-
-#include "tinlod/sample_options.h"
+#include "dem_algorithm.h"
 
 namespace tinlod::qgis {
 
 // tinlod:sampletin, "Sample TIN from DEM": the Processing face of `tinlod sample`.
-class SampleTinAlgorithm : public QgsProcessingAlgorithm {
+class SampleTinAlgorithm : public DemAlgorithm {
  public:
   QString name() const override;
   QString displayName() const override;
@@ -24,10 +22,6 @@ class SampleTinAlgorithm : public QgsProcessingAlgorithm {
                         QgsProcessingFeedback* feedback) override;
   QVariantMap processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
                                QgsProcessingFeedback* feedback) override;
-
- private:
-  std::string demSource_;  // read on the main thread in prepareAlgorithm
-  SampleOptions options_;
 };
 
 }  // namespace tinlod::qgis

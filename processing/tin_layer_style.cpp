@@ -2,6 +2,8 @@
 #include "tin_layer_style.h"
 
 #include <qgsfillsymbol.h>
+#include <qgslayertree.h>
+#include <qgsproject.h>
 #include <qgsmarkersymbol.h>
 #include <qgssinglesymbolrenderer.h>
 #include <qgsvectorlayer.h>
@@ -10,7 +12,7 @@
 
 namespace tinlod::qgis {
 
-void TinLayerStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext&, QgsProcessingFeedback*) {
+void TinLayerStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback*) {
   auto* vector = qobject_cast<QgsVectorLayer*>(layer);
   if (!vector) return;
   if (vector->geometryType() == QgsWkbTypes::PolygonGeometry) {
@@ -21,13 +23,27 @@ void TinLayerStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext&, 
         {{"name", "circle"}, {"color", "200,60,40"}, {"size", "0.8"}, {"outline_style", "no"}})));
   }
   vector->triggerRepaint();
+  if (!group_.isEmpty()) moveIntoGroup(layer, context);
+}
+
+void TinLayerStyle::moveIntoGroup(QgsMapLayer* layer, QgsProcessingContext& context) const {
+  QgsProject* project = context.project();
+  if (!project) return;
+  QgsLayerTreeGroup* root = project->layerTreeRoot();
+  QgsLayerTreeLayer* node = root->findLayer(layer);
+  if (!node) return;
+  QgsLayerTreeGroup* group = root->findGroup(group_);
+  if (!group) group = root->insertGroup(0, group_);
+  QgsLayerTreeLayer* moved = group->addLayer(layer);
+  moved->setItemVisibilityChecked(visible_);
+  if (QgsLayerTreeGroup* parent = qobject_cast<QgsLayerTreeGroup*>(node->parent())) parent->removeChildNode(node);
 }
 
 void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg, const QString& layerName,
-                              const QString& outputName) {
+                              const QString& outputName, const QString& group, bool visible) {
   QgsProcessingContext::LayerDetails details(QStringLiteral("%1 %2").arg(QFileInfo(gpkg).completeBaseName(), layerName),
                                              context.project(), outputName, QgsProcessingUtils::LayerHint::Vector);
-  details.setPostProcessor(new TinLayerStyle());
+  details.setPostProcessor(new TinLayerStyle(group, visible));
   context.addLayerToLoadOnCompletion(gpkg + QStringLiteral("|layername=") + layerName, details);
 }
 

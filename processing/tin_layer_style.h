@@ -7,15 +7,22 @@ namespace tinlod::qgis {
 
 // Styles a TIN layer that an algorithm loads into the project: triangles as thin outlines
 // over a faint fill, vertices as small dots, so that a dense TIN does not come up as a
-// solid dark block.
+// solid dark block. With a group name, the layer moves into that group of the layer
+// tree (created on first use), visible or not: a hierarchy's levels load as one group.
 class TinLayerStyle : public QgsProcessingLayerPostProcessorInterface {
  public:
+  explicit TinLayerStyle(QString group = QString(), bool visible = true) : group_(std::move(group)), visible_(visible) {}
   void postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback* feedback) override;
+
+ private:
+  void moveIntoGroup(QgsMapLayer* layer, QgsProcessingContext& context) const;
+  QString group_;
+  bool visible_;
 };
 
 // Asks QGIS to load `layerName` of the GeoPackage when the algorithm finishes, named
-// "<file name> <layer name>" and styled by TinLayerStyle.
+// "<file name> <layer name>" and styled by TinLayerStyle (in `group`, if given).
 void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg, const QString& layerName,
-                              const QString& outputName);
+                              const QString& outputName, const QString& group = QString(), bool visible = true);
 
 }  // namespace tinlod::qgis

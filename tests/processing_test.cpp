@@ -11,6 +11,7 @@
 #include <qgsproject.h>
 #include <qgsvectorlayer.h>
 
+#include <QFile>
 #include <filesystem>
 #include <memory>
 
@@ -189,6 +190,80 @@ TEST(Processing, ExistingGeoPackageKeepsItsOtherLayers) {
   ASSERT_TRUE(again.ok) << again.error.toStdString();
   EXPECT_GT(featureCount(out, "centroids"), 0);
   EXPECT_EQ(featureCount(out, "triangles"), again.outputs.value("TRIANGLES").toLongLong());
+}
+
+TEST(Processing, BuildHierarchyWritesLevelsQgisCanOpen) {
+  const QString out = QString::fromStdString(test::tempDir() + "/hier.gpkg");
+  std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:buildhierarchy"));
+  ASSERT_NE(alg, nullptr);
+  QgsProcessingContext context;
+  QgsProject project;
+  context.setProject(&project);
+  RecordingFeedback feedback;
+  bool ok = false;
+  const QVariantMap outputs = alg->run({{"INPUT", QString::fromStdString(defaultDem())},
+                                        {"METHOD", 3},  // error
+                                        {"DELETE_PCT", 10},
+                                        {"MAX_LEVELS", 4},
+                                        {"OUTPUT", out}},
+                                       context, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  EXPECT_EQ(outputs.value("LEVELS").toInt(), 4);
+  for (int level = 0; level <= 4; ++level) {
+    QgsVectorLayer layer(out + QStringLiteral("|layername=level_%1").arg(level), "l", QStringLiteral("ogr"));
+    ASSERT_TRUE(layer.isValid()) << "level_" << level;
+    EXPECT_GT(layer.featureCount(), 0);
+    EXPECT_EQ(layer.crs().authid(), QStringLiteral("EPSG:32632"));
+  }
+  QgsVectorLayer top(out + "|layername=vertices", "v", QStringLiteral("ogr"));
+  QgsFeatureRequest coarsest;
+  coarsest.setFilterExpression(QStringLiteral("\"level\" = 4"));
+  long long vertices = 0;
+  QgsFeature f;
+  for (QgsFeatureIterator it = top.getFeatures(coarsest); it.nextFeature(f);) ++vertices;
+  EXPECT_EQ(vertices, outputs.value("COARSEST_VERTICES").toLongLong());
+  // The levels load as one group named after the file, the coarsest visible.
+  const auto layers = context.layersToLoadOnCompletion();
+  EXPECT_EQ(layers.size(), 5);
+}
+
+TEST(Processing, BuildHierarchyRefusesMaxErrorWithAnotherMethod) {
+  const QString out = QString::fromStdString(test::tempDir() + "/hier.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                                {{"INPUT", QString::fromStdString(defaultDem())}, {"METHOD", 1}, {"MAX_ERROR", 3}, {"OUTPUT", out}});
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.error.contains("MAX_ERROR applies to the error method only")) << r.error.toStdString();
+  EXPECT_FALSE(fs::exists(out.toStdString()));
+}
+
+TEST(Processing, BuildHierarchyKeepsPointsOfALayer) {
+  const std::string dir = test::tempDir();
+  const Tin tin = sampleTin(readDem(defaultDem(), 1, ProgressRange(Feedback{}, 0, 1)), {}, ProgressRange(Feedback{}, 0, 1));
+  // A point layer on three interior vertices of the TIN.
+  const QString points = QString::fromStdString(dir + "/keep.geojson");
+  QFile file(points);
+  ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+  QString json = "{\"type\":\"FeatureCollection\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":\"EPSG:32632\"}},\"features\":[";
+  std::vector<std::size_t> picked;
+  for (std::size_t i = tin.vertices.size() / 2; picked.size() < 3; ++i)
+    if (!tin.vertices[i].outline) picked.push_back(i);
+  for (std::size_t k = 0; k < picked.size(); ++k)
+    json += QStringLiteral("%1{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[%2,%3]}}")
+                .arg(k ? "," : "").arg(tin.vertices[picked[k]].x, 0, 'f', 3).arg(tin.vertices[picked[k]].y, 0, 'f', 3);
+  file.write((json + "]}").toUtf8());
+  file.close();
+  const QString out = QString::fromStdString(dir + "/hier.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                          {"FIXED_POINTS", points},
+                                                                          {"LOAD_LEVELS", false},
+                                                                          {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  QgsVectorLayer vertices(out + "|layername=vertices", "v", QStringLiteral("ogr"));
+  for (std::size_t id : picked) {
+    const QgsFeature f = vertices.getFeature(static_cast<QgsFeatureId>(id) + 1);
+    EXPECT_EQ(f.attribute("fixed").toInt(), 1) << id;
+    EXPECT_EQ(f.attribute("level").toInt(), r.outputs.value("LEVELS").toInt()) << id;
+  }
 }
 
 TEST(Processing, RealDemRuns) {

@@ -25,6 +25,7 @@ check() {  # check DESCRIPTION COMMAND...: passes when the command succeeds
 
 "$qp" list > "$work/list.txt" 2>/dev/null
 check "qgis_process list shows tinlod:sampletin" grep -q "tinlod:sampletin" "$work/list.txt"
+check "qgis_process list shows tinlod:buildhierarchy" grep -q "tinlod:buildhierarchy" "$work/list.txt"
 
 "$qp" help tinlod:sampletin > "$work/help.txt" 2>/dev/null
 check "qgis_process help describes the parameters" grep -q "TARGET_CRS" "$work/help.txt"
@@ -54,6 +55,23 @@ assert int(outputs["VERTICES"]) == ds.GetLayerByName("vertices").GetFeatureCount
 srs = triangles.GetSpatialRef()
 assert "%s:%s" % (srs.GetAuthorityName(None), srs.GetAuthorityCode(None)) == sys.argv[3], srs.GetName()
 print("  %s triangles in %s" % (outputs["TRIANGLES"], srs.GetName()))
+PY
+
+hier=$work/hier.gpkg
+"$qp" --json run tinlod:buildhierarchy --INPUT="$dem" --METHOD=1 --DELETE_PCT=20 --STOP_PCT=5 --OUTPUT="$hier" > "$work/hier.json" 2> "$work/hier.err" || true
+check "qgis_process --json run tinlod:buildhierarchy writes every level" /usr/bin/python3 - "$work/hier.json" "$hier" <<'PY'
+import json, sys
+from osgeo import ogr
+outputs = json.load(open(sys.argv[1]))["results"]
+ds = ogr.Open(sys.argv[2])
+levels = int(outputs["LEVELS"])
+assert levels >= 5, outputs
+rows = {f.GetField("level"): f for f in ds.GetLayerByName("levels")}
+for level in range(levels + 1):
+    layer = ds.GetLayerByName("level_%d" % level)
+    assert layer is not None and layer.GetFeatureCount() == rows[level].GetField("triangles"), level
+assert rows[levels].GetField("vertices") == int(outputs["COARSEST_VERTICES"])
+print("  %d levels, %d -> %d vertices" % (levels + 1, rows[0].GetField("vertices"), rows[levels].GetField("vertices")))
 PY
 
 if "$qp" run tinlod:sampletin --INPUT="$dem" --BAND=9 --OUTPUT="$work/bad.gpkg" > "$work/bad.out" 2> "$work/bad.err"; then

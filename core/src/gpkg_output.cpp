@@ -124,13 +124,24 @@ void GpkgOutput::execute(const std::string& sql) {
 
 void GpkgOutput::createFeatureView(const std::string& name, const std::string& select, const std::string& baseTable,
                                    const std::string& description) {
-  execute("CREATE VIEW \"" + name + "\" AS " + select);
-  execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, srs_id) SELECT " + quoted(name) +
+  executeAfterClose("CREATE VIEW \"" + name + "\" AS " + select);
+  executeAfterClose("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, srs_id) SELECT " + quoted(name) +
           ", 'features', " + quoted(name) + ", " + quoted(description) + ", srs_id FROM gpkg_contents WHERE table_name = " +
           quoted(baseTable));
-  execute("INSERT INTO gpkg_geometry_columns (table_name, column_name, geometry_type_name, srs_id, z, m) SELECT " +
+  executeAfterClose("INSERT INTO gpkg_geometry_columns (table_name, column_name, geometry_type_name, srs_id, z, m) SELECT " +
           quoted(name) + ", column_name, geometry_type_name, srs_id, z, m FROM gpkg_geometry_columns WHERE table_name = " +
           quoted(baseTable));
+}
+
+void GpkgOutput::runDeferred() {
+  if (deferred_.empty()) return;
+  ds_ = openOrCreate(tmp_.path(), true);
+  if (!ds_) throw Error("cannot reopen GeoPackage '" + path_ + "' to finish it");
+  begin();
+  for (const std::string& sql : deferred_) execute(sql);
+  commit();
+  GDALClose(ds_);
+  ds_ = nullptr;
 }
 
 void GpkgOutput::begin() {
@@ -150,6 +161,7 @@ void GpkgOutput::finish(const ProgressRange& progress) {
   ds_ = nullptr;
   if (CPLGetLastErrorType() >= CE_Failure)
     throw Error("cannot finish GeoPackage '" + path_ + "': " + CPLGetLastErrorMsg());
+  runDeferred();
   // Nothing is committed before the rename: a cancel asked for during the index build
   // is still honoured here.
   progress.report(0.99, "Building the spatial index");

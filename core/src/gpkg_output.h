@@ -34,8 +34,12 @@ class GpkgOutput {
   OGRLayer* createLayer(const char* name, OGRwkbGeometryType type, const std::string& crsWkt,
                         const std::vector<FieldSpec>& fields);
   void execute(const std::string& sql);
-  // A GeoPackage view registered as a feature layer with the geometry of `baseTable`,
-  // so that GDAL and QGIS list it beside the tables.
+  // Run once the features are written and the file closed. GDAL 3.6 builds R-trees in a
+  // background thread with a database attached, and SQL run meanwhile fails with
+  // "database is locked"; the file is reopened for these statements instead.
+  void executeAfterClose(const std::string& sql) { deferred_.push_back(sql); }
+  // A GeoPackage view registered as a feature layer with the geometry of `baseTable`, so
+  // that GDAL and QGIS list it beside the tables (created after close).
   void createFeatureView(const std::string& name, const std::string& select, const std::string& baseTable,
                          const std::string& description);
   void begin();
@@ -45,6 +49,8 @@ class GpkgOutput {
 
  private:
   void dropOurs(const std::function<bool(const std::string&)>& ours);
+  void runDeferred();
+  std::vector<std::string> deferred_;
   std::string path_;
   GpkgWriteOptions options_;
   TemporaryOutput tmp_;

@@ -61,9 +61,9 @@ void writeLevels(const Hierarchy& h, OGRLayer& layer) {
 }
 
 void createLevelViews(const Hierarchy& h, GpkgOutput& out) {
-  out.execute("CREATE INDEX triangles_levels ON triangles (first_level, last_level)");
-  out.execute("CREATE INDEX triangles_group ON triangles (group_id)");
-  out.execute("CREATE INDEX triangles_replaced_by ON triangles (replaced_by)");
+  out.executeAfterClose("CREATE INDEX triangles_levels ON triangles (first_level, last_level)");
+  out.executeAfterClose("CREATE INDEX triangles_group ON triangles (group_id)");
+  out.executeAfterClose("CREATE INDEX triangles_replaced_by ON triangles (replaced_by)");
   for (std::int32_t L = 0; L <= h.coarsest(); ++L) {
     const std::string level = std::to_string(L);
     out.createFeatureView("level_" + level,

@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "build_hierarchy_algorithm.h"
+
+#include <qgsprocessingoutputs.h>
+#include <qgsprocessingparameters.h>
+#include <qgsvectorlayer.h>
+
+#include <QFileInfo>
+#include <cmath>
+
+#include "processing_feedback.h"
+#include "tin_layer_style.h"
+#include "tinlod/build_job.h"
+
+namespace tinlod::qgis {
+namespace {
+
+const QStringList kMethods{QStringLiteral("degree"), QStringLiteral("volume"), QStringLiteral("normal"),
+                           QStringLiteral("error")};
+
+QgsProcessingParameterDefinition* advanced(QgsProcessingParameterDefinition* p) {
+  p->setFlags(p->flags() | QgsProcessingParameterDefinition::FlagAdvanced);
+  return p;
+}
+
+}  // namespace
+
+QString BuildHierarchyAlgorithm::name() const { return QStringLiteral("buildhierarchy"); }
+QString BuildHierarchyAlgorithm::displayName() const { return QStringLiteral("Build TIN hierarchy from DEM"); }
+QString BuildHierarchyAlgorithm::group() const { return QStringLiteral("TIN construction"); }
+QString BuildHierarchyAlgorithm::groupId() const { return QStringLiteral("construction"); }
+QStringList BuildHierarchyAlgorithm::tags() const {
+  return QStringLiteral("tin,dem,hierarchy,kirkpatrick,simplification,level of detail,lod,delaunay,terrain").split(',');
+}
+
+QString BuildHierarchyAlgorithm::shortHelpString() const {
+  return QStringLiteral(
+             "Samples a DEM into a TIN and simplifies it level by level into a triangulation hierarchy "
+             "(Kirkpatrick's, as adapted to terrains by de Berg and Dobrindt), written to one GeoPackage.\n\n"
+             "Each level deletes an independent set of the least important vertices (at most Delete "
+             "percentage of the current ones, best first) and retriangulates their neighbourhoods so that "
+             "the TIN stays Delaunay, until Stop percentage of the original vertices remain.\n\n"
+             "Methods: degree (Kirkpatrick: vertices of degree at most Maximum degree, lowest first); "
+             "volume (change of the volume under the neighbourhood when the vertex goes, smallest first); "
+             "normal (how much the vertex's triangles' normals differ, flattest first); error (largest "
+             "vertical distance after deletion to every original sample under the neighbourhood; Maximum "
+             "error stops it). Every level's maximum vertical error against the original TIN is measured, "
+             "whatever the method. Vertices on the outline and on the edges of nodata holes are never "
+             "deleted, nor are points to keep (snapped to the nearest vertex) and, if asked, peaks and pits "
+             "(strict local maxima and minima of the DEM in 3 x 3 cells).\n\n") +
+         samplingHelp() +
+         QStringLiteral(
+             "\n\nOutput: a GeoPackage with layers vertices (with level and fixed), triangles (each "
+             "distinct triangle once, with first_level, last_level, group_id, replaced_by and error), "
+             "level_0, level_1, ... (one per level, as views), groups (outline of each deleted vertex's "
+             "neighbourhood) and levels (counts, times and maximum error per level). The level layers "
+             "are loaded as a group, the coarsest visible.");
+}
+
+BuildHierarchyAlgorithm* BuildHierarchyAlgorithm::createInstance() const { return new BuildHierarchyAlgorithm(); }
+
+void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
+  const HierarchyOptions d;
+  addDemAndSamplingParameters();
+  addParameter(new QgsProcessingParameterEnum(QStringLiteral("METHOD"), QStringLiteral("Importance method"), kMethods,
+                                              false, static_cast<int>(d.measure)));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("DELETE_PCT"), QStringLiteral("Delete percentage per level"),
+                                                QgsProcessingParameterNumber::Double, d.deletePct, false, 0.1, 100));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("STOP_PCT"), QStringLiteral("Stop percentage of the original vertices"),
+                                                QgsProcessingParameterNumber::Double, d.stopPct, false, 0, 99.9));
+  addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("FIXED_POINTS"), QStringLiteral("Points to keep"),
+                                                       {QgsProcessing::TypeVectorPoint}, QVariant(), true));
+  addParameter(new QgsProcessingParameterBoolean(QStringLiteral("FIX_PEAKS_PITS"), QStringLiteral("Keep peaks and pits"), false));
+  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("MAX_LEVELS"), QStringLiteral("Maximum levels (0: no limit)"),
+                                                         QgsProcessingParameterNumber::Integer, d.maxLevels, false, 0)));
+  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("MAX_DEGREE"), QStringLiteral("Maximum degree (degree method)"),
+                                                         QgsProcessingParameterNumber::Integer, d.maxDegree, false, 3)));
+  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error, metres (error method)"),
+                                                         QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
+  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"),
+                                                         QStringLiteral("Threshold mode: delete every independent vertex below this importance"),
+                                                         QgsProcessingParameterNumber::Double, QVariant(), true)));
+  addParameter(new QgsProcessingParameterBoolean(QStringLiteral("LOAD_LEVELS"), QStringLiteral("Load the level layers as a group"), true));
+  addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Hierarchy GeoPackage"),
+                                                         QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("LEVELS"), QStringLiteral("Levels above level 0")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("COARSEST_VERTICES"), QStringLiteral("Vertices of the coarsest level")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error of the coarsest level (metres)")));
+}
+
+bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                               QgsProcessingFeedback*) {
+  readDemAndSamplingParameters(parameters, context);
+  options_ = HierarchyOptions();
+  options_.measure = parseMeasure(kMethods.value(parameterAsEnum(parameters, QStringLiteral("METHOD"), context)).toStdString());
+  options_.deletePct = parameterAsDouble(parameters, QStringLiteral("DELETE_PCT"), context);
+  options_.stopPct = parameterAsDouble(parameters, QStringLiteral("STOP_PCT"), context);
+  options_.maxLevels = parameterAsInt(parameters, QStringLiteral("MAX_LEVELS"), context);
+  options_.maxDegree = parameterAsInt(parameters, QStringLiteral("MAX_DEGREE"), context);
+  const QVariant maxError = parameters.value(QStringLiteral("MAX_ERROR"));
+  if (maxError.isValid() && !maxError.toString().isEmpty()) {
+    if (options_.measure != Measure::Error)
+      throw QgsProcessingException(QStringLiteral("MAX_ERROR applies to the error method only: set METHOD to error or clear MAX_ERROR"));
+    options_.maxError = parameterAsDouble(parameters, QStringLiteral("MAX_ERROR"), context);
+  }
+  const QVariant threshold = parameters.value(QStringLiteral("THRESHOLD"));
+  options_.thresholdMode = threshold.isValid() && !threshold.toString().isEmpty();
+  if (options_.thresholdMode) options_.threshold = parameterAsDouble(parameters, QStringLiteral("THRESHOLD"), context);
+  options_.fixPeaksPits = parameterAsBoolean(parameters, QStringLiteral("FIX_PEAKS_PITS"), context);
+  loadLevels_ = parameterAsBoolean(parameters, QStringLiteral("LOAD_LEVELS"), context);
+  readFixedPoints(parameters, context);
+  translateErrors([&] { options_.validate(); });
+  return true;
+}
+
+// The core reads points with GDAL: a layer that is a plain file is handed over as it is.
+void BuildHierarchyAlgorithm::readFixedPoints(const QVariantMap& parameters, QgsProcessingContext& context) {
+  options_.fixedPoints.clear();
+  if (!parameters.value(QStringLiteral("FIXED_POINTS")).isValid() ||
+      parameters.value(QStringLiteral("FIXED_POINTS")).toString().isEmpty())
+    return;
+  QgsVectorLayer* layer = parameterAsVectorLayer(parameters, QStringLiteral("FIXED_POINTS"), context);
+  if (!layer || layer->providerType() != QLatin1String("ogr"))
+    throw QgsProcessingException(QStringLiteral("FIXED_POINTS must be a point layer stored in a file GDAL reads "
+                                                "(GeoPackage, Shapefile, GeoJSON ...): save it to a file first"));
+  options_.fixedPoints = layer->source().section('|', 0, 0).toStdString();
+}
+
+QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                                      QgsProcessingFeedback* feedback) {
+  const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
+  const BuildSummary s = translateErrors(
+      [&] { return runBuildJob(demSource_, output.toStdString(), sample_, options_, true, processingFeedback(feedback)); });
+  feedback->pushInfo(QStringLiteral("%1 levels: %2 -> %3 vertices (%4 fixed), maximum error of the coarsest level %5 m, %6 MB")
+                         .arg(s.levels + 1).arg(s.originalVertices).arg(s.coarsestVertices).arg(s.fixedVertices)
+                         .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1));
+  if (loadLevels_) {
+    const QString group = QFileInfo(output).completeBaseName() + QStringLiteral(" levels");
+    for (int level = s.levels; level >= 0; --level)
+      loadTinLayerOnCompletion(context, output, QStringLiteral("level_%1").arg(level), QStringLiteral("OUTPUT"), group,
+                               level == s.levels);
+  }
+  QVariantMap outputs;
+  outputs.insert(QStringLiteral("OUTPUT"), output);
+  outputs.insert(QStringLiteral("LEVELS"), s.levels);
+  outputs.insert(QStringLiteral("COARSEST_VERTICES"), static_cast<qlonglong>(s.coarsestVertices));
+  outputs.insert(QStringLiteral("MAX_ERROR"), s.coarsestError);
+  return outputs;
+}
+
+}  // namespace tinlod::qgis

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "dem_algorithm.h"
+
+#include <qgsprocessingparameters.h>
+#include <qgsrasterlayer.h>
+
+#include <memory>
+
+namespace tinlod::qgis {
+namespace {
+
+// The definition handed to the core: the authority id where there is one (short in
+// messages), WKT otherwise. Geographic or non-metre CRSs are refused before the run.
+std::string targetSrs(const QgsCoordinateReferenceSystem& crs) {
+  if (!crs.isValid()) return {};
+  if (crs.isGeographic() || crs.mapUnits() != QgsUnitTypes::DistanceMeters)
+    throw QgsProcessingException(QStringLiteral("TARGET_CRS must be a projected CRS in metres, such as a UTM zone; "
+                                                "%1 is not").arg(crs.userFriendlyIdentifier()));
+  return (crs.authid().isEmpty() ? crs.toWkt(QgsCoordinateReferenceSystem::WKT_PREFERRED) : crs.authid()).toStdString();
+}
+
+QgsProcessingParameterDefinition* advanced(QgsProcessingParameterDefinition* p) {
+  p->setFlags(p->flags() | QgsProcessingParameterDefinition::FlagAdvanced);
+  return p;
+}
+
+}  // namespace
+
+void DemAlgorithm::addDemAndSamplingParameters() {
+  const SampleOptions defaults;
+  addParameter(new QgsProcessingParameterRasterLayer(QStringLiteral("INPUT"), QStringLiteral("DEM")));
+  // Optional with a default: qgis_process 3.22 reports a mandatory band as missing
+  // even when it has a default value.
+  addParameter(new QgsProcessingParameterBand(QStringLiteral("BAND"), QStringLiteral("Band"), defaults.band,
+                                              QStringLiteral("INPUT"), true));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("BLOCK"), QStringLiteral("Block size k (one sample per k x k cells)"),
+                                                QgsProcessingParameterNumber::Integer, defaults.block, false, 1, 1000));
+  auto* jitter = new QgsProcessingParameterNumber(QStringLiteral("JITTER"), QStringLiteral("Jitter (metres)"),
+                                                  QgsProcessingParameterNumber::Double, defaults.jitter, false, 0.0, 100.0);
+  jitter->setMetadata({{QStringLiteral("widget_wrapper"), QVariantMap{{QStringLiteral("decimals"), 2}}}});
+  addParameter(advanced(jitter));
+  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("SEED"), QStringLiteral("Random seed"),
+                                                         QgsProcessingParameterNumber::Integer,
+                                                         static_cast<int>(defaults.seed), false, 0, 2147483647)));
+  addParameter(advanced(new QgsProcessingParameterCrs(QStringLiteral("TARGET_CRS"),
+                                                      QStringLiteral("Target CRS (default: automatic)"), QVariant(), true)));
+}
+
+void DemAlgorithm::readDemAndSamplingParameters(const QVariantMap& parameters, QgsProcessingContext& context) {
+  QgsRasterLayer* layer = parameterAsRasterLayer(parameters, QStringLiteral("INPUT"), context);
+  if (!layer) throw QgsProcessingException(invalidRasterError(parameters, QStringLiteral("INPUT")));
+  if (layer->providerType() != QLatin1String("gdal"))
+    throw QgsProcessingException(QStringLiteral("INPUT must be a raster file GDAL reads; '%1' comes from the %2 provider: "
+                                                "save it as a GeoTIFF first").arg(layer->name(), layer->providerType()));
+  const QVariant bandValue = parameters.value(QStringLiteral("BAND"));
+  const int band = bandValue.isValid() && !bandValue.toString().isEmpty()
+                       ? parameterAsInt(parameters, QStringLiteral("BAND"), context)
+                       : SampleOptions().band;
+  if (band < 1 || band > layer->bandCount())
+    throw QgsProcessingException(QStringLiteral("Invalid band number for BAND (%1): valid values for input raster are 1 to %2")
+                                     .arg(band).arg(layer->bandCount()));
+  demSource_ = layer->source().toStdString();
+  sample_.band = band;
+  sample_.block = parameterAsInt(parameters, QStringLiteral("BLOCK"), context);
+  sample_.jitter = parameterAsDouble(parameters, QStringLiteral("JITTER"), context);
+  sample_.seed = static_cast<std::uint64_t>(parameterAsInt(parameters, QStringLiteral("SEED"), context));
+  sample_.targetSrs = targetSrs(parameterAsCrs(parameters, QStringLiteral("TARGET_CRS"), context));
+}
+
+QString DemAlgorithm::samplingHelp() {
+  return QStringLiteral(
+      "Sampling: one random valid cell is taken from each block of k x k cells (the study used 3 x 3; 1 "
+      "takes every cell), and every valid cell on the outline of the valid area is added so that "
+      "the TIN covers the DEM's whole valid extent. Each point's x and y are moved by a random "
+      "offset in [0, jitter) metres so that no four points are cocircular; the seed makes runs "
+      "reproducible. The points are triangulated with CGAL's exact-predicate Delaunay "
+      "triangulation. Nodata cells (declared nodata, NaN, masks) never become vertices, and no "
+      "triangle spans them: holes stay holes.\n\n"
+      "Units: heights are taken as metres and are never resampled. A DEM in a geographic CRS "
+      "(most SRTM data) has its points' x and y transformed to the UTM zone of its centre, or to "
+      "the target CRS given, which must be projected and in metres. A DEM without a CRS is taken "
+      "as metric.\n\n"
+      "Band: empty means band 1. Target CRS: empty means automatic (the DEM's own CRS when it is "
+      "metric, else the UTM zone of its centre); a CRS that distorts distances by more than 1 % "
+      "there draws a warning.");
+}
+
+}  // namespace tinlod::qgis

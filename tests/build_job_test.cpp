@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// tinlod build end to end in the core: the GeoPackage a hierarchy is written to.
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "test_support.h"
+#include "tinlod/build_job.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_info.h"
+#include "tinlod/synthetic_dem.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+std::string smallDem() {
+  static const std::string path = [] {
+    SyntheticDemOptions o;
+    o.width = 150, o.height = 120;
+    const std::string p = test::tempDir() + "/dem.tif";
+    writeDemGeoTiff(makeSyntheticDem(o), p);
+    return p;
+  }();
+  return path;
+}
+
+long long count(const std::string& gpkg, const std::string& sql) {
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(gpkg.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  if (!ds) return -1;
+  long long n = -1;
+  if (OGRLayer* r = ds->ExecuteSQL(sql.c_str(), nullptr, nullptr)) {
+    OGRFeature* f = r->GetNextFeature();
+    if (f) n = f->GetFieldAsInteger64(0);
+    OGRFeature::DestroyFeature(f);
+    ds->ReleaseResultSet(r);
+  }
+  GDALClose(ds);
+  return n;
+}
+
+std::vector<std::string> layerNames(const std::string& gpkg) {
+  std::vector<std::string> names;
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(gpkg.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  for (int i = 0; ds && i < ds->GetLayerCount(); ++i) names.push_back(ds->GetLayer(i)->GetName());
+  if (ds) GDALClose(ds);
+  return names;
+}
+
+TEST(BuildJob, EveryLevelIsALayerWithTheRecordedCounts) {
+  const std::string out = test::tempDir() + "/h.gpkg";
+  const BuildSummary s = runBuildJob(smallDem(), out, {}, {}, false, {});
+  const HierarchyInfo info = readHierarchyInfo(out);
+  EXPECT_EQ(info.kind, "hierarchy");
+  ASSERT_EQ(info.levels.size(), std::size_t(s.levels) + 1);
+  for (const LevelStats& l : info.levels) {
+    const std::string L = std::to_string(l.level);
+    EXPECT_EQ(count(out, "SELECT COUNT(*) FROM level_" + L), (long long)l.triangles) << "level " << L;
+    EXPECT_EQ(count(out, "SELECT COUNT(*) FROM vertices WHERE level >= " + L), (long long)l.vertices) << "level " << L;
+  }
+  // Each distinct triangle is stored once; groups link accept and reject triangles.
+  EXPECT_EQ(count(out, "SELECT COUNT(*) FROM groups"), count(out, "SELECT SUM(deleted) FROM levels"));
+  EXPECT_EQ(count(out, "SELECT COUNT(*) FROM groups g WHERE (SELECT COUNT(*) FROM triangles t WHERE t.replaced_by = g.id) "
+                       "!= (SELECT COUNT(*) FROM triangles t WHERE t.group_id = g.id) + 2"), 0);
+  EXPECT_EQ(count(out, "SELECT COUNT(*) FROM triangles WHERE group_id IS NULL"), (long long)info.levels[0].triangles);
+  EXPECT_EQ(info.metadata.at("method"), "volume");
+  EXPECT_EQ(s.coarsestVertices, info.levels.back().vertices);
+}
+
+TEST(BuildJob, ReplacingAHierarchyDropsItsOldLevelsAndKeepsOtherLayers) {
+  const std::string out = test::tempDir() + "/h.gpkg";
+  runBuildJob(smallDem(), out, {}, {}, false, {});
+  {
+    GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(out.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
+    ds->CreateLayer("notes", nullptr, wkbNone, nullptr);
+    GDALClose(ds);
+  }
+  HierarchyOptions two;
+  two.maxLevels = 2;
+  runBuildJob(smallDem(), out, {}, two, true, {});
+  const std::vector<std::string> names = layerNames(out);
+  EXPECT_NE(std::find(names.begin(), names.end(), "notes"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "level_2"), names.end());
+  EXPECT_EQ(std::find(names.begin(), names.end(), "level_3"), names.end());
+  EXPECT_EQ(readHierarchyInfo(out).levels.size(), 3u);
+}
+
+TEST(BuildJob, PeaksPitsAndPointsToKeepAreFixed) {
+  const std::string dir = test::tempDir();
+  // Two points to keep, in longitude/latitude: transformed to the TIN's UTM zone.
+  std::ofstream(dir + "/keep.geojson")
+      << R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:OGC:1.3:CRS84"}},)"
+      << R"("features":[{"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[7.7303,46.9643]}},)"
+      << R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[0,0]}}]})";
+  HierarchyOptions o;
+  o.fixPeaksPits = true;
+  o.fixedPoints = dir + "/keep.geojson";
+  test::RecordingFeedback fb;
+  const std::string out = dir + "/h.gpkg";
+  const BuildSummary s = runBuildJob(smallDem(), out, {}, o, false, fb.feedback());
+  EXPECT_TRUE(fb.warned("1 of the 2 points to keep fall outside"));
+  const long long top = s.levels;
+  EXPECT_EQ(count(out, "SELECT COUNT(*) FROM vertices WHERE fixed = 1 AND level < " + std::to_string(top)), 0);
+  EXPECT_GT(count(out, "SELECT COUNT(*) FROM vertices WHERE fixed = 1 AND outline = 0"), 10);
+}
+
+TEST(BuildJob, BadOptionsFailBeforeAnyWork) {
+  int calls = 0;
+  Feedback counting;
+  counting.progress = [&calls](double, const std::string&) { return ++calls > 0; };
+  HierarchyOptions bad;
+  bad.deletePct = 150;
+  EXPECT_THROW(runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, bad, false, counting), Error);
+  EXPECT_EQ(calls, 0);
+  HierarchyOptions missing;
+  missing.fixedPoints = test::tempDir() + "/none.shp";
+  EXPECT_THROW(runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, missing, false, {}), Error);
+}
+
+TEST(BuildJob, CancelLeavesNothingBehind) {
+  for (const double stopAt : {0.1, 0.4, 0.8, 0.95}) {
+    const std::string dir = test::tempDir();
+    Feedback cancelling;
+    cancelling.progress = [stopAt](double f, const std::string&) { return f < stopAt; };
+    EXPECT_THROW(runBuildJob(smallDem(), dir + "/h.gpkg", {}, {}, false, cancelling), Cancelled);
+    EXPECT_TRUE(fs::is_empty(dir)) << stopAt;
+  }
+}
+
+TEST(BuildJob, InfoRefusesFilesTinlodDidNotWrite) {
+  EXPECT_THROW(readHierarchyInfo(smallDem()), Error);
+  const std::string out = test::tempDir() + "/plain.gpkg";
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(out.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+  ds->CreateLayer("triangles", nullptr, wkbPolygon, nullptr);
+  GDALClose(ds);
+  EXPECT_THROW(readHierarchyInfo(out), Error);
+}
+
+}  // namespace
+}  // namespace tinlod
