@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The main job on the project's own default DEM: build, generate the DEM, sample it into
-# a TIN, and say where the outputs are.
+# The main job on the project's own default DEM: build, generate the DEM, simplify it
+# into a TIN hierarchy, describe the result, and say where the outputs are.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/build.sh"
@@ -8,11 +8,14 @@ out=$root/build/demo
 mkdir -p "$out"
 tinlod=$root/build/core/tinlod
 "$tinlod" makedem -overwrite "$out/default_dem.tif"
-"$tinlod" sample -overwrite "$out/default_dem.tif" "$out/default_tin.gpkg"
+"$tinlod" build -overwrite "$out/default_dem.tif" "$out/default_hierarchy.gpkg"
+"$tinlod" info "$out/default_hierarchy.gpkg"
 cat <<MSG
 
 Outputs:
-  DEM:  $out/default_dem.tif
-  TIN:  $out/default_tin.gpkg  (layers 'vertices' and 'triangles'; open it in QGIS or with ogrinfo)
+  DEM:        $out/default_dem.tif
+  Hierarchy:  $out/default_hierarchy.gpkg
+              layers level_0 ... level_N (one TIN per level), vertices, triangles, groups, levels;
+              open it in QGIS (Layer > Add Layer > Add Vector Layer) or with ogrinfo
   QGIS plugin: $root/build/plugin/tinlod  (zip: $(ls "$root"/build/tinlod-plugin-*.zip))
 MSG

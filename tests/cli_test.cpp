@@ -30,7 +30,7 @@ bool has(const std::string& text, const std::string& fragment) { return text.fin
 std::string defaultDem() {
   static const std::string path = [] {
     const std::string p = test::tempDir() + "/default_dem.tif";
-    EXPECT_EQ(tinlod("makedem " + p).exitCode, 0);
+    EXPECT_EQ(tinlod("makedem -size 360 300 -cell 25 " + p).exitCode, 0);
     return p;
   }();
   return path;

@@ -96,7 +96,7 @@ Hierarchy build(const Dem& dem, Measure measure, double deletePct = 20) {
 class EveryMeasure : public ::testing::TestWithParam<Measure> {};
 
 TEST_P(EveryMeasure, DefaultDemHierarchyKeepsEveryInvariant) {
-  const Dem dem = makeSyntheticDem({});
+  const Dem dem = test::smallSyntheticDem();
   const Hierarchy h = build(dem, GetParam());
   expectValidHierarchy(dem, h);
   const std::size_t original = h.levels[0].vertices;
@@ -141,7 +141,7 @@ TEST(Hierarchy, RecordedErrorIsTheTrueMaximumAtEveryLevel) {
 }
 
 TEST(Hierarchy, MaxErrorBoundsEveryLevel) {
-  const Dem dem = makeSyntheticDem({});
+  const Dem dem = test::smallSyntheticDem();
   HierarchyOptions o;
   o.measure = Measure::Error;
   o.maxError = 5;
@@ -152,13 +152,13 @@ TEST(Hierarchy, MaxErrorBoundsEveryLevel) {
 }
 
 TEST(Hierarchy, DegreeMeasureDeletesOnlyLowDegreeVertices) {
-  const Dem dem = makeSyntheticDem({});
+  const Dem dem = test::smallSyntheticDem();
   const Hierarchy h = build(dem, Measure::Degree);
   for (const Group& g : h.groups) EXPECT_LE(g.ringEnd - g.ringBegin, 11u);
 }
 
 TEST(Hierarchy, FixedVerticesSurvive) {
-  const Dem dem = makeSyntheticDem({});
+  const Dem dem = test::smallSyntheticDem();
   const Tin tin = sampleTin(dem, {}, kQuiet);
   std::vector<std::uint8_t> fixed(tin.vertices.size(), 0);
   for (std::size_t v = 0; v < fixed.size(); v += 7) fixed[v] = 1;
@@ -168,7 +168,7 @@ TEST(Hierarchy, FixedVerticesSurvive) {
 }
 
 TEST(Hierarchy, ThresholdModeDeletesOnlyBelowTheThreshold) {
-  const Dem dem = makeSyntheticDem({});
+  const Dem dem = test::smallSyntheticDem();
   HierarchyOptions o;
   o.thresholdMode = true;
   o.threshold = 2000;  // cubic metres of volume change

@@ -31,7 +31,7 @@ namespace {
 std::string defaultDem() {
   static const std::string path = [] {
     const std::string p = test::tempDir() + "/default_dem.tif";
-    writeDemGeoTiff(makeSyntheticDem({}), p);
+    writeDemGeoTiff(test::smallSyntheticDem(), p);
     return p;
   }();
   return path;

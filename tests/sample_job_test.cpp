@@ -20,7 +20,7 @@ namespace {
 std::string defaultDem() {
   static const std::string path = [] {
     const std::string p = test::tempDir() + "/default_dem.tif";
-    writeDemGeoTiff(makeSyntheticDem({}), p);
+    writeDemGeoTiff(test::smallSyntheticDem(), p);
     return p;
   }();
   return path;
@@ -73,7 +73,7 @@ TEST(SampleJob, WritesVerticesAndTrianglesLayersWithCrs) {
 }
 
 TEST(SampleJob, SameSeedSameTinOtherSeedOtherTin) {
-  const Dem dem = makeSyntheticDem({});
+  const Dem dem = test::smallSyntheticDem();
   const ProgressRange quiet(Feedback{}, 0, 1);
   SampleOptions o;
   const Tin a = sampleTin(dem, o, quiet), b = sampleTin(dem, o, quiet);
@@ -86,7 +86,7 @@ TEST(SampleJob, SameSeedSameTinOtherSeedOtherTin) {
 }
 
 TEST(SampleJob, JitterStaysInItsBounds) {
-  const Dem dem = makeSyntheticDem({});
+  const Dem dem = test::smallSyntheticDem();
   SampleOptions o;
   o.jitter = 0.5;
   const Tin tin = sampleTin(dem, o, ProgressRange(Feedback{}, 0, 1));
@@ -105,7 +105,7 @@ TEST(SampleJob, JitterStaysInItsBounds) {
 }
 
 TEST(SampleJob, DefaultDemTinIsValid) {
-  const Dem dem = makeSyntheticDem({});
+  const Dem dem = test::smallSyntheticDem();
   const Tin tin = sampleTin(dem, {}, ProgressRange(Feedback{}, 0, 1));
   test::expectValidTin(dem, tin, SampleOptions().jitter);
   const test::Topology t = test::analyseTopology(tin);
@@ -238,10 +238,10 @@ TEST(SampleJob, OutputThatIsAFolderOrNotAGeoPackageIsRefused) {
 TEST(SampleJob, JitterOfACellOrMoreIsRefused) {
   SampleOptions o;
   o.jitter = 25;  // the default DEM's cell size
-  EXPECT_THROW(sampleTin(makeSyntheticDem({}), o, ProgressRange(Feedback{}, 0, 1)), Error);
+  EXPECT_THROW(sampleTin(test::smallSyntheticDem(), o, ProgressRange(Feedback{}, 0, 1)), Error);
   o.jitter = 24;
   test::RecordingFeedback fb;
-  EXPECT_NO_THROW(sampleTin(makeSyntheticDem({}), o, ProgressRange(fb.feedback(), 0, 1)));
+  EXPECT_NO_THROW(sampleTin(test::smallSyntheticDem(), o, ProgressRange(fb.feedback(), 0, 1)));
   EXPECT_TRUE(fb.warned("more than half the cell size"));
 }
 

@@ -89,4 +89,12 @@ std::string readFile(const std::string& path) {
   return out.str();
 }
 
+Dem smallSyntheticDem() {
+  SyntheticDemOptions o;
+  o.width = 360;
+  o.height = 300;
+  o.cellSize = 25;
+  return makeSyntheticDem(o);
+}
+
 }  // namespace tinlod::test

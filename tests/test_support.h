@@ -7,6 +7,7 @@
 
 #include "tinlod/dem.h"
 #include "tinlod/feedback.h"
+#include "tinlod/synthetic_dem.h"
 
 namespace tinlod::test {
 
@@ -32,5 +33,8 @@ Dem makeDem(int width, int height, double cell, const std::function<float(int, i
 Dem makeGeographicDem(int width, int height, double lon0, double lat0);
 
 std::string readFile(const std::string& path);
+
+// A small synthetic DEM for quick tests: 360 x 300 cells of 25 m, with its lake and void.
+Dem smallSyntheticDem();
 
 }  // namespace tinlod::test

@@ -18,8 +18,8 @@ nodata -9999). Real DEMs are not shipped with tinlod; this one needs no download
 
 Usage: tinlod makedem OUT.tif [options]
 
-  -size w h      cells across and down (default 360 300)
-  -cell m        cell size in metres (default 25)
+  -size w h      cells across and down (default 1200 1000)
+  -cell m        cell size in metres (default 20)
   -seed n        terrain seed (default 7)
   -no_void       no nodata hole
   -no_lake       no flat lake

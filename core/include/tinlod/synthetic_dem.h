@@ -11,9 +11,9 @@ namespace tinlod {
 // The project's own default DEM, so that the quick start and tests need no data:
 // fractal hills and a ridge, a flat lake and a nodata void, in UTM zone 32N.
 struct SyntheticDemOptions {
-  int width = 360;
-  int height = 300;
-  double cellSize = 25.0;  // metres
+  int width = 1200;
+  int height = 1000;
+  double cellSize = 20.0;  // metres
   std::uint64_t seed = 7;
   bool withVoid = true;    // a nodata hole inside the raster
   bool withLake = true;    // an exactly flat area
