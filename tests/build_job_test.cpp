@@ -21,7 +21,7 @@ namespace {
 std::string smallDem() {
   static const std::string path = [] {
     SyntheticDemOptions o;
-    o.width = 150, o.height = 120;
+    o.width = 150, o.height = 120, o.cellSize = 25;
     const std::string p = test::tempDir() + "/dem.tif";
     writeDemGeoTiff(makeSyntheticDem(o), p);
     return p;
