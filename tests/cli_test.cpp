@@ -116,6 +116,47 @@ TEST(Cli, ErrorsExitOneWithAMessageAndWriteNothing) {
   }
 }
 
+TEST(Cli, BuildWritesAHierarchyThatInfoDescribes) {
+  const std::string dir = test::tempDir();
+  const CliRun build = tinlod("build -method error -delete_pct 10 -max_levels 6 -fix_peaks_pits " + defaultDem() + " " +
+                              dir + "/h.gpkg");
+  EXPECT_EQ(build.exitCode, 0) << build.err;
+  EXPECT_TRUE(has(build.out, "Wrote 7 levels")) << build.out;
+  const CliRun text = tinlod("info " + dir + "/h.gpkg");
+  EXPECT_EQ(text.exitCode, 0) << text.err;
+  EXPECT_TRUE(has(text.out, "method = error")) << text.out;
+  EXPECT_TRUE(has(text.out, "delete_pct = 10")) << text.out;
+  const CliRun json = tinlod("info -json " + dir + "/h.gpkg");
+  EXPECT_EQ(json.exitCode, 0);
+  EXPECT_TRUE(has(json.out, "\"kind\": \"hierarchy\"")) << json.out;
+  EXPECT_TRUE(has(json.out, "{\"level\": 6,")) << json.out;
+  const CliRun help = tinlod("build --help");
+  for (const char* option : {"-method", "-delete_pct", "-stop_pct", "-max_levels", "-max_degree", "-max_error",
+                             "-threshold", "-fixed", "-fix_peaks_pits", "-block", "-overwrite"})
+    EXPECT_TRUE(has(help.out, option)) << option;
+}
+
+TEST(Cli, BuildErrorsNameTheOption) {
+  const std::string dir = test::tempDir();
+  struct Case {
+    std::string args, message;
+  };
+  const Case cases[] = {
+      {"build -method curvature " + defaultDem() + " " + dir + "/h.gpkg", "unknown method 'curvature'"},
+      {"build -delete_pct 0 " + defaultDem() + " " + dir + "/h.gpkg", "delete_pct must be"},
+      {"build -stop_pct 100 " + defaultDem() + " " + dir + "/h.gpkg", "stop_pct must be"},
+      {"build -max_error 5 " + defaultDem() + " " + dir + "/h.gpkg", "-method error"},
+      {"build -fixed " + dir + "/none.gpkg " + defaultDem() + " " + dir + "/h.gpkg", "points to keep"},
+      {"info " + defaultDem(), "is not a GeoPackage"},
+  };
+  for (const Case& c : cases) {
+    const CliRun r = tinlod(c.args);
+    EXPECT_EQ(r.exitCode, 1) << c.args;
+    EXPECT_TRUE(has(r.err, c.message)) << c.args << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/h.gpkg"));
+}
+
 TEST(Cli, GdalsOwnMessagesDoNotLeak) {
   const CliRun r = tinlod("sample -t_srs EPSG:99999 " + defaultDem() + " " + test::tempDir() + "/tin.gpkg");
   EXPECT_EQ(r.err.find("ERROR 1:"), std::string::npos) << r.err;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <thread>
 
 #include "cgal_types.h"
 #include "tinlod/error.h"
@@ -143,13 +144,13 @@ class Simplifier {
     return options_.measure != Measure::Degree || static_cast<int>(dt_.degree(v)) <= options_.maxDegree;
   }
 
-  const Star& starOf(VertexHandle v) {
-    star_.centre = point3(v->point());
-    star_.ring.clear();
+  const Star& starOf(VertexHandle v, Star& star) const {
+    star.centre = point3(v->point());
+    star.ring.clear();
     auto n = dt_.incident_vertices(v), done = n;
-    do star_.ring.push_back(point3(n->point()));
+    do star.ring.push_back(point3(n->point()));
     while (++n != done);
-    return star_;
+    return star;
   }
 
   std::vector<Point3> samplesAround(VertexHandle v) const {
@@ -162,14 +163,34 @@ class Simplifier {
     return samples;
   }
 
-  double importanceOf(VertexHandle v) {
+  // Only reads the triangulation and writes the vertex's own tag: safe in parallel.
+  void updateImportance(VertexHandle v, Star& scratch) const {
     cgal::VertexTag& tag = v->info();
-    if (tag.stale) {
-      const std::vector<Point3> samples = options_.measure == Measure::Error ? samplesAround(v) : std::vector<Point3>();
-      tag.importance = importance(options_.measure, starOf(v), samples);
-      tag.stale = false;
+    const std::vector<Point3> samples = options_.measure == Measure::Error ? samplesAround(v) : std::vector<Point3>();
+    tag.importance = importance(options_.measure, starOf(v, scratch), samples);
+    tag.stale = false;
+  }
+
+  // Importances change only around deleted vertices; those are recomputed at the start of
+  // each level, split over the machine's cores.
+  void updateStaleImportances(std::int32_t level) {
+    std::vector<VertexHandle> stale;
+    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v)
+      if (v->info().stale && eligible(v)) stale.push_back(v);
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 8);
+    const std::size_t chunk = (stale.size() + threads - 1) / threads;
+    std::vector<std::thread> workers;
+    for (std::size_t t = 1; t < threads && t * chunk < stale.size(); ++t)
+      workers.emplace_back([&, t] {
+        Star scratch;
+        for (std::size_t i = t * chunk; i < std::min(stale.size(), (t + 1) * chunk); ++i) updateImportance(stale[i], scratch);
+      });
+    Star scratch;
+    for (std::size_t i = 0; i < std::min(stale.size(), chunk); ++i) {
+      updateImportance(stale[i], scratch);
+      if ((i & 0xFFFF) == 0) progress_.report(lastFraction_, "Selecting level " + std::to_string(level));
     }
-    return tag.importance;
+    for (std::thread& w : workers) w.join();
   }
 
   bool wanted(double importance) const {
@@ -180,14 +201,10 @@ class Simplifier {
   // Best first, ties broken by vertex id: the result never depends on memory layout.
   // Each pick blocks its neighbours, so the set is independent.
   std::vector<std::pair<double, VertexId>> select(std::int32_t level, std::size_t stopCount) {
+    updateStaleImportances(level);
     std::vector<std::pair<double, VertexId>> candidates;
-    std::size_t k = 0;
-    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v, ++k) {
-      if (!eligible(v)) continue;
-      const double imp = importanceOf(v);
-      if (wanted(imp)) candidates.emplace_back(imp, v->info().id);
-      if ((k & 0xFFFF) == 0) progress_.report(lastFraction_, "Selecting level " + std::to_string(level));
-    }
+    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v)
+      if (eligible(v) && wanted(v->info().importance)) candidates.emplace_back(v->info().importance, v->info().id);
     std::sort(candidates.begin(), candidates.end());
     std::size_t limit = current_ - stopCount;
     if (!options_.thresholdMode)
@@ -348,8 +365,7 @@ class Simplifier {
   std::vector<std::int32_t> bucketHead_;      // by triangle id: first deleted sample under it
   std::vector<std::int32_t> bucketNext_;      // by vertex id: next sample in the same bucket
   std::priority_queue<std::pair<double, std::int32_t>> errorHeap_;  // (error, triangle id)
-  Star star_;                                 // scratch buffers, reused to spare allocations
-  std::vector<VertexHandle> ring_;
+  std::vector<VertexHandle> ring_;            // scratch buffers, reused to spare allocations
   std::vector<std::int32_t> samples_;
   std::vector<FaceHandle> created_;
   std::size_t current_ = 0, triangles_ = 0;
