@@ -3,35 +3,25 @@
 // delete, vertices removed per second, peak memory; and CGAL's bare remove() rate on the
 // same TIN for comparison. Not a timed test:
 //   bench_build [DEM] [-method m] [-delete_pct p] [-stop_pct s] [-out OUT.gpkg]
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 
+#include "bench_support.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/hierarchy_builder.h"
 #include "tinlod/sample_job.h"
 
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-double peakMegabytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;
-}
-
-}  // namespace
+using tinlod::bench::Clock;
+using tinlod::bench::peakMegabytes;
+using tinlod::bench::seconds;
 
 double bareRemoveRate(const tinlod::Tin& tin, std::size_t count);  // bench_bare_remove.cpp
 
 int main(int argc, char** argv) {
-  const char* env = std::getenv("TINLOD_TEST_DATA");
-  std::string path = std::string(env ? env : "../shared/data") + "/alps_2x2_N46E007_N47E008.tif";
+  std::string path = tinlod::bench::defaultDem();
   tinlod::HierarchyOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

@@ -2,8 +2,6 @@
 // Prints the throughput of the sample step (read, sample, transform, triangulate, cut
 // out nodata) and of writing the GeoPackage, and the peak memory. Not a timed test:
 //   bench_sample [DEM] [-block k]   (default DEM: ../shared/data/alps_2x2_N46E007_N47E008.tif)
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -12,21 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/gpkg_writer.h"
 #include "tinlod/sample_job.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-
-double peakMegabytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;
-}
+using tinlod::bench::Clock;
+using tinlod::bench::peakMegabytes;
+using tinlod::bench::seconds;
 
 // Times each phase the core names in its progress reports.
 struct PhaseTimer {
@@ -52,16 +45,10 @@ struct PhaseTimer {
   }
 };
 
-std::string defaultDem() {
-  const char* env = std::getenv("TINLOD_TEST_DATA");
-  const std::string dir = env ? env : "../shared/data";
-  return dir + "/alps_2x2_N46E007_N47E008.tif";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string path = defaultDem();
+  std::string path = tinlod::bench::defaultDem();
   tinlod::SampleOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

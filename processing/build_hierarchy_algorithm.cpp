@@ -18,11 +18,6 @@ namespace {
 const QStringList kMethods{QStringLiteral("degree"), QStringLiteral("volume"), QStringLiteral("normal"),
                            QStringLiteral("error")};
 
-QgsProcessingParameterDefinition* advanced(QgsProcessingParameterDefinition* p) {
-  p->setFlags(p->flags() | QgsProcessingParameterDefinition::FlagAdvanced);
-  return p;
-}
-
 }  // namespace
 
 QString BuildHierarchyAlgorithm::name() const { return QStringLiteral("buildhierarchy"); }

@@ -19,12 +19,12 @@ std::string targetSrs(const QgsCoordinateReferenceSystem& crs) {
   return (crs.authid().isEmpty() ? crs.toWkt(QgsCoordinateReferenceSystem::WKT_PREFERRED) : crs.authid()).toStdString();
 }
 
-QgsProcessingParameterDefinition* advanced(QgsProcessingParameterDefinition* p) {
+}  // namespace
+
+QgsProcessingParameterDefinition* DemAlgorithm::advanced(QgsProcessingParameterDefinition* p) {
   p->setFlags(p->flags() | QgsProcessingParameterDefinition::FlagAdvanced);
   return p;
 }
-
-}  // namespace
 
 void DemAlgorithm::addDemAndSamplingParameters() {
   const SampleOptions defaults;

@@ -20,6 +20,8 @@ class DemAlgorithm : public QgsProcessingAlgorithm {
   void readDemAndSamplingParameters(const QVariantMap& parameters, QgsProcessingContext& context);
   // The help text's paragraphs on sampling, holes and units, shared by the algorithms.
   static QString samplingHelp();
+  // Flags a parameter Advanced (shown folded in the dialog) and returns it.
+  static QgsProcessingParameterDefinition* advanced(QgsProcessingParameterDefinition* parameter);
 
   std::string demSource_;
   SampleOptions sample_;

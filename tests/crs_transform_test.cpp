@@ -79,12 +79,7 @@ TEST(Crs, DistortingCrsDrawsAWarningNamingTheUtmZone) {
   Dem dem = test::makeDem(5, 5, 10, [](int, int) { return 1.0f; });
   // Web Mercator around San Francisco (37.8 N): distances stretched by 1 / cos(lat).
   dem.geotransform = {-13627000.0, 10.0, 0.0, 4551000.0, 0.0, -10.0};
-  OGRSpatialReference s;
-  s.importFromEPSG(3857);
-  char* wkt = nullptr;
-  s.exportToWkt(&wkt);
-  dem.crsWkt = wkt;
-  CPLFree(wkt);
+  dem.crsWkt = test::wktOf(3857);
   test::RecordingFeedback fb;
   CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
   ASSERT_EQ(fb.warnings.size(), 1u);
@@ -113,12 +108,7 @@ TEST(Crs, GeographicOrUnknownTargetIsAnError) {
 TEST(Crs, NonMetricProjectedDemGoesToUtm) {
   Dem dem = test::makeDem(5, 5, 10, [](int, int) { return 1.0f; });
   dem.geotransform = {6000000.0, 30.0, 0.0, 2100000.0, 0.0, -30.0};  // feet, around San Francisco
-  OGRSpatialReference s;  // California zone 3, US survey feet
-  s.importFromEPSG(2227);
-  char* wkt = nullptr;
-  s.exportToWkt(&wkt);
-  dem.crsWkt = wkt;
-  CPLFree(wkt);
+  dem.crsWkt = test::wktOf(2227);  // California zone 3, US survey feet
   const CrsTransform t = CrsTransform::forDem(dem, "", "", ProgressRange(Feedback{}, 0, 1));
   EXPECT_NE(t.targetName().find("32610"), std::string::npos) << t.targetName();
 }

@@ -28,14 +28,7 @@ namespace fs = std::filesystem;
 namespace tinlod {
 namespace {
 
-std::string defaultDem() {
-  static const std::string path = [] {
-    const std::string p = test::tempDir() + "/default_dem.tif";
-    writeDemGeoTiff(test::smallSyntheticDem(), p);
-    return p;
-  }();
-  return path;
-}
+std::string defaultDem() { return test::smallSyntheticDemFile(); }
 
 // QgsProcessingAlgorithm::run catches the algorithm's exception and reports it here.
 class RecordingFeedback : public QgsProcessingFeedback {

@@ -23,6 +23,8 @@ struct TempRoot {
   }
 };
 
+}  // namespace
+
 std::string wktOf(int epsg) {
   OGRSpatialReference srs;
   srs.importFromEPSG(epsg);
@@ -32,8 +34,6 @@ std::string wktOf(int epsg) {
   CPLFree(wkt);
   return out;
 }
-
-}  // namespace
 
 std::string dataDir() {
   const char* env = std::getenv("TINLOD_TEST_DATA");
@@ -95,6 +95,15 @@ Dem smallSyntheticDem() {
   o.height = 300;
   o.cellSize = 25;
   return makeSyntheticDem(o);
+}
+
+std::string smallSyntheticDemFile() {
+  static const std::string path = [] {
+    const std::string p = tempDir() + "/small_dem.tif";
+    writeDemGeoTiff(smallSyntheticDem(), p);
+    return p;
+  }();
+  return path;
 }
 
 }  // namespace tinlod::test

@@ -36,5 +36,10 @@ std::string readFile(const std::string& path);
 
 // A small synthetic DEM for quick tests: 360 x 300 cells of 25 m, with its lake and void.
 Dem smallSyntheticDem();
+// The same DEM as a GeoTIFF, written once per test binary.
+std::string smallSyntheticDemFile();
+
+// The WKT of an EPSG CRS.
+std::string wktOf(int epsg);
 
 }  // namespace tinlod::test
