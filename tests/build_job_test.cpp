@@ -68,6 +68,8 @@ TEST(BuildJob, EveryLevelIsALayerWithTheRecordedCounts) {
                        "!= (SELECT COUNT(*) FROM triangles t WHERE t.group_id = g.id) + 2"), 0);
   EXPECT_EQ(count(out, "SELECT COUNT(*) FROM triangles WHERE group_id IS NULL"), (long long)info.levels[0].triangles);
   EXPECT_EQ(info.metadata.at("method"), "volume");
+  EXPECT_EQ(count(out, "SELECT COUNT(*) FROM levels WHERE method = 'volume' AND delete_pct = 20 AND stop_pct = 5"),
+            (long long)info.levels.size());
   EXPECT_EQ(s.coarsestVertices, info.levels.back().vertices);
 }
 

@@ -231,22 +231,17 @@ class Simplifier {
     group.level = level;
     group.importance = importance;
 
+    // One walk around the star: its faces become the accept triangles, the vertex
+    // counter-clockwise after v in each face is the next ring vertex, and the faces'
+    // samples and the vertex itself go to the reject triangles.
     std::vector<VertexHandle>& ring = ring_;
     ring.clear();
-    auto n = dt_.incident_vertices(v), done = n;
-    do ring.push_back(n);
-    while (++n != done);
-    group.ringBegin = static_cast<std::uint32_t>(h_.rings.size());
-    for (VertexHandle u : ring) h_.rings.push_back(u->info().id);
-    group.ringEnd = static_cast<std::uint32_t>(h_.rings.size());
-
-    // The star's faces become the accept triangles; their samples and the vertex itself
-    // go to the reject triangles.
     std::vector<std::int32_t>& samples = samples_;
     samples.assign(1, static_cast<std::int32_t>(id));
     group.acceptBegin = static_cast<std::uint32_t>(h_.links.size());
     auto f = dt_.incident_faces(v), fdone = f;
     do {
+      ring.push_back(f->vertex(dt_.ccw(f->index(v))));
       const std::int32_t t = f->info().id;
       h_.links.push_back(static_cast<std::uint32_t>(t));
       h_.triangles[t].lastLevel = level - 1;
@@ -255,6 +250,9 @@ class Simplifier {
       f->info().id = FaceTag::kDying;  // CGAL may reuse a star face for a new one
     } while (++f != fdone);
     group.acceptEnd = static_cast<std::uint32_t>(h_.links.size());
+    group.ringBegin = static_cast<std::uint32_t>(h_.rings.size());
+    for (VertexHandle u : ring) h_.rings.push_back(u->info().id);
+    group.ringEnd = static_cast<std::uint32_t>(h_.rings.size());
 
     dt_.remove(v);
     handles_[id] = VertexHandle();

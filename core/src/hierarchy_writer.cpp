@@ -56,6 +56,9 @@ void writeLevels(const Hierarchy& h, OGRLayer& layer) {
     feature.SetField("select_seconds", l.selectSeconds);
     feature.SetField("delete_seconds", l.deleteSeconds);
     feature.SetField("max_error", l.maxError);
+    feature.SetField("method", measureName(h.options.measure).c_str());
+    feature.SetField("delete_pct", h.options.deletePct);
+    feature.SetField("stop_pct", h.options.stopPct);
     writeFeature(layer, feature);
   }
 }
@@ -92,7 +95,8 @@ void writeHierarchyGpkg(const Hierarchy& h, const std::string& path, const GpkgW
   OGRLayer* levels = out.createLayer("levels", wkbNone, "",
                                      {{"level"}, {"vertices", OFTInteger64}, {"triangles", OFTInteger64},
                                       {"deleted", OFTInteger64}, {"select_seconds", OFTReal},
-                                      {"delete_seconds", OFTReal}, {"max_error", OFTReal}});
+                                      {"delete_seconds", OFTReal}, {"max_error", OFTReal}, {"method", OFTString},
+                                      {"delete_pct", OFTReal}, {"stop_pct", OFTReal}});
   std::vector<Triangle> corners;
   corners.reserve(h.triangles.size());
   for (const HierarchyTriangle& t : h.triangles) corners.push_back(t.v);

@@ -71,11 +71,15 @@ Measure parseMeasure(const std::string& name) {
   throw Error("unknown method '" + name + "': choose degree, volume, normal or error");
 }
 
-std::vector<LocalTriangle> retriangulateStar(const Star& star) {
+namespace {
+
+// Fills `out`; `polygon` is scratch. Buffers are the caller's, so that the hot path of
+// the simplifier reuses them instead of allocating twice per vertex.
+void retriangulate(const Star& star, std::vector<int>& polygon, std::vector<LocalTriangle>& out) {
   const std::vector<Point3>& ring = star.ring;
-  std::vector<int> polygon(ring.size());
+  polygon.resize(ring.size());
   for (std::size_t i = 0; i < ring.size(); ++i) polygon[i] = static_cast<int>(i);
-  std::vector<LocalTriangle> out;
+  out.clear();
   while (polygon.size() > 3) {
     const std::size_t m = polygon.size();
     std::size_t best = m;
@@ -91,6 +95,21 @@ std::vector<LocalTriangle> retriangulateStar(const Star& star) {
     polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(best));
   }
   if (polygon.size() == 3) out.push_back({polygon[0], polygon[1], polygon[2]});
+}
+
+const std::vector<LocalTriangle>& retriangulateInScratch(const Star& star) {
+  thread_local std::vector<int> polygon;
+  thread_local std::vector<LocalTriangle> out;
+  retriangulate(star, polygon, out);
+  return out;
+}
+
+}  // namespace
+
+std::vector<LocalTriangle> retriangulateStar(const Star& star) {
+  std::vector<int> polygon;
+  std::vector<LocalTriangle> out;
+  retriangulate(star, polygon, out);
   return out;
 }
 
@@ -144,8 +163,8 @@ double importance(Measure measure, const Star& star, const std::vector<Point3>& 
   switch (measure) {
     case Measure::Degree: return static_cast<double>(star.ring.size());
     case Measure::Normal: return 1.0 - normalFlatness(star);
-    case Measure::Volume: return volumeChange(star, retriangulateStar(star));
-    case Measure::Error: return maxVerticalError(star, retriangulateStar(star), samples);
+    case Measure::Volume: return volumeChange(star, retriangulateInScratch(star));
+    case Measure::Error: return maxVerticalError(star, retriangulateInScratch(star), samples);
   }
   return 0;
 }

@@ -19,7 +19,7 @@ namespace tinlod {
 //   vertex, importance, error; its accept triangles are those with replaced_by = id,
 //   its reject triangles those with group_id = id
 // - levels (table): level, vertices, triangles, deleted, select_seconds, delete_seconds,
-//   max_error
+//   max_error, and the method, delete_pct and stop_pct that made it
 // Ids count from 1 and equal the fid. Written atomically, as writeTinGpkg.
 void writeHierarchyGpkg(const Hierarchy& hierarchy, const std::string& path, const GpkgWriteOptions& options,
                         const ProgressRange& progress);
