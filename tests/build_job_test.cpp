@@ -11,6 +11,7 @@
 #include "tinlod/build_job.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_info.h"
+#include "tinlod/sample_job.h"
 #include "tinlod/synthetic_dem.h"
 
 namespace fs = std::filesystem;
@@ -89,6 +90,29 @@ TEST(BuildJob, ReplacingAHierarchyDropsItsOldLevelsAndKeepsOtherLayers) {
   EXPECT_NE(std::find(names.begin(), names.end(), "level_2"), names.end());
   EXPECT_EQ(std::find(names.begin(), names.end(), "level_3"), names.end());
   EXPECT_EQ(readHierarchyInfo(out).levels.size(), 3u);
+}
+
+TEST(BuildJob, RunningAgainOntoItsOwnOutputReplacesIt) {
+  const std::string out = test::tempDir() + "/h.gpkg";
+  runBuildJob(smallDem(), out, {}, {}, false, {});
+  const auto firstSize = fs::file_size(out);
+  HierarchyOptions other;
+  other.measure = Measure::Error;
+  other.maxLevels = 3;
+  runBuildJob(smallDem(), out, {}, other, true, {});
+  EXPECT_EQ(readHierarchyInfo(out).metadata.at("method"), "error");
+  EXPECT_EQ(readHierarchyInfo(out).levels.size(), 4u);
+  EXPECT_LT(fs::file_size(out), firstSize);  // compacted: no pages of the old levels left
+  runBuildJob(smallDem(), out, {}, {}, true, {});  // and once more, as QGIS's Run again does
+  EXPECT_EQ(readHierarchyInfo(out).metadata.at("method"), "volume");
+}
+
+TEST(BuildJob, SamplingOverAHierarchyDropsItsLevels) {
+  const std::string out = test::tempDir() + "/h.gpkg";
+  runBuildJob(smallDem(), out, {}, {}, false, {});
+  runSampleJob(smallDem(), out, {}, true, {});
+  const std::vector<std::string> names = layerNames(out);
+  EXPECT_EQ(names, (std::vector<std::string>{"vertices", "triangles"}));
 }
 
 TEST(BuildJob, PeaksPitsAndPointsToKeepAreFixed) {

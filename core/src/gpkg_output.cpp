@@ -55,6 +55,12 @@ void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
                 "' exists: add -overwrite to replace its tinlod layers (its other layers are kept)");
 }
 
+bool isTinlodLayer(const std::string& name) {
+  if (name == "vertices" || name == "triangles" || name == "groups" || name == "levels") return true;
+  if (name.rfind("level_", 0) != 0 || name.size() == 6) return false;
+  return std::all_of(name.begin() + 6, name.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
 void writeFeature(OGRLayer& layer, OGRFeature& feature) {
   if (layer.CreateFeature(&feature) != OGRERR_NONE)
     throw Error(std::string("cannot write to layer '") + layer.GetName() + "': " + CPLGetLastErrorMsg());
@@ -77,27 +83,46 @@ GpkgOutput::GpkgOutput(const std::string& path, const GpkgWriteOptions& options,
 }
 
 GpkgOutput::~GpkgOutput() {
-  if (ds_) GDALClose(ds_);
+  if (!ds_) return;
+  // Closing after a failure or a cancel: GDAL's complaints (an R-tree thread cut short)
+  // would only confuse; the temporary file is removed anyway.
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  GDALClose(ds_);
+  CPLPopErrorHandler();
 }
 
 void GpkgOutput::dropOurs(const std::function<bool(const std::string&)>& ours) {
-  // Views first (GDAL lists them as layers but cannot drop them), then tables.
+  // Views first: GDAL lists them as layers but cannot drop them, and a view dropped by SQL
+  // under GDAL's layer object for it makes closing fail. So they go by SQL, and the file
+  // is reopened before the tables go through GDAL.
   std::vector<std::string> views;
   if (OGRLayer* r = ds_->ExecuteSQL("SELECT name FROM sqlite_master WHERE type = 'view'", nullptr, nullptr)) {
     for (auto& f : *r) views.push_back(f->GetFieldAsString(0));
     ds_->ReleaseResultSet(r);
   }
+  bool dropped = false;
   for (const std::string& v : views)
     if (ours(v)) {
       execute("DROP VIEW \"" + v + "\"");
       execute("DELETE FROM gpkg_geometry_columns WHERE table_name = " + quoted(v));
       execute("DELETE FROM gpkg_contents WHERE table_name = " + quoted(v));
+      dropped = true;
     }
+  if (dropped) {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALClose(ds_);
+    CPLPopErrorHandler();
+    ds_ = openOrCreate(tmp_.path(), true);
+    if (!ds_) throw Error("cannot reopen '" + path_ + "' to update it");
+  }
   for (int i = ds_->GetLayerCount() - 1; i >= 0; --i) {
     const std::string name = ds_->GetLayer(i)->GetName();
-    if (ours(name) && std::find(views.begin(), views.end(), name) == views.end())
+    if (ours(name)) {
       if (ds_->DeleteLayer(i) != OGRERR_NONE) throw Error("cannot replace layer '" + name + "' of '" + path_ + "'");
+      dropped = true;
+    }
   }
+  vacuum_ = dropped;  // what was dropped leaves free pages: compact the file at the end
 }
 
 OGRLayer* GpkgOutput::createLayer(const char* name, OGRwkbGeometryType type, const std::string& crsWkt,
@@ -134,12 +159,13 @@ void GpkgOutput::createFeatureView(const std::string& name, const std::string& s
 }
 
 void GpkgOutput::runDeferred() {
-  if (deferred_.empty()) return;
+  if (deferred_.empty() && !vacuum_) return;
   ds_ = openOrCreate(tmp_.path(), true);
   if (!ds_) throw Error("cannot reopen GeoPackage '" + path_ + "' to finish it");
   begin();
   for (const std::string& sql : deferred_) execute(sql);
   commit();
+  if (vacuum_) execute("VACUUM");  // outside any transaction, as SQLite requires
   GDALClose(ds_);
   ds_ = nullptr;
 }

@@ -51,6 +51,7 @@ class GpkgOutput {
   void dropOurs(const std::function<bool(const std::string&)>& ours);
   void runDeferred();
   std::vector<std::string> deferred_;
+  bool vacuum_ = false;
   std::string path_;
   GpkgWriteOptions options_;
   TemporaryOutput tmp_;
@@ -58,5 +59,9 @@ class GpkgOutput {
 };
 
 void writeFeature(OGRLayer& layer, OGRFeature& feature);
+
+// Every layer tinlod writes, whichever command wrote the file: replacing a file's TIN or
+// hierarchy drops all of them, so no view is left pointing at replaced triangles.
+bool isTinlodLayer(const std::string& name);
 
 }  // namespace tinlod

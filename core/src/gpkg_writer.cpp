@@ -8,7 +8,7 @@ namespace tinlod {
 
 void writeTinGpkg(const Tin& tin, const std::string& path, const GpkgWriteOptions& options,
                   const ProgressRange& progress) {
-  GpkgOutput out(path, options, [](const std::string& name) { return name == "vertices" || name == "triangles"; });
+  GpkgOutput out(path, options, isTinlodLayer);
   OGRLayer* vertices = out.createLayer("vertices", wkbPoint25D, tin.crsWkt, vertexFields());
   OGRLayer* triangles = out.createLayer("triangles", wkbPolygon25D, tin.crsWkt, triangleFields());
   out.begin();

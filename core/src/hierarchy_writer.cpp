@@ -9,14 +9,6 @@
 namespace tinlod {
 namespace {
 
-bool isHierarchyLayer(const std::string& name) {
-  if (name == "vertices" || name == "triangles" || name == "groups" || name == "levels") return true;
-  if (name.rfind("level_", 0) != 0 || name.size() == 6) return false;
-  for (std::size_t i = 6; i < name.size(); ++i)
-    if (!std::isdigit(static_cast<unsigned char>(name[i]))) return false;
-  return true;
-}
-
 void setOptionalId(OGRFeature& f, const char* field, std::int32_t zeroBased) {
   if (zeroBased < 0) f.SetFieldNull(f.GetFieldIndex(field));
   else f.SetField(field, zeroBased + 1);
@@ -80,7 +72,7 @@ void createLevelViews(const Hierarchy& h, GpkgOutput& out) {
 
 void writeHierarchyGpkg(const Hierarchy& h, const std::string& path, const GpkgWriteOptions& options,
                         const ProgressRange& progress) {
-  GpkgOutput out(path, options, isHierarchyLayer);
+  GpkgOutput out(path, options, isTinlodLayer);
   const std::string& crs = h.base.crsWkt;
   std::vector<FieldSpec> vfields = vertexFields();
   vfields.push_back({"level"});
