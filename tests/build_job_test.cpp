@@ -113,6 +113,9 @@ TEST(BuildJob, SamplingOverAHierarchyDropsItsLevels) {
   runSampleJob(smallDem(), out, {}, true, {});
   const std::vector<std::string> names = layerNames(out);
   EXPECT_EQ(names, (std::vector<std::string>{"vertices", "triangles"}));
+  const HierarchyInfo info = readHierarchyInfo(out);
+  EXPECT_EQ(info.kind, "tin");
+  EXPECT_EQ(info.metadata.count("method"), 0u);
 }
 
 TEST(BuildJob, PeaksPitsAndPointsToKeepAreFixed) {

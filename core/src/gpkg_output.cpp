@@ -179,7 +179,13 @@ void GpkgOutput::commit() {
 }
 
 void GpkgOutput::finish(const ProgressRange& progress) {
-  for (const auto& [key, value] : options_.metadata) ds_->SetMetadataItem(key.c_str(), value.c_str());
+  // The file's own TINLOD_* items are replaced as a set (a sample written over a hierarchy
+  // must not keep the hierarchy's); other items are kept.
+  CPLStringList metadata;
+  for (char** item = ds_->GetMetadata(); item && *item; ++item)
+    if (std::string(*item).rfind("TINLOD_", 0) != 0) metadata.AddString(*item);
+  for (const auto& [key, value] : options_.metadata) metadata.SetNameValue(key.c_str(), value.c_str());
+  ds_->SetMetadata(metadata.List());
   progress.report(0.7, "Building the spatial index");
   // GDAL 3.6's GDALClose returns nothing: a failed final write shows as a CPL error.
   CPLErrorReset();
