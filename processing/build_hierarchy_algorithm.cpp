@@ -78,7 +78,8 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(new QgsProcessingParameterBoolean(QStringLiteral("LOAD_LEVELS"), QStringLiteral("Load the level layers as a group"), true));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Hierarchy GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
-  addOutput(new QgsProcessingOutputNumber(QStringLiteral("LEVELS"), QStringLiteral("Levels above level 0")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("LEVELS"), QStringLiteral("Levels (level 0 included)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("COARSEST_LEVEL"), QStringLiteral("Number of the coarsest level")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("COARSEST_VERTICES"), QStringLiteral("Vertices of the coarsest level")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error of the coarsest level (metres)")));
 }
@@ -126,18 +127,19 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   const BuildSummary s = translateErrors(
       [&] { return runBuildJob(demSource_, output.toStdString(), sample_, options_, true, processingFeedback(feedback)); });
-  feedback->pushInfo(QStringLiteral("%1 levels: %2 -> %3 vertices (%4 fixed), maximum error of the coarsest level %5 m, %6 MB")
+  feedback->pushInfo(QStringLiteral("%1 levels (0 to %7): %2 -> %3 vertices (%4 fixed), maximum error of the coarsest level %5 m, %6 MB")
                          .arg(s.levels + 1).arg(s.originalVertices).arg(s.coarsestVertices).arg(s.fixedVertices)
-                         .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1));
+                         .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1).arg(s.levels));
   if (loadLevels_) {
     const QString group = QFileInfo(output).completeBaseName() + QStringLiteral(" levels");
-    for (int level = s.levels; level >= 0; --level)
+    for (int level = 0; level <= s.levels; ++level)
       loadTinLayerOnCompletion(context, output, QStringLiteral("level_%1").arg(level), QStringLiteral("OUTPUT"), group,
-                               level == s.levels);
+                               level == s.levels, level);
   }
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
-  outputs.insert(QStringLiteral("LEVELS"), s.levels);
+  outputs.insert(QStringLiteral("LEVELS"), s.levels + 1);
+  outputs.insert(QStringLiteral("COARSEST_LEVEL"), s.levels);
   outputs.insert(QStringLiteral("COARSEST_VERTICES"), static_cast<qlonglong>(s.coarsestVertices));
   outputs.insert(QStringLiteral("MAX_ERROR"), s.coarsestError);
   return outputs;

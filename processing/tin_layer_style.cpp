@@ -34,16 +34,20 @@ void TinLayerStyle::moveIntoGroup(QgsMapLayer* layer, QgsProcessingContext& cont
   if (!node) return;
   QgsLayerTreeGroup* group = root->findGroup(group_);
   if (!group) group = root->insertGroup(0, group_);
-  QgsLayerTreeLayer* moved = group->addLayer(layer);
+  int index = 0;  // after the layers of lower order already there
+  for (QgsLayerTreeNode* child : group->children())
+    if (child->customProperty(QStringLiteral("tinlod/order")).toInt() < order_) ++index;
+  QgsLayerTreeLayer* moved = group->insertLayer(index, layer);
+  moved->setCustomProperty(QStringLiteral("tinlod/order"), order_);
   moved->setItemVisibilityChecked(visible_);
   if (QgsLayerTreeGroup* parent = qobject_cast<QgsLayerTreeGroup*>(node->parent())) parent->removeChildNode(node);
 }
 
 void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg, const QString& layerName,
-                              const QString& outputName, const QString& group, bool visible) {
-  QgsProcessingContext::LayerDetails details(QStringLiteral("%1 %2").arg(QFileInfo(gpkg).completeBaseName(), layerName),
-                                             context.project(), outputName, QgsProcessingUtils::LayerHint::Vector);
-  details.setPostProcessor(new TinLayerStyle(group, visible));
+                              const QString& outputName, const QString& group, bool visible, int order) {
+  const QString name = group.isEmpty() ? QStringLiteral("%1 %2").arg(QFileInfo(gpkg).completeBaseName(), layerName) : layerName;
+  QgsProcessingContext::LayerDetails details(name, context.project(), outputName, QgsProcessingUtils::LayerHint::Vector);
+  details.setPostProcessor(new TinLayerStyle(group, visible, order));
   context.addLayerToLoadOnCompletion(gpkg + QStringLiteral("|layername=") + layerName, details);
 }
 

@@ -11,18 +11,24 @@ namespace tinlod::qgis {
 // tree (created on first use), visible or not: a hierarchy's levels load as one group.
 class TinLayerStyle : public QgsProcessingLayerPostProcessorInterface {
  public:
-  explicit TinLayerStyle(QString group = QString(), bool visible = true) : group_(std::move(group)), visible_(visible) {}
+  // `order` places the layer among the group's layers (QGIS loads results in name order,
+  // which would put level_10 before level_2).
+  explicit TinLayerStyle(QString group = QString(), bool visible = true, int order = 0)
+      : group_(std::move(group)), visible_(visible), order_(order) {}
   void postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback* feedback) override;
 
  private:
   void moveIntoGroup(QgsMapLayer* layer, QgsProcessingContext& context) const;
   QString group_;
   bool visible_;
+  int order_;
 };
 
 // Asks QGIS to load `layerName` of the GeoPackage when the algorithm finishes, named
-// "<file name> <layer name>" and styled by TinLayerStyle (in `group`, if given).
+// "<file name> <layer name>" (or just the layer name inside `group`, if given) and styled
+// by TinLayerStyle.
 void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg, const QString& layerName,
-                              const QString& outputName, const QString& group = QString(), bool visible = true);
+                              const QString& outputName, const QString& group = QString(), bool visible = true,
+                              int order = 0);
 
 }  // namespace tinlod::qgis

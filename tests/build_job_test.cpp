@@ -160,6 +160,31 @@ TEST(BuildJob, CancelLeavesNothingBehind) {
   }
 }
 
+TEST(BuildJob, OptionsThatWouldDoNothingAreRefused) {
+  const std::string dir = test::tempDir();
+  std::ofstream(dir + "/polygon.geojson")
+      << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},"geometry":)"
+      << R"({"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}]})";
+  HierarchyOptions polygon;
+  polygon.fixedPoints = dir + "/polygon.geojson";
+  EXPECT_THROW(runBuildJob(smallDem(), dir + "/a.gpkg", {}, polygon, false, {}), Error);
+  HierarchyOptions zero;
+  zero.thresholdMode = true;
+  zero.threshold = 0;
+  EXPECT_THROW(zero.validate(), Error);
+  EXPECT_TRUE(fs::is_empty(dir) || !fs::exists(dir + "/a.gpkg"));
+}
+
+TEST(BuildJob, StoppingAboveTheTargetForFixedVerticesIsSaidAndNoTinyLevelsAreMade) {
+  test::RecordingFeedback fb;
+  const std::string out = test::tempDir() + "/h.gpkg";
+  runBuildJob(smallDem(), out, {}, {}, false, fb.feedback());  // a small DEM: the outline is over 5 %
+  EXPECT_TRUE(fb.warned("are fixed")) << (fb.warnings.empty() ? "" : fb.warnings[0]);
+  const HierarchyInfo info = readHierarchyInfo(out);
+  for (std::size_t L = 1; L < info.levels.size(); ++L)
+    EXPECT_GE(info.levels[L].deleted * 100, info.levels[L - 1].vertices) << "level " << L;
+}
+
 TEST(BuildJob, InfoRefusesFilesTinlodDidNotWrite) {
   EXPECT_THROW(readHierarchyInfo(smallDem()), Error);
   const std::string out = test::tempDir() + "/plain.gpkg";

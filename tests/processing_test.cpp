@@ -8,6 +8,7 @@
 #include <qgsprocessingcontext.h>
 #include <qgsprocessingfeedback.h>
 #include <qgsprocessingregistry.h>
+#include <qgslayertree.h>
 #include <qgsproject.h>
 #include <qgsvectorlayer.h>
 
@@ -201,7 +202,8 @@ TEST(Processing, BuildHierarchyWritesLevelsQgisCanOpen) {
                                         {"OUTPUT", out}},
                                        context, &feedback, &ok);
   ASSERT_TRUE(ok) << feedback.errors.toStdString();
-  EXPECT_EQ(outputs.value("LEVELS").toInt(), 4);
+  EXPECT_EQ(outputs.value("LEVELS").toInt(), 5);
+  EXPECT_EQ(outputs.value("COARSEST_LEVEL").toInt(), 4);
   for (int level = 0; level <= 4; ++level) {
     QgsVectorLayer layer(out + QStringLiteral("|layername=level_%1").arg(level), "l", QStringLiteral("ogr"));
     ASSERT_TRUE(layer.isValid()) << "level_" << level;
@@ -215,9 +217,26 @@ TEST(Processing, BuildHierarchyWritesLevelsQgisCanOpen) {
   QgsFeature f;
   for (QgsFeatureIterator it = top.getFeatures(coarsest); it.nextFeature(f);) ++vertices;
   EXPECT_EQ(vertices, outputs.value("COARSEST_VERTICES").toLongLong());
-  // The levels load as one group named after the file, the coarsest visible.
+  // The levels load as one group named after the file, in level order, the coarsest visible.
   const auto layers = context.layersToLoadOnCompletion();
-  EXPECT_EQ(layers.size(), 5);
+  ASSERT_EQ(layers.size(), 5);
+  QgsProject target;
+  for (auto it = layers.constBegin(); it != layers.constEnd(); ++it) {  // what QGIS does on completion
+    auto* layer = new QgsVectorLayer(it.key(), it.value().name, QStringLiteral("ogr"));
+    target.addMapLayer(layer);
+    QgsProcessingContext loading;
+    loading.setProject(&target);
+    it.value().postProcessor()->postProcessLayer(layer, loading, &feedback);
+  }
+  QgsLayerTreeGroup* group = target.layerTreeRoot()->findGroup(QStringLiteral("hier levels"));
+  ASSERT_NE(group, nullptr);
+  QStringList order;
+  for (QgsLayerTreeLayer* node : group->findLayers()) {
+    order << node->name();
+    EXPECT_EQ(node->isVisible(), node->name() == QStringLiteral("level_4")) << node->name().toStdString();
+  }
+  EXPECT_EQ(order, QStringList({"level_0", "level_1", "level_2", "level_3", "level_4"}));
+  EXPECT_TRUE(target.layerTreeRoot()->findLayers().size() == 5);
 }
 
 TEST(Processing, BuildHierarchyRefusesMaxErrorWithAnotherMethod) {
@@ -255,7 +274,7 @@ TEST(Processing, BuildHierarchyKeepsPointsOfALayer) {
   for (std::size_t id : picked) {
     const QgsFeature f = vertices.getFeature(static_cast<QgsFeatureId>(id) + 1);
     EXPECT_EQ(f.attribute("fixed").toInt(), 1) << id;
-    EXPECT_EQ(f.attribute("level").toInt(), r.outputs.value("LEVELS").toInt()) << id;
+    EXPECT_EQ(f.attribute("level").toInt(), r.outputs.value("COARSEST_LEVEL").toInt()) << id;
   }
 }
 

@@ -64,8 +64,8 @@ import json, sys
 from osgeo import ogr
 outputs = json.load(open(sys.argv[1]))["results"]
 ds = ogr.Open(sys.argv[2])
-levels = int(outputs["LEVELS"])
-assert levels >= 5, outputs
+levels = int(outputs["COARSEST_LEVEL"])
+assert levels >= 5 and int(outputs["LEVELS"]) == levels + 1, outputs
 rows = {f.GetField("level"): f for f in ds.GetLayerByName("levels")}
 for level in range(levels + 1):
     layer = ds.GetLayerByName("level_%d" % level)

@@ -29,13 +29,17 @@ Simplification:
                    normal  1 - mean dot product of its triangles' unit normals with their mean
                    error   largest vertical distance, after its deletion, to every original
                            sample under its neighbourhood (every level's error is certified)
-  -delete_pct p    at most p % of the current vertices deleted per level (default 20)
+  -delete_pct p    at most p % of the current vertices deleted per level (default 20); an
+                   independent set rarely holds more than about a quarter of them
   -stop_pct s      stop when s % of the original vertices remain (default 5)
-  -max_levels n    stop after n levels above level 0 (default: no limit)
+  -max_levels n    stop after n levels above level 0 (default: no limit); a level that
+                   would delete under 1 % of its vertices is never made
   -max_degree d    degree method: largest degree deleted (default 11, Kirkpatrick's)
   -max_error m     error method: no level's vertical error may exceed m metres
   -threshold t     the study's threshold mode: per level, delete every independent vertex
-                   whose importance is below t (instead of -delete_pct)
+                   whose importance is below t, instead of -delete_pct; t is in the method's
+                   units: cubic metres (volume), metres (error), a degree (degree), or
+                   1 - flatness (normal)
   -fixed POINTS    vector file of points whose nearest vertices are never deleted
   -fix_peaks_pits  never delete strict local maxima and minima of the DEM (3 x 3)
 Vertices on the outline of the data and on the edges of nodata holes are never deleted:
@@ -79,7 +83,8 @@ int buildCommand(std::vector<std::string> args) {
 
   const BuildSummary s = runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet));
   if (!quiet)
-    std::cout << "Wrote " << s.levels + 1 << " levels (" << s.originalVertices << " -> " << s.coarsestVertices
+    std::cout << "Wrote " << s.levels + 1 << (s.levels ? " levels (0 to " + std::to_string(s.levels) + ", " : " level (")
+              << s.originalVertices << " -> " << s.coarsestVertices
               << " vertices, " << s.fixedVertices << " fixed; maximum error of the coarsest level "
               << s.coarsestError << " m) in " << s.crsName << " to " << files[1] << " (" << s.fileBytes / 1000000
               << " MB)" << std::endl;

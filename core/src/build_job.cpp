@@ -2,7 +2,9 @@
 #include "tinlod/build_job.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include "tinlod/dem_reader.h"
 #include "tinlod/hierarchy_builder.h"
@@ -27,6 +29,12 @@ bool strictExtreme(const Dem& dem, int row, int col, bool maximum) {
   return neighbours > 0;
 }
 
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 std::map<std::string, std::string> buildMetadata(const std::string& demPath, const SampleOptions& s,
                                                  const HierarchyOptions& o, const std::string& crsName) {
   return {{"TINLOD_VERSION", kVersion},
@@ -35,17 +43,31 @@ std::map<std::string, std::string> buildMetadata(const std::string& demPath, con
           {"TINLOD_CRS", crsName},
           {"TINLOD_BAND", std::to_string(s.band)},
           {"TINLOD_BLOCK", std::to_string(s.block)},
-          {"TINLOD_JITTER", std::to_string(s.jitter)},
+          {"TINLOD_JITTER", number(s.jitter)},
           {"TINLOD_SEED", std::to_string(s.seed)},
           {"TINLOD_METHOD", measureName(o.measure)},
-          {"TINLOD_DELETE_PCT", std::to_string(o.deletePct)},
-          {"TINLOD_STOP_PCT", std::to_string(o.stopPct)},
-          {"TINLOD_MAX_LEVELS", std::to_string(o.maxLevels)},
-          {"TINLOD_MAX_DEGREE", std::to_string(o.maxDegree)},
-          {"TINLOD_MAX_ERROR", o.maxError == INFINITY ? "none" : std::to_string(o.maxError)},
-          {"TINLOD_THRESHOLD", o.thresholdMode ? std::to_string(o.threshold) : "none"},
+          {"TINLOD_DELETE_PCT", o.thresholdMode ? "none (threshold mode)" : number(o.deletePct)},
+          {"TINLOD_STOP_PCT", number(o.stopPct)},
+          {"TINLOD_MAX_LEVELS", o.maxLevels == 0 ? "no limit" : std::to_string(o.maxLevels)},
+          {"TINLOD_MAX_DEGREE", o.measure == Measure::Degree ? std::to_string(o.maxDegree) : "none (degree method only)"},
+          {"TINLOD_MAX_ERROR", o.maxError == INFINITY ? "none" : number(o.maxError)},
+          {"TINLOD_THRESHOLD", o.thresholdMode ? number(o.threshold) : "none"},
           {"TINLOD_FIX_PEAKS_PITS", o.fixPeaksPits ? "yes" : "no"},
           {"TINLOD_FIXED_POINTS", o.fixedPoints.empty() ? "none" : o.fixedPoints}};
+}
+
+// The stop percentage may be out of reach when the outline, the holes' edges and the
+// points to keep are more vertices than that: say so rather than leave the user guessing.
+void warnIfStoppedByFixedVertices(const Hierarchy& h, const ProgressRange& progress) {
+  const std::size_t target = static_cast<std::size_t>(std::ceil(h.options.stopPct / 100.0 * h.levels.front().vertices));
+  const bool byLevels = h.options.maxLevels > 0 && h.coarsest() == h.options.maxLevels;
+  if (h.levels.back().vertices <= target || byLevels || h.options.thresholdMode || h.options.measure == Measure::Error)
+    return;
+  const std::size_t fixed = static_cast<std::size_t>(std::count(h.fixed.begin(), h.fixed.end(), 1));
+  progress.warn("stopped at " + std::to_string(h.levels.back().vertices) + " vertices, above the " + number(h.options.stopPct) +
+                " % asked for (" + std::to_string(target) + "): " + std::to_string(fixed) +
+                " vertices are fixed (the outline of the data and of its holes, points to keep) and too few others "
+                "could go; a larger DEM, a smaller -block or fewer holes reach further");
 }
 
 }  // namespace
@@ -65,6 +87,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   options.validate();
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints);
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readDem(demPath, sample.band, all.sub(0, 0.05));
   const Tin tin = sampleTin(dem, sample, all.sub(0.05, 0.2));
@@ -72,6 +95,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all);
   const Hierarchy h = buildHierarchy(tin, std::move(fixed), options, all.sub(0.2, 0.75), keep);
+  warnIfStoppedByFixedVertices(h, all);
   writeOptions.metadata = buildMetadata(demPath, sample, options, tin.crsName);
   all.inform("Writing " + std::to_string(h.coarsest() + 1) + " levels: " + std::to_string(h.triangles.size()) +
              " distinct triangles, " + std::to_string(h.groups.size()) + " groups");

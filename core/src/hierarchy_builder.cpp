@@ -21,6 +21,7 @@ using Clock = std::chrono::steady_clock;
 
 constexpr std::int32_t kOpenLevel = std::numeric_limits<std::int32_t>::max();
 constexpr std::int32_t kNoSample = -1;
+constexpr std::size_t kMinLevelShare = 100;  // a level must delete at least 1 / 100 of its vertices
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
@@ -67,7 +68,8 @@ class Simplifier {
       const Clock::time_point t0 = Clock::now();
       const std::vector<std::pair<double, VertexId>> selected = select(level, stopCount);
       const Clock::time_point t1 = Clock::now();
-      if (selected.empty()) break;
+      // A level that deletes almost nothing only adds a layer: the rest is fixed.
+      if (selected.empty() || (!options_.thresholdMode && selected.size() < std::max<std::size_t>(1, current_ / kMinLevelShare))) break;
       for (std::size_t k = 0; k < selected.size(); ++k) {
         remove(selected[k].second, selected[k].first, level);
         if ((k & 0xFFF) == 0) reportProgress(original, stopCount);

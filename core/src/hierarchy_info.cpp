@@ -51,6 +51,7 @@ void readLevels(GDALDataset& ds, HierarchyInfo& info) {
 
 HierarchyInfo readHierarchyInfo(const std::string& path) {
   GDALAllRegister();
+  if (!std::filesystem::exists(path)) throw Error("'" + path + "' does not exist");
   CPLPushErrorHandler(CPLQuietErrorHandler);
   const char* const gpkgOnly[] = {"GPKG", nullptr};
   std::unique_ptr<GDALDataset, void (*)(GDALDataset*)> ds(

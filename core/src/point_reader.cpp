@@ -27,6 +27,12 @@ void addPoints(const OGRGeometry* g, std::vector<std::array<double, 2>>& out) {
 
 }  // namespace
 
+void checkPointsExist(const std::string& path) {
+  VSIStatBufL stat;
+  const bool special = path.rfind("/vsi", 0) == 0 || path.find(':') != std::string::npos;
+  if (!special && VSIStatL(path.c_str(), &stat) != 0) throw Error("points to keep: '" + path + "' does not exist");
+}
+
 std::vector<std::array<double, 2>> readPoints(const std::string& path, const std::string& targetWkt,
                                               const ProgressRange& progress) {
   GDALAllRegister();
@@ -53,7 +59,8 @@ std::vector<std::array<double, 2>> readPoints(const std::string& path, const std
   for (auto& p : points)
     if (transform && !transform->Transform(1, &p[0], &p[1]))
       throw Error("points to keep: a point of '" + path + "' cannot be transformed to the TIN's CRS");
-  if (points.empty()) progress.warn("points to keep: '" + path + "' has no point features");
+  if (points.empty())
+    throw Error("points to keep: the first layer of '" + path + "' has no point features (a point layer is needed)");
   return points;
 }
 

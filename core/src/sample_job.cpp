@@ -79,7 +79,7 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
           {"TINLOD_SOURCE", demPath},
           {"TINLOD_BAND", std::to_string(o.band)},
           {"TINLOD_BLOCK", std::to_string(o.block)},
-          {"TINLOD_JITTER", std::to_string(o.jitter)},
+          {"TINLOD_JITTER", [&] { std::ostringstream j; j << o.jitter; return j.str(); }()},
           {"TINLOD_SEED", std::to_string(o.seed)},
           {"TINLOD_SOURCE_SRS", o.sourceSrs.empty() ? "from file" : o.sourceSrs},
           {"TINLOD_TARGET_SRS", o.targetSrs.empty() ? "auto" : o.targetSrs}};

@@ -8,6 +8,7 @@
 #include "tinlod/dem.h"
 #include "tinlod/feedback.h"
 #include "tinlod/hierarchy.h"
+#include "tinlod/point_reader.h"
 #include "tinlod/sample_options.h"
 
 namespace tinlod {

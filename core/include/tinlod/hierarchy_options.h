@@ -14,6 +14,7 @@ struct HierarchyOptions {
   double deletePct = 20;              // at most this % of the current vertices deleted per level
   double stopPct = 5;                 // stop when this % of the original vertices remain
   int maxLevels = 0;                  // stop after this many levels above level 0; 0: no limit
+                                      // (a level that would delete under 1 % is never made)
   int maxDegree = 11;                 // degree measure: only vertices of at most this degree go
   double maxError = INFINITY;         // error measure: no level's error may exceed this (metres)
   bool thresholdMode = false;         // the study's threshold mode: one pass per level, every

@@ -12,6 +12,9 @@ namespace tinlod {
 // The points of every point feature (and multipoint part) of the first layer of a
 // vector file GDAL reads, transformed to the CRS `targetWkt`. A layer without a CRS is
 // taken to be in it already (a warning says so). Throws Error naming the file.
+// Throws Error when a plain path does not exist (checked before any long work).
+void checkPointsExist(const std::string& path);
+
 std::vector<std::array<double, 2>> readPoints(const std::string& path, const std::string& targetWkt,
                                               const ProgressRange& progress);
 
