@@ -42,6 +42,14 @@ GDALDataset* openOrCreate(const fs::path& tmp, bool fromCopy) {
 
 }  // namespace
 
+// The output path once checked and cleared of temporary files that killed runs left:
+// runs before the temporary sibling is named.
+fs::path GpkgOutput::checkedOutput(const std::string& path, const GpkgWriteOptions& options) {
+  checkOutputPath(path, options);
+  TemporaryOutput::removeStale(path);
+  return fs::path(path);
+}
+
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
   const fs::path out(path);
   if (lower(out.extension().string()) != ".gpkg")
@@ -68,7 +76,7 @@ void writeFeature(OGRLayer& layer, OGRFeature& feature) {
 
 GpkgOutput::GpkgOutput(const std::string& path, const GpkgWriteOptions& options,
                        std::function<bool(const std::string&)> ours)
-    : path_(path), options_(options), tmp_((checkOutputPath(path, options), TemporaryOutput::removeStale(path), fs::path(path))) {
+    : path_(path), options_(options), tmp_(checkedOutput(path, options)) {
   const bool fromCopy = fs::exists(tmp_.output());
   if (fromCopy) {
     std::error_code ec;

@@ -5,6 +5,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -48,6 +49,7 @@ class GpkgOutput {
   void finish(const ProgressRange& progress);
 
  private:
+  static std::filesystem::path checkedOutput(const std::string& path, const GpkgWriteOptions& options);
   void dropOurs(const std::function<bool(const std::string&)>& ours);
   void runDeferred();
   std::vector<std::string> deferred_;
