@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "text_and_paths.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/hierarchy_builder.h"
 #include "tinlod/hierarchy_writer.h"
@@ -29,12 +30,6 @@ bool strictExtreme(const Dem& dem, int row, int col, bool maximum) {
   return neighbours > 0;
 }
 
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 std::map<std::string, std::string> buildMetadata(const std::string& demPath, const SampleOptions& s,
                                                  const HierarchyOptions& o, const std::string& crsName) {
   return {{"TINLOD_VERSION", kVersion},
@@ -43,15 +38,15 @@ std::map<std::string, std::string> buildMetadata(const std::string& demPath, con
           {"TINLOD_CRS", crsName},
           {"TINLOD_BAND", std::to_string(s.band)},
           {"TINLOD_BLOCK", std::to_string(s.block)},
-          {"TINLOD_JITTER", number(s.jitter)},
+          {"TINLOD_JITTER", formatNumber(s.jitter)},
           {"TINLOD_SEED", std::to_string(s.seed)},
           {"TINLOD_METHOD", measureName(o.measure)},
-          {"TINLOD_DELETE_PCT", o.thresholdMode ? "none (threshold mode)" : number(o.deletePct)},
-          {"TINLOD_STOP_PCT", number(o.stopPct)},
+          {"TINLOD_DELETE_PCT", o.thresholdMode ? "none (threshold mode)" : formatNumber(o.deletePct)},
+          {"TINLOD_STOP_PCT", formatNumber(o.stopPct)},
           {"TINLOD_MAX_LEVELS", o.maxLevels == 0 ? "no limit" : std::to_string(o.maxLevels)},
           {"TINLOD_MAX_DEGREE", o.measure == Measure::Degree ? std::to_string(o.maxDegree) : "none (degree method only)"},
-          {"TINLOD_MAX_ERROR", o.maxError == INFINITY ? "none" : number(o.maxError)},
-          {"TINLOD_THRESHOLD", o.thresholdMode ? number(o.threshold) : "none"},
+          {"TINLOD_MAX_ERROR", o.maxError == INFINITY ? "none" : formatNumber(o.maxError)},
+          {"TINLOD_THRESHOLD", o.thresholdMode ? formatNumber(o.threshold) : "none"},
           {"TINLOD_FIX_PEAKS_PITS", o.fixPeaksPits ? "yes" : "no"},
           {"TINLOD_FIXED_POINTS", o.fixedPoints.empty() ? "none" : o.fixedPoints}};
 }
@@ -67,7 +62,7 @@ void warnIfStoppedByFixedVertices(const Hierarchy& h, const ProgressRange& progr
       h.options.measure == Measure::Error)
     return;
   const std::size_t fixed = static_cast<std::size_t>(std::count(h.fixed.begin(), h.fixed.end(), 1));
-  progress.warn("stopped at " + std::to_string(h.levels.back().vertices) + " vertices, above the " + number(h.options.stopPct) +
+  progress.warn("stopped at " + std::to_string(h.levels.back().vertices) + " vertices, above the " + formatNumber(h.options.stopPct) +
                 " % asked for (" + std::to_string(target) + "): " + std::to_string(fixed) +
                 " vertices are fixed (the outline of the data and of its holes, points to keep) and too few others "
                 "could go; a larger DEM, a smaller -block or fewer holes reach further");

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 
+#include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -17,16 +18,9 @@ struct GdalCloser {
 };
 using DatasetPtr = std::unique_ptr<GDALDataset, GdalCloser>;
 
-// A plain path that is not there says so; GDAL's own wording would not.
-void checkExists(const std::string& path) {
-  const bool special = path.rfind("/vsi", 0) == 0 || path.find(':') != std::string::npos;
-  VSIStatBufL stat;
-  if (!special && VSIStatL(path.c_str(), &stat) != 0) throw Error("DEM '" + path + "' does not exist");
-}
-
 DatasetPtr openRaster(const std::string& path) {
   GDALAllRegister();
-  checkExists(path);
+  if (plainPathMissing(path)) throw Error("DEM '" + path + "' does not exist");
   CPLPushErrorHandler(CPLQuietErrorHandler);
   auto* ds = static_cast<GDALDataset*>(
       GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));

@@ -1,31 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/hierarchy_options.h"
 
-#include <sstream>
-
+#include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
-namespace {
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-}  // namespace
 
 void HierarchyOptions::validate() const {
   if (!(deletePct > 0 && deletePct <= 100))
-    throw Error("delete_pct must be more than 0 and at most 100 (got " + number(deletePct) + "); the study used 10 and 20");
+    throw Error("delete_pct must be more than 0 and at most 100 (got " + formatNumber(deletePct) + "); the study used 10 and 20");
   if (!(stopPct >= 0 && stopPct < 100))
-    throw Error("stop_pct must be from 0 to less than 100 (got " + number(stopPct) + "); the study used 5");
+    throw Error("stop_pct must be from 0 to less than 100 (got " + formatNumber(stopPct) + "); the study used 5");
   if (maxLevels < 0) throw Error("max_levels must be 0 (no limit) or more (got " + std::to_string(maxLevels) + ")");
   if (maxDegree < 3) throw Error("max_degree must be 3 or more (got " + std::to_string(maxDegree) + "); Kirkpatrick used 11");
   if (!(maxError > 0)) throw Error("max_error must be more than 0 metres");
   if (thresholdMode && !(threshold > 0))
-    throw Error("threshold must be more than 0 (got " + number(threshold) +
+    throw Error("threshold must be more than 0 (got " + formatNumber(threshold) +
                 "); it is in the method's units: cubic metres for volume, metres for error, a degree for degree, "
                 "1 - flatness for normal");
   if (maxError != INFINITY && measure != Measure::Error)

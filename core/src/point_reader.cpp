@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -28,9 +29,7 @@ void addPoints(const OGRGeometry* g, std::vector<std::array<double, 2>>& out) {
 }  // namespace
 
 void checkPointsExist(const std::string& path) {
-  VSIStatBufL stat;
-  const bool special = path.rfind("/vsi", 0) == 0 || path.find(':') != std::string::npos;
-  if (!special && VSIStatL(path.c_str(), &stat) != 0) throw Error("points to keep: '" + path + "' does not exist");
+  if (plainPathMissing(path)) throw Error("points to keep: '" + path + "' does not exist");
 }
 
 std::vector<std::array<double, 2>> readPoints(const std::string& path, const std::string& targetWkt,

@@ -6,6 +6,7 @@
 #include <random>
 #include <sstream>
 
+#include "text_and_paths.h"
 #include "tinlod/crs_transform.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
@@ -79,7 +80,7 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
           {"TINLOD_SOURCE", demPath},
           {"TINLOD_BAND", std::to_string(o.band)},
           {"TINLOD_BLOCK", std::to_string(o.block)},
-          {"TINLOD_JITTER", [&] { std::ostringstream j; j << o.jitter; return j.str(); }()},
+          {"TINLOD_JITTER", formatNumber(o.jitter)},
           {"TINLOD_SEED", std::to_string(o.seed)},
           {"TINLOD_SOURCE_SRS", o.sourceSrs.empty() ? "from file" : o.sourceSrs},
           {"TINLOD_TARGET_SRS", o.targetSrs.empty() ? "auto" : o.targetSrs}};

@@ -2,8 +2,8 @@
 #include "tinlod/sample_options.h"
 
 #include <cmath>
-#include <sstream>
 
+#include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -13,10 +13,8 @@ void SampleOptions::validate() const {
   if (block < 1 || block > 1000)
     throw Error("block must be a whole number from 1 to 1000 (got " + std::to_string(block) +
                 "); 3 is the study's choice, 1 takes every cell");
-  std::ostringstream got;
-  got << jitter;
   if (!std::isfinite(jitter) || jitter < 0 || jitter > 1000)
-    throw Error("jitter must be from 0 to 1000 metres (got " + got.str() +
+    throw Error("jitter must be from 0 to 1000 metres (got " + formatNumber(jitter) +
                 "); the default 0.99 keeps points off common circles");
 }
 

@@ -1,0 +1,16 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: small helpers the core's messages and checks share.
+#pragma once
+
+#include <string>
+
+namespace tinlod {
+
+// A number as a person writes it: 0.99, 20, 1e-05 (not 0.990000).
+std::string formatNumber(double value);
+
+// True when `path` is a plain file path (not /vsi..., not DRIVER:...) that does not
+// exist: said plainly before GDAL would answer with its own wording.
+bool plainPathMissing(const std::string& path);
+
+}  // namespace tinlod
