@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/hierarchy_writer.h"
 
-#include <cctype>
-
 #include "gpkg_output.h"
 #include "tin_layers.h"
 
