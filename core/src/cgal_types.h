@@ -26,6 +26,7 @@ using Traits = CGAL::Projection_traits_xy_3<Kernel>;
 // read in random order).
 struct VertexTag {
   VertexId id = 0;
+  std::uint32_t rank = 0;      // position in the spatial insertion order: a memory-friendly order
   std::int32_t stamp = -1;     // the level in which the vertex or a neighbour was selected
   bool fixed = false;
   bool stale = true;           // its importance must be recomputed
