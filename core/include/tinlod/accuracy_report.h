@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace tinlod {
+
+// One terrain variable compared between the reference and a simplified surface.
+struct VariableComparison {
+  std::string name;          // "elevation", "mean_curvature", "gaussian_curvature", "slope", "aspect",
+                             // "profile_curvature", "plan_curvature"
+  std::size_t count = 0;     // test points compared
+  double correlation = 0;    // r (circular r for aspect)
+  double meanReference = 0, meanSimplified = 0;
+  double stdReference = 0, stdSimplified = 0;
+};
+
+// The accuracy of one level of one run (one DEM, one method, one delete percentage).
+struct LevelAccuracy {
+  std::string dem;           // file name of the DEM
+  std::string method;        // degree, volume, normal, error, insert
+  double deletePct = 0, stopPct = 0;
+  int level = 0;
+  std::size_t vertices = 0, triangles = 0;
+  double selectSeconds = 0, deleteSeconds = 0;
+  double certifiedError = 0;  // the build's own maximum vertical error against level 0
+  std::size_t testPoints = 0;
+  double rmse = 0, meanError = 0, maxAbsError = 0, maxErrorX = 0, maxErrorY = 0;
+  double moransI = 0;        // of the elevation error field
+  std::vector<VariableComparison> variables;
+};
+
+struct AccuracyReport {
+  std::string title;
+  std::string reference;     // "tin" (the original TIN, as in the study) or "dem"
+  std::string crsName;       // the CRS of the locations
+  int step = 1;              // test points every `step` DEM cells
+  int controlSpacing = 3;    // B-spline control points every `controlSpacing` test points
+  std::string generator;     // "tinlod 0.1.0"
+  std::vector<LevelAccuracy> rows;
+};
+
+// Writes the report in the format its extension names: .csv (one row per level and
+// run), .json, or .html (a self-contained page with SVG plots). Atomic: the file
+// appears complete or not at all. Throws Error for another extension.
+void writeAccuracyReport(const AccuracyReport& report, const std::string& path);
+
+// The extensions writeAccuracyReport understands, for messages: ".csv, .json or .html".
+bool isAccuracyReportPath(const std::string& path);
+
+}  // namespace tinlod
