@@ -49,7 +49,9 @@ QString BuildHierarchyAlgorithm::shortHelpString() const {
              "distinct triangle once, with first_level, last_level, group_id, replaced_by and error), "
              "level_0, level_1, ... (one per level, as views), groups (outline of each deleted vertex's "
              "neighbourhood) and levels (counts, times and maximum error per level). The level layers "
-             "are loaded as a group, the coarsest visible.");
+             "are loaded as a group, the coarsest visible.\n\n") +
+         QStringLiteral("Optional: an accuracy raster of the coarsest level and a report of every level.\n") +
+         accuracyHelp();
 }
 
 BuildHierarchyAlgorithm* BuildHierarchyAlgorithm::createInstance() const { return new BuildHierarchyAlgorithm(); }
@@ -75,6 +77,7 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"),
                                                          QStringLiteral("Threshold mode: delete every independent vertex below this importance"),
                                                          QgsProcessingParameterNumber::Double, QVariant(), true)));
+  addAccuracyParameters(false);
   addParameter(new QgsProcessingParameterBoolean(QStringLiteral("LOAD_LEVELS"), QStringLiteral("Load the level layers as a group"), true));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Hierarchy GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
@@ -104,6 +107,7 @@ bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Qg
   if (options_.thresholdMode) options_.threshold = parameterAsDouble(parameters, QStringLiteral("THRESHOLD"), context);
   options_.fixPeaksPits = parameterAsBoolean(parameters, QStringLiteral("FIX_PEAKS_PITS"), context);
   loadLevels_ = parameterAsBoolean(parameters, QStringLiteral("LOAD_LEVELS"), context);
+  readAccuracyParameters(parameters, context);
   readFixedPoints(parameters, context);
   translateErrors([&] { options_.validate(); });
   return true;
@@ -126,7 +130,7 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
                                                       QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   const BuildSummary s = translateErrors(
-      [&] { return runBuildJob(demSource_, output.toStdString(), sample_, options_, true, processingFeedback(feedback)); });
+      [&] { return runBuildJob(demSource_, output.toStdString(), sample_, options_, true, processingFeedback(feedback), accuracy_); });
   feedback->pushInfo(QStringLiteral("%1 levels (0 to %7): %2 -> %3 vertices (%4 fixed), maximum error of the coarsest level %5 m, %6 MB")
                          .arg(s.levels + 1).arg(s.originalVertices).arg(s.coarsestVertices).arg(s.fixedVertices)
                          .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1).arg(s.levels));
@@ -142,6 +146,8 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
   outputs.insert(QStringLiteral("COARSEST_LEVEL"), s.levels);
   outputs.insert(QStringLiteral("COARSEST_VERTICES"), static_cast<qlonglong>(s.coarsestVertices));
   outputs.insert(QStringLiteral("MAX_ERROR"), s.coarsestError);
+  if (!accuracy_.rasterPath.empty()) outputs.insert(QStringLiteral("ACCURACY"), QString::fromStdString(accuracy_.rasterPath));
+  if (!accuracy_.reportPath.empty()) outputs.insert(QStringLiteral("REPORT"), QString::fromStdString(accuracy_.reportPath));
   return outputs;
 }
 

@@ -26,13 +26,17 @@ QgsProcessingParameterDefinition* DemAlgorithm::advanced(QgsProcessingParameterD
   return p;
 }
 
-void DemAlgorithm::addDemAndSamplingParameters() {
-  const SampleOptions defaults;
+void DemAlgorithm::addDemParameters() {
   addParameter(new QgsProcessingParameterRasterLayer(QStringLiteral("INPUT"), QStringLiteral("DEM")));
   // Optional with a default: qgis_process 3.22 reports a mandatory band as missing
   // even when it has a default value.
-  addParameter(new QgsProcessingParameterBand(QStringLiteral("BAND"), QStringLiteral("Band"), defaults.band,
+  addParameter(new QgsProcessingParameterBand(QStringLiteral("BAND"), QStringLiteral("Band"), SampleOptions().band,
                                               QStringLiteral("INPUT"), true));
+}
+
+void DemAlgorithm::addDemAndSamplingParameters() {
+  const SampleOptions defaults;
+  addDemParameters();
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("BLOCK"), QStringLiteral("Block size k (one sample per k x k cells)"),
                                                 QgsProcessingParameterNumber::Integer, defaults.block, false, 1, 1000));
   auto* jitter = new QgsProcessingParameterNumber(QStringLiteral("JITTER"), QStringLiteral("Jitter (metres)"),
@@ -47,6 +51,14 @@ void DemAlgorithm::addDemAndSamplingParameters() {
 }
 
 void DemAlgorithm::readDemAndSamplingParameters(const QVariantMap& parameters, QgsProcessingContext& context) {
+  readDemParameters(parameters, context, SampleOptions().band);
+  sample_.block = parameterAsInt(parameters, QStringLiteral("BLOCK"), context);
+  sample_.jitter = parameterAsDouble(parameters, QStringLiteral("JITTER"), context);
+  sample_.seed = static_cast<std::uint64_t>(parameterAsInt(parameters, QStringLiteral("SEED"), context));
+  sample_.targetSrs = targetSrs(parameterAsCrs(parameters, QStringLiteral("TARGET_CRS"), context));
+}
+
+void DemAlgorithm::readDemParameters(const QVariantMap& parameters, QgsProcessingContext& context, int emptyBand) {
   QgsRasterLayer* layer = parameterAsRasterLayer(parameters, QStringLiteral("INPUT"), context);
   if (!layer) throw QgsProcessingException(invalidRasterError(parameters, QStringLiteral("INPUT")));
   if (layer->providerType() != QLatin1String("gdal"))
@@ -55,16 +67,12 @@ void DemAlgorithm::readDemAndSamplingParameters(const QVariantMap& parameters, Q
   const QVariant bandValue = parameters.value(QStringLiteral("BAND"));
   const int band = bandValue.isValid() && !bandValue.toString().isEmpty()
                        ? parameterAsInt(parameters, QStringLiteral("BAND"), context)
-                       : SampleOptions().band;
-  if (band < 1 || band > layer->bandCount())
+                       : emptyBand;
+  if (band != emptyBand && (band < 1 || band > layer->bandCount()))
     throw QgsProcessingException(QStringLiteral("Invalid band number for BAND (%1): valid values for input raster are 1 to %2")
                                      .arg(band).arg(layer->bandCount()));
   demSource_ = layer->source().toStdString();
   sample_.band = band;
-  sample_.block = parameterAsInt(parameters, QStringLiteral("BLOCK"), context);
-  sample_.jitter = parameterAsDouble(parameters, QStringLiteral("JITTER"), context);
-  sample_.seed = static_cast<std::uint64_t>(parameterAsInt(parameters, QStringLiteral("SEED"), context));
-  sample_.targetSrs = targetSrs(parameterAsCrs(parameters, QStringLiteral("TARGET_CRS"), context));
 }
 
 QString DemAlgorithm::samplingHelp() {

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "tinlod/accuracy_job.h"
 #include "tinlod/sample_options.h"
 
 namespace tinlod::qgis {
@@ -18,6 +19,16 @@ class DemAlgorithm : public QgsProcessingAlgorithm {
   // Call from prepareAlgorithm: fills demSource_ and sample_, or throws
   // QgsProcessingException naming the parameter.
   void readDemAndSamplingParameters(const QVariantMap& parameters, QgsProcessingContext& context);
+  // INPUT and BAND alone; an empty BAND reads as `emptyBand`.
+  void addDemParameters();
+  void readDemParameters(const QVariantMap& parameters, QgsProcessingContext& context, int emptyBand);
+
+  // The accuracy parameters (accuracy_parameters.cpp): REFERENCE, STEP, CONTROL_SPACING,
+  // and the ACCURACY raster and REPORT destinations, optional or made by default.
+  void addAccuracyParameters(bool createOutputsByDefault);
+  // Fills accuracy_ on the main thread, or throws QgsProcessingException naming the parameter.
+  void readAccuracyParameters(const QVariantMap& parameters, QgsProcessingContext& context);
+  static QString accuracyHelp();
   // The help text's paragraphs on sampling, holes and units, shared by the algorithms.
   static QString samplingHelp();
   // Flags a parameter Advanced (shown folded in the dialog) and returns it.
@@ -25,6 +36,7 @@ class DemAlgorithm : public QgsProcessingAlgorithm {
 
   std::string demSource_;
   SampleOptions sample_;
+  AccuracyOutputs accuracy_;
 };
 
 }  // namespace tinlod::qgis

@@ -3,6 +3,7 @@
 
 #include <qgsapplication.h>
 
+#include "accuracy_algorithm.h"
 #include "build_hierarchy_algorithm.h"
 #include "sample_tin_algorithm.h"
 #include "tinlod/version.h"
@@ -16,6 +17,7 @@ QString Provider::versionInfo() const { return QString::fromLatin1(kVersion); }
 QIcon Provider::icon() const { return QgsApplication::getThemeIcon(QStringLiteral("/mActionNewMeshLayer.svg")); }
 
 void Provider::loadAlgorithms() {
+  addAlgorithm(new AccuracyAlgorithm());
   addAlgorithm(new BuildHierarchyAlgorithm());
   addAlgorithm(new SampleTinAlgorithm());
 }

@@ -80,10 +80,20 @@ std::uint64_t Arguments::unsignedInteger(const std::string& name, std::uint64_t 
   return parsed;
 }
 
-std::vector<std::string> Arguments::operands(std::size_t count, const std::string& usage) {
+std::vector<std::string> Arguments::someOperands(const std::string& usage) {
+  rejectOptions(usage);
+  if (args_.empty()) throw Error("expected one or more file names\nUsage: " + usage);
+  return args_;
+}
+
+void Arguments::rejectOptions(const std::string& usage) const {
   for (const std::string& a : args_)
     if (a.size() > 1 && a[0] == '-' && !std::isdigit(static_cast<unsigned char>(a[1])))
       throw Error("unknown option '" + a + "'\nUsage: " + usage);
+}
+
+std::vector<std::string> Arguments::operands(std::size_t count, const std::string& usage) {
+  rejectOptions(usage);
   if (args_.size() != count)
     throw Error("expected " + std::to_string(count) + " file names, got " + std::to_string(args_.size()) +
                 "\nUsage: " + usage);

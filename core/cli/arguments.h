@@ -22,10 +22,13 @@ class Arguments {
   std::uint64_t unsignedInteger(const std::string& name, std::uint64_t fallback);
   // The remaining operands; throws Error for an unknown option or a wrong count.
   std::vector<std::string> operands(std::size_t count, const std::string& usage);
+  // One or more operands.
+  std::vector<std::string> someOperands(const std::string& usage);
 
  private:
   bool take(const std::string& name, std::vector<std::string>& values, std::size_t count);
   bool take(const std::string& name, std::string& value);
+  void rejectOptions(const std::string& usage) const;
   static int parseInteger(const std::string& name, const std::string& value);
   std::vector<std::string> args_;
 };

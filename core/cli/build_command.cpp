@@ -2,6 +2,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "accuracy_arguments.h"
 #include "arguments.h"
 #include "commands.h"
 #include "sample_arguments.h"
@@ -14,7 +15,7 @@ namespace {
 const char* const kUsage =
     "tinlod build DEM OUT.gpkg [-method degree|volume|normal|error] [-delete_pct p] [-stop_pct s] "
     "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-fixed POINTS] [-fix_peaks_pits] "
-    "[sampling options] [-overwrite] [-q]";
+    "[sampling options] [accuracy options] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Samples a DEM into a TIN and simplifies it level by level into a triangulation
 hierarchy (Kirkpatrick's, as adapted to terrains by de Berg and Dobrindt), written to one
@@ -50,6 +51,7 @@ Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, 
   -overwrite       replace tinlod's layers in an existing GeoPackage; its other layers are kept
   -q               quiet: no progress or information, warnings only
 
+@ACCURACY@
 Output layers: vertices (with level and fixed), triangles (each distinct triangle once, with
 first_level, last_level, group_id, replaced_by, error), level_0, level_1, ... (views: add any
 level to the map), groups (outline of each deleted vertex's neighbourhood), levels (counts,
@@ -61,7 +63,9 @@ times and maximum error per level). `tinlod info OUT.gpkg` describes the file.
 int buildCommand(std::vector<std::string> args) {
   Arguments a(std::move(args));
   if (a.flag("--help") || a.flag("-h")) {
-    std::cout << kHelp;
+    std::string help = kHelp;
+    help.replace(help.find("@ACCURACY@"), 10, kAccuracyHelp);
+    std::cout << help;
     return 0;
   }
   HierarchyOptions o;
@@ -77,17 +81,19 @@ int buildCommand(std::vector<std::string> args) {
   o.fixedPoints = a.text("-fixed", "");
   o.fixPeaksPits = a.flag("-fix_peaks_pits");
   const SampleOptions sample = sampleOptions(a);
+  const AccuracyOutputs accuracy = accuracyOutputs(a);
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
 
-  const BuildSummary s = runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet));
+  const BuildSummary s = runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet), accuracy);
   if (!quiet)
     std::cout << "Wrote " << s.levels + 1 << (s.levels ? " levels (0 to " + std::to_string(s.levels) + ", " : " level (")
               << s.originalVertices << " -> " << s.coarsestVertices
               << " vertices, " << s.fixedVertices << " fixed; maximum error of the coarsest level "
               << s.coarsestError << " m) in " << s.crsName << " to " << files[1] << " (" << s.fileBytes / 1000000
               << " MB)" << std::endl;
+  if (!quiet && !s.accuracy.empty()) printAccuracy(s.accuracy, std::cout);
   return 0;
 }
 

@@ -11,6 +11,8 @@ namespace tinlod::cli {
 int sampleCommand(std::vector<std::string> args);
 int buildCommand(std::vector<std::string> args);
 int infoCommand(std::vector<std::string> args);
+int accuracyCommand(std::vector<std::string> args);
+int experimentCommand(std::vector<std::string> args);
 int makeDemCommand(std::vector<std::string> args);
 
 }  // namespace tinlod::cli

@@ -19,12 +19,14 @@ const char* const kHelp = R"(tinlod: simplified, hierarchical TINs from raster D
 Usage: tinlod COMMAND [options]   (tinlod COMMAND --help for its options)
 
 Commands:
-  build     sample a DEM and simplify it into a TIN hierarchy, written to a GeoPackage
-  info      describe a GeoPackage written by tinlod
-  sample    sample a DEM into a Delaunay TIN, written to a GeoPackage
-  makedem   write the project's synthetic default DEM (a GeoTIFF)
+  build       sample a DEM and simplify it into a TIN hierarchy, written to a GeoPackage
+  accuracy    measure the accuracy of every level of a hierarchy: raster and report
+  experiment  run the study's experiment over DEMs: methods x delete percentages, one report
+  info        describe a GeoPackage written by tinlod
+  sample      sample a DEM into a Delaunay TIN, written to a GeoPackage
+  makedem     write the project's synthetic default DEM (a GeoTIFF)
 
-  --version print the version
+  --version   print the version
 )";
 
 using Command = int (*)(std::vector<std::string>);
@@ -32,7 +34,9 @@ using Command = int (*)(std::vector<std::string>);
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::map<std::string, Command> commands{{"build", tinlod::cli::buildCommand},
+  const std::map<std::string, Command> commands{{"accuracy", tinlod::cli::accuracyCommand},
+                                                 {"build", tinlod::cli::buildCommand},
+                                                 {"experiment", tinlod::cli::experimentCommand},
                                                  {"info", tinlod::cli::infoCommand},
                                                  {"sample", tinlod::cli::sampleCommand},
                                                  {"makedem", tinlod::cli::makeDemCommand}};

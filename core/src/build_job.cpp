@@ -80,9 +80,11 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
 }
 
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
-                         const HierarchyOptions& options, bool overwrite, const Feedback& feedback) {
+                         const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
+                         const AccuracyOutputs& accuracy) {
   sample.validate();
   options.validate();
+  accuracy.validate();
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints);
@@ -92,15 +94,21 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all);
-  const Hierarchy h = buildHierarchy(tin, std::move(fixed), options, all.sub(0.2, 0.75), keep);
+  // With accuracy outputs the last quarter of the job is theirs.
+  const double write = accuracy.wanted() ? 0.6 : 0.75, measure = accuracy.wanted() ? 0.75 : 1;
+  const Hierarchy h = buildHierarchy(tin, std::move(fixed), options, all.sub(0.2, write), keep);
   warnIfStoppedByFixedVertices(h, all);
   writeOptions.metadata = buildMetadata(demPath, sample, options, tin.crsName);
   all.inform("Writing " + std::to_string(h.coarsest() + 1) + " levels: " + std::to_string(h.triangles.size()) +
              " distinct triangles, " + std::to_string(h.groups.size()) + " groups");
-  writeHierarchyGpkg(h, outPath, writeOptions, all.sub(0.75, 1));
+  writeHierarchyGpkg(h, outPath, writeOptions, all.sub(write, measure));
+  BuildSummary s;
+  if (accuracy.wanted()) {
+    const CrsTransform toTin = CrsTransform::forDem(dem, sample.sourceSrs, sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
+    s.accuracy = measureAndWrite(dem, h, toTin, accuracy, all.sub(measure, 1)).rows;
+  }
   all.finish("Done");
 
-  BuildSummary s;
   s.originalVertices = h.levels.front().vertices;
   s.coarsestVertices = h.levels.back().vertices;
   s.coarsestTriangles = h.levels.back().triangles;

@@ -13,6 +13,7 @@ namespace tinlod {
 
 struct CrsTransform::Impl {
   std::unique_ptr<OGRCoordinateTransformation> transform;  // null: identity
+  std::unique_ptr<OGRCoordinateTransformation> inverse;
   std::string wkt;
   std::string name;
 };
@@ -180,13 +181,28 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
   return CrsTransform(std::move(impl));
 }
 
+namespace {
+
+bool transformAll(OGRCoordinateTransformation& ct, std::vector<double>& x, std::vector<double>& y) {
+  std::vector<int> ok(x.size());
+  return ct.Transform(x.size(), x.data(), y.data(), nullptr, ok.data()) &&
+         std::find(ok.begin(), ok.end(), 0) == ok.end();
+}
+
+}  // namespace
+
 void CrsTransform::apply(std::vector<double>& x, std::vector<double>& y) const {
   if (!impl_->transform) return;
-  std::vector<int> ok(x.size());
-  if (!impl_->transform->Transform(x.size(), x.data(), y.data(), nullptr, ok.data()) ||
-      std::find(ok.begin(), ok.end(), 0) != ok.end())
+  if (!transformAll(*impl_->transform, x, y))
     throw Error("PROJ could not transform every sample point to " + impl_->name +
                 ": choose a CRS that covers the DEM with -t_srs");
+}
+
+void CrsTransform::applyInverse(std::vector<double>& x, std::vector<double>& y) const {
+  if (!impl_->transform) return;
+  if (!impl_->inverse) impl_->inverse.reset(impl_->transform->GetInverse());
+  if (!impl_->inverse || !transformAll(*impl_->inverse, x, y))
+    throw Error("PROJ could not transform points of " + impl_->name + " back to the DEM's CRS");
 }
 
 }  // namespace tinlod

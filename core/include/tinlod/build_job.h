@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "tinlod/accuracy_job.h"
 #include "tinlod/dem.h"
 #include "tinlod/feedback.h"
 #include "tinlod/hierarchy.h"
@@ -19,14 +20,17 @@ struct BuildSummary {
   double coarsestError = 0;
   std::uintmax_t fileBytes = 0;
   std::string crsName;
+  std::vector<LevelAccuracy> accuracy;  // per level, when accuracy outputs were asked for
 };
 
 // Strict local maxima and minima of the DEM (3 x 3 window, valid neighbours) among the
 // TIN's vertices: the study's surface-specific points.
 std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin);
 
-// The whole `tinlod build` job: read, sample, simplify into a hierarchy, write it.
+// The whole `tinlod build` job: read, sample, simplify into a hierarchy, write it, and
+// measure its accuracy when `accuracy` asks for a raster or a report.
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
-                         const HierarchyOptions& options, bool overwrite, const Feedback& feedback);
+                         const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
+                         const AccuracyOutputs& accuracy = AccuracyOutputs());
 
 }  // namespace tinlod

@@ -32,6 +32,9 @@ class CrsTransform {
 
   // Transforms in place; throws Error if PROJ cannot transform a point.
   void apply(std::vector<double>& x, std::vector<double>& y) const;
+  // From the TIN's CRS back to the DEM's, in place: where the accuracy of a TIN is
+  // measured on the DEM's own grid.
+  void applyInverse(std::vector<double>& x, std::vector<double>& y) const;
 
  private:
   struct Impl;

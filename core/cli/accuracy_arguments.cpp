@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "accuracy_arguments.h"
+
+#include <iomanip>
+
+namespace tinlod::cli {
+
+const char* const kAccuracyHelp = R"(Accuracy (the study's measure, and more):
+  -accuracy OUT.tif  accuracy raster of one level on the DEM's grid: band 1 elevation
+                     difference (simplified - reference, m), band 2 mean curvature difference,
+                     bands 3 and 4 the reference's and the simplified TIN's mean curvature (1/m)
+  -level L           the raster's level (default: the coarsest)
+  -report R          every level's statistics: R.csv, R.json or R.html (a page with plots)
+  -reference r       tin: the original TIN, as in the study (default); dem: the DEM itself
+  -step n            test points at every n-th DEM cell (default 1: every cell)
+  -control c         B-spline control points every c test points (default 3): smaller
+                     follows the TIN's facets, larger smooths over its triangles
+  -of format         GDAL raster format of the raster (default GTiff)
+  -co NAME=VALUE     creation option of the raster format (repeatable)
+)";
+
+AccuracyOutputs accuracyOutputs(Arguments& a) {
+  AccuracyOutputs o;
+  o.rasterPath = a.text("-accuracy", "");
+  o.rasterLevel = a.integer("-level", -1);
+  o.reportPath = a.text("-report", "");
+  o.options.reference = parseReference(a.text("-reference", referenceName(o.options.reference)));
+  o.options.step = a.integer("-step", o.options.step);
+  o.options.controlSpacing = a.integer("-control", o.options.controlSpacing);
+  o.raster.format = a.text("-of", o.raster.format);
+  for (std::string co = a.text("-co", ""); !co.empty(); co = a.text("-co", "")) o.raster.creationOptions.push_back(co);
+  return o;
+}
+
+void printAccuracy(const std::vector<LevelAccuracy>& rows, std::ostream& out) {
+  auto r = [](const LevelAccuracy& row, const char* name) {
+    for (const VariableComparison& v : row.variables)
+      if (v.name == name) return v.correlation;
+    return 0.0;
+  };
+  out << std::setw(6) << "level" << std::setw(11) << "vertices" << std::setw(10) << "RMSE m" << std::setw(12)
+      << "max err m" << std::setw(12) << "r height" << std::setw(12) << "r mean H" << std::setw(10) << "Moran I" << "\n";
+  for (const LevelAccuracy& row : rows)
+    out << std::setw(6) << row.level << std::setw(11) << row.vertices << std::fixed << std::setprecision(2)
+        << std::setw(10) << row.rmse << std::setw(12) << row.maxAbsError << std::setprecision(6) << std::setw(12)
+        << r(row, "elevation") << std::setw(12) << r(row, "mean_curvature") << std::setprecision(3) << std::setw(10)
+        << row.moransI << std::defaultfloat << "\n";
+}
+
+}  // namespace tinlod::cli

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <iostream>
+
+#include "accuracy_arguments.h"
+#include "commands.h"
+#include "terminal_feedback.h"
+
+namespace tinlod::cli {
+namespace {
+
+const char* const kUsage =
+    "tinlod accuracy DEM TIN.gpkg [-accuracy OUT.tif] [-level L] [-report R.html|.csv|.json] [-reference tin|dem] "
+    "[-step n] [-control c] [-of format] [-co NAME=VALUE] [-b band] [-s_srs srs] [-q]";
+
+const char* const kHelp = R"(Measures how well each level of a TIN hierarchy (or a TIN) made by tinlod represents
+the original: heights and mean curvature of B-spline surfaces fitted to both, compared
+at a grid of test points (the study's measure), with RMSE, mean and maximum error, Moran's
+I of the error, and correlations of slope, aspect, Gaussian, profile and plan curvature.
+
+Usage: tinlod accuracy DEM TIN.gpkg [options]
+
+DEM is the raster the GeoPackage was made from.
+  -b band          its band (default: the one the GeoPackage was sampled from)
+  -s_srs srs       its CRS, when its file has none (as given to tinlod build)
+  -q               quiet: no progress or table, warnings only
+
+)";
+
+}  // namespace
+
+int accuracyCommand(std::vector<std::string> args) {
+  Arguments a(std::move(args));
+  if (a.flag("--help") || a.flag("-h")) {
+    std::cout << kHelp << kAccuracyHelp;
+    return 0;
+  }
+  const AccuracyOutputs outputs = accuracyOutputs(a);
+  const int band = a.integer("-b", 0);
+  const std::string sourceSrs = a.text("-s_srs", "");
+  const bool quiet = a.flag("-q");
+  const std::vector<std::string> files = a.operands(2, kUsage);
+  const AccuracyReport report = runAccuracyJob(files[0], files[1], outputs, band, sourceSrs, terminalFeedback(quiet));
+  if (!quiet) {
+    std::cout << "Reference: " << (report.reference == "tin" ? "the original TIN (level 0)" : "the DEM") << "\n";
+    printAccuracy(report.rows, std::cout);
+  }
+  return 0;
+}
+
+}  // namespace tinlod::cli

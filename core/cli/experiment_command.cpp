@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <iostream>
+#include <sstream>
+
+#include "accuracy_arguments.h"
+#include "commands.h"
+#include "sample_arguments.h"
+#include "terminal_feedback.h"
+#include "tinlod/error.h"
+#include "tinlod/experiment.h"
+
+namespace tinlod::cli {
+namespace {
+
+const char* const kUsage =
+    "tinlod experiment DEM [DEM ...] -report R.html|.csv|.json [-methods m,m,...] [-delete_pcts p,p,...] "
+    "[-stop_pct s] [-reference tin|dem] [-step n] [-control c] [sampling options] [-q]";
+
+const char* const kHelp = R"(Runs the study's experiment: every DEM is sampled once, simplified by every method
+with every delete percentage down to the stop percentage, and every level's accuracy
+is measured (as tinlod accuracy does). One combined report; no other file is written.
+
+Usage: tinlod experiment DEM [DEM ...] -report R [options]
+
+  -report R          R.html (plots of all runs), R.csv or R.json
+  -methods list      comma-separated (default degree,normal,volume,error)
+  -delete_pcts list  comma-separated delete percentages (default 10,20)
+  -stop_pct s        stop percentage (default 5)
+  -reference r       tin (default, as in the study) or dem
+  -step n            test points every n-th DEM cell (default 1)
+  -control c         B-spline control points every c test points (default 3)
+  Sampling options as tinlod sample: -b, -s_srs, -t_srs, -block, -jitter, -seed
+  -q                 quiet: no progress, warnings only
+)";
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+}  // namespace
+
+int experimentCommand(std::vector<std::string> args) {
+  Arguments a(std::move(args));
+  if (a.flag("--help") || a.flag("-h")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  ExperimentOptions o;
+  const std::string methods = a.text("-methods", "");
+  if (!methods.empty()) {
+    o.methods.clear();
+    for (const std::string& m : splitList(methods)) o.methods.push_back(parseMeasure(m));
+  }
+  const std::string pcts = a.text("-delete_pcts", "");
+  if (!pcts.empty()) {
+    o.deletePcts.clear();
+    for (const std::string& p : splitList(pcts)) {
+      try {
+        o.deletePcts.push_back(std::stod(p));
+      } catch (const std::exception&) {
+        throw Error("-delete_pcts: '" + p + "' is not a number; write e.g. -delete_pcts 10,20");
+      }
+    }
+  }
+  o.stopPct = a.number("-stop_pct", o.stopPct);
+  const std::string report = a.text("-report", "");
+  o.accuracy.reference = parseReference(a.text("-reference", referenceName(o.accuracy.reference)));
+  o.accuracy.step = a.integer("-step", o.accuracy.step);
+  o.accuracy.controlSpacing = a.integer("-control", o.accuracy.controlSpacing);
+  o.sample = sampleOptions(a);
+  const bool quiet = a.flag("-q");
+  const std::vector<std::string> dems = a.someOperands(kUsage);
+  if (report.empty()) throw Error("-report is required: name the report file, e.g. -report experiment.html");
+  const AccuracyReport r = runExperiment(dems, o, report, terminalFeedback(quiet));
+  if (!quiet) std::cout << "Wrote " << r.rows.size() << " levels of " << dems.size() << " DEMs to " << report << std::endl;
+  return 0;
+}
+
+}  // namespace tinlod::cli

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tinlod/accuracy_evaluator.h"
+#include "tinlod/accuracy_raster.h"
+#include "tinlod/accuracy_report.h"
+#include "tinlod/feedback.h"
+#include "tinlod/hierarchy.h"
+
+namespace tinlod {
+
+// What to measure and where to write it, shared by `tinlod accuracy`, `tinlod build`
+// and the QGIS algorithms.
+struct AccuracyOutputs {
+  AccuracyOptions options;
+  std::string rasterPath;      // empty: no raster
+  RasterWriteOptions raster;
+  int rasterLevel = -1;        // the level of the raster; -1: the coarsest
+  std::string reportPath;      // empty: no report; .csv, .json or .html
+  bool wanted() const { return !rasterPath.empty() || !reportPath.empty(); }
+  // Fails early, before hours of work, on a bad format, extension or level.
+  void validate() const;
+};
+
+// Every level of `h` measured against the evaluator's reference, one row each; the
+// bands of `rasterLevel` (-1: the coarsest) go to `bands` when it is not null.
+std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, const Hierarchy& h, const std::string& demName,
+                                         int rasterLevel, AccuracyBands* bands, const ProgressRange& progress);
+
+AccuracyReport makeReport(const AccuracyEvaluator& evaluator, const std::string& title, const std::string& crsName,
+                          std::vector<LevelAccuracy> rows);
+
+// Measures every level of `h` (sampled from `dem`) and writes the raster and report asked for.
+AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTransform& toTin, const AccuracyOutputs& outputs,
+                               const ProgressRange& progress);
+
+// The whole `tinlod accuracy` job: a DEM and the hierarchy (or TIN) GeoPackage made from
+// it. `band` 0 takes the band the file was sampled from; `sourceSrs` names the DEM's CRS
+// when its file has none.
+AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hierarchyPath, const AccuracyOutputs& outputs,
+                              int band, const std::string& sourceSrs, const Feedback& feedback);
+
+// "dem.tif" from "/data/dem.tif": how reports name a DEM.
+std::string demName(const std::string& path);
+
+}  // namespace tinlod

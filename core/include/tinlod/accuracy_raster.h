@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tinlod/accuracy_evaluator.h"
+#include "tinlod/feedback.h"
+#include "tinlod/test_grid.h"
+
+namespace tinlod {
+
+struct RasterWriteOptions {
+  std::string format = "GTiff";            // any GDAL raster driver that can create copies
+  std::vector<std::string> creationOptions;  // NAME=VALUE, as gdal_translate -co
+};
+
+constexpr double kAccuracyNodata = -9999;
+
+// Writes the four bands on the test grid with its georeferencing and the DEM's CRS,
+// Float32, band descriptions, nodata and statistics set, so that QGIS shows it at once.
+// Atomic: the file appears complete or not at all; an existing file is replaced.
+void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const std::string& path,
+                         const RasterWriteOptions& options, const ProgressRange& progress);
+
+}  // namespace tinlod

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tinlod/accuracy_evaluator.h"
+#include "tinlod/accuracy_report.h"
+#include "tinlod/feedback.h"
+#include "tinlod/hierarchy_options.h"
+#include "tinlod/sample_options.h"
+
+namespace tinlod {
+
+// The study's experiment: every DEM simplified by every method with every delete
+// percentage down to the stop percentage, each level's accuracy measured.
+struct ExperimentOptions {
+  std::vector<Measure> methods{Measure::Degree, Measure::Normal, Measure::Volume, Measure::Error};
+  std::vector<double> deletePcts{10, 20};
+  double stopPct = 5;
+  SampleOptions sample;
+  AccuracyOptions accuracy;
+  void validate() const;  // throws Error naming the option
+};
+
+// Runs the experiment and writes one combined report (.csv, .json or .html) when
+// `reportPath` is not empty. Nothing but the report is written.
+AccuracyReport runExperiment(const std::vector<std::string>& dems, const ExperimentOptions& options,
+                             const std::string& reportPath, const Feedback& feedback);
+
+}  // namespace tinlod

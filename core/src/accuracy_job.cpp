@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/accuracy_job.h"
+
+#include <gdal_priv.h>
+
+#include <filesystem>
+
+#include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_reader.h"
+#include "tinlod/version.h"
+
+namespace tinlod {
+
+void AccuracyOutputs::validate() const {
+  options.validate();
+  if (!reportPath.empty() && !isAccuracyReportPath(reportPath))
+    throw Error("-report: '" + reportPath + "' has an extension tinlod cannot write: name the file .csv, .json or .html");
+  if (!rasterPath.empty()) {
+    GDALAllRegister();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(raster.format.c_str());
+    if (!driver || !driver->GetMetadataItem(GDAL_DCAP_RASTER))
+      throw Error("-of: '" + raster.format + "' is not a GDAL raster format: use e.g. GTiff (see gdalinfo --formats)");
+  }
+  if (rasterLevel < -1) throw Error("-level must be a level number (0 the original) or -1 for the coarsest");
+}
+
+std::string demName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, const Hierarchy& h, const std::string& dem,
+                                         int rasterLevel, AccuracyBands* bands, const ProgressRange& progress) {
+  const int top = h.coarsest();
+  const int chosen = rasterLevel < 0 ? top : rasterLevel;
+  if (chosen > top)
+    throw Error("-level " + std::to_string(rasterLevel) + " does not exist: the hierarchy has levels 0 to " + std::to_string(top));
+  std::vector<LevelAccuracy> rows;
+  for (int L = 0; L <= top; ++L) {
+    const LevelStats& s = h.levels[L];
+    LevelAccuracy row;
+    row.dem = dem;
+    row.method = measureName(h.options.measure);
+    row.deletePct = h.options.deletePct, row.stopPct = h.options.stopPct;
+    row.level = L, row.vertices = s.vertices, row.triangles = s.triangles;
+    row.selectSeconds = s.selectSeconds, row.deleteSeconds = s.deleteSeconds, row.certifiedError = s.maxError;
+    std::vector<Triangle> triangles;
+    for (std::uint32_t t : h.levelTriangles(L)) triangles.push_back(h.triangles[t].v);
+    evaluator.evaluate(triangles, row, L == chosen ? bands : nullptr,
+                       progress.sub(double(L) / (top + 1), double(L + 1) / (top + 1)));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+AccuracyReport makeReport(const AccuracyEvaluator& evaluator, const std::string& title, const std::string& crsName,
+                          std::vector<LevelAccuracy> rows) {
+  AccuracyReport report;
+  report.title = title;
+  report.reference = referenceName(evaluator.options().reference);
+  report.crsName = crsName;
+  report.step = evaluator.options().step;
+  report.controlSpacing = evaluator.options().controlSpacing;
+  report.generator = std::string("tinlod ") + kVersion;
+  report.rows = std::move(rows);
+  return report;
+}
+
+AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTransform& toTin, const AccuracyOutputs& outputs,
+                               const ProgressRange& progress) {
+  const AccuracyEvaluator evaluator(dem, h.base, toTin, outputs.options, progress.sub(0, 0.05));
+  AccuracyBands bands;
+  const bool raster = !outputs.rasterPath.empty();
+  std::vector<LevelAccuracy> rows =
+      measureLevels(evaluator, h, demName(dem.path), outputs.rasterLevel, raster ? &bands : nullptr, progress.sub(0.05, 0.9));
+  if (rows.empty() || rows.front().testPoints == 0)
+    throw Error("no test point of '" + dem.path + "' lies on the TIN: give the DEM the TIN was made from");
+  std::string crs = "no CRS";
+  if (!dem.crsWkt.empty()) {
+    OGRSpatialReference srs;
+    if (srs.importFromWkt(dem.crsWkt.c_str()) == OGRERR_NONE && srs.GetName()) crs = srs.GetName();
+  }
+  AccuracyReport report = makeReport(evaluator, "Accuracy of the TIN hierarchy of " + demName(dem.path), crs, std::move(rows));
+  if (raster) writeAccuracyRaster(bands, evaluator.grid(), outputs.rasterPath, outputs.raster, progress.sub(0.9, 0.98));
+  if (!outputs.reportPath.empty()) writeAccuracyReport(report, outputs.reportPath);
+  return report;
+}
+
+AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hierarchyPath, const AccuracyOutputs& outputs,
+                              int band, const std::string& sourceSrs, const Feedback& feedback) {
+  outputs.validate();
+  const ProgressRange all(feedback, 0, 1);
+  const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.15));
+  const auto bandItem = stored.info.metadata.find("band");
+  if (band == 0) band = bandItem == stored.info.metadata.end() ? 1 : std::stoi(bandItem->second);
+  const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2));
+  const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
+  const CrsTransform toTin = CrsTransform::forDem(dem, sourceSrs, stored.hierarchy.base.crsWkt, quiet);
+  AccuracyReport report = measureAndWrite(dem, stored.hierarchy, toTin, outputs, all.sub(0.2, 1));
+  all.finish("Done");
+  return report;
+}
+
+}  // namespace tinlod

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/experiment.h"
+
+#include "tinlod/accuracy_job.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_builder.h"
+#include "tinlod/sample_job.h"
+#include "tinlod/version.h"
+
+namespace tinlod {
+
+void ExperimentOptions::validate() const {
+  if (methods.empty()) throw Error("-methods: name at least one method (degree, normal, volume, error)");
+  if (deletePcts.empty()) throw Error("-delete_pcts: name at least one delete percentage, e.g. 10,20");
+  HierarchyOptions h;
+  h.stopPct = stopPct;
+  for (double p : deletePcts) {
+    h.deletePct = p;
+    h.validate();
+  }
+  sample.validate();
+  accuracy.validate();
+}
+
+namespace {
+
+// One DEM: the reference is made once and serves every run.
+void runDem(const std::string& path, const ExperimentOptions& options, std::vector<LevelAccuracy>& rows,
+            const ProgressRange& progress) {
+  const Dem dem = readDem(path, options.sample.band, progress.sub(0, 0.02));
+  const Tin tin = sampleTin(dem, options.sample, progress.sub(0.02, 0.05));
+  const CrsTransform toTin = CrsTransform::forDem(dem, options.sample.sourceSrs, options.sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
+  const AccuracyEvaluator evaluator(dem, tin, toTin, options.accuracy, progress.sub(0.05, 0.1));
+  const double runs = double(options.methods.size() * options.deletePcts.size());
+  int run = 0;
+  for (Measure m : options.methods)
+    for (double pct : options.deletePcts) {
+      const ProgressRange part = progress.sub(0.1 + 0.9 * run / runs, 0.1 + 0.9 * (run + 1) / runs);
+      ++run;
+      HierarchyOptions h;
+      h.measure = m, h.deletePct = pct, h.stopPct = options.stopPct;
+      progress.inform(demName(path) + ": " + measureName(m) + ", delete " + std::to_string(static_cast<int>(pct)) + " %");
+      const Hierarchy hierarchy = buildHierarchy(tin, {}, h, part.sub(0, 0.3));
+      for (LevelAccuracy& row : measureLevels(evaluator, hierarchy, demName(path), -1, nullptr, part.sub(0.3, 1)))
+        rows.push_back(std::move(row));
+    }
+}
+
+}  // namespace
+
+AccuracyReport runExperiment(const std::vector<std::string>& dems, const ExperimentOptions& options,
+                             const std::string& reportPath, const Feedback& feedback) {
+  options.validate();
+  if (dems.empty()) throw Error("name at least one DEM");
+  if (!reportPath.empty() && !isAccuracyReportPath(reportPath))
+    throw Error("-report: '" + reportPath + "' has an extension tinlod cannot write: name the file .csv, .json or .html");
+  const ProgressRange all(feedback, 0, 1);
+  std::vector<LevelAccuracy> rows;
+  for (std::size_t i = 0; i < dems.size(); ++i)
+    runDem(dems[i], options, rows, all.sub(double(i) / dems.size(), double(i + 1) / dems.size()));
+  AccuracyReport report;
+  report.title = "The study's experiment over " + std::to_string(dems.size()) + (dems.size() == 1 ? " DEM" : " DEMs");
+  report.reference = referenceName(options.accuracy.reference);
+  report.step = options.accuracy.step;
+  report.controlSpacing = options.accuracy.controlSpacing;
+  report.generator = std::string("tinlod ") + kVersion + " experiment";
+  report.rows = std::move(rows);
+  if (!reportPath.empty()) writeAccuracyReport(report, reportPath);
+  all.finish("Done");
+  return report;
+}
+
+}  // namespace tinlod

@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/hierarchy_reader.h"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <cstdlib>
+#include <memory>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+using DatasetPtr = std::unique_ptr<GDALDataset, void (*)(GDALDataset*)>;
+
+DatasetPtr open(const std::string& path) {
+  const char* const gpkgOnly[] = {"GPKG", nullptr};
+  return DatasetPtr(static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, gpkgOnly,
+                                                         nullptr, nullptr)),
+                    [](GDALDataset* d) { GDALClose(d); });
+}
+
+std::string wktOf(OGRLayer& layer) {
+  const OGRSpatialReference* srs = layer.GetSpatialRef();
+  if (!srs) return "";
+  char* wkt = nullptr;
+  const char* options[] = {"FORMAT=WKT2_2019", nullptr};
+  srs->exportToWkt(&wkt, options);
+  std::string out = wkt ? wkt : "";
+  CPLFree(wkt);
+  return out;
+}
+
+void readVertices(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress) {
+  const GIntBig count = layer.GetFeatureCount();
+  h.base.vertices.assign(static_cast<std::size_t>(count), TinVertex());
+  h.vertexLevel.assign(static_cast<std::size_t>(count), 0);
+  h.fixed.assign(static_cast<std::size_t>(count), 0);
+  const int level = layer.GetLayerDefn()->GetFieldIndex("level");
+  const int fixed = layer.GetLayerDefn()->GetFieldIndex("fixed");
+  std::size_t seen = 0;
+  for (auto& f : layer) {
+    const GIntBig id = f->GetFieldAsInteger64("id") - 1;
+    const auto* p = dynamic_cast<const OGRPoint*>(f->GetGeometryRef());
+    if (id < 0 || id >= count || !p) throw Error("the vertices layer of the GeoPackage is damaged (vertex ids out of range)");
+    TinVertex& v = h.base.vertices[static_cast<std::size_t>(id)];
+    v.x = p->getX(), v.y = p->getY(), v.z = p->getZ();
+    v.row = f->GetFieldAsInteger("row"), v.col = f->GetFieldAsInteger("col");
+    v.outline = f->GetFieldAsInteger("outline") != 0;
+    if (level >= 0) h.vertexLevel[static_cast<std::size_t>(id)] = f->GetFieldAsInteger(level);
+    if (fixed >= 0) h.fixed[static_cast<std::size_t>(id)] = f->GetFieldAsInteger(fixed) != 0;
+    if ((++seen & 0xFFFF) == 0) progress.report(double(seen) / count, "Reading vertices");
+  }
+}
+
+void readTriangles(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress) {
+  const GIntBig count = layer.GetFeatureCount();
+  const std::size_t vertices = h.base.vertices.size();
+  const int first = layer.GetLayerDefn()->GetFieldIndex("first_level");
+  const int last = layer.GetLayerDefn()->GetFieldIndex("last_level");
+  layer.SetIgnoredFields(std::vector<const char*>{"OGR_GEOMETRY", nullptr}.data());  // corners come from v0..v2
+  h.triangles.reserve(static_cast<std::size_t>(count));
+  for (auto& f : layer) {
+    HierarchyTriangle t;
+    for (int k = 0; k < 3; ++k) {
+      const GIntBig v = f->GetFieldAsInteger64(("v" + std::to_string(k)).c_str()) - 1;
+      if (v < 0 || static_cast<std::size_t>(v) >= vertices)
+        throw Error("the triangles layer of the GeoPackage is damaged (a corner is not a vertex)");
+      t.v[k] = static_cast<VertexId>(v);
+    }
+    t.firstLevel = first >= 0 ? f->GetFieldAsInteger(first) : 0;
+    t.lastLevel = last >= 0 ? f->GetFieldAsInteger(last) : 0;
+    if (t.firstLevel == 0) h.base.triangles.push_back(t.v);
+    h.triangles.push_back(t);
+    if ((h.triangles.size() & 0xFFFF) == 0) progress.report(double(h.triangles.size()) / count, "Reading triangles");
+  }
+}
+
+void readOptions(const HierarchyInfo& info, Hierarchy& h) {
+  h.levels = info.levels;
+  auto item = [&](const char* key) { auto it = info.metadata.find(key); return it == info.metadata.end() ? std::string() : it->second; };
+  if (!item("method").empty()) h.options.measure = parseMeasure(item("method"));
+  h.options.deletePct = std::atof(item("delete_pct").c_str());
+  h.options.stopPct = std::atof(item("stop_pct").c_str());
+}
+
+}  // namespace
+
+StoredHierarchy readHierarchy(const std::string& path, const ProgressRange& progress) {
+  StoredHierarchy out;
+  out.info = readHierarchyInfo(path);  // also refuses files tinlod did not write
+  const DatasetPtr ds = open(path);
+  OGRLayer* vertices = ds ? ds->GetLayerByName("vertices") : nullptr;
+  OGRLayer* triangles = ds ? ds->GetLayerByName("triangles") : nullptr;
+  if (!vertices || !triangles) throw Error("'" + path + "' has no vertices or triangles layer: it is not a tinlod TIN");
+  Hierarchy& h = out.hierarchy;
+  h.base.crsWkt = wktOf(*triangles);
+  h.base.crsName = out.info.crsName;
+  readVertices(*vertices, h, progress.sub(0, 0.2));
+  readTriangles(*triangles, h, progress.sub(0.2, 1));
+  readOptions(out.info, h);
+  return out;
+}
+
+}  // namespace tinlod

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "parallel_rows.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace tinlod {
+
+void forRowBlocks(int rows, const std::function<void(int, int)>& work, const std::function<void(double)>& progress) {
+  const int block = std::max(1, std::min(64, rows / 64));
+  std::atomic<int> next{0}, done{0};
+  std::atomic<bool> stop{false};
+  std::exception_ptr failure;
+  std::mutex failureMutex;
+  auto loop = [&](bool reporting) {
+    try {
+      for (int b = next.fetch_add(block); b < rows && !stop; b = next.fetch_add(block)) {
+        work(b, std::min(rows, b + block));
+        done += std::min(rows, b + block) - b;
+        if (reporting && progress) progress(double(done) / rows);
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(failureMutex);
+      if (!failure) failure = std::current_exception();
+      stop = true;
+    }
+  };
+  const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
+  std::vector<std::thread> workers;
+  for (unsigned t = 1; t < threads; ++t) workers.emplace_back(loop, false);
+  loop(true);
+  for (std::thread& w : workers) w.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace tinlod

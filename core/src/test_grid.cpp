@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/test_grid.h"
+
+#include <cmath>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+// Metres between two DEM points, measured in the TIN's (metric) CRS.
+double groundDistance(const CrsTransform& toTin, double x0, double y0, double x1, double y1) {
+  std::vector<double> x{x0, x1}, y{y0, y1};
+  toTin.apply(x, y);
+  return std::hypot(x[1] - x[0], y[1] - y[0]);
+}
+
+}  // namespace
+
+TestGrid makeTestGrid(const Dem& dem, int step, const CrsTransform& toTin) {
+  if (step < 1) throw Error("-step must be 1 or more (test points every step-th DEM cell), not " + std::to_string(step));
+  TestGrid g;
+  g.step = step;
+  g.cols = (dem.width + step - 1) / step;
+  g.rows = (dem.height + step - 1) / step;
+  const std::array<double, 6>& gt = dem.geotransform;
+  // Test point (c, r) is the centre of DEM cell (r step, c step): a raster cell of step
+  // DEM cells centred there.
+  g.geotransform = {gt[0] + 0.5 * (1 - step) * gt[1], step * gt[1], 0, gt[3] + 0.5 * (1 - step) * gt[5], 0, step * gt[5]};
+  g.crsWkt = dem.crsWkt;
+  const double midX = g.x(g.cols / 2);
+  g.cellHeight = groundDistance(toTin, midX, g.y(g.rows / 2), midX, g.y(g.rows / 2) + g.geotransform[5]);
+  g.cellWidth.resize(g.rows);
+  for (int r = 0; r < g.rows; ++r)
+    g.cellWidth[r] = groundDistance(toTin, midX, g.y(r), midX + g.geotransform[1], g.y(r));
+  return g;
+}
+
+std::vector<std::array<double, 2>> gridPositions(const TestGrid& grid, const Dem& dem,
+                                                 const std::vector<TinVertex>& vertices, const CrsTransform& toTin) {
+  std::vector<double> x(vertices.size()), y(vertices.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i) x[i] = vertices[i].x, y[i] = vertices[i].y;
+  toTin.applyInverse(x, y);
+  const std::array<double, 6>& gt = dem.geotransform;
+  std::vector<std::array<double, 2>> out(vertices.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    out[i] = {((x[i] - gt[0]) / gt[1] - 0.5) / grid.step, ((y[i] - gt[3]) / gt[5] - 0.5) / grid.step};
+  return out;
+}
+
+Grid demHeights(const Dem& dem, const TestGrid& grid) {
+  Grid out(grid.cols, grid.rows);
+  for (int r = 0; r < grid.rows; ++r)
+    for (int c = 0; c < grid.cols; ++c)
+      if (dem.valid(r * grid.step, c * grid.step)) out.at(c, r) = dem.at(r * grid.step, c * grid.step);
+  return out;
+}
+
+}  // namespace tinlod

@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "accuracy_algorithm.h"
+
+#include <qgsprocessingoutputs.h>
+#include <qgsprocessingparameters.h>
+
+#include "processing_feedback.h"
+
+namespace tinlod::qgis {
+namespace {
+
+double correlation(const LevelAccuracy& row, const char* name) {
+  for (const VariableComparison& v : row.variables)
+    if (v.name == name) return v.correlation;
+  return std::nan("");
+}
+
+}  // namespace
+
+QString AccuracyAlgorithm::name() const { return QStringLiteral("accuracy"); }
+QString AccuracyAlgorithm::displayName() const { return QStringLiteral("Accuracy of a TIN hierarchy"); }
+QString AccuracyAlgorithm::group() const { return QStringLiteral("TIN accuracy"); }
+QString AccuracyAlgorithm::groupId() const { return QStringLiteral("accuracy"); }
+QStringList AccuracyAlgorithm::tags() const {
+  return QStringLiteral("tin,dem,accuracy,rmse,curvature,b-spline,correlation,error,hierarchy").split(',');
+}
+
+QString AccuracyAlgorithm::shortHelpString() const {
+  return QStringLiteral(
+             "Measures how well every level of a TIN hierarchy (or a TIN) written by tinlod represents the "
+             "original, and writes an accuracy raster of one level and a report of all levels.\n\n"
+             "DEM: the raster the GeoPackage was made from. Band: empty means the band it was sampled from.\n\n") +
+         accuracyHelp() + QStringLiteral("\n\nLevel: the raster's level; -1 (the default) means the coarsest.");
+}
+
+AccuracyAlgorithm* AccuracyAlgorithm::createInstance() const { return new AccuracyAlgorithm(); }
+
+void AccuracyAlgorithm::initAlgorithm(const QVariantMap&) {
+  addDemParameters();
+  addParameter(new QgsProcessingParameterFile(QStringLiteral("HIERARCHY"), QStringLiteral("Hierarchy or TIN GeoPackage"),
+                                              QgsProcessingParameterFile::File, QStringLiteral("gpkg")));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("LEVEL"), QStringLiteral("Level of the raster (-1: the coarsest)"),
+                                                QgsProcessingParameterNumber::Integer, -1, false, -1));
+  addAccuracyParameters(true);
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("RMSE"), QStringLiteral("RMSE of the raster's level (m)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error of the raster's level (m)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("R_ELEVATION"), QStringLiteral("Elevation correlation of the raster's level")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("R_MEAN_CURVATURE"),
+                                          QStringLiteral("Mean curvature correlation of the raster's level")));
+}
+
+bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
+  readDemParameters(parameters, context, 0);
+  hierarchy_ = parameterAsFile(parameters, QStringLiteral("HIERARCHY"), context).toStdString();
+  if (hierarchy_.empty()) throw QgsProcessingException(QStringLiteral("HIERARCHY: choose a GeoPackage written by tinlod"));
+  readAccuracyParameters(parameters, context);
+  accuracy_.rasterLevel = parameterAsInt(parameters, QStringLiteral("LEVEL"), context);
+  if (!accuracy_.wanted())
+    throw QgsProcessingException(QStringLiteral("Nothing to write: set the accuracy raster (ACCURACY), the report (REPORT) or both"));
+  return true;
+}
+
+QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessingContext&, QgsProcessingFeedback* feedback) {
+  const AccuracyReport report = translateErrors(
+      [&] { return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback)); });
+  const int level = accuracy_.rasterLevel < 0 ? static_cast<int>(report.rows.size()) - 1 : accuracy_.rasterLevel;
+  const LevelAccuracy& row = report.rows[static_cast<std::size_t>(level)];
+  for (const LevelAccuracy& r : report.rows)
+    feedback->pushInfo(QStringLiteral("level %1: %2 vertices, RMSE %3 m, maximum error %4 m, r elevation %5, r mean curvature %6")
+                           .arg(r.level).arg(r.vertices).arg(r.rmse, 0, 'f', 2).arg(r.maxAbsError, 0, 'f', 2)
+                           .arg(correlation(r, "elevation"), 0, 'f', 6).arg(correlation(r, "mean_curvature"), 0, 'f', 4));
+  QVariantMap outputs;
+  if (!accuracy_.rasterPath.empty()) outputs.insert(QStringLiteral("ACCURACY"), QString::fromStdString(accuracy_.rasterPath));
+  if (!accuracy_.reportPath.empty()) outputs.insert(QStringLiteral("REPORT"), QString::fromStdString(accuracy_.reportPath));
+  outputs.insert(QStringLiteral("RMSE"), row.rmse);
+  outputs.insert(QStringLiteral("MAX_ERROR"), row.maxAbsError);
+  outputs.insert(QStringLiteral("R_ELEVATION"), correlation(row, "elevation"));
+  outputs.insert(QStringLiteral("R_MEAN_CURVATURE"), correlation(row, "mean_curvature"));
+  return outputs;
+}
+
+}  // namespace tinlod::qgis

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The accuracy parameters of DemAlgorithm, shared by tinlod:accuracy and tinlod:buildhierarchy.
+#include <qgsprocessingparameters.h>
+#include <qgsrasterfilewriter.h>
+
+#include <QFileInfo>
+
+#include "dem_algorithm.h"
+#include "processing_feedback.h"
+
+namespace tinlod::qgis {
+namespace {
+
+const QStringList kReferences{QStringLiteral("Original TIN (level 0, as in the study)"), QStringLiteral("DEM")};
+
+// A path QGIS did not fill in (an optional output left empty) reads as empty.
+QString optionalPath(const QString& path) {
+  return path.isEmpty() || path == QLatin1String("memory:") ? QString() : path;
+}
+
+}  // namespace
+
+void DemAlgorithm::addAccuracyParameters(bool createOutputsByDefault) {
+  const AccuracyOptions d;
+  addParameter(advanced(new QgsProcessingParameterEnum(QStringLiteral("REFERENCE"), QStringLiteral("Accuracy reference"),
+                                                       kReferences, false, 0)));
+  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("STEP"), QStringLiteral("Test points every n-th DEM cell"),
+                                                         QgsProcessingParameterNumber::Integer, d.step, false, 1, 1000)));
+  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("CONTROL_SPACING"),
+                                                         QStringLiteral("B-spline control points every n test points"),
+                                                         QgsProcessingParameterNumber::Integer, d.controlSpacing, false, 1, 1000)));
+  addParameter(new QgsProcessingParameterRasterDestination(QStringLiteral("ACCURACY"), QStringLiteral("Accuracy raster"),
+                                                           QVariant(), true, createOutputsByDefault));
+  addParameter(new QgsProcessingParameterFileDestination(
+      QStringLiteral("REPORT"), QStringLiteral("Accuracy report"),
+      QStringLiteral("HTML files (*.html);;CSV files (*.csv);;JSON files (*.json)"), QVariant(), true, createOutputsByDefault));
+}
+
+void DemAlgorithm::readAccuracyParameters(const QVariantMap& parameters, QgsProcessingContext& context) {
+  accuracy_ = AccuracyOutputs();
+  accuracy_.options.reference = parameterAsEnum(parameters, QStringLiteral("REFERENCE"), context) == 0 ? Reference::Tin : Reference::Dem;
+  accuracy_.options.step = parameterAsInt(parameters, QStringLiteral("STEP"), context);
+  accuracy_.options.controlSpacing = parameterAsInt(parameters, QStringLiteral("CONTROL_SPACING"), context);
+  const QString raster = optionalPath(parameterAsOutputLayer(parameters, QStringLiteral("ACCURACY"), context));
+  accuracy_.rasterPath = raster.toStdString();
+  if (!raster.isEmpty()) {
+    const QString driver = QgsRasterFileWriter::driverForExtension(QFileInfo(raster).suffix());
+    accuracy_.raster.format = driver.isEmpty() ? QStringLiteral("GTiff").toStdString() : driver.toStdString();
+  }
+  accuracy_.reportPath = optionalPath(parameterAsFileOutput(parameters, QStringLiteral("REPORT"), context)).toStdString();
+  translateErrors([&] { accuracy_.validate(); });
+}
+
+QString DemAlgorithm::accuracyHelp() {
+  return QStringLiteral(
+      "Accuracy: each level is interpolated linearly at test points (the centre of every n-th DEM cell), "
+      "and compared with the reference: the original TIN (level 0, as in the study) or the DEM itself. "
+      "Elevation: RMSE, mean error, maximum error and its place, Moran's I of the error. A uniform cubic "
+      "B-spline surface is fitted to each interpolated grid (control points every CONTROL_SPACING test "
+      "points: fewer follow the triangles' facets, more smooth over them), and the correlation r, means "
+      "and standard deviations of elevation, slope, aspect, mean, Gaussian, profile and plan curvature "
+      "are compared.\n\n"
+      "Accuracy raster: on the DEM's grid and CRS, band 1 elevation difference (simplified - reference, "
+      "m), band 2 mean curvature difference, bands 3 and 4 the reference's and the simplified TIN's mean "
+      "curvature (1/m; positive in hollows). Report: every level, as HTML with plots, CSV or JSON, "
+      "following the file's extension.");
+}
+
+}  // namespace tinlod::qgis

@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The accuracy outputs of `tinlod build` and `tinlod accuracy`: raster, report, errors.
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "test_support.h"
+#include "tinlod/accuracy_job.h"
+#include "tinlod/build_job.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_reader.h"
+#include "tinlod/synthetic_dem.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+std::string smallDem() {
+  static const std::string path = [] {
+    SyntheticDemOptions o;
+    o.width = 150, o.height = 120, o.cellSize = 25;
+    const std::string p = test::tempDir() + "/dem.tif";
+    writeDemGeoTiff(makeSyntheticDem(o), p);
+    return p;
+  }();
+  return path;
+}
+
+struct Built {
+  std::string dir = test::tempDir();
+  std::string gpkg = dir + "/h.gpkg";
+  BuildSummary summary;
+};
+
+// One build with a raster and a CSV report, shared by the tests that read them.
+const Built& built() {
+  static const Built b = [] {
+    Built out;
+    AccuracyOutputs a;
+    a.rasterPath = out.dir + "/acc.tif";
+    a.reportPath = out.dir + "/acc.csv";
+    out.summary = runBuildJob(smallDem(), out.gpkg, {}, {}, false, {}, a);
+    return out;
+  }();
+  return b;
+}
+
+std::size_t lineCount(const std::string& path) {
+  std::ifstream in(path);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
+TEST(AccuracyJob, BuildMeasuresEveryLevelAndLevelZeroIsExact) {
+  const Built& b = built();
+  ASSERT_EQ(b.summary.accuracy.size(), static_cast<std::size_t>(b.summary.levels) + 1);
+  EXPECT_EQ(b.summary.accuracy.front().rmse, 0);
+  const LevelAccuracy& top = b.summary.accuracy.back();
+  EXPECT_GT(top.rmse, 0);
+  EXPECT_LE(top.maxAbsError, top.certifiedError + 1e-6);  // test points lie on level 0, whose error is certified
+  EXPECT_EQ(lineCount(b.dir + "/acc.csv"), b.summary.accuracy.size() + 1);
+}
+
+TEST(AccuracyJob, TheRasterIsOnTheDemsGridWithNamedBandsNodataAndStatistics) {
+  const Built& b = built();
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> dem(GDALDataset::Open(smallDem().c_str(), GDAL_OF_RASTER));
+  std::unique_ptr<GDALDataset> acc(GDALDataset::Open((b.dir + "/acc.tif").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(acc);
+  EXPECT_EQ(acc->GetRasterXSize(), dem->GetRasterXSize());
+  EXPECT_EQ(acc->GetRasterYSize(), dem->GetRasterYSize());
+  ASSERT_EQ(acc->GetRasterCount(), 4);
+  double g1[6], g2[6];
+  dem->GetGeoTransform(g1);
+  acc->GetGeoTransform(g2);
+  for (int i = 0; i < 6; ++i) EXPECT_DOUBLE_EQ(g1[i], g2[i]);
+  EXPECT_TRUE(acc->GetSpatialRef()->IsSame(dem->GetSpatialRef()));
+  for (int k = 1; k <= 4; ++k) {
+    GDALRasterBand* band = acc->GetRasterBand(k);
+    int has = 0;
+    EXPECT_EQ(band->GetNoDataValue(&has), kAccuracyNodata);
+    EXPECT_TRUE(has);
+    EXPECT_NE(std::string(band->GetDescription()), "");
+    EXPECT_NE(band->GetMetadataItem("STATISTICS_MEAN"), nullptr) << "band " << k;
+  }
+  EXPECT_NE(std::string(acc->GetRasterBand(1)->GetDescription()).find("elevation difference"), std::string::npos);
+}
+
+TEST(AccuracyJob, TheAccuracyCommandReadsTheHierarchyBackAndAgreesWithTheBuild) {
+  const Built& b = built();
+  AccuracyOutputs a;
+  a.reportPath = b.dir + "/again.json";
+  const AccuracyReport r = runAccuracyJob(smallDem(), b.gpkg, a, 0, "", {});
+  ASSERT_EQ(r.rows.size(), b.summary.accuracy.size());
+  for (std::size_t L = 0; L < r.rows.size(); ++L) {
+    EXPECT_EQ(r.rows[L].vertices, b.summary.accuracy[L].vertices);
+    EXPECT_NEAR(r.rows[L].rmse, b.summary.accuracy[L].rmse, 1e-9) << "level " << L;
+  }
+  EXPECT_TRUE(fs::exists(a.reportPath));
+}
+
+TEST(AccuracyJob, HierarchyReaderRestoresEveryLevelsTriangleCount) {
+  const Built& b = built();
+  const StoredHierarchy s = readHierarchy(b.gpkg, ProgressRange(Feedback{}, 0, 1));
+  ASSERT_EQ(s.hierarchy.levels.size(), b.summary.accuracy.size());
+  for (const LevelStats& l : s.hierarchy.levels)
+    EXPECT_EQ(s.hierarchy.levelTriangles(l.level).size(), l.triangles) << "level " << l.level;
+}
+
+TEST(AccuracyJob, BadOutputsFailBeforeAnyWorkAndNameTheOption) {
+  AccuracyOutputs a;
+  a.reportPath = test::tempDir() + "/r.txt";
+  try {
+    runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, {}, false, {}, a);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("-report"), std::string::npos) << e.what();
+  }
+  AccuracyOutputs f;
+  f.rasterPath = test::tempDir() + "/a.xyz";
+  f.raster.format = "NoSuchFormat";
+  EXPECT_THROW(f.validate(), Error);
+  AccuracyOutputs level;
+  level.reportPath = test::tempDir() + "/r.csv";
+  level.rasterPath = test::tempDir() + "/r.tif";
+  level.rasterLevel = 99;
+  EXPECT_THROW(runAccuracyJob(smallDem(), built().gpkg, level, 0, "", {}), Error);
+  EXPECT_FALSE(fs::exists(level.reportPath));
+}
+
+TEST(AccuracyJob, AnotherDemThanTheTinsIsRefused) {
+  const Dem far = test::makeDem(50, 40, 25, [](int, int) { return 1.0f; });  // elsewhere in UTM 32N
+  const std::string path = test::tempDir() + "/far.tif";
+  writeDemGeoTiff(far, path);
+  AccuracyOutputs a;
+  a.reportPath = test::tempDir() + "/r.csv";
+  EXPECT_THROW(runAccuracyJob(path, built().gpkg, a, 0, "", {}), Error);
+}
+
+TEST(AccuracyJob, CancelLeavesNoRasterOrReport) {
+  const std::string dir = test::tempDir() + "/cancel";
+  fs::create_directories(dir);
+  AccuracyOutputs a;
+  a.rasterPath = dir + "/acc.tif";
+  a.reportPath = dir + "/acc.html";
+  Feedback cancelling;
+  cancelling.progress = [](double f, const std::string&) { return f < 0.3; };
+  EXPECT_THROW(runAccuracyJob(smallDem(), built().gpkg, a, 0, "", cancelling), Cancelled);
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+}  // namespace
+}  // namespace tinlod

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Interpolation, the evaluator, the accuracy raster and the accuracy job, end to end.
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "test_support.h"
+#include "tinlod/accuracy_job.h"
+#include "tinlod/build_job.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_builder.h"
+#include "tinlod/hierarchy_reader.h"
+#include "tinlod/sample_job.h"
+#include "tinlod/tin_rasterizer.h"
+#include "tinlod/synthetic_dem.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+const ProgressRange kQuiet(Feedback{}, 0, 1);
+
+const VariableComparison& variable(const LevelAccuracy& row, const std::string& name) {
+  for (const VariableComparison& v : row.variables)
+    if (v.name == name) return v;
+  throw Error("no variable " + name);
+}
+
+TEST(TinRasterizer, TwoTrianglesReproduceTheirPlaneAtEveryCoveredPointAndNoOther) {
+  // A square from (1.5, 1.5) to (7.5, 5.5) in test-point units, split along a diagonal.
+  const std::vector<std::array<double, 2>> pos{{1.5, 1.5}, {7.5, 1.5}, {7.5, 5.5}, {1.5, 5.5}};
+  std::vector<double> z;
+  for (const auto& p : pos) z.push_back(2 * p[0] - 3 * p[1] + 10);
+  const Grid g = rasterizeTin(pos, z, {{0, 1, 2}, {0, 2, 3}}, 10, 8, kQuiet);
+  int covered = 0;
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.cols; ++c)
+      if (g.valid(c, r)) {
+        ++covered;
+        EXPECT_NEAR(g.at(c, r), 2 * c - 3 * r + 10, 1e-12);
+      }
+  EXPECT_EQ(covered, 6 * 4);  // columns 2..7, rows 2..5
+}
+
+TEST(TinRasterizer, PointsOnSharedEdgesAndVerticesAreNeverMissed) {
+  // Vertices exactly on test points: a 4 x 4 lattice of squares, split both ways.
+  std::vector<std::array<double, 2>> pos;
+  std::vector<double> z;
+  for (int r = 0; r <= 4; ++r)
+    for (int c = 0; c <= 4; ++c) pos.push_back({2.0 * c, 2.0 * r}), z.push_back(c * r);
+  std::vector<Triangle> tris;
+  for (VertexId r = 0; r < 4; ++r)
+    for (VertexId c = 0; c < 4; ++c) {
+      const VertexId a = r * 5 + c, b = a + 1, d = a + 5, e = d + 1;
+      if ((r + c) % 2) tris.push_back({a, b, e}), tris.push_back({a, e, d});
+      else tris.push_back({a, b, d}), tris.push_back({b, e, d});
+    }
+  const Grid g = rasterizeTin(pos, z, tris, 9, 9, kQuiet);
+  for (double v : g.values) EXPECT_FALSE(std::isnan(v));
+}
+
+struct Fixture {
+  Dem dem = test::smallSyntheticDem();
+  Tin tin = sampleTin(dem, {}, kQuiet);
+  CrsTransform toTin = CrsTransform::forDem(dem, "", "", kQuiet);
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+TEST(AccuracyEvaluator, TheOriginalAgainstItselfIsPerfect) {
+  const Fixture& f = fixture();
+  const AccuracyEvaluator e(f.dem, f.tin, f.toTin, {}, kQuiet);
+  LevelAccuracy row;
+  AccuracyBands bands;
+  e.evaluate(f.tin.triangles, row, &bands, kQuiet);
+  EXPECT_GT(row.testPoints, 80000u);
+  EXPECT_EQ(row.rmse, 0);
+  EXPECT_EQ(row.maxAbsError, 0);
+  EXPECT_NEAR(variable(row, "elevation").correlation, 1, 1e-12);
+  EXPECT_NEAR(variable(row, "mean_curvature").correlation, 1, 1e-12);
+  EXPECT_NEAR(variable(row, "aspect").correlation, 1, 1e-9);
+  EXPECT_EQ(bands.elevationDifference.cols, e.grid().cols);
+}
+
+TEST(AccuracyEvaluator, RaisingEveryHeightByTwoMetresGivesAnRmseOfTwoAndPerfectCorrelation) {
+  const Fixture& f = fixture();
+  std::vector<double> raised;
+  for (const TinVertex& v : f.tin.vertices) raised.push_back(v.z + 2);
+  const AccuracyEvaluator e(f.dem, f.tin, f.toTin, {}, kQuiet);
+  LevelAccuracy row;
+  e.evaluate(raised, f.tin.triangles, row, nullptr, kQuiet);
+  EXPECT_NEAR(row.rmse, 2, 1e-9);
+  EXPECT_NEAR(row.meanError, 2, 1e-9);
+  EXPECT_NEAR(row.maxAbsError, 2, 1e-9);
+  const VariableComparison& z = variable(row, "elevation");
+  EXPECT_NEAR(z.correlation, 1, 1e-12);
+  EXPECT_NEAR(z.meanSimplified - z.meanReference, 2, 1e-9);
+  EXPECT_NEAR(z.stdSimplified, z.stdReference, 1e-9);
+  EXPECT_NEAR(variable(row, "mean_curvature").correlation, 1, 1e-12);
+}
+
+TEST(AccuracyEvaluator, TheDemAsReferenceOfAFlatDemGivesNoError) {
+  const Dem flat = test::makeDem(90, 60, 10, [](int, int) { return 123.5f; });
+  const Tin tin = sampleTin(flat, {}, kQuiet);
+  const CrsTransform toTin = CrsTransform::forDem(flat, "", "", kQuiet);
+  AccuracyOptions o;
+  o.reference = Reference::Dem;
+  const AccuracyEvaluator e(flat, tin, toTin, o, kQuiet);
+  LevelAccuracy row;
+  e.evaluate(tin.triangles, row, nullptr, kQuiet);
+  EXPECT_GT(row.testPoints, 4000u);
+  EXPECT_NEAR(row.rmse, 0, 1e-9);
+  EXPECT_NEAR(variable(row, "mean_curvature").meanReference, 0, 1e-12);
+}
+
+TEST(AccuracyEvaluator, ABadStepOrControlSpacingIsRefusedByName) {
+  AccuracyOptions o;
+  o.step = 0;
+  EXPECT_THROW(o.validate(), Error);
+  o.step = 1, o.controlSpacing = 0;
+  try {
+    o.validate();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("-control"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace tinlod
