@@ -2,6 +2,7 @@
 // The tinlod command line, end to end: the real binary, its exit codes and output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -187,6 +188,51 @@ TEST(Cli, ExistingOutputNeedsOverwrite) {
   EXPECT_EQ(test::readFile(out), before);
   EXPECT_EQ(tinlod("sample -q -overwrite -seed 2 " + defaultDem() + " " + out).exitCode, 0);
   EXPECT_NE(test::readFile(out), before);
+}
+
+TEST(Cli, BuildWithAccuracyThenAccuracyAgreeAndPrintTheTable) {
+  const std::string dir = test::tempDir();
+  const CliRun build = tinlod("build -max_levels 3 -accuracy " + dir + "/acc.tif -report " + dir + "/acc.csv " +
+                              defaultDem() + " " + dir + "/h.gpkg");
+  ASSERT_EQ(build.exitCode, 0) << build.err;
+  EXPECT_TRUE(has(build.out, "r mean H")) << build.out;
+  EXPECT_TRUE(fs::exists(dir + "/acc.tif"));
+  const std::string csv = test::readFile(dir + "/acc.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);  // the header and levels 0 to 3
+  const CliRun again = tinlod("accuracy -report " + dir + "/again.csv " + defaultDem() + " " + dir + "/h.gpkg");
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  EXPECT_EQ(test::readFile(dir + "/again.csv"), csv);  // the same measures, read back from the file
+  const CliRun help = tinlod("accuracy --help");
+  for (const char* option : {"-accuracy", "-level", "-report", "-reference", "-step", "-control", "-of", "-co"})
+    EXPECT_TRUE(has(help.out, option)) << option;
+  EXPECT_TRUE(has(tinlod("build --help").out, "-reference"));
+}
+
+TEST(Cli, AccuracyErrorsNameTheOption) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const CliRun ext = tinlod("accuracy -report " + dir + "/r.txt " + defaultDem() + " " + dir + "/h.gpkg");
+  EXPECT_EQ(ext.exitCode, 1);
+  EXPECT_TRUE(has(ext.err, "-report")) << ext.err;
+  const CliRun of = tinlod("accuracy -of NoSuchFormat -accuracy " + dir + "/a.x " + defaultDem() + " " + dir + "/h.gpkg");
+  EXPECT_EQ(of.exitCode, 1);
+  EXPECT_TRUE(has(of.err, "-of")) << of.err;
+  const CliRun level = tinlod("accuracy -level 7 -accuracy " + dir + "/a.tif " + defaultDem() + " " + dir + "/h.gpkg");
+  EXPECT_EQ(level.exitCode, 1);
+  EXPECT_TRUE(has(level.err, "levels 0 to 2")) << level.err;
+  EXPECT_FALSE(fs::exists(dir + "/a.tif"));
+}
+
+TEST(Cli, ExperimentWritesOneReportOfEveryRun) {
+  const std::string dir = test::tempDir();
+  const CliRun r = tinlod("experiment -q -methods volume,degree -delete_pcts 20 -stop_pct 30 -report " + dir +
+                          "/e.json -report " + dir + "/e.csv " + defaultDem());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string json = test::readFile(dir + "/e.json");
+  EXPECT_TRUE(has(json, "\"method\": \"volume\"")) << json.substr(0, 400);
+  EXPECT_TRUE(has(json, "\"method\": \"degree\""));
+  EXPECT_TRUE(fs::exists(dir + "/e.csv"));
+  EXPECT_EQ(tinlod("experiment -q " + defaultDem()).exitCode, 1);  // no -report
 }
 
 TEST(Cli, RealGeographicDemIsTransformedToUtm) {

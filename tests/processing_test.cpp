@@ -2,6 +2,7 @@
 // The Processing algorithms in a headless QgsApplication, registered through the same
 // C entry point the plugin calls.
 #include <gtest/gtest.h>
+#include <qgsrasterlayer.h>
 #include <qgsapplication.h>
 #include <qgsnativealgorithms.h>
 #include <qgsprocessingalgorithm.h>
@@ -276,6 +277,55 @@ TEST(Processing, BuildHierarchyKeepsPointsOfALayer) {
     EXPECT_EQ(f.attribute("fixed").toInt(), 1) << id;
     EXPECT_EQ(f.attribute("level").toInt(), r.outputs.value("COARSEST_LEVEL").toInt()) << id;
   }
+}
+
+TEST(Processing, BuildHierarchyWritesTheAccuracyRasterAndReportWhenAsked) {
+  const std::string dir = test::tempDir();
+  const QString out = QString::fromStdString(dir + "/hier.gpkg"), raster = QString::fromStdString(dir + "/acc.tif"),
+                report = QString::fromStdString(dir + "/acc.html");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                          {"LOAD_LEVELS", false},
+                                                                          {"ACCURACY", raster},
+                                                                          {"REPORT", report},
+                                                                          {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  EXPECT_EQ(r.outputs.value("ACCURACY").toString(), raster);
+  EXPECT_EQ(r.outputs.value("REPORT").toString(), report);
+  QgsRasterLayer layer(raster, "acc", QStringLiteral("gdal"));
+  ASSERT_TRUE(layer.isValid());
+  EXPECT_EQ(layer.bandCount(), 4);
+  EXPECT_TRUE(fs::exists(report.toStdString()));
+  // Without them, no accuracy file is made.
+  const QString plain = QString::fromStdString(dir + "/plain.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", plain}}).ok);
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) files += entry.path().extension() != ".gpkg";
+  EXPECT_EQ(files, 2);
+}
+
+TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
+  const std::string dir = test::tempDir();
+  const QString hier = QString::fromStdString(dir + "/hier.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  const QString raster = QString::fromStdString(dir + "/acc.tif"), report = QString::fromStdString(dir + "/acc.csv");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:accuracy"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                    {"HIERARCHY", hier},
+                                                                    {"LEVEL", 0},
+                                                                    {"ACCURACY", raster},
+                                                                    {"REPORT", report}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  EXPECT_EQ(r.outputs.value("RMSE").toDouble(), 0.0);  // level 0 against itself
+  EXPECT_NEAR(r.outputs.value("R_ELEVATION").toDouble(), 1.0, 1e-12);
+  EXPECT_TRUE(fs::exists(raster.toStdString()));
+  const Result bad = runAlgorithm(QStringLiteral("tinlod:accuracy"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                      {"HIERARCHY", hier},
+                                                                      {"REPORT", QString::fromStdString(dir + "/r.txt")},
+                                                                      {"ACCURACY", QString::fromStdString(dir + "/b.tif")}});
+  EXPECT_FALSE(bad.ok);
+  EXPECT_TRUE(bad.error.contains("-report")) << bad.error.toStdString();
+  EXPECT_FALSE(fs::exists(dir + "/b.tif"));
 }
 
 TEST(Processing, RealDemRuns) {

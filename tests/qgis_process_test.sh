@@ -26,6 +26,7 @@ check() {  # check DESCRIPTION COMMAND...: passes when the command succeeds
 "$qp" list > "$work/list.txt" 2>/dev/null
 check "qgis_process list shows tinlod:sampletin" grep -q "tinlod:sampletin" "$work/list.txt"
 check "qgis_process list shows tinlod:buildhierarchy" grep -q "tinlod:buildhierarchy" "$work/list.txt"
+check "qgis_process list shows tinlod:accuracy" grep -q "tinlod:accuracy" "$work/list.txt"
 
 "$qp" help tinlod:sampletin > "$work/help.txt" 2>/dev/null
 check "qgis_process help describes the parameters" grep -q "TARGET_CRS" "$work/help.txt"
@@ -72,6 +73,21 @@ for level in range(levels + 1):
     assert layer is not None and layer.GetFeatureCount() == rows[level].GetField("triangles"), level
 assert rows[levels].GetField("vertices") == int(outputs["COARSEST_VERTICES"])
 print("  %d levels, %d -> %d vertices" % (levels + 1, rows[0].GetField("vertices"), rows[levels].GetField("vertices")))
+PY
+
+"$qp" --json run tinlod:accuracy --INPUT="$dem" --HIERARCHY="$hier" --ACCURACY="$work/acc.tif" --REPORT="$work/acc.json" > "$work/acc.out.json" 2> "$work/acc.err" || true
+check "qgis_process --json run tinlod:accuracy writes the raster and the report" /usr/bin/python3 - "$work/acc.out.json" "$work/acc.tif" "$work/acc.json" <<'PY'
+import json, sys
+from osgeo import gdal
+outputs = json.load(open(sys.argv[1]))["results"]
+raster = gdal.Open(sys.argv[2])
+assert raster.RasterCount == 4, raster.RasterCount
+report = json.load(open(sys.argv[3]))
+levels = report["runs"][0]["levels"]
+assert levels[0]["rmse_m"] == 0 and abs(levels[-1]["rmse_m"] - float(outputs["RMSE"])) < 1e-6, (levels[-1], outputs)
+assert 0.9 < float(outputs["R_ELEVATION"]) <= 1, outputs
+print("  coarsest level: RMSE %.2f m, r elevation %.6f, r mean curvature %.4f" % (
+    float(outputs["RMSE"]), float(outputs["R_ELEVATION"]), float(outputs["R_MEAN_CURVATURE"])))
 PY
 
 if "$qp" run tinlod:sampletin --INPUT="$dem" --BAND=9 --OUTPUT="$work/bad.gpkg" > "$work/bad.out" 2> "$work/bad.err"; then

@@ -28,7 +28,7 @@ AccuracyOutputs accuracyOutputs(Arguments& a) {
   o.options.step = a.integer("-step", o.options.step);
   o.options.controlSpacing = a.integer("-control", o.options.controlSpacing);
   o.raster.format = a.text("-of", o.raster.format);
-  for (std::string co = a.text("-co", ""); !co.empty(); co = a.text("-co", "")) o.raster.creationOptions.push_back(co);
+  o.raster.creationOptions = a.repeated("-co");
   return o;
 }
 

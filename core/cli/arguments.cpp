@@ -50,6 +50,16 @@ std::vector<int> Arguments::integers(const std::string& name, std::size_t count,
   return parsed;
 }
 
+std::vector<std::string> Arguments::repeated(const std::string& name) {
+  std::vector<std::string> values;
+  for (auto it = std::find(args_.begin(), args_.end(), name); it != args_.end(); it = std::find(args_.begin(), args_.end(), name)) {
+    if (it + 1 == args_.end()) throw Error(name + " needs 1 value");
+    values.push_back(*(it + 1));
+    args_.erase(it, it + 2);
+  }
+  return values;
+}
+
 std::string Arguments::text(const std::string& name, const std::string& fallback) {
   std::string value;
   return take(name, value) ? value : fallback;

@@ -15,6 +15,8 @@ class Arguments {
 
   bool flag(const std::string& name);
   std::string text(const std::string& name, const std::string& fallback);
+  // Every value of an option that may be given several times (-co A=1 -co B=2).
+  std::vector<std::string> repeated(const std::string& name);
   int integer(const std::string& name, int fallback);
   // An option with several whole-number values, "-size 360 300"; fallback when absent.
   std::vector<int> integers(const std::string& name, std::size_t count, std::vector<int> fallback);

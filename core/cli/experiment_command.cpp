@@ -22,7 +22,7 @@ is measured (as tinlod accuracy does). One combined report; no other file is wri
 
 Usage: tinlod experiment DEM [DEM ...] -report R [options]
 
-  -report R          R.html (plots of all runs), R.csv or R.json
+  -report R          R.html (plots of all runs), R.csv or R.json; repeat it for several
   -methods list      comma-separated (default degree,normal,volume,error)
   -delete_pcts list  comma-separated delete percentages (default 10,20)
   -stop_pct s        stop percentage (default 5)
@@ -67,16 +67,20 @@ int experimentCommand(std::vector<std::string> args) {
     }
   }
   o.stopPct = a.number("-stop_pct", o.stopPct);
-  const std::string report = a.text("-report", "");
+  const std::vector<std::string> reports = a.repeated("-report");  // one run, several formats
   o.accuracy.reference = parseReference(a.text("-reference", referenceName(o.accuracy.reference)));
   o.accuracy.step = a.integer("-step", o.accuracy.step);
   o.accuracy.controlSpacing = a.integer("-control", o.accuracy.controlSpacing);
   o.sample = sampleOptions(a);
   const bool quiet = a.flag("-q");
   const std::vector<std::string> dems = a.someOperands(kUsage);
-  if (report.empty()) throw Error("-report is required: name the report file, e.g. -report experiment.html");
-  const AccuracyReport r = runExperiment(dems, o, report, terminalFeedback(quiet));
-  if (!quiet) std::cout << "Wrote " << r.rows.size() << " levels of " << dems.size() << " DEMs to " << report << std::endl;
+  if (reports.empty()) throw Error("-report is required: name the report file, e.g. -report experiment.html");
+  for (const std::string& r : reports)
+    if (!isAccuracyReportPath(r)) throw Error("-report: '" + r + "' has an extension tinlod cannot write: name the file .csv, .json or .html");
+  const AccuracyReport r = runExperiment(dems, o, reports.front(), terminalFeedback(quiet));
+  for (std::size_t i = 1; i < reports.size(); ++i) writeAccuracyReport(r, reports[i]);
+  if (!quiet) std::cout << "Wrote " << r.rows.size() << " levels of " << dems.size() << " DEMs to " << reports.front()
+                        << (reports.size() > 1 ? " and " + std::to_string(reports.size() - 1) + " more" : "") << std::endl;
   return 0;
 }
 
