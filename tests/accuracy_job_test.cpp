@@ -18,16 +18,7 @@ namespace fs = std::filesystem;
 namespace tinlod {
 namespace {
 
-std::string smallDem() {
-  static const std::string path = [] {
-    SyntheticDemOptions o;
-    o.width = 150, o.height = 120, o.cellSize = 25;
-    const std::string p = test::tempDir() + "/dem.tif";
-    writeDemGeoTiff(makeSyntheticDem(o), p);
-    return p;
-  }();
-  return path;
-}
+std::string smallDem() { return test::smallSyntheticDemFile(); }
 
 struct Built {
   std::string dir = test::tempDir();

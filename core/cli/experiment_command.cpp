@@ -75,8 +75,7 @@ int experimentCommand(std::vector<std::string> args) {
   const bool quiet = a.flag("-q");
   const std::vector<std::string> dems = a.someOperands(kUsage);
   if (reports.empty()) throw Error("-report is required: name the report file, e.g. -report experiment.html");
-  for (const std::string& r : reports)
-    if (!isAccuracyReportPath(r)) throw Error("-report: '" + r + "' has an extension tinlod cannot write: name the file .csv, .json or .html");
+  for (const std::string& r : reports) checkAccuracyReportPath(r);
   const AccuracyReport r = runExperiment(dems, o, reports.front(), terminalFeedback(quiet));
   for (std::size_t i = 1; i < reports.size(); ++i) writeAccuracyReport(r, reports[i]);
   if (!quiet) std::cout << "Wrote " << r.rows.size() << " levels of " << dems.size() << " DEMs to " << reports.front()

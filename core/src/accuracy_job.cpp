@@ -14,8 +14,7 @@ namespace tinlod {
 
 void AccuracyOutputs::validate() const {
   options.validate();
-  if (!reportPath.empty() && !isAccuracyReportPath(reportPath))
-    throw Error("-report: '" + reportPath + "' has an extension tinlod cannot write: name the file .csv, .json or .html");
+  if (!reportPath.empty()) checkAccuracyReportPath(reportPath);
   if (!rasterPath.empty()) {
     GDALAllRegister();
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(raster.format.c_str());

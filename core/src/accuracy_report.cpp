@@ -34,10 +34,11 @@ Writer writerFor(const std::string& path) {
   return nullptr;
 }
 
+}  // namespace
+
 // Said in the user's terms before the temporary sibling exists, whose name would
-// otherwise turn up in the message of a failed open. Messages start with the option's
-// command-line name, as the accuracy job's own checks of it do.
-void checkReportPath(const std::string& path) {
+// otherwise turn up in the message of a failed open.
+void checkAccuracyReportPath(const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext.empty()) throw Error("-report: '" + path + "' has no extension: name the file .csv, .json or .html");
   if (!writerFor(path)) throw Error("-report: unknown report format '" + ext + "': name the file .csv, .json or .html");
@@ -47,10 +48,8 @@ void checkReportPath(const std::string& path) {
   if (fs::is_directory(path)) throw Error("-report: '" + path + "' is a folder: name a .csv, .json or .html file");
 }
 
-}  // namespace
-
 void writeAccuracyReport(const AccuracyReport& report, const std::string& path) {
-  checkReportPath(path);
+  checkAccuracyReportPath(path);
   TemporaryOutput::removeStale(path);
   TemporaryOutput output{fs::path(path)};
   {

@@ -53,8 +53,7 @@ AccuracyReport runExperiment(const std::vector<std::string>& dems, const Experim
                              const std::string& reportPath, const Feedback& feedback) {
   options.validate();
   if (dems.empty()) throw Error("name at least one DEM");
-  if (!reportPath.empty() && !isAccuracyReportPath(reportPath))
-    throw Error("-report: '" + reportPath + "' has an extension tinlod cannot write: name the file .csv, .json or .html");
+  if (!reportPath.empty()) checkAccuracyReportPath(reportPath);
   const ProgressRange all(feedback, 0, 1);
   std::vector<LevelAccuracy> rows;
   for (std::size_t i = 0; i < dems.size(); ++i)

@@ -47,6 +47,10 @@ struct AccuracyReport {
 // appears complete or not at all. Throws Error for another extension.
 void writeAccuracyReport(const AccuracyReport& report, const std::string& path);
 
+// Throws Error, naming -report, for a path writeAccuracyReport could not write: an unknown
+// extension, a missing or read-only folder. For checks before long work.
+void checkAccuracyReportPath(const std::string& path);
+
 // The extensions writeAccuracyReport understands, for messages: ".csv, .json or .html".
 bool isAccuracyReportPath(const std::string& path);
 
