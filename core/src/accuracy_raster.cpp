@@ -7,15 +7,12 @@
 #include <filesystem>
 #include <memory>
 
+#include "gdal_handles.h"
 #include "temporary_output.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
 namespace {
-
-using DatasetPtr = std::unique_ptr<GDALDataset, void (*)(GDALDataset*)>;
-
-DatasetPtr wrap(GDALDataset* ds) { return DatasetPtr(ds, [](GDALDataset* d) { GDALClose(d); }); }
 
 GDALDriver& driverFor(const RasterWriteOptions& options) {
   GDALAllRegister();
@@ -46,7 +43,7 @@ void writeBand(GDALDataset& ds, int index, const Grid& grid, const char* descrip
 
 DatasetPtr inMemory(const AccuracyBands& bands, const TestGrid& grid) {
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-  DatasetPtr ds = wrap(mem->Create("", grid.cols, grid.rows, 4, GDT_Float32, nullptr));
+  DatasetPtr ds = DatasetPtr(mem->Create("", grid.cols, grid.rows, 4, GDT_Float32, nullptr));
   double gt[6];
   std::copy(grid.geotransform.begin(), grid.geotransform.end(), gt);
   ds->SetGeoTransform(gt);
@@ -77,8 +74,8 @@ void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const
   CPLErrorReset();
   CPLStringList co;
   for (const std::string& o : options.creationOptions) co.AddString(o.c_str());
-  DatasetPtr out = wrap(driver.CreateCopy(temporary.path().c_str(), mem.get(), FALSE, co.List(), gdalProgress,
-                                          const_cast<ProgressRange*>(&progress)));
+  DatasetPtr out(driver.CreateCopy(temporary.path().c_str(), mem.get(), FALSE, co.List(), gdalProgress,
+                                   const_cast<ProgressRange*>(&progress)));
   if (!out) {
     progress.report(1, "Writing the accuracy raster");  // a cancel, if that is what stopped GDAL
     throw Error("cannot write the accuracy raster '" + path + "': " + CPLGetLastErrorMsg());

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gdal_handles.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -19,15 +20,6 @@ struct CrsTransform::Impl {
 };
 
 namespace {
-
-std::string toWkt(const OGRSpatialReference& srs) {
-  char* wkt = nullptr;
-  const char* options[] = {"FORMAT=WKT2_2019", nullptr};
-  srs.exportToWkt(&wkt, options);
-  std::string out = wkt ? wkt : "";
-  CPLFree(wkt);
-  return out;
-}
 
 std::string describe(const OGRSpatialReference& srs) {
   std::string name = srs.GetName() ? srs.GetName() : "unnamed CRS";
@@ -169,7 +161,7 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
                     ", which is not metric: points are transformed to " + describe(dst));
   }
   dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  impl->wkt = toWkt(dst);
+  impl->wkt = wkt2(dst);
   impl->name = describe(dst);
   warnAboutScale(dem, src, dst, impl->wkt, progress);
   if (!src.IsSame(&dst)) {

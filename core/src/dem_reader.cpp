@@ -7,16 +7,12 @@
 #include <cmath>
 #include <memory>
 
+#include "gdal_handles.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
 namespace {
-
-struct GdalCloser {
-  void operator()(GDALDataset* ds) const { GDALClose(ds); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, GdalCloser>;
 
 DatasetPtr openRaster(const std::string& path) {
   GDALAllRegister();

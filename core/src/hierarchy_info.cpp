@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 
+#include "gdal_handles.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -52,12 +53,8 @@ void readLevels(GDALDataset& ds, HierarchyInfo& info) {
 HierarchyInfo readHierarchyInfo(const std::string& path) {
   GDALAllRegister();
   if (!std::filesystem::exists(path)) throw Error("'" + path + "' does not exist");
-  CPLPushErrorHandler(CPLQuietErrorHandler);
   const char* const gpkgOnly[] = {"GPKG", nullptr};
-  std::unique_ptr<GDALDataset, void (*)(GDALDataset*)> ds(
-      static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, gpkgOnly, nullptr, nullptr)),
-      [](GDALDataset* d) { GDALClose(d); });
-  CPLPopErrorHandler();
+  const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR, gpkgOnly);
   if (!ds) throw Error("'" + path + "' is not a GeoPackage GDAL can read");
   HierarchyInfo info;
   info.path = path;

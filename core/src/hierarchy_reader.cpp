@@ -7,29 +7,15 @@
 #include <cstdlib>
 #include <memory>
 
+#include "gdal_handles.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
 namespace {
 
-using DatasetPtr = std::unique_ptr<GDALDataset, void (*)(GDALDataset*)>;
-
-DatasetPtr open(const std::string& path) {
-  const char* const gpkgOnly[] = {"GPKG", nullptr};
-  return DatasetPtr(static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, gpkgOnly,
-                                                         nullptr, nullptr)),
-                    [](GDALDataset* d) { GDALClose(d); });
-}
-
 std::string wktOf(OGRLayer& layer) {
   const OGRSpatialReference* srs = layer.GetSpatialRef();
-  if (!srs) return "";
-  char* wkt = nullptr;
-  const char* options[] = {"FORMAT=WKT2_2019", nullptr};
-  srs->exportToWkt(&wkt, options);
-  std::string out = wkt ? wkt : "";
-  CPLFree(wkt);
-  return out;
+  return srs ? wkt2(*srs) : "";
 }
 
 void readVertices(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress) {
@@ -90,7 +76,8 @@ void readOptions(const HierarchyInfo& info, Hierarchy& h) {
 StoredHierarchy readHierarchy(const std::string& path, const ProgressRange& progress) {
   StoredHierarchy out;
   out.info = readHierarchyInfo(path);  // also refuses files tinlod did not write
-  const DatasetPtr ds = open(path);
+  const char* const gpkgOnly[] = {"GPKG", nullptr};
+  const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR, gpkgOnly);
   OGRLayer* vertices = ds ? ds->GetLayerByName("vertices") : nullptr;
   OGRLayer* triangles = ds ? ds->GetLayerByName("triangles") : nullptr;
   if (!vertices || !triangles) throw Error("'" + path + "' has no vertices or triangles layer: it is not a tinlod TIN");

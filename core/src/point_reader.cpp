@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "gdal_handles.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
@@ -34,12 +35,7 @@ void checkPointsExist(const std::string& path) {
 
 std::vector<std::array<double, 2>> readPoints(const std::string& path, const std::string& targetWkt,
                                               const ProgressRange& progress) {
-  GDALAllRegister();
-  CPLPushErrorHandler(CPLQuietErrorHandler);
-  std::unique_ptr<GDALDataset, void (*)(GDALDataset*)> ds(
-      static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)),
-      [](GDALDataset* d) { GDALClose(d); });
-  CPLPopErrorHandler();
+  const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR);
   if (!ds || ds->GetLayerCount() < 1) throw Error("points to keep: '" + path + "' is not a vector file GDAL can read");
   OGRLayer* layer = ds->GetLayer(0);
   std::unique_ptr<OGRCoordinateTransformation> transform;
