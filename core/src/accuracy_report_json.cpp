@@ -8,31 +8,11 @@
 
 #include "accuracy_report_formats.h"
 #include "number_text.h"
+#include "text_and_paths.h"
 #include "report_runs.h"
 
 namespace tinlod {
 namespace {
-
-std::string jsonString(const std::string& text) {
-  std::string out = "\"";
-  for (unsigned char c : text) {
-    if (c == '"' || c == '\\')
-      out += {'\\', static_cast<char>(c)};
-    else if (c == '\n')
-      out += "\\n";
-    else if (c == '\t')
-      out += "\\t";
-    else if (c == '\r')
-      out += "\\r";
-    else if (c < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-      out += escaped;
-    } else
-      out += static_cast<char>(c);
-  }
-  return out + "\"";
-}
 
 // JSON has no NaN or infinity: a statistic without enough points is null.
 std::string jsonNumber(double value) { return std::isfinite(value) ? roundTripNumber(value) : "null"; }

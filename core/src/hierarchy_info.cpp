@@ -11,21 +11,11 @@
 #include <sstream>
 
 #include "gdal_handles.h"
+#include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
 namespace {
-
-std::string jsonString(const std::string& s) {
-  std::ostringstream out;
-  out << '"';
-  for (char c : s) {
-    if (c == '"' || c == '\\') out << '\\' << c;
-    else if (static_cast<unsigned char>(c) < 0x20) out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
-    else out << c;
-  }
-  return out.str() + '"';
-}
 
 void readLevels(GDALDataset& ds, HierarchyInfo& info) {
   if (OGRLayer* levels = ds.GetLayerByName("levels")) {

@@ -3,6 +3,7 @@
 
 #include <cpl_vsi.h>
 
+#include <cstdio>
 #include <sstream>
 
 namespace tinlod {
@@ -11,6 +12,27 @@ std::string formatNumber(double value) {
   std::ostringstream out;
   out << value;
   return out.str();
+}
+
+std::string jsonString(const std::string& text) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    if (c == '"' || c == '\\')
+      out += {'\\', static_cast<char>(c)};
+    else if (c == '\n')
+      out += "\\n";
+    else if (c == '\t')
+      out += "\\t";
+    else if (c == '\r')
+      out += "\\r";
+    else if (c < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+      out += escaped;
+    } else
+      out += static_cast<char>(c);
+  }
+  return out + "\"";
 }
 
 bool plainPathMissing(const std::string& path) {

@@ -9,6 +9,9 @@ namespace tinlod {
 // A number as a person writes it: 0.99, 20, 1e-05 (not 0.990000).
 std::string formatNumber(double value);
 
+// `text` as a quoted JSON string, escaped.
+std::string jsonString(const std::string& text);
+
 // True when `path` is a plain file path (not /vsi..., not DRIVER:...) that does not
 // exist: said plainly before GDAL would answer with its own wording.
 bool plainPathMissing(const std::string& path);
