@@ -15,12 +15,7 @@ namespace tinlod {
 void AccuracyOutputs::validate() const {
   options.validate();
   if (!reportPath.empty()) checkAccuracyReportPath(reportPath);
-  if (!rasterPath.empty()) {
-    GDALAllRegister();
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(raster.format.c_str());
-    if (!driver || !driver->GetMetadataItem(GDAL_DCAP_RASTER))
-      throw Error("-of: '" + raster.format + "' is not a GDAL raster format: use e.g. GTiff (see gdalinfo --formats)");
-  }
+  if (!rasterPath.empty()) checkRasterFormat(raster);
   if (rasterLevel < -1) throw Error("-level must be a level number (0 the original) or -1 for the coarsest");
 }
 

@@ -24,6 +24,12 @@ GDALDriver& driverFor(const RasterWriteOptions& options) {
   return *driver;
 }
 
+}  // namespace
+
+void checkRasterFormat(const RasterWriteOptions& options) { driverFor(options); }
+
+namespace {
+
 void writeBand(GDALDataset& ds, int index, const Grid& grid, const char* description) {
   std::vector<float> row(grid.cols);
   GDALRasterBand* band = ds.GetRasterBand(index);

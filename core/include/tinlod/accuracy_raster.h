@@ -17,6 +17,10 @@ struct RasterWriteOptions {
 
 constexpr double kAccuracyNodata = -9999;
 
+// Throws Error, naming -of, unless GDAL can write rasters in options.format: for checks
+// before long work.
+void checkRasterFormat(const RasterWriteOptions& options);
+
 // Writes the four bands on the test grid with its georeferencing and the DEM's CRS,
 // Float32, band descriptions, nodata and statistics set, so that QGIS shows it at once.
 // Atomic: the file appears complete or not at all; an existing file is replaced.
