@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "bench_support.h"
-#include "parallel_rows.h"
+#include "parallel_blocks.h"
 #include "tinlod/accuracy_evaluator.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/hierarchy_builder.h"
@@ -29,10 +29,10 @@ void timeSurface(const tinlod::Grid& heights, const tinlod::TestGrid& grid, int 
   const tinlod::BsplineSurface surface(heights, control, grid.cellWidth, grid.cellHeight);
   std::vector<std::vector<tinlod::SurfacePoint>> rows(grid.rows);
   const Clock::time_point t0 = Clock::now();
-  tinlod::forRowBlocks(grid.rows, [&](int b, int e) { for (int r = b; r < e; ++r) surface.evaluateRow(r, rows[r]); }, {});
+  tinlod::forEachBlock(grid.rows, [&](int b, int e) { for (int r = b; r < e; ++r) surface.evaluateRow(r, rows[r]); }, {});
   const Clock::time_point t1 = Clock::now();
   std::vector<double> sink(grid.rows);
-  tinlod::forRowBlocks(grid.rows, [&](int b, int e) {
+  tinlod::forEachBlock(grid.rows, [&](int b, int e) {
     for (int r = b; r < e; ++r)
       for (const tinlod::SurfacePoint& p : rows[r]) sink[r] += tinlod::terrainMeasures(p).meanCurvature;
   }, {});
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     evaluator.evaluate(triangles, row, nullptr, kQuiet);
     const double whole = seconds(t0, Clock::now());
     std::printf("%6d %10zu %12.1f %12.1f %12.1f %12.2f %10.2f %10.4f\n", L, h.levels[L].vertices, points / interp / 1e6,
-                points / fit / 1e6, points / curvature / 1e6, whole, row.rmse, row.variables[3].correlation);
+                points / fit / 1e6, points / curvature / 1e6, whole, row.rmse, tinlod::correlationOf(row, "mean_curvature"));
     interpAll += interp, fitAll += fit, curvAll += curvature, wholeAll += whole;
   }
   const int n = h.coarsest() + 1;

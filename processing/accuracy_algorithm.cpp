@@ -7,16 +7,6 @@
 #include "processing_feedback.h"
 
 namespace tinlod::qgis {
-namespace {
-
-double correlation(const LevelAccuracy& row, const char* name) {
-  for (const VariableComparison& v : row.variables)
-    if (v.name == name) return v.correlation;
-  return std::nan("");
-}
-
-}  // namespace
-
 QString AccuracyAlgorithm::name() const { return QStringLiteral("accuracy"); }
 QString AccuracyAlgorithm::displayName() const { return QStringLiteral("Accuracy of a TIN hierarchy"); }
 QString AccuracyAlgorithm::group() const { return QStringLiteral("TIN accuracy"); }
@@ -68,14 +58,14 @@ QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessin
   for (const LevelAccuracy& r : report.rows)
     feedback->pushInfo(QStringLiteral("level %1: %2 vertices, RMSE %3 m, maximum error %4 m, r elevation %5, r mean curvature %6")
                            .arg(r.level).arg(r.vertices).arg(r.rmse, 0, 'f', 2).arg(r.maxAbsError, 0, 'f', 2)
-                           .arg(correlation(r, "elevation"), 0, 'f', 6).arg(correlation(r, "mean_curvature"), 0, 'f', 4));
+                           .arg(correlationOf(r, "elevation"), 0, 'f', 6).arg(correlationOf(r, "mean_curvature"), 0, 'f', 4));
   QVariantMap outputs;
   if (!accuracy_.rasterPath.empty()) outputs.insert(QStringLiteral("ACCURACY"), QString::fromStdString(accuracy_.rasterPath));
   if (!accuracy_.reportPath.empty()) outputs.insert(QStringLiteral("REPORT"), QString::fromStdString(accuracy_.reportPath));
   outputs.insert(QStringLiteral("RMSE"), row.rmse);
   outputs.insert(QStringLiteral("MAX_ERROR"), row.maxAbsError);
-  outputs.insert(QStringLiteral("R_ELEVATION"), correlation(row, "elevation"));
-  outputs.insert(QStringLiteral("R_MEAN_CURVATURE"), correlation(row, "mean_curvature"));
+  outputs.insert(QStringLiteral("R_ELEVATION"), correlationOf(row, "elevation"));
+  outputs.insert(QStringLiteral("R_MEAN_CURVATURE"), correlationOf(row, "mean_curvature"));
   return outputs;
 }
 

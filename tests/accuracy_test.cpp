@@ -24,9 +24,9 @@ namespace {
 const ProgressRange kQuiet(Feedback{}, 0, 1);
 
 const VariableComparison& variable(const LevelAccuracy& row, const std::string& name) {
-  for (const VariableComparison& v : row.variables)
-    if (v.name == name) return v;
-  throw Error("no variable " + name);
+  const VariableComparison* v = findVariable(row, name);
+  if (!v) throw Error("no variable " + name);
+  return *v;
 }
 
 TEST(TinRasterizer, TwoTrianglesReproduceTheirPlaneAtEveryCoveredPointAndNoOther) {

@@ -33,17 +33,12 @@ AccuracyOutputs accuracyOutputs(Arguments& a) {
 }
 
 void printAccuracy(const std::vector<LevelAccuracy>& rows, std::ostream& out) {
-  auto r = [](const LevelAccuracy& row, const char* name) {
-    for (const VariableComparison& v : row.variables)
-      if (v.name == name) return v.correlation;
-    return 0.0;
-  };
   out << std::setw(6) << "level" << std::setw(11) << "vertices" << std::setw(10) << "RMSE m" << std::setw(12)
       << "max err m" << std::setw(12) << "r height" << std::setw(12) << "r mean H" << std::setw(10) << "Moran I" << "\n";
   for (const LevelAccuracy& row : rows)
     out << std::setw(6) << row.level << std::setw(11) << row.vertices << std::fixed << std::setprecision(2)
         << std::setw(10) << row.rmse << std::setw(12) << row.maxAbsError << std::setprecision(6) << std::setw(12)
-        << r(row, "elevation") << std::setw(12) << r(row, "mean_curvature") << std::setprecision(3) << std::setw(10)
+        << correlationOf(row, "elevation") << std::setw(12) << correlationOf(row, "mean_curvature") << std::setprecision(3) << std::setw(10)
         << row.moransI << std::defaultfloat << "\n";
 }
 

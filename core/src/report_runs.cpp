@@ -2,6 +2,7 @@
 #include "report_runs.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "text_and_paths.h"
 
@@ -82,6 +83,11 @@ const VariableComparison* findVariable(const LevelAccuracy& row, const std::stri
   for (const VariableComparison& v : row.variables)
     if (v.name == name) return &v;
   return nullptr;
+}
+
+double correlationOf(const LevelAccuracy& row, const std::string& name) {
+  const VariableComparison* v = findVariable(row, name);
+  return v ? v->correlation : std::nan("");
 }
 
 }  // namespace tinlod

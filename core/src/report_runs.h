@@ -35,7 +35,4 @@ std::string sharedRunParts(const std::vector<ReportRun>& runs);
 // rows have, in order of first appearance.
 std::vector<std::string> variableNames(const std::vector<LevelAccuracy>& rows);
 
-// The comparison of variable `name` in `row`, or nullptr.
-const VariableComparison* findVariable(const LevelAccuracy& row, const std::string& name);
-
 }  // namespace tinlod

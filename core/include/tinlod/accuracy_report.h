@@ -32,6 +32,12 @@ struct LevelAccuracy {
   std::vector<VariableComparison> variables;
 };
 
+// The comparison of variable `name` in `row`, or nullptr.
+const VariableComparison* findVariable(const LevelAccuracy& row, const std::string& name);
+
+// Its correlation r, NaN when the row has no such variable.
+double correlationOf(const LevelAccuracy& row, const std::string& name);
+
 struct AccuracyReport {
   std::string title;
   std::string reference;     // "tin" (the original TIN, as in the study) or "dem"
