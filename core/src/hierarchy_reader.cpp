@@ -23,17 +23,19 @@ void readVertices(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress) 
   h.base.vertices.assign(static_cast<std::size_t>(count), TinVertex());
   h.vertexLevel.assign(static_cast<std::size_t>(count), 0);
   h.fixed.assign(static_cast<std::size_t>(count), 0);
-  const int level = layer.GetLayerDefn()->GetFieldIndex("level");
-  const int fixed = layer.GetLayerDefn()->GetFieldIndex("fixed");
+  // Field positions looked up once: by name, each feature would search them again.
+  OGRFeatureDefn& defn = *layer.GetLayerDefn();
+  const int idField = defn.GetFieldIndex("id"), rowField = defn.GetFieldIndex("row"), colField = defn.GetFieldIndex("col");
+  const int outline = defn.GetFieldIndex("outline"), level = defn.GetFieldIndex("level"), fixed = defn.GetFieldIndex("fixed");
   std::size_t seen = 0;
   for (auto& f : layer) {
-    const GIntBig id = f->GetFieldAsInteger64("id") - 1;
+    const GIntBig id = f->GetFieldAsInteger64(idField) - 1;
     const auto* p = dynamic_cast<const OGRPoint*>(f->GetGeometryRef());
     if (id < 0 || id >= count || !p) throw Error("the vertices layer of the GeoPackage is damaged (vertex ids out of range)");
     TinVertex& v = h.base.vertices[static_cast<std::size_t>(id)];
     v.x = p->getX(), v.y = p->getY(), v.z = p->getZ();
-    v.row = f->GetFieldAsInteger("row"), v.col = f->GetFieldAsInteger("col");
-    v.outline = f->GetFieldAsInteger("outline") != 0;
+    v.row = f->GetFieldAsInteger(rowField), v.col = f->GetFieldAsInteger(colField);
+    v.outline = f->GetFieldAsInteger(outline) != 0;
     if (level >= 0) h.vertexLevel[static_cast<std::size_t>(id)] = f->GetFieldAsInteger(level);
     if (fixed >= 0) h.fixed[static_cast<std::size_t>(id)] = f->GetFieldAsInteger(fixed) != 0;
     if ((++seen & 0xFFFF) == 0) progress.report(double(seen) / count, "Reading vertices");
@@ -43,14 +45,15 @@ void readVertices(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress) 
 void readTriangles(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress) {
   const GIntBig count = layer.GetFeatureCount();
   const std::size_t vertices = h.base.vertices.size();
-  const int first = layer.GetLayerDefn()->GetFieldIndex("first_level");
-  const int last = layer.GetLayerDefn()->GetFieldIndex("last_level");
+  OGRFeatureDefn& defn = *layer.GetLayerDefn();
+  const int first = defn.GetFieldIndex("first_level"), last = defn.GetFieldIndex("last_level");
+  const int corner[3] = {defn.GetFieldIndex("v0"), defn.GetFieldIndex("v1"), defn.GetFieldIndex("v2")};
   layer.SetIgnoredFields(std::vector<const char*>{"OGR_GEOMETRY", nullptr}.data());  // corners come from v0..v2
   h.triangles.reserve(static_cast<std::size_t>(count));
   for (auto& f : layer) {
     HierarchyTriangle t;
     for (int k = 0; k < 3; ++k) {
-      const GIntBig v = f->GetFieldAsInteger64(("v" + std::to_string(k)).c_str()) - 1;
+      const GIntBig v = f->GetFieldAsInteger64(corner[k]) - 1;
       if (v < 0 || static_cast<std::size_t>(v) >= vertices)
         throw Error("the triangles layer of the GeoPackage is damaged (a corner is not a vertex)");
       t.v[k] = static_cast<VertexId>(v);
