@@ -160,6 +160,14 @@ TEST(BuildJob, CancelLeavesNothingBehind) {
   }
 }
 
+TEST(BuildJob, CancelWhileImportancesAreRecomputedOnEveryCoreStopsThemAll) {
+  const std::string dir = test::tempDir();
+  Feedback cancelling;
+  cancelling.progress = [](double, const std::string& phase) { return phase != "Selecting level 2"; };
+  EXPECT_THROW(runBuildJob(smallDem(), dir + "/h.gpkg", {}, {}, false, cancelling), Cancelled);
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
 TEST(BuildJob, OptionsThatWouldDoNothingAreRefused) {
   const std::string dir = test::tempDir();
   std::ofstream(dir + "/polygon.geojson")

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <mutex>
 
-#include "parallel_rows.h"
+#include "parallel_blocks.h"
 #include "tinlod/accuracy_statistics.h"
 #include "tinlod/error.h"
 #include "tinlod/terrain_measures.h"
@@ -119,7 +119,7 @@ struct AccuracyEvaluator::Impl {
       std::lock_guard<std::mutex> lock(mutex);
       blocks.emplace_back(rowBegin, local);
     };
-    forRowBlocks(grid.rows, work, [&](double f) { progress.report(f, "Comparing curvature"); });
+    forEachBlock(grid.rows, work, [&](double f) { progress.report(f, "Comparing curvature"); });
     std::sort(blocks.begin(), blocks.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     Comparison total;
     for (const auto& block : blocks) total.merge(block.second);

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 #include <queue>
-#include <thread>
 
 #include "cgal_types.h"
+#include "parallel_blocks.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -174,25 +174,16 @@ class Simplifier {
   }
 
   // Importances change only around deleted vertices; those are recomputed at the start of
-  // each level, split over the machine's cores.
+  // each level, split over the machine's cores (a cancel stops every thread).
   void updateStaleImportances(std::int32_t level) {
     std::vector<VertexHandle> stale;
     for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v)
       if (v->info().stale && eligible(v)) stale.push_back(v);
-    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 8);
-    const std::size_t chunk = (stale.size() + threads - 1) / threads;
-    std::vector<std::thread> workers;
-    for (std::size_t t = 1; t < threads && t * chunk < stale.size(); ++t)
-      workers.emplace_back([&, t] {
-        Star scratch;
-        for (std::size_t i = t * chunk; i < std::min(stale.size(), (t + 1) * chunk); ++i) updateImportance(stale[i], scratch);
-      });
-    Star scratch;
-    for (std::size_t i = 0; i < std::min(stale.size(), chunk); ++i) {
-      updateImportance(stale[i], scratch);
-      if ((i & 0xFFFF) == 0) progress_.report(lastFraction_, "Selecting level " + std::to_string(level));
-    }
-    for (std::thread& w : workers) w.join();
+    const std::string phase = "Selecting level " + std::to_string(level);
+    forEachBlock(static_cast<int>(stale.size()), [&](int begin, int end) {
+      Star scratch;
+      for (int i = begin; i < end; ++i) updateImportance(stale[i], scratch);
+    }, [&](double) { progress_.report(lastFraction_, phase); });
   }
 
   bool wanted(double importance) const {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "parallel_rows.h"
+#include "parallel_blocks.h"
 
 #include <algorithm>
 #include <atomic>
@@ -10,18 +10,18 @@
 
 namespace tinlod {
 
-void forRowBlocks(int rows, const std::function<void(int, int)>& work, const std::function<void(double)>& progress) {
-  const int block = std::max(1, std::min(64, rows / 64));
+void forEachBlock(int count, const std::function<void(int, int)>& work, const std::function<void(double)>& progress) {
+  const int block = std::max(1, std::min(64, count / 64));
   std::atomic<int> next{0}, done{0};
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
   std::mutex failureMutex;
   auto loop = [&](bool reporting) {
     try {
-      for (int b = next.fetch_add(block); b < rows && !stop; b = next.fetch_add(block)) {
-        work(b, std::min(rows, b + block));
-        done += std::min(rows, b + block) - b;
-        if (reporting && progress) progress(double(done) / rows);
+      for (int b = next.fetch_add(block); b < count && !stop; b = next.fetch_add(block)) {
+        work(b, std::min(count, b + block));
+        done += std::min(count, b + block) - b;
+        if (reporting && progress) progress(double(done) / count);
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(failureMutex);

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "parallel_rows.h"
+#include "parallel_blocks.h"
 
 namespace tinlod {
 namespace {
@@ -74,7 +74,7 @@ Grid rasterizeTin(const std::vector<Pos>& positions, const std::vector<double>& 
     for (auto it = first; it != planes.end() && it->top < rowEnd; ++it)
       if (it->bottom >= rowBegin) fillTriangle(*it, rowBegin, rowEnd, out);
   };
-  forRowBlocks(rows, work, [&](double f) { progress.report(f, "Interpolating the TIN"); });
+  forEachBlock(rows, work, [&](double f) { progress.report(f, "Interpolating the TIN"); });
   return out;
 }
 
