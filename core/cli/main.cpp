@@ -22,6 +22,7 @@ Commands:
   build       sample a DEM and simplify it into a TIN hierarchy, written to a GeoPackage
   accuracy    measure the accuracy of every level of a hierarchy: raster and report
   experiment  run the study's experiment over DEMs: methods x delete percentages, one report
+  insert      greedy insertion (Garland and Heckbert): a TIN within a vertical tolerance
   info        describe a GeoPackage written by tinlod
   sample      sample a DEM into a Delaunay TIN, written to a GeoPackage
   makedem     write the project's synthetic default DEM (a GeoTIFF)
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
                                                  {"build", tinlod::cli::buildCommand},
                                                  {"experiment", tinlod::cli::experimentCommand},
                                                  {"info", tinlod::cli::infoCommand},
+                                                 {"insert", tinlod::cli::insertCommand},
                                                  {"sample", tinlod::cli::sampleCommand},
                                                  {"makedem", tinlod::cli::makeDemCommand}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {

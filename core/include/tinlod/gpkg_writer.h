@@ -3,6 +3,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "tinlod/feedback.h"
 #include "tinlod/tin.h"
@@ -20,11 +21,18 @@ struct GpkgWriteOptions {
 // Throws Error when `path` exists and overwrite is off, or its folder is missing.
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options);
 
+// A further field of the 'vertices' layer: one value per vertex, NaN and infinity written as null.
+struct VertexField {
+  std::string name;
+  std::vector<double> values;
+  bool integer = false;
+};
+
 // Writes layers `vertices` (PointZ) and `triangles` (PolygonZ, one feature per
 // triangle). In the file, ids count from 1 and equal the feature ids (fid), so
 // v0, v1, v2 join to vertices.fid: vertex index i is written as id i + 1. Works on a temporary copy and renames it into place at the end, so a
 // failed or cancelled run leaves `path` as it was.
 void writeTinGpkg(const Tin& tin, const std::string& path, const GpkgWriteOptions& options,
-                  const ProgressRange& progress);
+                  const ProgressRange& progress, const std::vector<VertexField>& extra = {});
 
 }  // namespace tinlod

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+#include <iostream>
+#include <limits>
+
+#include "arguments.h"
+#include "commands.h"
+#include "sample_arguments.h"
+#include "terminal_feedback.h"
+#include "tinlod/error.h"
+#include "tinlod/insert_job.h"
+
+namespace tinlod::cli {
+namespace {
+
+const char* const kUsage =
+    "tinlod insert DEM OUT.gpkg [-max_error m] [-max_vertices n] [-max_triangles n] [-candidates cells|samples] "
+    "[-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-overwrite] [-q]";
+
+const char* const kHelp = R"(Greedy insertion (Garland and Heckbert): a TIN from a DEM by inserting, again and
+again, the point of largest vertical error, until every point is within a tolerance.
+
+Usage: tinlod insert DEM OUT.gpkg [options]
+
+  DEM            any raster GDAL reads
+  OUT.gpkg       GeoPackage with the layers of 'tinlod sample': 'vertices' (PointZ: id, row,
+                 col, outline, insertion, error_before) and 'triangles' (PolygonZ: id, v0,
+                 v1, v2). 'insertion' is the vertex's place in the insertion order: the
+                 vertices with insertion <= k make a coarser TIN (a progressive TIN) whose
+                 maximum error is the error_before of vertex k + 1 (null for the starting
+                 hull and for vertices placed to keep triangles off nodata holes).
+
+Stopping (whichever comes first):
+  -max_error m      every candidate within m metres of the TIN, vertically (default 1;
+                    0 inserts until the TIN is exact). With only -max_vertices or
+                    -max_triangles given, the default is 0: the count alone stops it.
+  -max_vertices n   at most n vertices (exactly n unless the tolerance is met first)
+  -max_triangles n  at most n triangles
+
+Options:
+  -candidates c  'cells' (default): every valid DEM cell may become a vertex, the last row
+                 and column included; 'samples': only the vertices of the TIN that
+                 'tinlod sample' makes with the same -block, -jitter and -seed (the
+                 study's comparison with the delete methods on the same input)
+  -b band        band holding the heights (default 1)
+  -s_srs srs     CRS of the DEM, for a file with none or a wrong one
+  -t_srs srs     metric CRS of the TIN (default: the DEM's own if in metres, else UTM)
+  -block k, -jitter m, -seed n   sampling of the 'samples' candidates (as 'tinlod sample')
+  -overwrite     replace tinlod's layers of an existing GeoPackage; its other layers are kept
+  -q             quiet: no progress or information, warnings only
+
+The run starts from the convex hull of the valid cells (the corners of a full raster) at
+their own heights and keeps the TIN Delaunay in metres on the ground (also for a
+geographic DEM, whose TIN is written in a UTM zone). No triangle spans a nodata hole:
+triangles over a hole's edge are split along it first. The maximum error and RMSE are
+measured again at every valid cell after the run, printed and stored in the file's
+metadata. Ctrl-C stops the run and leaves no file behind.
+)";
+
+InsertOptions insertOptions(Arguments& a) {
+  InsertOptions o;
+  o.sample = sampleOptions(a);
+  o.candidates = parseCandidates(a.text("-candidates", "cells"));
+  const double maxError = a.number("-max_error", std::numeric_limits<double>::quiet_NaN());
+  const double maxVertices = a.number("-max_vertices", 0), maxTriangles = a.number("-max_triangles", 0);
+  if (maxVertices < 0 || maxVertices != std::floor(maxVertices) || maxTriangles < 0 || maxTriangles != std::floor(maxTriangles))
+    throw Error("-max_vertices and -max_triangles take whole numbers of 0 or more");
+  o.maxVertices = static_cast<std::size_t>(maxVertices);
+  o.maxTriangles = static_cast<std::size_t>(maxTriangles);
+  o.maxError = !std::isnan(maxError) ? maxError : (o.maxVertices || o.maxTriangles) ? 0 : 1;
+  return o;
+}
+
+}  // namespace
+
+int insertCommand(std::vector<std::string> args) {
+  Arguments a(std::move(args));
+  if (a.flag("--help") || a.flag("-h")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  const InsertOptions options = insertOptions(a);
+  const bool overwrite = a.flag("-overwrite");
+  const bool quiet = a.flag("-q");
+  const std::vector<std::string> files = a.operands(2, kUsage);
+
+  const InsertSummary s = runInsertJob(files[0], files[1], options, overwrite, terminalFeedback(quiet));
+  if (!quiet)
+    std::cout << "Wrote " << s.vertices << " vertices and " << s.triangles << " triangles (from " << s.candidates
+              << " candidates, in " << s.seconds << " s) in " << s.crsName << " to " << files[1] << "\n"
+              << "Maximum error " << s.measuredMaxError << " m, RMSE " << s.rmse << " m over " << s.measuredCells
+              << " cells" << (s.uncoveredCells ? " (" + std::to_string(s.uncoveredCells) + " valid cells not covered)" : "")
+              << std::endl;
+  return 0;
+}
+
+}  // namespace tinlod::cli

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "tinlod/feedback.h"
+#include "tinlod/tin.h"
+
+namespace tinlod {
+
+// A candidate point that is not a cell centre: a vertex of a sampled TIN.
+struct CandidatePoint {
+  double col = 0, row = 0;  // position in DEM cell units (cell centres at whole numbers)
+  float z = 0;
+  std::int32_t cellRow = 0, cellCol = 0;  // the DEM cell it was sampled from
+};
+
+// What greedy insertion works on: the DEM's heights and its candidates.
+struct InsertGrid {
+  int cols = 0, rows = 0;
+  const float* z = nullptr;      // cols x rows heights, row-major, NaN where missing
+  double cellWidth = 1;          // metres between cell centres along a row ...
+  double cellHeight = 1;         // ... and along a column: the Delaunay criterion is metric
+  // Empty: every valid cell is a candidate (id = row * cols + col). Otherwise these
+  // points are the candidates (id = index) and the cells only mark the holes.
+  std::vector<CandidatePoint> samples;
+};
+
+struct InsertStop {
+  double maxError = 0;           // stop when every candidate is within this (metres)
+  std::size_t maxVertices = 0;   // 0: no limit
+  std::size_t maxTriangles = 0;  // 0: no limit
+};
+
+struct InsertedVertex {
+  std::uint32_t candidate = 0;
+  // The largest vertical error of the TIN of the vertices inserted before this one (this
+  // vertex was its worst point): any prefix of the insertion order is a coarser TIN whose
+  // maximum error is the next vertex's errorBefore. NaN for the starting hull;
+  // infinity for a vertex inserted to keep triangles off a nodata hole.
+  double errorBefore = std::numeric_limits<double>::quiet_NaN();
+};
+
+// Garland and Heckbert's greedy insertion: starting from the convex hull of the
+// candidates, repeatedly inserts the candidate of largest vertical error into a
+// Delaunay triangulation (CGAL, exact predicates). Each triangle keeps its worst
+// candidate; a priority queue gives the next; after an insertion only the triangles
+// around the new vertex are rescanned. A triangle over missing cells is split first
+// (at its valid candidate nearest the hole's edge, by error) until no triangle mixes
+// data and holes.
+class GreedyInserter {
+ public:
+  GreedyInserter(InsertGrid grid, const ProgressRange& progress);
+  ~GreedyInserter();
+  GreedyInserter(const GreedyInserter&) = delete;
+  GreedyInserter& operator=(const GreedyInserter&) = delete;
+
+  // Inserts until every candidate is within stop.maxError or a count limit is reached.
+  void run(const InsertStop& stop, const ProgressRange& progress);
+
+  std::size_t vertexCount() const;
+  std::size_t triangleCount() const;  // of the whole triangulation, holes included
+  // The largest error of any candidate now: 0 when exact, infinity while a triangle
+  // still spans a hole.
+  double maxError() const;
+  const std::vector<InsertedVertex>& inserted() const;
+  // The triangles on valid data, indexing inserted(); counter-clockwise in cell units
+  // (col, row), which is clockwise on a north-up map.
+  std::vector<Triangle> triangles() const;
+  // Per inserted vertex: on the boundary of triangles() (the hull or a hole's edge).
+  std::vector<bool> outline() const;
+  // Where a candidate is, in cell units.
+  double candidateCol(std::uint32_t candidate) const;
+  double candidateRow(std::uint32_t candidate) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tinlod

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tinlod/crs_transform.h"
+#include "tinlod/dem.h"
+#include "tinlod/feedback.h"
+#include "tinlod/greedy_inserter.h"
+#include "tinlod/insert_options.h"
+#include "tinlod/tin.h"
+
+namespace tinlod {
+
+struct InsertSummary {
+  std::size_t candidates = 0, vertices = 0, triangles = 0;
+  double maxError = 0;          // the run's own: the largest error of any candidate when it stopped
+  double measuredMaxError = 0;  // measured anew at every valid DEM cell the TIN covers
+  double rmse = 0;              // over the same cells
+  std::size_t measuredCells = 0, uncoveredCells = 0;
+  bool holesOpen = false;       // a count limit came before every triangle was off the holes
+  double seconds = 0;           // the insertion itself
+  std::string crsName;
+};
+
+struct InsertedTin {
+  Tin tin;
+  // Per vertex: its place in the insertion order (1 = first), and the maximum error of the
+  // TIN of the vertices before it (see InsertedVertex): a progressive TIN.
+  std::vector<std::uint32_t> insertion;
+  std::vector<double> errorBefore;
+  InsertSummary summary;
+};
+
+// The inserter's input for `dem`: every valid cell, or the vertices of `sampled` (a TIN
+// sampled from `dem`, in the CRS `toTin` leads to) when it is not null.
+InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* sampled);
+
+// DEM in memory to a greedy-insertion TIN in the metric CRS.
+InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, const ProgressRange& progress);
+
+// The whole `tinlod insert` job: read, insert, measure, write the GeoPackage (the layers
+// of `tinlod sample`, the vertices with their insertion order).
+InsertSummary runInsertJob(const std::string& demPath, const std::string& outPath, const InsertOptions& options,
+                           bool overwrite, const Feedback& feedback);
+
+}  // namespace tinlod

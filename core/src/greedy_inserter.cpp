@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/greedy_inserter.h"
+
+#include <CGAL/Convex_hull_traits_adapter_2.h>
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/convex_hull_2.h>
+#include <CGAL/property_map.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <queue>
+
+#include "candidate_scanner.h"
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_2;
+struct FaceState {
+  std::uint32_t stamp = 0;      // bumped at each scan: older queue entries are stale
+  std::uint32_t candidate = 0;  // its worst candidate
+  bool overHole = false;
+};
+// A vertex knows its place in the insertion order.
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
+using FaceBase = CGAL::Triangulation_face_base_with_info_2<FaceState, Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+using FaceHandle = Delaunay::Face_handle;
+
+struct QueueEntry {
+  double error;
+  std::uint32_t stamp;
+  FaceHandle face;
+  // The worst error first; equal errors in scan order, so runs are reproducible.
+  bool operator<(const QueueEntry& o) const { return error != o.error ? error < o.error : stamp > o.stamp; }
+};
+
+}  // namespace
+
+struct GreedyInserter::Impl {
+  InsertGrid grid;
+  CandidateScanner scanner;
+  Delaunay dt;
+  std::priority_queue<QueueEntry> queue;
+  std::vector<InsertedVertex> inserted;
+  std::uint32_t stamp = 0;
+
+  explicit Impl(InsertGrid g) : grid(std::move(g)), scanner(grid) {}
+
+  // The Delaunay criterion holds in metres on the ground: cells need not be square.
+  Point metric(std::uint32_t id) const {
+    return Point(scanner.col(id) * grid.cellWidth, scanner.row(id) * grid.cellHeight);
+  }
+
+  void scan(FaceHandle f) {
+    const ScanResult r = scanner.scan({inserted[f->vertex(0)->info()].candidate, inserted[f->vertex(1)->info()].candidate,
+                                       inserted[f->vertex(2)->info()].candidate});
+    f->info() = {++stamp, r.candidate, r.overHole};
+    if (r.error > 0) queue.push({r.error, stamp, f});
+  }
+
+  // Drops queue entries of triangles rescanned since.
+  void dropStale() {
+    while (!queue.empty() && queue.top().face->info().stamp != queue.top().stamp) queue.pop();
+  }
+
+  // The new vertex, or null when its position was taken (nothing changed).
+  Delaunay::Vertex_handle addVertex(std::uint32_t candidate, double errorBefore, FaceHandle hint) {
+    const std::size_t before = dt.number_of_vertices();
+    const Delaunay::Vertex_handle v = dt.insert(metric(candidate), hint);
+    if (dt.number_of_vertices() == before) return Delaunay::Vertex_handle();
+    v->info() = std::uint32_t(inserted.size());
+    inserted.push_back({candidate, errorBefore});
+    return v;
+  }
+
+  // Every triangle an insertion made or changed has the new vertex as a corner (CGAL
+  // inserts by splitting and flipping, and deletes no face): those alone are rescanned.
+  void rescanAround(Delaunay::Vertex_handle v) {
+    auto f = dt.incident_faces(v), done = f;
+    do {
+      if (!dt.is_infinite(f)) scan(f);
+    } while (++f != done);
+  }
+
+  void startFromHull(const ProgressRange& progress) {
+    const std::vector<std::uint32_t> ids = scanner.hullCandidates();
+    if (ids.empty()) throw Error("the DEM has no valid cell");
+    std::vector<Point> points;
+    points.reserve(ids.size());
+    for (std::uint32_t id : ids) points.push_back(metric(id));
+    std::vector<std::size_t> indices(points.size()), hull;
+    for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = i;
+    using Traits = CGAL::Convex_hull_traits_adapter_2<Kernel, CGAL::Pointer_property_map<Point>::type>;
+    CGAL::convex_hull_2(indices.begin(), indices.end(), std::back_inserter(hull), Traits(CGAL::make_property_map(points)));
+    for (std::size_t i : hull) addVertex(ids[i], std::numeric_limits<double>::quiet_NaN(), FaceHandle());
+    if (dt.dimension() != 2) throw Error("the valid cells lie in a line: no triangle can be made");
+    progress.report(0.5, "Scanning the starting triangles");
+    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) scan(f);
+  }
+
+  bool limitReached(const InsertStop& stop) const {
+    if (stop.maxVertices && dt.number_of_vertices() >= stop.maxVertices) return true;
+    // An insertion adds at most two triangles.
+    return stop.maxTriangles && dt.number_of_faces() + 2 > stop.maxTriangles;
+  }
+};
+
+GreedyInserter::GreedyInserter(InsertGrid grid, const ProgressRange& progress)
+    : impl_(std::make_unique<Impl>(std::move(grid))) {
+  impl_->startFromHull(progress);
+  progress.report(1, "Scanning the starting triangles");
+}
+
+GreedyInserter::~GreedyInserter() = default;
+
+namespace {
+
+// How far along a run is: by the count when one is set, else by the error's fall on a
+// log scale from where the run started to the tolerance.
+class RunProgress {
+ public:
+  RunProgress(const InsertStop& stop, std::size_t startVertices, double startError)
+      : stop_(stop), startVertices_(startVertices), startError_(startError) {}
+  double fraction(std::size_t vertices, std::size_t triangles, double error) {
+    double f = 0;
+    if (stop_.maxVertices > startVertices_)
+      f = std::max(f, double(vertices - startVertices_) / double(stop_.maxVertices - startVertices_));
+    if (stop_.maxTriangles) f = std::max(f, double(triangles) / double(stop_.maxTriangles));
+    if (stop_.maxError > 0 && std::isfinite(error) && std::isfinite(startError_) && startError_ > stop_.maxError &&
+        error > 0)
+      f = std::max(f, std::log(startError_ / error) / std::log(startError_ / stop_.maxError));
+    done_ = std::clamp(std::max(done_, f), 0.0, 1.0);
+    return done_;
+  }
+
+ private:
+  InsertStop stop_;
+  std::size_t startVertices_;
+  double startError_;
+  double done_ = 0;
+};
+
+}  // namespace
+
+void GreedyInserter::run(const InsertStop& stop, const ProgressRange& progress) {
+  Impl& m = *impl_;
+  RunProgress fraction(stop, vertexCount(), maxError());
+  for (std::size_t step = 0;; ++step) {
+    m.dropStale();
+    if (m.queue.empty() || m.queue.top().error <= stop.maxError || m.limitReached(stop)) break;
+    const QueueEntry top = m.queue.top();
+    m.queue.pop();
+    const Delaunay::Vertex_handle v = m.addVertex(top.face->info().candidate, top.error, top.face);
+    if (v == Delaunay::Vertex_handle()) continue;  // distinct candidates never coincide; never loop on one that did
+    m.rescanAround(v);
+    if ((step & 1023) == 0)
+      progress.report(fraction.fraction(vertexCount(), triangleCount(), m.queue.empty() ? 0 : m.queue.top().error),
+                      "Inserting points");
+  }
+}
+
+std::size_t GreedyInserter::vertexCount() const { return impl_->dt.number_of_vertices(); }
+
+std::size_t GreedyInserter::triangleCount() const { return impl_->dt.number_of_faces(); }
+
+double GreedyInserter::maxError() const {
+  impl_->dropStale();
+  return impl_->queue.empty() ? 0 : impl_->queue.top().error;
+}
+
+const std::vector<InsertedVertex>& GreedyInserter::inserted() const { return impl_->inserted; }
+
+std::vector<Triangle> GreedyInserter::triangles() const {
+  std::vector<Triangle> out;
+  out.reserve(impl_->dt.number_of_faces());
+  for (auto f = impl_->dt.finite_faces_begin(); f != impl_->dt.finite_faces_end(); ++f)
+    if (!f->info().overHole) out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+  return out;
+}
+
+std::vector<bool> GreedyInserter::outline() const {
+  const Delaunay& dt = impl_->dt;
+  std::vector<bool> out(impl_->inserted.size(), false);
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    if (f->info().overHole) continue;
+    for (int k = 0; k < 3; ++k) {
+      const FaceHandle n = f->neighbor(k);
+      if (dt.is_infinite(n) || n->info().overHole) out[f->vertex((k + 1) % 3)->info()] = out[f->vertex((k + 2) % 3)->info()] = true;
+    }
+  }
+  return out;
+}
+
+double GreedyInserter::candidateCol(std::uint32_t c) const { return impl_->scanner.col(c); }
+double GreedyInserter::candidateRow(std::uint32_t c) const { return impl_->scanner.row(c); }
+
+}  // namespace tinlod

@@ -1,0 +1,190 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/insert_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "text_and_paths.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
+#include "tinlod/gpkg_writer.h"
+#include "tinlod/sample_job.h"
+#include "tinlod/tin_rasterizer.h"
+#include "tinlod/version.h"
+
+namespace tinlod {
+namespace {
+
+// Metres between neighbouring cell centres at the DEM's centre, along a row and a column.
+std::array<double, 2> cellSizeMetres(const Dem& dem, const CrsTransform& toTin) {
+  const int row = std::max(0, dem.height / 2 - 1), col = std::max(0, dem.width / 2 - 1);
+  std::vector<double> x{dem.centreX(col), dem.centreX(col + 1), dem.centreX(col)};
+  std::vector<double> y{dem.centreY(row), dem.centreY(row), dem.centreY(row + 1)};
+  toTin.apply(x, y);
+  return {std::hypot(x[1] - x[0], y[1] - y[0]), std::hypot(x[2] - x[0], y[2] - y[0])};
+}
+
+// Where the sampled TIN's (jittered) vertices are, in DEM cell units.
+std::vector<CandidatePoint> samplePositions(const Dem& dem, const CrsTransform& toTin, const Tin& sampled) {
+  std::vector<double> x(sampled.vertices.size()), y(sampled.vertices.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = sampled.vertices[i].x, y[i] = sampled.vertices[i].y;
+  toTin.applyInverse(x, y);
+  const auto& gt = dem.geotransform;
+  std::vector<CandidatePoint> points(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const TinVertex& v = sampled.vertices[i];
+    points[i] = {(x[i] - gt[0]) / gt[1] - 0.5, (y[i] - gt[3]) / gt[5] - 0.5, float(v.z), v.row, v.col};
+  }
+  return points;
+}
+
+// Counter-clockwise on the map, whichever way the DEM's rows run.
+void orientTriangles(Tin& tin) {
+  for (Triangle& t : tin.triangles)
+    if (triangleArea(tin, t) < 0) std::swap(t[1], t[2]);
+}
+
+// The TIN's heights at every cell, by a code path of its own (the accuracy rasteriser):
+// an independent check of the run's own error.
+void measure(const Dem& dem, const InsertedTin& out, const std::vector<std::array<double, 2>>& cellPositions,
+             InsertSummary& s, const ProgressRange& progress) {
+  std::vector<double> z(out.tin.vertices.size());
+  for (std::size_t i = 0; i < z.size(); ++i) z[i] = out.tin.vertices[i].z;
+  const Grid heights = rasterizeTin(cellPositions, z, out.tin.triangles, dem.width, dem.height, progress);
+  double sum = 0;
+  for (int r = 0; r < dem.height; ++r)
+    for (int c = 0; c < dem.width; ++c) {
+      if (!dem.valid(r, c)) continue;
+      const double h = heights.at(c, r);
+      if (std::isnan(h)) {
+        ++s.uncoveredCells;
+        continue;
+      }
+      const double e = std::fabs(h - dem.at(r, c));
+      sum += e * e;
+      s.measuredMaxError = std::max(s.measuredMaxError, e);
+      ++s.measuredCells;
+    }
+  s.rmse = s.measuredCells ? std::sqrt(sum / s.measuredCells) : 0;
+}
+
+}  // namespace
+
+InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* sampled) {
+  InsertGrid grid;
+  grid.cols = dem.width, grid.rows = dem.height, grid.z = dem.z.data();
+  if (dem.width > 1 && dem.height > 1) {
+    const std::array<double, 2> size = cellSizeMetres(dem, toTin);
+    grid.cellWidth = size[0], grid.cellHeight = size[1];
+  }
+  if (sampled) grid.samples = samplePositions(dem, toTin, *sampled);
+  return grid;
+}
+
+InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, const ProgressRange& progress) {
+  options.validate();
+  const CrsTransform toTin = CrsTransform::forDem(dem, options.sample.sourceSrs, options.sample.targetSrs, progress);
+  Tin sampled;
+  if (options.candidates == InsertCandidates::Samples) sampled = sampleTin(dem, options.sample, progress.sub(0, 0.1));
+  const bool cells = options.candidates == InsertCandidates::Cells;
+  InsertedTin out;
+  out.summary.candidates = cells ? dem.validCount() : sampled.vertices.size();
+
+  const auto start = std::chrono::steady_clock::now();
+  GreedyInserter inserter(makeInsertGrid(dem, toTin, cells ? nullptr : &sampled), progress.sub(0.1, 0.15));
+  inserter.run({options.maxError, options.maxVertices, options.maxTriangles}, progress.sub(0.15, 0.9));
+  out.summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.summary.maxError = inserter.maxError();
+  out.summary.holesOpen = std::isinf(out.summary.maxError);
+
+  // Keep the vertices some triangle uses, in insertion order.
+  const std::vector<InsertedVertex>& inserted = inserter.inserted();
+  std::vector<Triangle> triangles = inserter.triangles();
+  const std::vector<bool> outline = inserter.outline();
+  std::vector<std::int64_t> index(inserted.size(), -1);
+  for (const Triangle& t : triangles)
+    for (VertexId v : t) index[v] = 0;
+  std::vector<double> x, y;
+  std::vector<std::array<double, 2>> cellPositions;
+  for (std::size_t i = 0; i < inserted.size(); ++i) {
+    if (index[i] < 0) continue;
+    index[i] = std::int64_t(out.tin.vertices.size());
+    const std::uint32_t c = inserted[i].candidate;
+    TinVertex v = cells ? TinVertex{0, 0, 0, std::int32_t(c / dem.width), std::int32_t(c % dem.width), false}
+                        : sampled.vertices[c];
+    if (cells) v.z = dem.z[c];
+    v.outline = outline[i];
+    out.tin.vertices.push_back(v);
+    x.push_back(dem.centreX(v.col)), y.push_back(dem.centreY(v.row));
+    cellPositions.push_back({inserter.candidateCol(c), inserter.candidateRow(c)});
+    out.insertion.push_back(std::uint32_t(i + 1));
+    out.errorBefore.push_back(inserted[i].errorBefore);
+  }
+  if (cells) {
+    toTin.apply(x, y);
+    for (std::size_t i = 0; i < x.size(); ++i) out.tin.vertices[i].x = x[i], out.tin.vertices[i].y = y[i];
+  }
+  for (Triangle& t : triangles)
+    for (VertexId& v : t) v = VertexId(index[v]);
+  out.tin.triangles = std::move(triangles);
+  out.tin.crsWkt = toTin.targetWkt();
+  out.tin.crsName = toTin.targetName();
+  orientTriangles(out.tin);
+
+  InsertSummary& s = out.summary;
+  s.vertices = out.tin.vertices.size(), s.triangles = out.tin.triangles.size(), s.crsName = out.tin.crsName;
+  measure(dem, out, cellPositions, s, progress.sub(0.9, 1));
+  if (s.holesOpen)
+    progress.warn("the vertex or triangle limit came before the TIN was cut free of the nodata holes: " +
+                  std::to_string(s.uncoveredCells) + " valid cells are not covered; raise the limit");
+  return out;
+}
+
+namespace {
+
+std::map<std::string, std::string> jobMetadata(const std::string& demPath, const InsertOptions& o, const InsertSummary& s) {
+  return {{"TINLOD_VERSION", kVersion},
+          {"TINLOD_KIND", "tin"},
+          {"TINLOD_METHOD", "insert"},
+          {"TINLOD_SOURCE", demPath},
+          {"TINLOD_BAND", std::to_string(o.sample.band)},
+          {"TINLOD_CANDIDATES", candidatesName(o.candidates)},
+          {"TINLOD_MAX_ERROR_LIMIT", formatNumber(o.maxError)},
+          {"TINLOD_MAX_VERTICES_LIMIT", std::to_string(o.maxVertices)},
+          {"TINLOD_MAX_TRIANGLES_LIMIT", std::to_string(o.maxTriangles)},
+          {"TINLOD_MAX_ERROR", formatNumber(s.maxError)},
+          {"TINLOD_MEASURED_MAX_ERROR", formatNumber(s.measuredMaxError)},
+          {"TINLOD_RMSE", formatNumber(s.rmse)},
+          {"TINLOD_SOURCE_SRS", o.sample.sourceSrs.empty() ? "from file" : o.sample.sourceSrs},
+          {"TINLOD_TARGET_SRS", o.sample.targetSrs.empty() ? "auto" : o.sample.targetSrs},
+          {"TINLOD_CRS", s.crsName}};
+}
+
+}  // namespace
+
+InsertSummary runInsertJob(const std::string& demPath, const std::string& outPath, const InsertOptions& options,
+                           bool overwrite, const Feedback& feedback) {
+  options.validate();
+  GpkgWriteOptions writeOptions{overwrite, {}};
+  checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  const ProgressRange all(feedback, 0, 1);
+  const Dem dem = readDem(demPath, options.sample.band, all.sub(0, 0.1));
+  const InsertedTin result = greedyInsertionTin(dem, options, all.sub(0.1, 0.9));
+  writeOptions.metadata = jobMetadata(demPath, options, result.summary);
+  if (options.candidates == InsertCandidates::Samples) {
+    writeOptions.metadata["TINLOD_BLOCK"] = std::to_string(options.sample.block);
+    writeOptions.metadata["TINLOD_JITTER"] = formatNumber(options.sample.jitter);
+    writeOptions.metadata["TINLOD_SEED"] = std::to_string(options.sample.seed);
+  }
+  std::vector<VertexField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
+  extra[0].values.assign(result.insertion.begin(), result.insertion.end());
+  extra[1].values = result.errorBefore;
+  writeTinGpkg(result.tin, outPath, writeOptions, all.sub(0.9, 1), extra);
+  all.finish("Done");
+  return result.summary;
+}
+
+}  // namespace tinlod
