@@ -169,6 +169,24 @@ bool CandidateScanner::inside(const std::array<std::uint32_t, 3>& c, double px, 
   return true;
 }
 
+// As `tinlod sample` decides: a triangle spans a hole when the closed triangle of its
+// corners' cell centres holds a missing cell's centre. Exact in whole numbers.
+bool CandidateScanner::footprintHolds(const std::array<std::uint32_t, 3>& c, int col, int row) const {
+  double x[3], y[3];
+  for (int k = 0; k < 3; ++k) x[k] = grid_.samples[c[k]].cellCol, y[k] = grid_.samples[c[k]].cellRow;
+  const double area = orient(x[0], y[0], x[1], y[1], x[2], y[2]);
+  bool allNonNegative = true, allNonPositive = true;
+  for (int k = 0; k < 3; ++k) {
+    const int n = (k + 1) % 3;
+    const double o = orient(x[k], y[k], x[n], y[n], col, row);
+    allNonNegative &= o >= 0, allNonPositive &= o <= 0;
+  }
+  if (area != 0) return area > 0 ? allNonNegative : allNonPositive;
+  // Collinear centres: the footprint is a segment (allNonNegative and allNonPositive: on its line).
+  return allNonNegative && allNonPositive && col >= std::min({x[0], x[1], x[2]}) && col <= std::max({x[0], x[1], x[2]}) &&
+         row >= std::min({y[0], y[1], y[2]}) && row <= std::max({y[0], y[1], y[2]});
+}
+
 // Sampled candidates lie within a cell of their cell's centre: the block of cells around
 // the triangle holds them all, and its missing cells are tested at their centres.
 ScanResult CandidateScanner::scanSamples(const std::array<std::uint32_t, 3>& c) const {
@@ -186,7 +204,7 @@ ScanResult CandidateScanner::scanSamples(const std::array<std::uint32_t, 3>& c) 
       const std::size_t cell = std::size_t(r) * grid_.cols + cc;
       const std::int32_t s = sampleOfCell_[cell];
       if (s < 0) {
-        if (holes_ && !valid(cell) && inside(c, cc, r)) result.overHole = true;
+        if (holes_ && !valid(cell) && footprintHolds(c, cc, r)) result.overHole = true;
         continue;
       }
       const std::uint32_t id = std::uint32_t(s);

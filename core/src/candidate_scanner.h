@@ -38,6 +38,7 @@ class CandidateScanner {
   ScanResult scanSamples(const std::array<std::uint32_t, 3>& corners) const;
   std::uint32_t splitCandidate(const std::array<std::uint32_t, 3>& corners) const;
   bool inside(const std::array<std::uint32_t, 3>& corners, double col, double row) const;
+  bool footprintHolds(const std::array<std::uint32_t, 3>& corners, int col, int row) const;
   bool valid(std::size_t cell) const { return grid_.z[cell] == grid_.z[cell]; }
 
   const InsertGrid& grid_;

@@ -23,8 +23,14 @@ struct CandidatePoint {
 struct InsertGrid {
   int cols = 0, rows = 0;
   const float* z = nullptr;      // cols x rows heights, row-major, NaN where missing
-  double cellWidth = 1;          // metres between cell centres along a row ...
-  double cellHeight = 1;         // ... and along a column: the Delaunay criterion is metric
+  // Metres between cell centres along a row and along a column at the DEM's centre. The
+  // triangulation is Delaunay for (col * cellWidth, row * cellHeight): in the TIN's CRS
+  // for a projected DEM, and for a geographic one in its grid at the ground scale of its
+  // centre (a UTM zone bends the grid slightly, which only breaks the grid's ties between
+  // cocircular cells differently). Triangles are straight in the grid, where the
+  // candidates are scanned and where `tinlod accuracy` measures.
+  double cellWidth = 1;
+  double cellHeight = 1;
   // Empty: every valid cell is a candidate (id = row * cols + col). Otherwise these
   // points are the candidates (id = index) and the cells only mark the holes.
   std::vector<CandidatePoint> samples;
