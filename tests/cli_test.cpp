@@ -223,6 +223,37 @@ TEST(Cli, AccuracyErrorsNameTheOption) {
   EXPECT_FALSE(fs::exists(dir + "/a.tif"));
 }
 
+TEST(Cli, InsertKeepsTheToleranceThatAccuracyMeasuresAgain) {
+  const std::string dir = test::tempDir();
+  const CliRun r = tinlod("insert -max_error 3 " + defaultDem() + " " + dir + "/i.gpkg");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "Maximum error ")) << r.out;
+  EXPECT_TRUE(has(r.out, "over 105778 cells")) << r.out;  // every valid cell of the default DEM
+  const CliRun info = tinlod("info " + dir + "/i.gpkg");
+  EXPECT_TRUE(has(info.out, "method = insert")) << info.out;
+  // The accuracy command measures the TIN against the DEM by its own rasteriser.
+  const CliRun acc = tinlod("accuracy -reference dem -report " + dir + "/i.csv " + defaultDem() + " " + dir + "/i.gpkg");
+  ASSERT_EQ(acc.exitCode, 0) << acc.err;
+  const std::string csv = test::readFile(dir + "/i.csv");
+  EXPECT_TRUE(has(csv, "max_abs_error")) << csv;
+  const CliRun counted = tinlod("insert -q -max_vertices 250 -candidates samples " + defaultDem() + " " + dir + "/c.gpkg");
+  ASSERT_EQ(counted.exitCode, 0) << counted.err;
+  const CliRun countedInfo = tinlod("info -json " + dir + "/c.gpkg");
+  EXPECT_TRUE(has(countedInfo.out, "\"vertices\": 250,")) << countedInfo.out;
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"insert -max_error -1 ", "max_error must be"},
+           {"insert -max_vertices 2 ", "max_vertices must be"},
+           {"insert -max_vertices 2.5 ", "whole numbers"},
+           {"insert -candidates every ", "-candidates must be"}}) {
+    const CliRun bad = tinlod(args + defaultDem() + " " + dir + "/bad.gpkg");
+    EXPECT_EQ(bad.exitCode, 1) << args;
+    EXPECT_TRUE(has(bad.err, message)) << args << ": " << bad.err;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/bad.gpkg"));
+  for (const char* option : {"-max_error", "-max_vertices", "-max_triangles", "-candidates", "insertion", "error_before"})
+    EXPECT_TRUE(has(tinlod("insert --help").out, option)) << option;
+}
+
 TEST(Cli, ExperimentWritesOneReportOfEveryRun) {
   const std::string dir = test::tempDir();
   const CliRun r = tinlod("experiment -q -methods volume,degree -delete_pcts 20 -stop_pct 30 -report " + dir +

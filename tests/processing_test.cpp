@@ -19,6 +19,7 @@
 
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
+#include "tinlod/insert_job.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/synthetic_dem.h"
 
@@ -326,6 +327,37 @@ TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
   EXPECT_FALSE(bad.ok);
   EXPECT_TRUE(bad.error.contains("-report")) << bad.error.toStdString();
   EXPECT_FALSE(fs::exists(dir + "/b.tif"));
+}
+
+TEST(Processing, GreedyInsertionMatchesTheCoreAndNamesBadParameters) {
+  const QString out = QString::fromStdString(test::tempDir() + "/insert.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:greedyinsertion"),
+                                {{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_ERROR", 2.5}, {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  InsertOptions o;
+  o.maxError = 2.5;
+  const InsertedTin core = greedyInsertionTin(readDem(defaultDem(), 1, ProgressRange(Feedback{}, 0, 1)), o,
+                                              ProgressRange(Feedback{}, 0, 1));
+  EXPECT_EQ(r.outputs.value("VERTICES").toLongLong(), static_cast<long long>(core.tin.vertices.size()));
+  EXPECT_EQ(featureCount(out, "triangles"), static_cast<long long>(core.tin.triangles.size()));
+  EXPECT_DOUBLE_EQ(r.outputs.value("MAX_ERROR").toDouble(), core.summary.measuredMaxError);
+  EXPECT_LE(r.outputs.value("MAX_ERROR").toDouble(), 2.5);
+  EXPECT_GT(r.outputs.value("RMSE").toDouble(), 0);
+
+  // A vertex count alone stops at exactly that count; an empty MAX_ERROR sets no tolerance then.
+  const QString counted = QString::fromStdString(test::tempDir() + "/counted.gpkg");
+  const Result c = runAlgorithm(QStringLiteral("tinlod:greedyinsertion"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                            {"MAX_VERTICES", 777},
+                                                                            {"CANDIDATES", 1},
+                                                                            {"OUTPUT", counted}});
+  ASSERT_TRUE(c.ok) << c.error.toStdString();
+  EXPECT_EQ(c.outputs.value("VERTICES").toLongLong(), 777);
+
+  const Result bad = runAlgorithm(QStringLiteral("tinlod:greedyinsertion"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                              {"MAX_VERTICES", 2},
+                                                                              {"OUTPUT", out + "x"}});
+  EXPECT_FALSE(bad.ok);
+  EXPECT_TRUE(bad.error.contains("MAX_VERTICES")) << bad.error.toStdString();
 }
 
 TEST(Processing, RealDemRuns) {

@@ -27,6 +27,7 @@ check() {  # check DESCRIPTION COMMAND...: passes when the command succeeds
 check "qgis_process list shows tinlod:sampletin" grep -q "tinlod:sampletin" "$work/list.txt"
 check "qgis_process list shows tinlod:buildhierarchy" grep -q "tinlod:buildhierarchy" "$work/list.txt"
 check "qgis_process list shows tinlod:accuracy" grep -q "tinlod:accuracy" "$work/list.txt"
+check "qgis_process list shows tinlod:greedyinsertion" grep -q "tinlod:greedyinsertion" "$work/list.txt"
 
 "$qp" help tinlod:sampletin > "$work/help.txt" 2>/dev/null
 check "qgis_process help describes the parameters" grep -q "TARGET_CRS" "$work/help.txt"
@@ -88,6 +89,22 @@ assert levels[0]["rmse_m"] == 0 and abs(levels[-1]["rmse_m"] - float(outputs["RM
 assert 0.9 < float(outputs["R_ELEVATION"]) <= 1, outputs
 print("  coarsest level: RMSE %.2f m, r elevation %.6f, r mean curvature %.4f" % (
     float(outputs["RMSE"]), float(outputs["R_ELEVATION"]), float(outputs["R_MEAN_CURVATURE"])))
+PY
+
+ins=$work/insert.gpkg
+"$qp" --json run tinlod:greedyinsertion --INPUT="$dem" --MAX_ERROR=5 --OUTPUT="$ins" > "$work/ins.json" 2> "$work/ins.err" || true
+check "qgis_process --json run tinlod:greedyinsertion keeps every cell within the tolerance" /usr/bin/python3 - "$work/ins.json" "$ins" <<'PY'
+import json, sys
+from osgeo import ogr
+outputs = json.load(open(sys.argv[1]))["results"]
+ds = ogr.Open(sys.argv[2])
+vertices = ds.GetLayerByName("vertices")
+assert int(outputs["VERTICES"]) == vertices.GetFeatureCount() > 100, outputs
+assert int(outputs["TRIANGLES"]) == ds.GetLayerByName("triangles").GetFeatureCount()
+assert float(outputs["MAX_ERROR"]) <= 5 + 1e-9 and 0 < float(outputs["RMSE"]) < 5, outputs
+orders = sorted(f.GetField("insertion") for f in vertices)
+assert orders[0] == 1 and len(set(orders)) == len(orders), orders[:5]
+print("  %s vertices, maximum error %.3f m, RMSE %.3f m" % (outputs["VERTICES"], float(outputs["MAX_ERROR"]), float(outputs["RMSE"])))
 PY
 
 if "$qp" run tinlod:sampletin --INPUT="$dem" --BAND=9 --OUTPUT="$work/bad.gpkg" > "$work/bad.out" 2> "$work/bad.err"; then

@@ -32,7 +32,7 @@ std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, con
     const LevelStats& s = h.levels[L];
     LevelAccuracy row;
     row.dem = dem;
-    row.method = measureName(h.options.measure);
+    row.method = h.tinMethod.empty() ? measureName(h.options.measure) : h.tinMethod;
     row.deletePct = h.options.deletePct, row.stopPct = h.options.stopPct;
     row.level = L, row.vertices = s.vertices, row.triangles = s.triangles;
     row.selectSeconds = s.selectSeconds, row.deleteSeconds = s.deleteSeconds, row.certifiedError = s.maxError;

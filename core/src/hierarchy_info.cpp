@@ -5,6 +5,7 @@
 #include <ogrsf_frmts.h>
 
 #include <cctype>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <memory>
@@ -35,6 +36,8 @@ void readLevels(GDALDataset& ds, HierarchyInfo& info) {
   LevelStats l;  // a plain TIN: one level
   if (OGRLayer* v = ds.GetLayerByName("vertices")) l.vertices = static_cast<std::size_t>(v->GetFeatureCount());
   if (OGRLayer* t = ds.GetLayerByName("triangles")) l.triangles = static_cast<std::size_t>(t->GetFeatureCount());
+  // Greedy insertion records its maximum error over the candidates, as a build records each level's.
+  if (const auto e = info.metadata.find("max_error"); e != info.metadata.end()) l.maxError = std::atof(e->second.c_str());
   info.levels.push_back(l);
 }
 

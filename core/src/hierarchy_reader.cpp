@@ -69,6 +69,10 @@ void readTriangles(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress)
 void readOptions(const HierarchyInfo& info, Hierarchy& h) {
   h.levels = info.levels;
   auto item = [&](const char* key) { auto it = info.metadata.find(key); return it == info.metadata.end() ? std::string() : it->second; };
+  if (info.kind != "hierarchy") {
+    h.tinMethod = item("method").empty() ? "sample" : item("method");
+    return;
+  }
   if (!item("method").empty()) h.options.measure = parseMeasure(item("method"));
   h.options.deletePct = std::atof(item("delete_pct").c_str());
   h.options.stopPct = std::atof(item("stop_pct").c_str());

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -54,6 +55,9 @@ struct Hierarchy {
   std::vector<VertexId> rings;              // vertex ids of the groups' outlines
   std::vector<LevelStats> levels;
   HierarchyOptions options;
+  // How a file that is one TIN was made ("sample", "insert"); empty for a hierarchy,
+  // whose method is options.measure.
+  std::string tinMethod;
 
   std::int32_t coarsest() const { return static_cast<std::int32_t>(levels.size()) - 1; }
   // The triangles (indices into `triangles`) of one level.
