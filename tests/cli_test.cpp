@@ -262,7 +262,17 @@ TEST(Cli, ExperimentWritesOneReportOfEveryRun) {
   const std::string json = test::readFile(dir + "/e.json");
   EXPECT_TRUE(has(json, "\"method\": \"volume\"")) << json.substr(0, 400);
   EXPECT_TRUE(has(json, "\"method\": \"degree\""));
+  EXPECT_FALSE(has(json, "\"method\": \"insert\""));  // not named in -methods
   EXPECT_TRUE(fs::exists(dir + "/e.csv"));
+  // Greedy insertion at the vertex counts of delete 20 % down to 30 %: 80, 64, 51, 41 and 33 %.
+  const CliRun ins = tinlod("experiment -q -methods insert -delete_pcts 20 -stop_pct 30 -report " + dir + "/i.csv " + defaultDem());
+  ASSERT_EQ(ins.exitCode, 0) << ins.err;
+  const std::string csv = test::readFile(dir + "/i.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6) << csv;  // the header and 5 levels
+  EXPECT_TRUE(has(csv, ",insert,")) << csv.substr(0, 400);
+  const CliRun bad = tinlod("experiment -q -methods volume,greedy -report " + dir + "/b.csv " + defaultDem());
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_TRUE(has(bad.err, "unknown method 'greedy'")) << bad.err;
   EXPECT_EQ(tinlod("experiment -q " + defaultDem()).exitCode, 1);  // no -report
 }
 

@@ -23,7 +23,9 @@ is measured (as tinlod accuracy does). One combined report; no other file is wri
 Usage: tinlod experiment DEM [DEM ...] -report R [options]
 
   -report R          R.html (plots of all runs), R.csv or R.json; repeat it for several
-  -methods list      comma-separated (default degree,normal,volume,error)
+  -methods list      comma-separated (default degree,normal,volume,error,insert); insert is
+                     greedy insertion over the same sampled TIN, measured at the vertex
+                     counts of a hierarchy with the first delete percentage
   -delete_pcts list  comma-separated delete percentages (default 10,20)
   -stop_pct s        stop percentage (default 5)
   -reference r       tin (default, as in the study) or dem
@@ -53,7 +55,15 @@ int experimentCommand(std::vector<std::string> args) {
   const std::string methods = a.text("-methods", "");
   if (!methods.empty()) {
     o.methods.clear();
-    for (const std::string& m : splitList(methods)) o.methods.push_back(parseMeasure(m));
+    o.insert = false;
+    for (const std::string& m : splitList(methods)) {
+      if (m == "insert")
+        o.insert = true;
+      else if (m == "degree" || m == "normal" || m == "volume" || m == "error")
+        o.methods.push_back(parseMeasure(m));
+      else
+        throw Error("-methods: unknown method '" + m + "': choose from degree, normal, volume, error and insert");
+    }
   }
   const std::string pcts = a.text("-delete_pcts", "");
   if (!pcts.empty()) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/experiment.h"
 
+#include "insertion_levels.h"
 #include "tinlod/accuracy_job.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
@@ -11,7 +12,7 @@
 namespace tinlod {
 
 void ExperimentOptions::validate() const {
-  if (methods.empty()) throw Error("-methods: name at least one method (degree, normal, volume, error)");
+  if (methods.empty() && !insert) throw Error("-methods: name at least one method (degree, normal, volume, error, insert)");
   if (deletePcts.empty()) throw Error("-delete_pcts: name at least one delete percentage, e.g. 10,20");
   HierarchyOptions h;
   h.stopPct = stopPct;
@@ -32,7 +33,7 @@ void runDem(const std::string& path, const ExperimentOptions& options, std::vect
   const Tin tin = sampleTin(dem, options.sample, progress.sub(0.02, 0.05));
   const CrsTransform toTin = CrsTransform::forDem(dem, options.sample.sourceSrs, options.sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
   const AccuracyEvaluator evaluator(dem, tin, toTin, options.accuracy, progress.sub(0.05, 0.1));
-  const double runs = double(options.methods.size() * options.deletePcts.size());
+  const double runs = double(options.methods.size() * options.deletePcts.size() + (options.insert ? 1 : 0));
   int run = 0;
   for (Measure m : options.methods)
     for (double pct : options.deletePcts) {
@@ -45,6 +46,14 @@ void runDem(const std::string& path, const ExperimentOptions& options, std::vect
       for (LevelAccuracy& row : measureLevels(evaluator, hierarchy, demName(path), -1, nullptr, part.sub(0.3, 1)))
         rows.push_back(std::move(row));
     }
+  if (options.insert) {
+    const double pct = options.deletePcts.front();
+    progress.inform(demName(path) + ": greedy insertion at the vertex counts of delete " + std::to_string(static_cast<int>(pct)) + " %");
+    const std::vector<std::size_t> counts = levelCounts(tin.vertices.size(), pct, options.stopPct);
+    for (LevelAccuracy& row : measureInsertionLevels(evaluator, dem, tin, toTin, counts, pct, options.stopPct,
+                                                     progress.sub(0.1 + 0.9 * run / runs, 1)))
+      rows.push_back(std::move(row));
+  }
 }
 
 }  // namespace

@@ -16,6 +16,9 @@ namespace tinlod {
 // percentage down to the stop percentage, each level's accuracy measured.
 struct ExperimentOptions {
   std::vector<Measure> methods{Measure::Degree, Measure::Normal, Measure::Volume, Measure::Error};
+  // Greedy insertion over the same sampled TIN, measured at the vertex counts of a hierarchy
+  // with the first delete percentage (the study's comparator).
+  bool insert = true;
   std::vector<double> deletePcts{10, 20};
   double stopPct = 5;
   SampleOptions sample;
