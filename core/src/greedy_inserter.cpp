@@ -74,11 +74,36 @@ struct GreedyInserter::Impl {
   // The new vertex, or null when its position was taken (nothing changed).
   Delaunay::Vertex_handle addVertex(std::uint32_t candidate, double errorBefore, FaceHandle hint) {
     const std::size_t before = dt.number_of_vertices();
-    const Delaunay::Vertex_handle v = dt.insert(metric(candidate), hint);
+    // Split the face (or edge), then flip to Delaunay ourselves: CGAL's own insertion breaks
+    // cocircular ties by a symbolic perturbation, the same way everywhere; keeping the new
+    // vertex's edges on a tie instead (as delatin does) follows the data, and a grid of
+    // cells is cocircular everywhere: 1-2 % fewer vertices at fine tolerances.
+    const Delaunay::Vertex_handle v = dt.Triangulation::insert(metric(candidate), hint);
     if (dt.number_of_vertices() == before) return Delaunay::Vertex_handle();
+    if (dt.dimension() == 2) flipToDelaunay(v);
     v->info() = std::uint32_t(inserted.size());
     inserted.push_back({candidate, errorBefore});
     return v;
+  }
+
+  // Flips each edge opposite the new vertex whose far corner is strictly inside the
+  // circle (CGAL's exact predicate, unperturbed), as Lawson's insertion does.
+  void flipToDelaunay(Delaunay::Vertex_handle v) {
+    std::vector<FaceHandle> stack;
+    auto f = dt.incident_faces(v), done = f;
+    do stack.push_back(f);
+    while (++f != done);
+    while (!stack.empty()) {
+      const FaceHandle face = stack.back();
+      stack.pop_back();
+      if (dt.is_infinite(face)) continue;
+      const int i = face->index(v);
+      const FaceHandle across = face->neighbor(i);
+      if (dt.is_infinite(across) || dt.side_of_oriented_circle(across, v->point(), false) != CGAL::ON_POSITIVE_SIDE) continue;
+      dt.flip(face, i);  // both faces keep v as a corner
+      stack.push_back(face);
+      stack.push_back(across);
+    }
   }
 
   // Every triangle an insertion made or changed has the new vertex as a corner (CGAL
