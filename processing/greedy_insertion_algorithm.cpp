@@ -11,6 +11,7 @@
 namespace tinlod::qgis {
 namespace {
 
+const QStringList kDelaunay{QStringLiteral("On the ground, in metres"), QStringLiteral("On the DEM's grid, square cells")};
 const QStringList kCandidates{QStringLiteral("Every valid DEM cell"), QStringLiteral("The vertices of the sampled TIN")};
 
 }  // namespace
@@ -36,6 +37,9 @@ QString GreedyInsertionAlgorithm::shortHelpString() const {
              "study's comparison with the delete methods on the same input). The run starts from the convex "
              "hull of the valid cells (the corners of a full raster) at their own heights. No triangle spans "
              "a nodata hole.\n\n"
+             "Delaunay criterion (advanced): on the ground in metres (default), or on the DEM's grid with "
+             "square cells as delatin and most tools do; they differ only where cells are not square on the "
+             "ground (a geographic DEM away from the equator).\n\n"
              "Output: a GeoPackage with the layers of 'Sample TIN from DEM'; each vertex also has 'insertion', "
              "its place in the insertion order, and 'error_before': the vertices with insertion <= k form a "
              "coarser TIN (a progressive TIN) whose maximum error is the error_before of the next vertex.\n\n") +
@@ -55,6 +59,8 @@ void GreedyInsertionAlgorithm::initAlgorithm(const QVariantMap&) {
                                                          QStringLiteral("Maximum triangles (0: no limit)"),
                                                          QgsProcessingParameterNumber::Integer, 0, false, 0)));
   addParameter(new QgsProcessingParameterEnum(QStringLiteral("CANDIDATES"), QStringLiteral("Candidates"), kCandidates, false, 0));
+  addParameter(advanced(new QgsProcessingParameterEnum(QStringLiteral("DELAUNAY"), QStringLiteral("Delaunay criterion"),
+                                                       kDelaunay, false, 0)));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("TIN GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
@@ -70,6 +76,7 @@ bool GreedyInsertionAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Q
   insert_.sample = sample_;
   insert_.candidates = parameterAsEnum(parameters, QStringLiteral("CANDIDATES"), context) == 1 ? InsertCandidates::Samples
                                                                                               : InsertCandidates::Cells;
+  insert_.delaunayOnGrid = parameterAsEnum(parameters, QStringLiteral("DELAUNAY"), context) == 1;
   insert_.maxVertices = static_cast<std::size_t>(parameterAsInt(parameters, QStringLiteral("MAX_VERTICES"), context));
   insert_.maxTriangles = static_cast<std::size_t>(parameterAsInt(parameters, QStringLiteral("MAX_TRIANGLES"), context));
   const QVariant maxError = parameters.value(QStringLiteral("MAX_ERROR"));

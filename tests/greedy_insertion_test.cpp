@@ -252,6 +252,22 @@ TEST(GreedyInsertion, GeographicDemIsTriangulatedInMetres) {
   EXPECT_NEAR(maxX - minX, 239 * 63.4, 239 * 1.5);
 }
 
+TEST(GreedyInsertion, GridDelaunayTreatsCellsAsSquares) {
+  Dem dem = test::makeGeographicDem(200, 160, 8.0, 47.0);
+  for (int r = 0; r < dem.height; ++r)
+    for (int c = 0; c < dem.width; ++c) dem.z[std::size_t(r) * dem.width + c] = float(500 + 50 * std::sin(c * 0.09) * std::sin(r * 0.06));
+  InsertOptions o;
+  o.maxError = 0.5;
+  o.delaunayOnGrid = true;
+  const InsertedTin grid = greedyInsertionTin(dem, o, kQuiet);
+  EXPECT_EQ(test::delaunayViolations(groundGrid(grid.tin, 1, 1)), 0u);
+  EXPECT_LE(bruteForce(dem, grid.tin).maxError, 0.5 + kRounding);
+  o.delaunayOnGrid = false;
+  const InsertedTin ground = greedyInsertionTin(dem, o, kQuiet);
+  EXPECT_NE(grid.tin.triangles, ground.tin.triangles);  // cells of 63 x 93 m: other triangles
+  EXPECT_GT(test::delaunayViolations(groundGrid(grid.tin, 63.4, 92.7)), 0u);
+}
+
 TEST(GreedyInsertion, BadOptionsNameTheParameter) {
   const Dem dem = hills(20, 20);
   InsertOptions o;

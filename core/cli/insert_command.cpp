@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 
@@ -14,7 +15,7 @@ namespace tinlod::cli {
 namespace {
 
 const char* const kUsage =
-    "tinlod insert DEM OUT.gpkg [-max_error m] [-max_vertices n] [-max_triangles n] [-candidates cells|samples] "
+    "tinlod insert DEM OUT.gpkg [-max_error m] [-max_vertices n] [-max_triangles n] [-candidates cells|samples] [-delaunay ground|grid] "
     "[-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Greedy insertion (Garland and Heckbert): a TIN from a DEM by inserting, again and
@@ -42,6 +43,10 @@ Options:
                  and column included; 'samples': only the vertices of the TIN that
                  'tinlod sample' makes with the same -block, -jitter and -seed (the
                  study's comparison with the delete methods on the same input)
+  -delaunay d    'ground' (default): the TIN is Delaunay in metres on the ground; 'grid':
+                 Delaunay on the DEM's grid with square cells, as delatin and most tools
+                 do. They differ only where cells are not square on the ground (a
+                 geographic DEM away from the equator), by a few % of vertices either way.
   -b band        band holding the heights (default 1)
   -s_srs srs     CRS of the DEM, for a file with none or a wrong one
   -t_srs srs     metric CRS of the TIN (default: the DEM's own if in metres, else UTM)
@@ -61,6 +66,10 @@ InsertOptions insertOptions(Arguments& a) {
   InsertOptions o;
   o.sample = sampleOptions(a);
   o.candidates = parseCandidates(a.text("-candidates", "cells"));
+  const std::string delaunay = a.text("-delaunay", "ground");
+  if (delaunay != "ground" && delaunay != "grid")
+    throw Error("-delaunay must be 'ground' (in metres, the default) or 'grid' (square cells), not '" + delaunay + "'");
+  o.delaunayOnGrid = delaunay == "grid";
   const double maxError = a.number("-max_error", std::numeric_limits<double>::quiet_NaN());
   const double maxVertices = a.number("-max_vertices", 0), maxTriangles = a.number("-max_triangles", 0);
   if (maxVertices < 0 || maxVertices != std::floor(maxVertices) || maxTriangles < 0 || maxTriangles != std::floor(maxTriangles))
@@ -88,7 +97,7 @@ int insertCommand(std::vector<std::string> args) {
   if (!quiet)
     std::cout << "Wrote " << s.vertices << " vertices and " << s.triangles << " triangles (from " << s.candidates
               << " candidates, in " << s.seconds << " s) in " << s.crsName << " to " << files[1] << "\n"
-              << "Maximum error " << s.measuredMaxError << " m, RMSE " << s.rmse << " m over " << s.measuredCells
+              << "Maximum error " << std::setprecision(10) << s.measuredMaxError << std::setprecision(6) << " m, RMSE " << s.rmse << " m over " << s.measuredCells
               << " cells" << (s.uncoveredCells ? " (" + std::to_string(s.uncoveredCells) + " valid cells not covered)" : "")
               << std::endl;
   return 0;

@@ -73,10 +73,10 @@ void measure(const Dem& dem, const InsertedTin& out, const std::vector<std::arra
 
 }  // namespace
 
-InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* sampled) {
+InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* sampled, bool onGrid) {
   InsertGrid grid;
   grid.cols = dem.width, grid.rows = dem.height, grid.z = dem.z.data();
-  if (dem.width > 1 && dem.height > 1) {
+  if (dem.width > 1 && dem.height > 1 && !onGrid) {
     const std::array<double, 2> size = cellSizeMetres(dem, toTin);
     grid.cellWidth = size[0], grid.cellHeight = size[1];
   }
@@ -94,7 +94,8 @@ InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, con
   out.summary.candidates = cells ? dem.validCount() : sampled.vertices.size();
 
   const auto start = std::chrono::steady_clock::now();
-  GreedyInserter inserter(makeInsertGrid(dem, toTin, cells ? nullptr : &sampled), progress.sub(0.1, 0.15));
+  GreedyInserter inserter(makeInsertGrid(dem, toTin, cells ? nullptr : &sampled, options.delaunayOnGrid),
+                          progress.sub(0.1, 0.15));
   inserter.run({options.maxError, options.maxVertices, options.maxTriangles}, progress.sub(0.15, 0.9));
   out.summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.summary.maxError = inserter.maxError();
@@ -155,6 +156,7 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
           {"TINLOD_MAX_ERROR_LIMIT", formatNumber(o.maxError)},
           {"TINLOD_MAX_VERTICES_LIMIT", std::to_string(o.maxVertices)},
           {"TINLOD_MAX_TRIANGLES_LIMIT", std::to_string(o.maxTriangles)},
+          {"TINLOD_DELAUNAY", o.delaunayOnGrid ? "grid" : "ground"},
           {"TINLOD_MAX_ERROR", formatNumber(s.maxError)},
           {"TINLOD_MEASURED_MAX_ERROR", formatNumber(s.measuredMaxError)},
           {"TINLOD_RMSE", formatNumber(s.rmse)},

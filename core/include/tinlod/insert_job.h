@@ -36,8 +36,9 @@ struct InsertedTin {
 };
 
 // The inserter's input for `dem`: every valid cell, or the vertices of `sampled` (a TIN
-// sampled from `dem`, in the CRS `toTin` leads to) when it is not null.
-InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* sampled);
+// sampled from `dem`, in the CRS `toTin` leads to) when it is not null. `onGrid`: Delaunay
+// with square cells rather than on the ground.
+InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* sampled, bool onGrid = false);
 
 // DEM in memory to a greedy-insertion TIN in the metric CRS.
 InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, const ProgressRange& progress);

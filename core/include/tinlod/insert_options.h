@@ -24,6 +24,10 @@ struct InsertOptions {
   double maxError = 1;           // metres: every candidate within this of the TIN; 0: until exact
   std::size_t maxVertices = 0;   // 0: no limit
   std::size_t maxTriangles = 0;  // 0: no limit
+  // Delaunay on the DEM's grid with square cells (as delatin and most tools do) instead of
+  // on the ground in metres. Differs only where cells are not square on the ground (a
+  // geographic DEM away from the equator).
+  bool delaunayOnGrid = false;
   SampleOptions sample;          // band and CRSs; block, jitter and seed for the sampled candidates
 
   void validate() const;  // throws Error naming the option
