@@ -14,6 +14,7 @@
 #include <qgsvectorlayer.h>
 
 #include <QFile>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 
@@ -378,6 +379,9 @@ TEST(Processing, RealDemRuns) {
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
   if (::testing::GTEST_FLAG(list_tests)) return RUN_ALL_TESTS();  // test discovery: no QGIS needed
+  // QGIS computes approximate statistics of a raster layer; without this GDAL would leave
+  // them as .aux.xml beside the real DEMs in ../shared/data.
+  setenv("GDAL_PAM_ENABLED", "NO", 1);
   QgsApplication app(argc, argv, false);
   QgsApplication::init();
   QgsApplication::initQgis();

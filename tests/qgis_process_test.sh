@@ -10,6 +10,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # An isolated QGIS profile holding the plugin, as `plugins enable` would leave it.
+# No .aux.xml statistics beside the DEMs of ../shared/data.
+export GDAL_PAM_ENABLED=NO
 export QGIS_CUSTOM_CONFIG_PATH=$work/config QT_QPA_PLATFORM=offscreen HOME=$work XDG_RUNTIME_DIR=$work/xdg
 mkdir -p -m 700 "$XDG_RUNTIME_DIR" "$QGIS_CUSTOM_CONFIG_PATH/profiles/default/python/plugins"
 cp -r "$plugin_dir" "$QGIS_CUSTOM_CONFIG_PATH/profiles/default/python/plugins/tinlod"
