@@ -229,6 +229,12 @@ TEST(GreedyInsertion, SampledCandidatesAreTheSampledTinsVertices) {
   EXPECT_LE(all.tin.vertices.size(), sampled.vertices.size());
   EXPECT_GT(all.tin.vertices.size(), sampled.vertices.size() / 2);
   EXPECT_EQ(test::trianglesOverNodata(dem, all.tin), 0u);
+  // No sliver along the straight raster edges (their jittered points are not collinear):
+  // the TIN covers the cells the sampled TIN covers, and a 10 m tolerance holds at them.
+  const Tin& tin = sampled;
+  const BruteForce ours = bruteForce(dem, all.tin), theirs = bruteForce(dem, tin);
+  EXPECT_NEAR(double(ours.covered), double(theirs.covered), 10);
+  EXPECT_LE(ours.maxError, theirs.maxError) << theirs.maxError << " covered " << ours.covered << " vs " << theirs.covered;
   for (const TinVertex& v : all.tin.vertices)
     EXPECT_TRUE(std::any_of(sampled.vertices.begin(), sampled.vertices.end(),
                             [&](const TinVertex& s) { return s.x == v.x && s.y == v.y && s.z == v.z; }));

@@ -26,6 +26,7 @@ struct FaceState {
   std::uint32_t stamp = 0;      // bumped at each scan: older queue entries are stale
   std::uint32_t candidate = 0;  // its worst candidate
   bool overHole = false;
+  std::int32_t index = -1;      // its number when the triangulation is handed out
 };
 // A vertex knows its place in the insertion order.
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
@@ -203,23 +204,18 @@ double GreedyInserter::maxError() const {
 
 const std::vector<InsertedVertex>& GreedyInserter::inserted() const { return impl_->inserted; }
 
-std::vector<Triangle> GreedyInserter::triangles() const {
-  std::vector<Triangle> out;
-  out.reserve(impl_->dt.number_of_faces());
-  for (auto f = impl_->dt.finite_faces_begin(); f != impl_->dt.finite_faces_end(); ++f)
-    if (!f->info().overHole) out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
-  return out;
-}
-
-std::vector<bool> GreedyInserter::outline() const {
+Triangulation GreedyInserter::triangulation() const {
   const Delaunay& dt = impl_->dt;
-  std::vector<bool> out(impl_->inserted.size(), false);
+  std::int32_t next = 0;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) f->info().index = next++;
+  Triangulation out;
+  out.triangles.reserve(std::size_t(next));
+  out.neighbours.reserve(std::size_t(next));
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
-    if (f->info().overHole) continue;
-    for (int k = 0; k < 3; ++k) {
-      const FaceHandle n = f->neighbor(k);
-      if (dt.is_infinite(n) || n->info().overHole) out[f->vertex((k + 1) % 3)->info()] = out[f->vertex((k + 2) % 3)->info()] = true;
-    }
+    out.triangles.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+    std::array<std::int32_t, 3> n;
+    for (int k = 0; k < 3; ++k) n[k] = dt.is_infinite(f->neighbor(k)) ? kNoNeighbour : f->neighbor(k)->info().index;
+    out.neighbours.push_back(n);
   }
   return out;
 }

@@ -11,6 +11,7 @@
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
 #include "tinlod/gpkg_writer.h"
+#include "tinlod/nodata_filter.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/tin_rasterizer.h"
 #include "tinlod/version.h"
@@ -45,6 +46,24 @@ std::vector<CandidatePoint> samplePositions(const Dem& dem, const CrsTransform& 
 void orientTriangles(Tin& tin) {
   for (Triangle& t : tin.triangles)
     if (triangleArea(tin, t) < 0) std::swap(t[1], t[2]);
+}
+
+// Vertices on an edge that only one triangle has: the hull and the holes' edges.
+void markOutline(Tin& tin) {
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * tin.triangles.size());
+  for (const Triangle& t : tin.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
+      edges.push_back(std::uint64_t(a) << 32 | b);
+    }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) tin.vertices[edges[i] >> 32].outline = tin.vertices[edges[i] & 0xFFFFFFFFu].outline = true;
+    i = j;
+  }
 }
 
 // The TIN's heights at every cell, by a code path of its own (the accuracy rasteriser):
@@ -101,32 +120,37 @@ InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, con
   out.summary.maxError = inserter.maxError();
   out.summary.holesOpen = std::isinf(out.summary.maxError);
 
-  // Keep the vertices some triangle uses, in insertion order.
+  // Every inserted vertex as a TIN vertex: its cell, height and place on the map.
   const std::vector<InsertedVertex>& inserted = inserter.inserted();
-  std::vector<Triangle> triangles = inserter.triangles();
-  const std::vector<bool> outline = inserter.outline();
+  Tin all;
+  std::vector<double> x, y;
+  for (const InsertedVertex& iv : inserted) {
+    const std::uint32_t c = iv.candidate;
+    all.vertices.push_back(cells ? TinVertex{0, 0, dem.z[c], std::int32_t(c / dem.width), std::int32_t(c % dem.width), false}
+                                 : sampled.vertices[c]);
+    x.push_back(dem.centreX(all.vertices.back().col)), y.push_back(dem.centreY(all.vertices.back().row));
+  }
+  if (cells) {
+    toTin.apply(x, y);
+    for (std::size_t i = 0; i < x.size(); ++i) all.vertices[i].x = x[i], all.vertices[i].y = y[i];
+  }
+  // The triangles tinlod sample would keep: none over a hole, no sliver the jitter of
+  // sampled candidates leaves along a straight edge.
+  std::vector<Triangle> triangles = trianglesOnValidData(dem, inserter.triangulation(), all);
+
+  // Keep the vertices some triangle uses, in insertion order.
   std::vector<std::int64_t> index(inserted.size(), -1);
   for (const Triangle& t : triangles)
     for (VertexId v : t) index[v] = 0;
-  std::vector<double> x, y;
   std::vector<std::array<double, 2>> cellPositions;
   for (std::size_t i = 0; i < inserted.size(); ++i) {
     if (index[i] < 0) continue;
     index[i] = std::int64_t(out.tin.vertices.size());
-    const std::uint32_t c = inserted[i].candidate;
-    TinVertex v = cells ? TinVertex{0, 0, 0, std::int32_t(c / dem.width), std::int32_t(c % dem.width), false}
-                        : sampled.vertices[c];
-    if (cells) v.z = dem.z[c];
-    v.outline = outline[i];
-    out.tin.vertices.push_back(v);
-    x.push_back(dem.centreX(v.col)), y.push_back(dem.centreY(v.row));
-    cellPositions.push_back({inserter.candidateCol(c), inserter.candidateRow(c)});
+    out.tin.vertices.push_back(all.vertices[i]);
+    out.tin.vertices.back().outline = false;
+    cellPositions.push_back({inserter.candidateCol(inserted[i].candidate), inserter.candidateRow(inserted[i].candidate)});
     out.insertion.push_back(std::uint32_t(i + 1));
     out.errorBefore.push_back(inserted[i].errorBefore);
-  }
-  if (cells) {
-    toTin.apply(x, y);
-    for (std::size_t i = 0; i < x.size(); ++i) out.tin.vertices[i].x = x[i], out.tin.vertices[i].y = y[i];
   }
   for (Triangle& t : triangles)
     for (VertexId& v : t) v = VertexId(index[v]);
@@ -134,6 +158,7 @@ InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, con
   out.tin.crsWkt = toTin.targetWkt();
   out.tin.crsName = toTin.targetName();
   orientTriangles(out.tin);
+  markOutline(out.tin);
 
   InsertSummary& s = out.summary;
   s.vertices = out.tin.vertices.size(), s.triangles = out.tin.triangles.size(), s.crsName = out.tin.crsName;

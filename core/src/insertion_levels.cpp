@@ -6,6 +6,7 @@
 
 #include "tinlod/accuracy_job.h"
 #include "tinlod/insert_job.h"
+#include "tinlod/nodata_filter.h"
 
 namespace tinlod {
 
@@ -35,9 +36,11 @@ std::vector<LevelAccuracy> measureInsertionLevels(const AccuracyEvaluator& evalu
     row.deletePct = deletePct, row.stopPct = stopPct;
     row.level = static_cast<int>(k) + 1;
     row.certifiedError = inserter.maxError();
-    std::vector<Triangle> triangles = inserter.triangles();
-    for (Triangle& t : triangles)
+    Triangulation triangulation = inserter.triangulation();
+    for (Triangle& t : triangulation.triangles)
       for (VertexId& v : t) v = inserter.inserted()[v].candidate;  // the sampled TIN's vertex ids
+    // As tinlod sample keeps them: none over a hole, no sliver along a straight edge.
+    const std::vector<Triangle> triangles = trianglesOnValidData(dem, triangulation, sampled);
     row.vertices = inserter.vertexCount(), row.triangles = triangles.size();
     evaluator.evaluate(triangles, row, nullptr, part.sub(0.3, 1));
   }

@@ -150,14 +150,17 @@ std::size_t dropUnusedVertices(Tin& tin) {
 
 }  // namespace
 
+std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin) {
+  TriangleFilter filter(dem, triangulation, tin);
+  filter.dropOverNodata();
+  filter.peelBoundarySlivers();
+  return filter.kept();
+}
+
 std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triangulation, Tin& tin,
                                      const ProgressRange& progress) {
   progress.report(0, "Cutting out nodata");
-  TriangleFilter filter(dem, triangulation, tin);
-  filter.dropOverNodata();
-  progress.report(0.7, "Cutting out nodata");
-  filter.peelBoundarySlivers();
-  tin.triangles = filter.kept();
+  tin.triangles = trianglesOnValidData(dem, triangulation, tin);
   progress.report(0.9, "Cutting out nodata");
   return dropUnusedVertices(tin);
 }

@@ -9,6 +9,7 @@
 
 #include "tinlod/feedback.h"
 #include "tinlod/tin.h"
+#include "tinlod/triangulation.h"
 
 namespace tinlod {
 
@@ -74,11 +75,10 @@ class GreedyInserter {
   // still spans a hole.
   double maxError() const;
   const std::vector<InsertedVertex>& inserted() const;
-  // The triangles on valid data, indexing inserted(); counter-clockwise in cell units
-  // (col, row), which is clockwise on a north-up map.
-  std::vector<Triangle> triangles() const;
-  // Per inserted vertex: on the boundary of triangles() (the hull or a hole's edge).
-  std::vector<bool> outline() const;
+  // Every triangle with its neighbours, indexing inserted(); counter-clockwise in cell
+  // units (col, row), which is clockwise on a north-up map. Those over holes are included:
+  // trianglesOnValidData (nodata_filter.h) keeps the others, as `tinlod sample` does.
+  Triangulation triangulation() const;
   // Where a candidate is, in cell units.
   double candidateCol(std::uint32_t candidate) const;
   double candidateRow(std::uint32_t candidate) const;

@@ -22,4 +22,8 @@ namespace tinlod {
 std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triangulation, Tin& tin,
                                      const ProgressRange& progress);
 
+// The same choice of triangles, returned as they are (indexing tin.vertices, which only
+// give the triangles' cells); nothing is renumbered.
+std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin);
+
 }  // namespace tinlod
