@@ -108,7 +108,8 @@ struct GreedyInserter::Impl {
   }
 
   // Every triangle an insertion made or changed has the new vertex as a corner (CGAL
-  // inserts by splitting and flipping, and deletes no face): those alone are rescanned.
+  // inserts by splitting a face or edge, then flips, and deletes no face): those alone are
+  // rescanned.
   void rescanAround(Delaunay::Vertex_handle v) {
     auto f = dt.incident_faces(v), done = f;
     do {

@@ -57,7 +57,7 @@ struct InsertedVertex {
 // Delaunay triangulation (CGAL, exact predicates). Each triangle keeps its worst
 // candidate; a priority queue gives the next; after an insertion only the triangles
 // around the new vertex are rescanned. A triangle over missing cells is split first
-// (at its valid candidate nearest the hole's edge, by error) until no triangle mixes
+// (at its candidate on the hole's edge of largest error, if it has one) until no triangle mixes
 // data and holes.
 class GreedyInserter {
  public:
