@@ -3,14 +3,18 @@
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
 #include "test_support.h"
 #include "tinlod/accuracy_job.h"
 #include "tinlod/build_job.h"
+#include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
+#include "tinlod/hierarchy_builder.h"
 #include "tinlod/hierarchy_reader.h"
+#include "tinlod/sample_job.h"
 #include "tinlod/synthetic_dem.h"
 
 namespace fs = std::filesystem;
@@ -100,6 +104,31 @@ TEST(AccuracyJob, HierarchyReaderRestoresEveryLevelsTriangleCount) {
   ASSERT_EQ(s.hierarchy.levels.size(), b.summary.accuracy.size());
   for (const LevelStats& l : s.hierarchy.levels)
     EXPECT_EQ(s.hierarchy.levelTriangles(l.level).size(), l.triangles) << "level " << l.level;
+}
+
+TEST(AccuracyJob, HierarchyReaderRestoresTheGroupsAndTheirLinks) {
+  const Built& b = built();
+  const Hierarchy& h = readHierarchy(b.gpkg, ProgressRange(Feedback{}, 0, 1)).hierarchy;
+  const Tin tin = sampleTin(readDem(smallDem(), 1, ProgressRange(Feedback{}, 0, 1)), SampleOptions{}, ProgressRange(Feedback{}, 0, 1));
+  const Hierarchy built = buildHierarchy(tin, {}, HierarchyOptions{}, ProgressRange(Feedback{}, 0, 1));
+  ASSERT_EQ(h.groups.size(), built.groups.size());
+  ASSERT_EQ(h.triangles.size(), built.triangles.size());
+  auto sorted = [](std::pair<const std::uint32_t*, const std::uint32_t*> r) {
+    std::vector<std::uint32_t> v(r.first, r.second);
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  for (std::size_t g = 0; g < h.groups.size(); ++g) {
+    EXPECT_EQ(h.groups[g].vertex, built.groups[g].vertex);
+    EXPECT_EQ(h.groups[g].level, built.groups[g].level);
+    EXPECT_DOUBLE_EQ(h.groups[g].error, built.groups[g].error);
+    EXPECT_EQ(sorted(h.accept(h.groups[g])), sorted(built.accept(built.groups[g]))) << "group " << g;
+    EXPECT_EQ(sorted(h.reject(h.groups[g])), sorted(built.reject(built.groups[g]))) << "group " << g;
+  }
+  for (std::size_t t = 0; t < h.triangles.size(); ++t) {
+    EXPECT_EQ(h.triangles[t].group, built.triangles[t].group);
+    EXPECT_EQ(h.triangles[t].replacedBy, built.triangles[t].replacedBy);
+  }
 }
 
 TEST(AccuracyJob, BadOutputsFailBeforeAnyWorkAndNameTheOption) {

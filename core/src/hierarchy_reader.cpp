@@ -6,6 +6,8 @@
 
 #include <cstdlib>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "gdal_handles.h"
 #include "tinlod/error.h"
@@ -48,6 +50,12 @@ void readTriangles(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress)
   OGRFeatureDefn& defn = *layer.GetLayerDefn();
   const int first = defn.GetFieldIndex("first_level"), last = defn.GetFieldIndex("last_level");
   const int corner[3] = {defn.GetFieldIndex("v0"), defn.GetFieldIndex("v1"), defn.GetFieldIndex("v2")};
+  const int group = defn.GetFieldIndex("group_id"), replacedBy = defn.GetFieldIndex("replaced_by");
+  const int error = defn.GetFieldIndex("error");
+  // Null (level 0, or never replaced) and absent (a plain TIN) both read as no group.
+  auto groupOf = [&](OGRFeature& f, int field) {
+    return field >= 0 && f.IsFieldSetAndNotNull(field) ? f.GetFieldAsInteger(field) - 1 : kNoGroup;
+  };
   layer.SetIgnoredFields(std::vector<const char*>{"OGR_GEOMETRY", nullptr}.data());  // corners come from v0..v2
   h.triangles.reserve(static_cast<std::size_t>(count));
   for (auto& f : layer) {
@@ -60,10 +68,63 @@ void readTriangles(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress)
     }
     t.firstLevel = first >= 0 ? f->GetFieldAsInteger(first) : 0;
     t.lastLevel = last >= 0 ? f->GetFieldAsInteger(last) : 0;
+    t.group = groupOf(*f, group);
+    t.replacedBy = groupOf(*f, replacedBy);
+    if (error >= 0) t.error = f->GetFieldAsDouble(error);
     if (t.firstLevel == 0) h.base.triangles.push_back(t.v);
     h.triangles.push_back(t);
     if ((h.triangles.size() & 0xFFFF) == 0) progress.report(double(h.triangles.size()) / count, "Reading triangles");
   }
+}
+
+// The groups' accept and reject triangles come from the triangles' replaced_by and
+// group_id: each group's range in h.links holds its accept triangles, then its reject ones.
+void linkGroups(Hierarchy& h) {
+  std::vector<std::uint32_t> accepts(h.groups.size(), 0), rejects(h.groups.size(), 0);
+  auto check = [&](std::int32_t g) {
+    if (g != kNoGroup && (g < 0 || static_cast<std::size_t>(g) >= h.groups.size()))
+      throw Error("the triangles layer of the GeoPackage is damaged (a group id is not a group)");
+    return g != kNoGroup;
+  };
+  for (const HierarchyTriangle& t : h.triangles) {
+    if (check(t.replacedBy)) ++accepts[t.replacedBy];
+    if (check(t.group)) ++rejects[t.group];
+  }
+  std::uint32_t next = 0;
+  for (std::size_t g = 0; g < h.groups.size(); ++g) {
+    if (accepts[g] == 0 || rejects[g] == 0)
+      throw Error("the GeoPackage's group " + std::to_string(g + 1) + " has no accept or no reject triangle: the file is damaged");
+    Group& group = h.groups[g];
+    group.acceptBegin = group.acceptEnd = next;
+    group.rejectBegin = group.rejectEnd = next += accepts[g];
+    next += rejects[g];
+  }
+  h.links.assign(next, 0);
+  for (std::uint32_t t = 0; t < h.triangles.size(); ++t) {
+    if (h.triangles[t].replacedBy != kNoGroup) h.links[h.groups[h.triangles[t].replacedBy].acceptEnd++] = t;
+    if (h.triangles[t].group != kNoGroup) h.links[h.groups[h.triangles[t].group].rejectEnd++] = t;
+  }
+}
+
+void readGroups(OGRLayer& layer, Hierarchy& h) {
+  const GIntBig count = layer.GetFeatureCount();
+  h.groups.assign(static_cast<std::size_t>(count), Group());
+  OGRFeatureDefn& defn = *layer.GetLayerDefn();
+  const int id = defn.GetFieldIndex("id"), level = defn.GetFieldIndex("level"), vertex = defn.GetFieldIndex("vertex");
+  const int importance = defn.GetFieldIndex("importance"), error = defn.GetFieldIndex("error");
+  layer.SetIgnoredFields(std::vector<const char*>{"OGR_GEOMETRY", nullptr}.data());  // the outlines are not read
+  for (auto& f : layer) {
+    const GIntBig g = f->GetFieldAsInteger64(id) - 1;
+    const GIntBig v = f->GetFieldAsInteger64(vertex) - 1;
+    if (g < 0 || g >= count || v < 0 || static_cast<std::size_t>(v) >= h.base.vertices.size())
+      throw Error("the groups layer of the GeoPackage is damaged (ids out of range)");
+    Group& group = h.groups[static_cast<std::size_t>(g)];
+    group.vertex = static_cast<VertexId>(v);
+    group.level = f->GetFieldAsInteger(level);
+    group.importance = f->GetFieldAsDouble(importance);
+    group.error = f->GetFieldAsDouble(error);
+  }
+  linkGroups(h);
 }
 
 void readOptions(const HierarchyInfo& info, Hierarchy& h) {
@@ -92,7 +153,8 @@ StoredHierarchy readHierarchy(const std::string& path, const ProgressRange& prog
   h.base.crsWkt = wktOf(*triangles);
   h.base.crsName = out.info.crsName;
   readVertices(*vertices, h, progress.sub(0, 0.2));
-  readTriangles(*triangles, h, progress.sub(0.2, 1));
+  readTriangles(*triangles, h, progress.sub(0.2, 0.95));
+  if (OGRLayer* groups = ds->GetLayerByName("groups")) readGroups(*groups, h);
   readOptions(out.info, h);
   return out;
 }
