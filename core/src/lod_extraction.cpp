@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/lod_extraction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+
+void LodOptions::validate() const {
+  if (std::isnan(dropoff) && std::isnan(maxError))
+    throw Error("give a test: -dropoff (distance to the centre) or -max_error (vertical error)");
+  if (!std::isnan(dropoff) && !(dropoff >= 0))
+    throw Error("-dropoff must be 0 or more metres per level (0: the coarsest level everywhere)");
+  if (!std::isnan(dropoff) && centres.empty()) throw Error("-dropoff needs a centre of detail: -center X Y");
+  if (!std::isnan(maxError) && !(maxError >= 0)) throw Error("-max_error must be 0 or more metres");
+  if (!(errorGrowth >= 0) || !std::isfinite(errorGrowth)) throw Error("-error_growth must be 0 or more metres per metre");
+  if (errorGrowth > 0 && centres.empty()) throw Error("-error_growth needs a centre of detail: -center X Y");
+}
+
+namespace {
+
+double nearestCentre(const LodOptions& o, const TinVertex& v) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& c : o.centres) best = std::min(best, std::hypot(v.x - c[0], v.y - c[1]));
+  return best;
+}
+
+bool accepted(const Hierarchy& h, const LodOptions& o, const Group& g) {
+  const double d = o.centres.empty() ? 0 : nearestCentre(o, h.base.vertices[g.vertex]);
+  if (!std::isnan(o.dropoff) && d < g.level * o.dropoff) return true;
+  return !std::isnan(o.maxError) && g.error > o.maxError + o.errorGrowth * d;
+}
+
+// The groups to refine: those the tests accept, and every coarser group whose accept
+// triangles hold a reject triangle of one of them (finer groups first, so that the need
+// climbs all the way up).
+std::vector<bool> groupsToRefine(const Hierarchy& h, const LodOptions& o) {
+  std::vector<std::uint32_t> order(h.groups.size());
+  for (std::uint32_t g = 0; g < order.size(); ++g) order[g] = g;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return h.groups[a].level < h.groups[b].level; });
+  std::vector<bool> refine(h.groups.size(), false);
+  for (std::uint32_t g : order) {
+    if (!refine[g] && !accepted(h, o, h.groups[g])) continue;
+    refine[g] = true;
+    const auto [begin, end] = h.reject(h.groups[g]);
+    for (const std::uint32_t* r = begin; r != end; ++r)
+      if (h.triangles[*r].replacedBy != kNoGroup) refine[h.triangles[*r].replacedBy] = true;
+  }
+  return refine;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> extractLod(const Hierarchy& h, const LodOptions& options, const ProgressRange& progress) {
+  options.validate();
+  const std::vector<bool> refine = groupsToRefine(h, options);
+  progress.report(0.3, "Extracting the TIN");
+  // Coarser triangles first: a group is decided once every coarser one is.
+  auto coarserFirst = [&](std::uint32_t a, std::uint32_t b) {
+    return h.triangles[a].firstLevel != h.triangles[b].firstLevel ? h.triangles[a].firstLevel < h.triangles[b].firstLevel : a > b;
+  };
+  std::priority_queue<std::uint32_t, std::vector<std::uint32_t>, decltype(coarserFirst)> queue(coarserFirst);
+  std::vector<std::uint8_t> queued(h.triangles.size(), 0);
+  for (std::uint32_t t : h.levelTriangles(h.coarsest())) queue.push(t), queued[t] = 1;
+  std::vector<std::uint32_t> out;
+  while (!queue.empty()) {
+    const std::uint32_t t = queue.top();
+    queue.pop();
+    if (!queued[t]) continue;  // replaced with the rest of its group
+    queued[t] = 0;
+    const std::int32_t g = h.triangles[t].group;
+    if (g == kNoGroup || !refine[g]) {
+      out.push_back(t);
+      continue;
+    }
+    // Refining: the group's other reject triangles are queued too (the need climbed up to
+    // every group that held them); all go, the accept triangles come in.
+    const auto [rb, re] = h.reject(h.groups[g]);
+    for (const std::uint32_t* r = rb; r != re; ++r) queued[*r] = 0;
+    const auto [ab, ae] = h.accept(h.groups[g]);
+    for (const std::uint32_t* a = ab; a != ae; ++a) queue.push(*a), queued[*a] = 1;
+  }
+  progress.report(1, "Extracting the TIN");
+  return out;
+}
+
+}  // namespace tinlod

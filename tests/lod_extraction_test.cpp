@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mesh_checks.h"
+#include "test_support.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_builder.h"
+#include "tinlod/lod_extraction.h"
+#include "tinlod/sample_job.h"
+
+namespace tinlod {
+namespace {
+
+const ProgressRange kQuiet(Feedback{}, 0, 1);
+
+const Hierarchy& hierarchy() {
+  static const Hierarchy h = [] {
+    const Tin tin = sampleTin(test::smallSyntheticDem(), SampleOptions{}, kQuiet);
+    return buildHierarchy(tin, {}, HierarchyOptions{}, kQuiet);
+  }();
+  return h;
+}
+
+std::vector<std::uint32_t> sorted(std::vector<std::uint32_t> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+Tin asTin(const Hierarchy& h, const std::vector<std::uint32_t>& triangles) {
+  Tin tin;
+  tin.vertices = h.base.vertices;
+  for (std::uint32_t t : triangles) tin.triangles.push_back(h.triangles[t].v);
+  return tin;
+}
+
+// Conforming and covering what level 0 covers: a consistently oriented surface whose
+// only boundary is level 0's (a T-junction would add boundary edges inside).
+void expectConforming(const Hierarchy& h, const std::vector<std::uint32_t>& triangles) {
+  const Tin tin = asTin(h, triangles);
+  const test::Topology t = test::analyseTopology(tin), base = test::analyseTopology(h.base);
+  EXPECT_EQ(t.problem, "");
+  EXPECT_EQ(t.eulerCharacteristic(), t.expectedEuler());
+  EXPECT_EQ(t.boundaryLoops, base.boundaryLoops);
+  EXPECT_NEAR(t.perimeter, base.perimeter, 1e-6 * base.perimeter);
+  EXPECT_NEAR(totalArea(tin), totalArea(h.base), 1e-9 * totalArea(h.base));
+  EXPECT_EQ(test::clockwiseTriangles(tin), 0u);
+}
+
+std::array<double, 2> middle(const Hierarchy& h) {
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const TinVertex& v : h.base.vertices) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
+  return {(x0 + x1) / 2, (y0 + y1) / 2};
+}
+
+TEST(LodExtraction, InfiniteDropoffGivesLevelZeroAndZeroDropoffTheCoarsest) {
+  const Hierarchy& h = hierarchy();
+  ASSERT_GE(h.coarsest(), 5);
+  LodOptions o;
+  o.centres = {middle(h)};
+  o.dropoff = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(sorted(extractLod(h, o, kQuiet)), sorted(h.levelTriangles(0)));
+  o.dropoff = 0;
+  EXPECT_EQ(sorted(extractLod(h, o, kQuiet)), sorted(h.levelTriangles(h.coarsest())));
+}
+
+TEST(LodExtraction, DistanceTestIsFineNearTheCentreCoarseFarAndConforming) {
+  const Hierarchy& h = hierarchy();
+  LodOptions o;
+  o.centres = {middle(h)};
+  o.dropoff = 250;
+  const std::vector<std::uint32_t> out = extractLod(h, o, kQuiet);
+  expectConforming(h, out);
+  EXPECT_LT(out.size(), h.levelTriangles(0).size());
+  EXPECT_GT(out.size(), h.levelTriangles(h.coarsest()).size());
+  double nearLevels = 0, farLevels = 0;
+  std::size_t nearCount = 0, farCount = 0;
+  for (std::uint32_t t : out) {
+    const HierarchyTriangle& tri = h.triangles[t];
+    // No triangle left whose deleted vertex the test accepts.
+    if (tri.group != kNoGroup) {
+      const Group& g = h.groups[tri.group];
+      const TinVertex& v = h.base.vertices[g.vertex];
+      EXPECT_GE(std::hypot(v.x - o.centres[0][0], v.y - o.centres[0][1]), g.level * o.dropoff);
+    }
+    const TinVertex& a = h.base.vertices[tri.v[0]];
+    const double d = std::hypot(a.x - o.centres[0][0], a.y - o.centres[0][1]);
+    (d < 1000 ? nearLevels : farLevels) += tri.firstLevel;
+    ++(d < 1000 ? nearCount : farCount);
+  }
+  ASSERT_GT(nearCount, 0u);
+  ASSERT_GT(farCount, 0u);
+  EXPECT_LT(nearLevels / nearCount + 2, farLevels / farCount);
+}
+
+TEST(LodExtraction, ErrorTestKeepsEveryTriangleWithinTheTolerance) {
+  const Hierarchy& h = hierarchy();
+  for (double tolerance : {0.5, 2.0, 10.0}) {
+    LodOptions o;
+    o.maxError = tolerance;
+    const std::vector<std::uint32_t> out = extractLod(h, o, kQuiet);
+    expectConforming(h, out);
+    double worst = 0;
+    for (std::uint32_t t : out) worst = std::max(worst, h.triangles[t].error);
+    EXPECT_LE(worst, tolerance);
+  }
+  // A tolerance growing with distance: coarser far away.
+  LodOptions grow;
+  grow.maxError = 0.5;
+  grow.errorGrowth = 0.01;
+  grow.centres = {middle(h)};
+  LodOptions flat;
+  flat.maxError = 0.5;
+  EXPECT_LT(extractLod(h, grow, kQuiet).size(), extractLod(h, flat, kQuiet).size());
+}
+
+TEST(LodExtraction, SeveralCentresAndBadOptions) {
+  const Hierarchy& h = hierarchy();
+  LodOptions one, two;
+  one.dropoff = two.dropoff = 200;
+  one.centres = {middle(h)};
+  two.centres = {middle(h), {middle(h)[0] - 3000, middle(h)[1] + 2000}};
+  const std::vector<std::uint32_t> a = extractLod(h, one, kQuiet), b = extractLod(h, two, kQuiet);
+  expectConforming(h, b);
+  EXPECT_GT(b.size(), a.size());
+  LodOptions none;
+  EXPECT_THROW(extractLod(h, none, kQuiet), Error);
+  LodOptions noCentre;
+  noCentre.dropoff = 100;
+  EXPECT_THROW(extractLod(h, noCentre, kQuiet), Error);
+  LodOptions negative;
+  negative.maxError = -1;
+  EXPECT_THROW(extractLod(h, negative, kQuiet), Error);
+}
+
+}  // namespace
+}  // namespace tinlod
