@@ -70,14 +70,29 @@ int Arguments::integer(const std::string& name, int fallback) {
   return take(name, value) ? parseInteger(name, value) : fallback;
 }
 
-double Arguments::number(const std::string& name, double fallback) {
-  std::string value;
-  if (!take(name, value)) return fallback;
+double Arguments::parseNumber(const std::string& name, const std::string& value) {
   char* end = nullptr;
   const double parsed = std::strtod(value.c_str(), &end);
   if (value.empty() || *end != '\0' || !std::isfinite(parsed))
     throw Error(name + " expects a number, got '" + value + "'");
   return parsed;
+}
+
+double Arguments::number(const std::string& name, double fallback) {
+  std::string value;
+  return take(name, value) ? parseNumber(name, value) : fallback;
+}
+
+std::vector<std::vector<double>> Arguments::repeatedNumbers(const std::string& name, std::size_t count) {
+  std::vector<std::vector<double>> out;
+  for (auto it = std::find(args_.begin(), args_.end(), name); it != args_.end(); it = std::find(args_.begin(), args_.end(), name)) {
+    if (std::size_t(args_.end() - it) <= count) throw Error(name + " needs " + std::to_string(count) + " numbers");
+    std::vector<double> values;
+    for (std::size_t k = 1; k <= count; ++k) values.push_back(parseNumber(name, *(it + k)));
+    out.push_back(values);
+    args_.erase(it, it + 1 + count);
+  }
+  return out;
 }
 
 std::uint64_t Arguments::unsignedInteger(const std::string& name, std::uint64_t fallback) {

@@ -21,6 +21,8 @@ class Arguments {
   // An option with several whole-number values, "-size 360 300"; fallback when absent.
   std::vector<int> integers(const std::string& name, std::size_t count, std::vector<int> fallback);
   double number(const std::string& name, double fallback);
+  // Every occurrence of an option of `count` numbers: "-center 1 2 -center 3 4".
+  std::vector<std::vector<double>> repeatedNumbers(const std::string& name, std::size_t count);
   std::uint64_t unsignedInteger(const std::string& name, std::uint64_t fallback);
   // The remaining operands; throws Error for an unknown option or a wrong count.
   std::vector<std::string> operands(std::size_t count, const std::string& usage);
@@ -32,6 +34,7 @@ class Arguments {
   bool take(const std::string& name, std::string& value);
   void rejectOptions(const std::string& usage) const;
   static int parseInteger(const std::string& name, const std::string& value);
+  static double parseNumber(const std::string& name, const std::string& value);
   std::vector<std::string> args_;
 };
 

@@ -23,6 +23,7 @@ Commands:
   accuracy    measure the accuracy of every level of a hierarchy: raster and report
   experiment  run the study's experiment over DEMs: methods x delete percentages, one report
   insert      greedy insertion (Garland and Heckbert): a TIN within a vertical tolerance
+  lod         extract a TIN of varying level of detail from a hierarchy
   info        describe a GeoPackage written by tinlod
   sample      sample a DEM into a Delaunay TIN, written to a GeoPackage
   makedem     write the project's synthetic default DEM (a GeoTIFF)
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
                                                  {"experiment", tinlod::cli::experimentCommand},
                                                  {"info", tinlod::cli::infoCommand},
                                                  {"insert", tinlod::cli::insertCommand},
+                                                 {"lod", tinlod::cli::lodCommand},
                                                  {"sample", tinlod::cli::sampleCommand},
                                                  {"makedem", tinlod::cli::makeDemCommand}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {

@@ -206,7 +206,7 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
     writeOptions.metadata["TINLOD_JITTER"] = formatNumber(options.sample.jitter);
     writeOptions.metadata["TINLOD_SEED"] = std::to_string(options.sample.seed);
   }
-  std::vector<VertexField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
+  std::vector<ExtraField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
   extra[0].values.assign(result.insertion.begin(), result.insertion.end());
   extra[1].values = result.errorBefore;
   writeTinGpkg(result.tin, outPath, writeOptions, all.sub(0.9, 1), extra);

@@ -11,8 +11,8 @@
 namespace tinlod {
 
 void LodOptions::validate() const {
-  if (std::isnan(dropoff) && std::isnan(maxError))
-    throw Error("give a test: -dropoff (distance to the centre) or -max_error (vertical error)");
+  if (std::isnan(dropoff) && std::isnan(maxError) && !inRegion)
+    throw Error("give a test: -dropoff (distance to the centre), -max_error (vertical error) or -region (polygons)");
   if (!std::isnan(dropoff) && !(dropoff >= 0))
     throw Error("-dropoff must be 0 or more metres per level (0: the coarsest level everywhere)");
   if (!std::isnan(dropoff) && centres.empty()) throw Error("-dropoff needs a centre of detail: -center X Y");
@@ -30,7 +30,9 @@ double nearestCentre(const LodOptions& o, const TinVertex& v) {
 }
 
 bool accepted(const Hierarchy& h, const LodOptions& o, const Group& g) {
-  const double d = o.centres.empty() ? 0 : nearestCentre(o, h.base.vertices[g.vertex]);
+  const TinVertex& v = h.base.vertices[g.vertex];
+  if (o.inRegion && o.inRegion(v.x, v.y)) return true;
+  const double d = o.centres.empty() ? 0 : nearestCentre(o, v);
   if (!std::isnan(o.dropoff) && d < g.level * o.dropoff) return true;
   return !std::isnan(o.maxError) && g.error > o.maxError + o.errorGrowth * d;
 }

@@ -21,8 +21,9 @@ struct GpkgWriteOptions {
 // Throws Error when `path` exists and overwrite is off, or its folder is missing.
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options);
 
-// A further field of the 'vertices' layer: one value per vertex, NaN and infinity written as null.
-struct VertexField {
+// A further field of the 'vertices' or 'triangles' layer: one value per feature, NaN and
+// infinity written as null.
+struct ExtraField {
   std::string name;
   std::vector<double> values;
   bool integer = false;
@@ -33,6 +34,7 @@ struct VertexField {
 // v0, v1, v2 join to vertices.fid: vertex index i is written as id i + 1. Works on a temporary copy and renames it into place at the end, so a
 // failed or cancelled run leaves `path` as it was.
 void writeTinGpkg(const Tin& tin, const std::string& path, const GpkgWriteOptions& options,
-                  const ProgressRange& progress, const std::vector<VertexField>& extra = {});
+                  const ProgressRange& progress, const std::vector<ExtraField>& vertexExtra = {},
+                  const std::vector<ExtraField>& triangleExtra = {});
 
 }  // namespace tinlod

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct LodOptions {
   // tolerance is maxError everywhere). NaN: no error test.
   double maxError = std::numeric_limits<double>::quiet_NaN();
   double errorGrowth = 0;  // metres of tolerance per metre of distance
+  // The region test: restore every vertex for which this is true (inside a polygon layer).
+  std::function<bool(double x, double y)> inRegion;
   void validate() const;   // throws Error naming the option
 };
 

@@ -13,9 +13,10 @@ namespace tinlod {
 // vector file GDAL reads, transformed to the CRS `targetWkt`. A layer without a CRS is
 // taken to be in it already (a warning says so). Throws Error naming the file.
 // Throws Error when a plain path does not exist (checked before any long work).
-void checkPointsExist(const std::string& path);
+// `what` names the points in messages.
+void checkPointsExist(const std::string& path, const std::string& what = "points to keep");
 
 std::vector<std::array<double, 2>> readPoints(const std::string& path, const std::string& targetWkt,
-                                              const ProgressRange& progress);
+                                              const ProgressRange& progress, const std::string& what = "points to keep");
 
 }  // namespace tinlod

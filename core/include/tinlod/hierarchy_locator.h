@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+
+#include "tinlod/hierarchy.h"
+
+namespace tinlod {
+
+// Where a query point fell: the triangle (an index into Hierarchy::triangles) and the
+// height of its plane there; no triangle for a point outside the TIN or in a hole.
+struct LocatedPoint {
+  std::int64_t triangle = -1;
+  double z = std::numeric_limits<double>::quiet_NaN();
+  bool found() const { return triangle >= 0; }
+};
+
+// Kirkpatrick's point location: the containing triangle at the coarsest level, from a
+// bucket grid, then among the finer triangles it replaced, level by level, down to the
+// level asked for: O(log n) per point. Triangles are closed, so a point on an edge or a
+// vertex is found; it takes the first containing triangle in a fixed order, so the
+// answer is deterministic. The hierarchy must outlive the locator, which keeps a
+// reference to it. locate() is const and keeps no state: threads may share a locator.
+class HierarchyLocator {
+ public:
+  explicit HierarchyLocator(const Hierarchy& h);
+  ~HierarchyLocator();
+  HierarchyLocator(HierarchyLocator&&) noexcept;
+  HierarchyLocator& operator=(HierarchyLocator&&) noexcept;
+
+  // Throws Error for a level outside 0 .. h.coarsest().
+  LocatedPoint locate(double x, double y, int level = 0) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<const Impl> impl_;
+};
+
+}  // namespace tinlod

@@ -1,0 +1,265 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/hierarchy_locator.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_2;
+
+constexpr std::uint32_t kNone = UINT32_MAX;
+
+// Closed: a point on an edge or a vertex is inside (the triangle is counter-clockwise).
+// CGAL's filtered predicate is exact, so the triangles of a level leave no gaps between
+// them, and a star's accept triangles cover exactly the points its reject triangles do.
+bool contains(const Point& a, const Point& b, const Point& c, const Point& p) {
+  return CGAL::orientation(a, b, p) != CGAL::RIGHT_TURN && CGAL::orientation(b, c, p) != CGAL::RIGHT_TURN &&
+         CGAL::orientation(c, a, p) != CGAL::RIGHT_TURN;
+}
+
+// A triangle of the coarsest level with its corners: the start of every search.
+struct TopTriangle {
+  Point a, b, c;
+  std::uint32_t id;
+  std::int32_t group;  // the group whose reject triangle it is, kNoGroup at level 0
+};
+
+// A uniform grid of buckets over the coarsest level: each bucket lists the triangles
+// whose bounding box overlaps it, in ascending id, so that the start of a search costs
+// a few containment tests whatever the size of the TIN.
+struct BucketGrid {
+  double x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // the triangles' bounding box; empty by default
+  double cellW = 1, cellH = 1;
+  int nx = 0, ny = 0;
+  std::vector<std::uint32_t> start;  // bucket k holds items[start[k] .. start[k + 1])
+  std::vector<std::uint32_t> items;  // indices into the top triangles
+
+  bool covers(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }  // false for NaN
+  // Coordinates inside the box only: the quotient is then >= 0, so truncation is floor,
+  // and it is monotone in x, so a point inside a triangle's box maps inside the
+  // triangle's range of buckets. The clamp takes the box's far edge into the last bucket.
+  int column(double x) const { return std::min(static_cast<int>((x - x0) / cellW), nx - 1); }
+  int row(double y) const { return std::min(static_cast<int>((y - y0) / cellH), ny - 1); }
+  std::size_t bucket(int c, int r) const { return static_cast<std::size_t>(r) * nx + c; }
+};
+
+struct Box {
+  double x0, y0, x1, y1;
+};
+
+Box boxOf(const TopTriangle& t) {
+  return {std::min({t.a.x(), t.b.x(), t.c.x()}), std::min({t.a.y(), t.b.y(), t.c.y()}),
+          std::max({t.a.x(), t.b.x(), t.c.x()}), std::max({t.a.y(), t.b.y(), t.c.y()})};
+}
+
+// About one bucket per triangle, square-ish buckets. A degenerate extent (impossible in
+// a TIN, but a file can say anything) keeps one row or column instead of dividing by zero.
+void sizeGrid(BucketGrid& grid, std::size_t triangles) {
+  const double w = grid.x1 - grid.x0, h = grid.y1 - grid.y0;
+  const double n = std::max<double>(1, static_cast<double>(triangles));
+  const double aspect = (w > 0 && h > 0) ? w / h : 1;
+  grid.nx = static_cast<int>(std::clamp(std::round(std::sqrt(n * aspect)), 1.0, n));
+  grid.ny = static_cast<int>(std::clamp(std::ceil(n / grid.nx), 1.0, n));
+  grid.cellW = w > 0 ? w / grid.nx : 1;
+  grid.cellH = h > 0 ? h / grid.ny : 1;
+}
+
+// Two passes over the triangles (count, then fill) build the buckets as one flat array.
+BucketGrid makeGrid(const std::vector<TopTriangle>& top) {
+  BucketGrid grid;
+  if (top.empty()) return grid;
+  std::vector<Box> boxes;
+  boxes.reserve(top.size());
+  for (const TopTriangle& t : top) boxes.push_back(boxOf(t));
+  grid.x0 = grid.y0 = INFINITY;
+  grid.x1 = grid.y1 = -INFINITY;
+  for (const Box& b : boxes) {
+    grid.x0 = std::min(grid.x0, b.x0), grid.y0 = std::min(grid.y0, b.y0);
+    grid.x1 = std::max(grid.x1, b.x1), grid.y1 = std::max(grid.y1, b.y1);
+  }
+  sizeGrid(grid, top.size());
+  const auto eachBucket = [&grid](const Box& b, auto&& visit) {
+    for (int r = grid.row(b.y0); r <= grid.row(b.y1); ++r)
+      for (int c = grid.column(b.x0); c <= grid.column(b.x1); ++c) visit(grid.bucket(c, r));
+  };
+  grid.start.assign(grid.bucket(0, grid.ny) + 1, 0);
+  for (const Box& b : boxes) eachBucket(b, [&grid](std::size_t k) { ++grid.start[k + 1]; });
+  for (std::size_t k = 1; k < grid.start.size(); ++k) grid.start[k] += grid.start[k - 1];
+  grid.items.resize(grid.start.back());
+  std::vector<std::uint32_t> next(grid.start.begin(), grid.start.end() - 1);
+  for (std::uint32_t i = 0; i < boxes.size(); ++i)
+    eachBucket(boxes[i], [&](std::size_t k) { grid.items[next[k]++] = i; });
+  return grid;
+}
+
+std::vector<Point> pointsOf(const Tin& base) {
+  std::vector<Point> points;
+  points.reserve(base.vertices.size());
+  for (const TinVertex& v : base.vertices) points.emplace_back(v.x, v.y);
+  return points;
+}
+
+// levelTriangles() is in ascending id, so the buckets are too: the first containing
+// triangle of a bucket is the lowest id.
+std::vector<TopTriangle> topTriangles(const Hierarchy& h, const std::vector<Point>& points) {
+  std::vector<TopTriangle> top;
+  if (h.coarsest() < 0) return top;
+  for (std::uint32_t t : h.levelTriangles(h.coarsest())) {
+    const Triangle& v = h.triangles[t].v;
+    top.push_back({points[v[0]], points[v[1]], points[v[2]], t, h.triangles[t].group});
+  }
+  return top;
+}
+
+// One step of the descent reads one group's star: its deleted vertex and the ring of
+// its accept triangles, stored together so that the step reads a few consecutive cache
+// lines rather than a triangle, three vertices and a link per candidate (the hierarchy's
+// own arrays are far larger than the caches, and the search is bound by memory).
+// A block is a head, {vertex, level, k}, then k ring entries {ring vertex, accept
+// triangle, its group}: entry i and the next (cyclically) span accept triangle i with
+// the head's vertex.
+struct FanEntry {
+  Point p;
+  std::uint32_t a = 0;  // head: the ring's size; ring entry: the accept triangle
+  std::int32_t b = 0;   // head: the group's level; ring entry: the triangle's own group
+};
+
+std::string groupName(const Hierarchy& h, std::size_t g) {
+  return "group " + std::to_string(g) + " (vertex " + std::to_string(h.groups[g].vertex) + ")";
+}
+
+// The accept triangles turned to start at the deleted vertex, in counter-clockwise order
+// around it: each one's last corner is the next one's second. Checked rather than
+// assumed, so that an inconsistent file fails here and not in a search.
+std::vector<std::uint32_t> ringOrder(const Hierarchy& h, std::size_t g, std::vector<std::array<VertexId, 3>>& turned) {
+  const VertexId v = h.groups[g].vertex;
+  const auto [begin, end] = h.accept(h.groups[g]);
+  turned.clear();
+  for (const std::uint32_t* t = begin; t != end; ++t) {
+    Triangle c = h.triangles[*t].v;
+    const auto at = std::find(c.begin(), c.end(), v);
+    if (at == c.end()) throw Error("the hierarchy is inconsistent: an accept triangle of " + groupName(h, g) + " lacks its vertex");
+    std::rotate(c.begin(), at, c.end());
+    turned.push_back(c);
+  }
+  std::vector<std::uint32_t> order;
+  for (std::size_t i = 0; order.size() < turned.size();) {
+    order.push_back(static_cast<std::uint32_t>(i));
+    const auto next = std::find_if(turned.begin(), turned.end(), [&](const auto& c) { return c[1] == turned[i][2]; });
+    if (next == turned.end()) break;
+    i = static_cast<std::size_t>(next - turned.begin());
+    if (i == 0) break;
+  }
+  if (order.size() != turned.size() || turned.empty() || turned[order.back()][2] != turned[0][1])
+    throw Error("the hierarchy is inconsistent: the accept triangles of " + groupName(h, g) + " are not a closed fan");
+  return order;
+}
+
+void appendFan(const Hierarchy& h, const std::vector<Point>& points, std::size_t g, std::vector<FanEntry>& fans,
+               std::vector<std::array<VertexId, 3>>& turned) {
+  const std::vector<std::uint32_t> order = ringOrder(h, g, turned);
+  const Group& group = h.groups[g];
+  fans.push_back({points[group.vertex], static_cast<std::uint32_t>(order.size()), group.level});
+  const std::uint32_t* accept = h.accept(group).first;
+  for (std::uint32_t i : order) fans.push_back({points[turned[i][1]], accept[i], h.triangles[accept[i]].group});
+}
+
+}  // namespace
+
+struct HierarchyLocator::Impl {
+  const Hierarchy& h;
+  std::vector<TopTriangle> top;
+  BucketGrid grid;
+  std::vector<FanEntry> fans;            // every group's block, in group order
+  std::vector<std::uint32_t> fanStart;   // by group: where its block begins in `fans`
+
+  explicit Impl(const Hierarchy& hierarchy) : h(hierarchy) {
+    const std::vector<Point> points = pointsOf(h.base);
+    top = topTriangles(h, points);
+    grid = makeGrid(top);
+    fans.reserve(h.links.size() / 2 + h.groups.size());
+    fanStart.reserve(h.groups.size());
+    std::vector<std::array<VertexId, 3>> turned;
+    for (std::size_t g = 0; g < h.groups.size(); ++g) {
+      fanStart.push_back(static_cast<std::uint32_t>(fans.size()));
+      appendFan(h, points, g, fans, turned);
+    }
+  }
+
+  // The first triangle of p's bucket that holds it, or null (off the TIN, or in a hole).
+  const TopTriangle* start(const Point& p) const {
+    if (!grid.covers(p.x(), p.y())) return nullptr;
+    const std::size_t k = grid.bucket(grid.column(p.x()), grid.row(p.y()));
+    for (std::uint32_t i = grid.start[k]; i < grid.start[k + 1]; ++i) {
+      const TopTriangle& t = top[grid.items[i]];
+      if (contains(t.a, t.b, t.c, p)) return &t;
+    }
+    return nullptr;
+  }
+
+  // The accept triangle of a fan that holds p, first in ring order: a ring entry.
+  const FanEntry& finer(std::uint32_t group, const Point& p) const {
+    const FanEntry* head = fans.data() + fanStart[group];
+    const std::uint32_t k = head->a;
+    for (std::uint32_t i = 1; i <= k; ++i)
+      if (contains(head->p, head[i].p, head[i == k ? 1 : i + 1].p, p)) return head[i];
+    throw Error("internal error: the hierarchy is inconsistent: a point of a reject triangle of group " +
+                std::to_string(group) + " is in none of its accept triangles");
+  }
+
+  // A triangle newer than `level` was made by deleting its group's vertex; the star that
+  // vertex had one level finer covers the same polygon, so one of its accept triangles
+  // holds p. Each step goes down at least one level.
+  std::uint32_t descend(std::uint32_t t, std::int32_t group, const Point& p, int level) const {
+    while (group != kNoGroup && fans[fanStart[group]].b > level) {
+      const FanEntry& e = finer(static_cast<std::uint32_t>(group), p);
+      t = e.a;
+      group = e.b;
+    }
+    return t;
+  }
+
+  // Linear in the triangle, from the areas opposite each vertex. Normalising each by
+  // their sum, rather than by the triangle's area, gives a vertex exactly its own
+  // height: the other two areas are then exactly zero and its weight exactly one.
+  double height(std::uint32_t t, const Point& p) const {
+    const Triangle& v = h.triangles[t].v;
+    const TinVertex* c[3] = {&h.base.vertices[v[0]], &h.base.vertices[v[1]], &h.base.vertices[v[2]]};
+    double w[3], sum = 0, z = 0;
+    for (int k = 0; k < 3; ++k) {
+      const TinVertex &b = *c[(k + 1) % 3], &d = *c[(k + 2) % 3];
+      w[k] = (b.x - p.x()) * (d.y - p.y()) - (b.y - p.y()) * (d.x - p.x());
+      sum += w[k];
+    }
+    for (int k = 0; k < 3; ++k) z += w[k] / sum * c[k]->z;
+    return z;
+  }
+};
+
+HierarchyLocator::HierarchyLocator(const Hierarchy& h) : impl_(std::make_unique<const Impl>(h)) {}
+HierarchyLocator::~HierarchyLocator() = default;
+HierarchyLocator::HierarchyLocator(HierarchyLocator&&) noexcept = default;
+HierarchyLocator& HierarchyLocator::operator=(HierarchyLocator&&) noexcept = default;
+
+LocatedPoint HierarchyLocator::locate(double x, double y, int level) const {
+  const std::int32_t coarsest = impl_->h.coarsest();
+  if (level < 0 || level > coarsest)
+    throw Error("cannot locate a point at level " + std::to_string(level) + ": the hierarchy has levels 0 to " +
+                std::to_string(coarsest));
+  const Point p(x, y);
+  const TopTriangle* top = impl_->start(p);
+  if (!top) return {};  // off the TIN or in a hole: the same at every level
+  const std::uint32_t t = impl_->descend(top->id, top->group, p, level);
+  return {static_cast<std::int64_t>(t), impl_->height(t, p)};
+}
+
+}  // namespace tinlod

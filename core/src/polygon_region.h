@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: a polygon layer as a region to test points against (GEOS).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "tinlod/feedback.h"
+
+namespace tinlod {
+
+class PolygonRegion {
+ public:
+  // The union of the polygons of the first layer of a vector file, in the TIN's CRS
+  // `targetWkt`. Throws Error naming the file when it has none. `what` names the layer
+  // in messages.
+  PolygonRegion(const std::string& path, const std::string& targetWkt, const std::string& what, const ProgressRange& progress);
+  ~PolygonRegion();
+  PolygonRegion(const PolygonRegion&) = delete;
+  PolygonRegion& operator=(const PolygonRegion&) = delete;
+
+  // Inside or on the boundary. Not thread-safe (one GEOS context).
+  bool contains(double x, double y) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tinlod
