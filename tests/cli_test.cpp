@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "test_support.h"
@@ -252,6 +253,44 @@ TEST(Cli, InsertKeepsTheToleranceThatAccuracyMeasuresAgain) {
   EXPECT_FALSE(fs::exists(dir + "/bad.gpkg"));
   for (const char* option : {"-max_error", "-max_vertices", "-max_triangles", "-candidates", "insertion", "error_before"})
     EXPECT_TRUE(has(tinlod("insert --help").out, option)) << option;
+}
+
+// A GeoJSON file in EPSG:32632 (the default DEM's CRS) with one geometry.
+std::string geojson(const std::string& path, const std::string& geometry) {
+  std::ofstream(path) << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {}, "geometry": )" << geometry << "}]}";
+  return path;
+}
+
+TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const CliRun near = tinlod("lod -center 404500 5203750 -dropoff 200 " + dir + "/h.gpkg " + dir + "/near.gpkg");
+  ASSERT_EQ(near.exitCode, 0) << near.err;
+  EXPECT_TRUE(has(near.out, "Triangles by level: 0: ")) << near.out;
+  const std::string points = geojson(dir + "/c.geojson", R"({"type": "Point", "coordinates": [404500, 5203750]})");
+  const CliRun fromFile = tinlod("lod -centers " + points + " -dropoff 200 " + dir + "/h.gpkg " + dir + "/file.gpkg");
+  ASSERT_EQ(fromFile.exitCode, 0) << fromFile.err;
+  EXPECT_EQ(fromFile.out.substr(0, fromFile.out.find(" in ")), near.out.substr(0, near.out.find(" in ")));
+  // Full detail inside a 1 km disc, coarse outside: over 500 level-0 triangles in it.
+  const std::string disc = geojson(dir + "/r.geojson", R"({"type": "Polygon", "coordinates": [[[401000, 5203000], [403000, 5203000], [403000, 5205000], [401000, 5205000], [401000, 5203000]]]})");
+  const CliRun region = tinlod("lod -region " + disc + " " + dir + "/h.gpkg " + dir + "/region.gpkg");
+  ASSERT_EQ(region.exitCode, 0) << region.err;
+  const std::size_t at = region.out.find("Triangles by level: 0: ");
+  ASSERT_NE(at, std::string::npos) << region.out;
+  EXPECT_GT(std::stoi(region.out.substr(at + 23)), 1000) << region.out;
+  EXPECT_TRUE(has(tinlod("info " + dir + "/region.gpkg").out, "kind = lod"));
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"lod " + dir + "/h.gpkg " + dir + "/bad.gpkg", "give a test"},
+           {"lod -dropoff 100 " + dir + "/h.gpkg " + dir + "/bad.gpkg", "needs a centre"},
+           {"lod -region " + dir + "/none.gpkg " + dir + "/h.gpkg " + dir + "/bad.gpkg", "-region: '"},
+           {"lod -center 1 -dropoff 5 " + dir + "/h.gpkg " + dir + "/bad.gpkg", "-center expects a number"},
+           {"lod -max_error 1 " + defaultDem() + " " + dir + "/bad.gpkg", "not"}}) {
+    const CliRun bad = tinlod(args);
+    EXPECT_EQ(bad.exitCode, 1) << args;
+    EXPECT_TRUE(has(bad.err, message)) << args << ": " << bad.err;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/bad.gpkg"));
 }
 
 TEST(Cli, ExperimentWritesOneReportOfEveryRun) {
