@@ -5,6 +5,7 @@
 
 #include "accuracy_algorithm.h"
 #include "build_hierarchy_algorithm.h"
+#include "extract_lod_algorithm.h"
 #include "greedy_insertion_algorithm.h"
 #include "sample_tin_algorithm.h"
 #include "tinlod/version.h"
@@ -20,6 +21,7 @@ QIcon Provider::icon() const { return QgsApplication::getThemeIcon(QStringLitera
 void Provider::loadAlgorithms() {
   addAlgorithm(new AccuracyAlgorithm());
   addAlgorithm(new BuildHierarchyAlgorithm());
+  addAlgorithm(new ExtractLodAlgorithm());
   addAlgorithm(new GreedyInsertionAlgorithm());
   addAlgorithm(new SampleTinAlgorithm());
 }

@@ -21,6 +21,7 @@
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/insert_job.h"
+#include "tinlod/lod_job.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/synthetic_dem.h"
 
@@ -359,6 +360,31 @@ TEST(Processing, GreedyInsertionMatchesTheCoreAndNamesBadParameters) {
                                                                               {"OUTPUT", out + "x"}});
   EXPECT_FALSE(bad.ok);
   EXPECT_TRUE(bad.error.contains("MAX_VERTICES")) << bad.error.toStdString();
+}
+
+TEST(Processing, ExtractLodMatchesTheCommandLineCoreAndNamesMissingTests) {
+  const std::string dir = test::tempDir();
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                           {{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", QString::fromStdString(dir + "/h.gpkg")}})
+                  .ok);
+  const QString out = QString::fromStdString(dir + "/lod.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:extractlod"),
+                                {{"HIERARCHY", QString::fromStdString(dir + "/h.gpkg")},
+                                 {"CENTER", QStringLiteral("404500,5203750 [EPSG:32632]")},
+                                 {"DROPOFF", 200},
+                                 {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  LodJobOptions o;
+  o.lod.centres = {{404500, 5203750}};
+  o.lod.dropoff = 200;
+  const LodSummary core = runLodJob(dir + "/h.gpkg", dir + "/core.gpkg", o, false, Feedback{});
+  EXPECT_EQ(r.outputs.value("TRIANGLES").toLongLong(), static_cast<long long>(core.triangles));
+  EXPECT_EQ(featureCount(out, "triangles"), static_cast<long long>(core.triangles));
+  EXPECT_LT(core.triangles, core.levelZeroTriangles);
+  const Result none = runAlgorithm(QStringLiteral("tinlod:extractlod"),
+                                   {{"HIERARCHY", QString::fromStdString(dir + "/h.gpkg")}, {"OUTPUT", out + "x"}});
+  EXPECT_FALSE(none.ok);
+  EXPECT_TRUE(none.error.contains("DROPOFF")) << none.error.toStdString();
 }
 
 TEST(Processing, RealDemRuns) {

@@ -30,6 +30,7 @@ check "qgis_process list shows tinlod:sampletin" grep -q "tinlod:sampletin" "$wo
 check "qgis_process list shows tinlod:buildhierarchy" grep -q "tinlod:buildhierarchy" "$work/list.txt"
 check "qgis_process list shows tinlod:accuracy" grep -q "tinlod:accuracy" "$work/list.txt"
 check "qgis_process list shows tinlod:greedyinsertion" grep -q "tinlod:greedyinsertion" "$work/list.txt"
+check "qgis_process list shows tinlod:extractlod" grep -q "tinlod:extractlod" "$work/list.txt"
 
 "$qp" help tinlod:sampletin > "$work/help.txt" 2>/dev/null
 check "qgis_process help describes the parameters" grep -q "TARGET_CRS" "$work/help.txt"
@@ -76,6 +77,20 @@ for level in range(levels + 1):
     assert layer is not None and layer.GetFeatureCount() == rows[level].GetField("triangles"), level
 assert rows[levels].GetField("vertices") == int(outputs["COARSEST_VERTICES"])
 print("  %d levels, %d -> %d vertices" % (levels + 1, rows[0].GetField("vertices"), rows[levels].GetField("vertices")))
+PY
+
+lod=$work/lod.gpkg
+"$qp" --json run tinlod:extractlod --HIERARCHY="$hier" --MAX_ERROR=20 --OUTPUT="$lod" > "$work/lod.json" 2> "$work/lod.err" || true
+check "qgis_process --json run tinlod:extractlod writes a TIN coarser than level 0" /usr/bin/python3 - "$work/lod.json" "$lod" "$hier" <<'PY'
+import json, sys
+from osgeo import ogr
+outputs = json.load(open(sys.argv[1]))["results"]
+lod, hierarchy = ogr.Open(sys.argv[2]), ogr.Open(sys.argv[3])  # a layer lives only as long as its dataset
+triangles = lod.GetLayerByName("triangles")
+level0 = hierarchy.GetLayerByName("level_0").GetFeatureCount()
+assert int(outputs["TRIANGLES"]) == triangles.GetFeatureCount(), outputs
+assert 0 < triangles.GetFeatureCount() < level0, (triangles.GetFeatureCount(), level0)
+print("  %d triangles where level 0 has %d" % (triangles.GetFeatureCount(), level0))
 PY
 
 "$qp" --json run tinlod:accuracy --INPUT="$dem" --HIERARCHY="$hier" --ACCURACY="$work/acc.tif" --REPORT="$work/acc.json" > "$work/acc.out.json" 2> "$work/acc.err" || true

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "extract_lod_algorithm.h"
+
+#include <qgsprocessingoutputs.h>
+#include <qgsprocessingparameters.h>
+#include <qgsvectorlayer.h>
+
+#include <cmath>
+#include <limits>
+
+#include "processing_feedback.h"
+#include "tin_layer_style.h"
+
+namespace tinlod::qgis {
+namespace {
+
+bool given(const QVariantMap& parameters, const QString& name) {
+  const QVariant v = parameters.value(name);
+  return v.isValid() && !v.toString().isEmpty();
+}
+
+// The file behind a vector layer parameter: the core reads it with GDAL.
+std::string layerFile(QgsVectorLayer* layer, const QString& name) {
+  if (!layer || layer->providerType() != QLatin1String("ogr"))
+    throw QgsProcessingException(QStringLiteral("%1 must be a layer stored in a file GDAL reads (save it as a GeoPackage first)").arg(name));
+  return layer->source().section('|', 0, 0).toStdString();
+}
+
+}  // namespace
+
+QString ExtractLodAlgorithm::name() const { return QStringLiteral("extractlod"); }
+QString ExtractLodAlgorithm::displayName() const { return QStringLiteral("Extract variable level-of-detail TIN"); }
+QString ExtractLodAlgorithm::group() const { return QStringLiteral("TIN use"); }
+QString ExtractLodAlgorithm::groupId() const { return QStringLiteral("use"); }
+QStringList ExtractLodAlgorithm::tags() const {
+  return QStringLiteral("tin,lod,level of detail,hierarchy,kirkpatrick,dobrindt,view,terrain,mesh").split(',');
+}
+
+QString ExtractLodAlgorithm::shortHelpString() const {
+  return QStringLiteral(
+      "Combines the levels of a TIN hierarchy (from 'Build TIN hierarchy from DEM') into one conforming TIN "
+      "that is detailed near the centres of detail, inside a region or where the terrain needs it, and coarse "
+      "elsewhere (de Berg and Dobrindt's traversal).\n\n"
+      "A deleted vertex is restored when any test given accepts it:\n"
+      "- Dropoff (the study's distance test): a vertex deleted at level L comes back when it is closer than "
+      "L x dropoff metres to a centre of detail (the centre point, or every point of the centres layer).\n"
+      "- Maximum error: while the triangles that replaced it are more than this many metres from the original "
+      "TIN, plus the error growth (metres per metre) times its distance to the nearest centre.\n"
+      "- Region: every vertex inside the polygons comes back: full detail there.\n"
+      "A vertex that a restored vertex needs comes back as well, so the tests hold everywhere.\n\n"
+      "Output: a GeoPackage TIN ('vertices' and 'triangles' with each triangle's first and last level) in the "
+      "hierarchy's CRS.");
+}
+
+ExtractLodAlgorithm* ExtractLodAlgorithm::createInstance() const { return new ExtractLodAlgorithm(); }
+
+void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
+  addParameter(new QgsProcessingParameterFile(QStringLiteral("HIERARCHY"), QStringLiteral("Hierarchy GeoPackage"),
+                                              QgsProcessingParameterFile::File, QStringLiteral("gpkg")));
+  addParameter(new QgsProcessingParameterPoint(QStringLiteral("CENTER"), QStringLiteral("Centre of detail"), QVariant(), true));
+  addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("CENTERS"), QStringLiteral("Centres of detail (point layer)"),
+                                                     QList<int>() << QgsProcessing::TypeVectorPoint, QVariant(), true));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("DROPOFF"), QStringLiteral("Dropoff distance per level (metres)"),
+                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error (metres)"),
+                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("ERROR_GROWTH"),
+                                                QStringLiteral("Error growth with distance (metres per metre)"),
+                                                QgsProcessingParameterNumber::Double, 0, false, 0));
+  addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("REGION"), QStringLiteral("Region of full detail (polygons)"),
+                                                     QList<int>() << QgsProcessing::TypeVectorPolygon, QVariant(), true));
+  addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("TIN GeoPackage"),
+                                                         QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("TRIANGLES"), QStringLiteral("Triangles")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
+}
+
+bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
+  hierarchy_ = parameterAsFile(parameters, QStringLiteral("HIERARCHY"), context).toStdString();
+  if (hierarchy_.empty()) throw QgsProcessingException(QStringLiteral("HIERARCHY: choose a GeoPackage written by tinlod build"));
+  options_ = LodJobOptions();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (given(parameters, QStringLiteral("CENTER"))) {
+    // In the hierarchy's CRS, whatever CRS the point was picked in.
+    const QgsVectorLayer triangles(QString::fromStdString(hierarchy_) + QStringLiteral("|layername=triangles"), QStringLiteral("t"),
+                                   QStringLiteral("ogr"));
+    const QgsPointXY p = parameterAsPoint(parameters, QStringLiteral("CENTER"), context, triangles.crs());
+    options_.lod.centres.push_back({p.x(), p.y()});
+  }
+  if (given(parameters, QStringLiteral("CENTERS"))) options_.centresPath = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("CENTERS"), context), QStringLiteral("CENTERS"));
+  if (given(parameters, QStringLiteral("REGION"))) options_.regionPath = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("REGION"), context), QStringLiteral("REGION"));
+  options_.lod.dropoff = given(parameters, QStringLiteral("DROPOFF")) ? parameterAsDouble(parameters, QStringLiteral("DROPOFF"), context) : nan;
+  options_.lod.maxError =
+      given(parameters, QStringLiteral("MAX_ERROR")) ? parameterAsDouble(parameters, QStringLiteral("MAX_ERROR"), context) : nan;
+  options_.lod.errorGrowth = parameterAsDouble(parameters, QStringLiteral("ERROR_GROWTH"), context);
+  if (std::isnan(options_.lod.dropoff) && std::isnan(options_.lod.maxError) && options_.regionPath.empty())
+    throw QgsProcessingException(QStringLiteral("Give a test: DROPOFF (with CENTER or CENTERS), MAX_ERROR or REGION"));
+  if (!std::isnan(options_.lod.dropoff) && options_.lod.centres.empty() && options_.centresPath.empty())
+    throw QgsProcessingException(QStringLiteral("DROPOFF needs a centre of detail: set CENTER or CENTERS"));
+  return true;
+}
+
+QVariantMap ExtractLodAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                                  QgsProcessingFeedback* feedback) {
+  const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
+  const LodSummary s = translateErrors(
+      [&] { return runLodJob(hierarchy_, output.toStdString(), options_, true, processingFeedback(feedback)); });
+  feedback->pushInfo(QStringLiteral("%1 triangles (level 0 has %2) and %3 vertices in %4")
+                         .arg(s.triangles).arg(s.levelZeroTriangles).arg(s.vertices).arg(QString::fromStdString(s.crsName)));
+  loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"));
+  QVariantMap outputs;
+  outputs.insert(QStringLiteral("OUTPUT"), output);
+  outputs.insert(QStringLiteral("TRIANGLES"), static_cast<qlonglong>(s.triangles));
+  outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(s.vertices));
+  return outputs;
+}
+
+}  // namespace tinlod::qgis

@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Point location through the hierarchy against a brute-force search of each level.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_builder.h"
+#include "tinlod/hierarchy_locator.h"
+#include "tinlod/sample_job.h"
+
+namespace tinlod {
+namespace {
+
+const ProgressRange kQuiet(Feedback{}, 0, 1);
+// Barycentric slack of the brute force: a random point is never this close to an edge,
+// so only points on a shared edge (or a vertex) find more than one triangle.
+constexpr double kSlack = 1e-12;
+constexpr double kHeightTolerance = 1e-9;
+
+Hierarchy buildFrom(const Dem& dem, const SampleOptions& so = {}) {
+  const Tin tin = sampleTin(dem, so, kQuiet);
+  return buildHierarchy(tin, {}, HierarchyOptions{}, kQuiet);
+}
+
+// One level's triangles, flattened for the brute force: corners, heights and box.
+struct FlatTriangle {
+  std::uint32_t id;
+  double x[3], y[3], z[3];
+  double x0, y0, x1, y1;
+};
+
+std::vector<FlatTriangle> flatten(const Hierarchy& h, std::int32_t level) {
+  std::vector<FlatTriangle> out;
+  for (std::uint32_t t : h.levelTriangles(level)) {
+    FlatTriangle f{t, {}, {}, {}, 0, 0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+      const TinVertex& v = h.base.vertices[h.triangles[t].v[k]];
+      f.x[k] = v.x, f.y[k] = v.y, f.z[k] = v.z;
+    }
+    f.x0 = std::min({f.x[0], f.x[1], f.x[2]}), f.x1 = std::max({f.x[0], f.x[1], f.x[2]});
+    f.y0 = std::min({f.y[0], f.y[1], f.y[2]}), f.y1 = std::max({f.y[0], f.y[1], f.y[2]});
+    out.push_back(f);
+  }
+  return out;
+}
+
+// Every triangle of the level that holds (x, y), edges included, and the height there.
+struct Containing {
+  std::vector<std::uint32_t> triangles;
+  double z = NAN;
+};
+
+Containing bruteForce(const std::vector<FlatTriangle>& level, double x, double y) {
+  Containing out;
+  for (const FlatTriangle& f : level) {
+    if (x < f.x0 || x > f.x1 || y < f.y0 || y > f.y1) continue;
+    double w[3], area = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int b = (k + 1) % 3, c = (k + 2) % 3;
+      w[k] = (f.x[b] - x) * (f.y[c] - y) - (f.y[b] - y) * (f.x[c] - x);
+      area += w[k];
+    }
+    if (std::min({w[0], w[1], w[2]}) < -kSlack * area) continue;
+    out.triangles.push_back(f.id);
+    if (std::isnan(out.z)) out.z = (w[0] * f.z[0] + w[1] * f.z[1] + w[2] * f.z[2]) / area;
+  }
+  return out;
+}
+
+struct Box {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+};
+
+Box boxOf(const Tin& tin) {
+  Box b;
+  for (const TinVertex& v : tin.vertices)
+    b.x0 = std::min(b.x0, v.x), b.y0 = std::min(b.y0, v.y), b.x1 = std::max(b.x1, v.x), b.y1 = std::max(b.y1, v.y);
+  return b;
+}
+
+// Uniform points over the TIN's box widened by a tenth on every side: some fall
+// outside, some in holes.
+std::vector<std::array<double, 2>> randomPoints(const Tin& tin, std::size_t count, unsigned seed) {
+  const Box b = boxOf(tin);
+  const double mx = 0.1 * (b.x1 - b.x0), my = 0.1 * (b.y1 - b.y0);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> ux(b.x0 - mx, b.x1 + mx), uy(b.y0 - my, b.y1 + my);
+  std::vector<std::array<double, 2>> points(count);
+  for (auto& p : points) p = {ux(rng), uy(rng)};
+  return points;
+}
+
+struct Agreement {
+  std::size_t found = 0, missed = 0;
+};
+
+// The locator's answer at `level` is one of the brute force's triangles, with the same
+// height, or nothing when the brute force finds nothing.
+Agreement expectAgreement(const Hierarchy& h, const HierarchyLocator& locator, std::int32_t level,
+                          const std::vector<std::array<double, 2>>& points) {
+  SCOPED_TRACE("level " + std::to_string(level));
+  const std::vector<FlatTriangle> flat = flatten(h, level);
+  Agreement a;
+  for (const auto& [x, y] : points) {
+    const Containing expected = bruteForce(flat, x, y);
+    const LocatedPoint got = locator.locate(x, y, level);
+    if (expected.triangles.empty()) {
+      EXPECT_FALSE(got.found()) << "(" << x << ", " << y << ") is in no triangle but was found in " << got.triangle;
+      EXPECT_TRUE(std::isnan(got.z));
+      ++a.missed;
+      continue;
+    }
+    ++a.found;
+    if (!got.found()) {
+      ADD_FAILURE() << "(" << x << ", " << y << ") is in triangle " << expected.triangles.front() << " but was not found";
+      continue;
+    }
+    EXPECT_NE(std::find(expected.triangles.begin(), expected.triangles.end(), got.triangle), expected.triangles.end())
+        << "(" << x << ", " << y << ") found in triangle " << got.triangle << ", which does not hold it";
+    EXPECT_NEAR(got.z, expected.z, kHeightTolerance) << "(" << x << ", " << y << ")";
+  }
+  return a;
+}
+
+TEST(HierarchyLocator, AgreesWithBruteForceAtEveryLevel) {
+  const Hierarchy h = buildFrom(test::smallSyntheticDem());
+  ASSERT_GE(h.coarsest(), 3);
+  const HierarchyLocator locator(h);
+  const auto points = randomPoints(h.base, 3000, 12345);
+  for (std::int32_t level = 0; level <= h.coarsest(); ++level) {
+    const Agreement a = expectAgreement(h, locator, level, points);
+    // The widened box (69 % of it is the raster's) and the void give misses.
+    EXPECT_GT(a.found, points.size() / 2);
+    EXPECT_GT(a.missed, points.size() / 5);
+  }
+}
+
+TEST(HierarchyLocator, PointsInTheVoidAndOutsideAreNotFound) {
+  const Dem dem = test::smallSyntheticDem();
+  const Hierarchy h = buildFrom(dem);
+  const HierarchyLocator locator(h);
+  // The void's centre (synthetic_dem.cpp: 72 % across, 60 % up), in the DEM's UTM CRS,
+  // which sampling keeps; a point beside it is on data.
+  const double w = dem.width * dem.geotransform[1], ht = dem.height * -dem.geotransform[5];
+  const double voidX = dem.geotransform[0] + 0.72 * w, voidY = dem.geotransform[3] - ht + 0.6 * ht;
+  for (std::int32_t level = 0; level <= h.coarsest(); ++level) {
+    EXPECT_FALSE(locator.locate(voidX, voidY, level).found()) << "level " << level;
+    EXPECT_TRUE(locator.locate(voidX, voidY - 0.2 * ht, level).found()) << "level " << level;
+    EXPECT_FALSE(locator.locate(dem.geotransform[0] - 100, voidY, level).found());
+    EXPECT_FALSE(locator.locate(voidX, dem.geotransform[3] + 1e6, level).found());
+    EXPECT_FALSE(locator.locate(NAN, voidY, level).found());
+    EXPECT_FALSE(locator.locate(voidX, INFINITY, level).found());
+  }
+}
+
+// Vertices are on the edges of several triangles at once: the closed test finds them,
+// including the vertices on the outline and around the void, with their own height.
+TEST(HierarchyLocator, VerticesAreFoundWithTheirOwnHeightAtEveryLevel) {
+  const Hierarchy h = buildFrom(test::smallSyntheticDem());
+  const HierarchyLocator locator(h);
+  for (std::int32_t level = 0; level <= h.coarsest(); ++level) {
+    std::size_t tested = 0;
+    for (std::size_t v = 0; v < h.base.vertices.size(); ++v) {
+      if (h.vertexLevel[v] < level) continue;
+      const TinVertex& p = h.base.vertices[v];
+      const LocatedPoint got = locator.locate(p.x, p.y, level);
+      ASSERT_TRUE(got.found()) << "vertex " << v << " at level " << level;
+      const HierarchyTriangle& t = h.triangles[got.triangle];
+      EXPECT_TRUE(t.firstLevel <= level && level <= t.lastLevel) << "triangle " << got.triangle << " is not of level " << level;
+      EXPECT_NE(std::find(t.v.begin(), t.v.end(), VertexId(v)), t.v.end()) << "vertex " << v << " at level " << level;
+      EXPECT_EQ(got.z, p.z) << "vertex " << v << " at level " << level;
+      ++tested;
+    }
+    EXPECT_EQ(tested, h.levels[level].vertices);
+  }
+}
+
+TEST(HierarchyLocator, SamePointSameAnswer) {
+  const Hierarchy h = buildFrom(test::smallSyntheticDem());
+  const HierarchyLocator a(h), b(h);
+  for (const auto& [x, y] : randomPoints(h.base, 500, 7)) {
+    const LocatedPoint p = a.locate(x, y), q = b.locate(x, y);
+    EXPECT_EQ(p.triangle, q.triangle);
+    if (p.found()) {
+      EXPECT_EQ(p.z, q.z);
+    }
+  }
+}
+
+TEST(HierarchyLocator, LevelOutsideTheHierarchyThrows) {
+  const Hierarchy h = buildFrom(test::smallSyntheticDem());
+  const HierarchyLocator locator(h);
+  const TinVertex& v = h.base.vertices.front();
+  EXPECT_THROW(locator.locate(v.x, v.y, -1), Error);
+  EXPECT_NO_THROW(locator.locate(v.x, v.y, h.coarsest()));
+  try {
+    locator.locate(v.x, v.y, h.coarsest() + 1);
+    FAIL() << "no error for level " << h.coarsest() + 1;
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("levels 0 to " + std::to_string(h.coarsest())), std::string::npos) << e.what();
+  }
+}
+
+TEST(HierarchyLocator, RealDemAgreesWithBruteForce) {
+  const std::string dir = test::dataDir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";
+  const Dem dem = readDem(dir + "/dead_sea_N31E035.tif", 1, kQuiet);
+  SampleOptions so;
+  so.block = 6;  // 40 k vertices keep the brute force quick
+  const Hierarchy h = buildFrom(dem, so);
+  const HierarchyLocator locator(h);
+  const auto points = randomPoints(h.base, 2000, 2024);
+  for (std::int32_t level : {0, 1, h.coarsest() / 2, h.coarsest()}) {
+    const Agreement a = expectAgreement(h, locator, level, points);
+    EXPECT_GT(a.found, points.size() / 2);
+  }
+}
+
+}  // namespace
+}  // namespace tinlod
