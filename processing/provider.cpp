@@ -7,6 +7,7 @@
 #include "build_hierarchy_algorithm.h"
 #include "extract_lod_algorithm.h"
 #include "greedy_insertion_algorithm.h"
+#include "locate_algorithm.h"
 #include "sample_tin_algorithm.h"
 #include "tinlod/version.h"
 
@@ -23,6 +24,7 @@ void Provider::loadAlgorithms() {
   addAlgorithm(new BuildHierarchyAlgorithm());
   addAlgorithm(new ExtractLodAlgorithm());
   addAlgorithm(new GreedyInsertionAlgorithm());
+  addAlgorithm(new LocateAlgorithm());
   addAlgorithm(new SampleTinAlgorithm());
 }
 

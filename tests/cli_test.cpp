@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The tinlod command line, end to end: the real binary, its exit codes and output.
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "test_support.h"
@@ -291,6 +294,35 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
     EXPECT_TRUE(has(bad.err, message)) << args << ": " << bad.err;
   }
   EXPECT_FALSE(fs::exists(dir + "/bad.gpkg"));
+}
+
+TEST(Cli, LocateAddsTheElevationOfTheChosenLevelToEveryPoint) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  // A point on the TIN (in the DEM's UTM zone) and one far outside it.
+  std::ofstream(dir + "/p.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {"name": "on"}, "geometry": {"type": "Point", "coordinates": [404500, 5203750]}},
+  {"type": "Feature", "properties": {"name": "off"}, "geometry": {"type": "Point", "coordinates": [100, 100]}}]})";
+  const CliRun r = tinlod("locate " + dir + "/h.gpkg " + dir + "/p.geojson " + dir + "/l.gpkg");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "Located 1 of 2 points on level 0")) << r.out;
+  GDALAllRegister();
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/l.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(ds);
+  OGRLayer* points = ds->GetLayerByName("points");
+  ASSERT_NE(points, nullptr);
+  std::map<std::string, double> elevation;
+  for (auto& f : *points)
+    elevation[f->GetFieldAsString("name")] =
+        f->IsFieldSetAndNotNull(f->GetFieldIndex("elevation")) ? f->GetFieldAsDouble("elevation") : -1;
+  EXPECT_GT(elevation["on"], 500);  // the synthetic DEM's hills
+  EXPECT_EQ(elevation["off"], -1);  // null
+  ds.reset();
+  const CliRun coarse = tinlod("locate -level 99 " + dir + "/h.gpkg " + dir + "/p.geojson " + dir + "/c.gpkg");
+  EXPECT_EQ(coarse.exitCode, 1);
+  EXPECT_TRUE(has(coarse.err, "-level 99 does not exist")) << coarse.err;
+  EXPECT_FALSE(fs::exists(dir + "/c.gpkg"));
+  EXPECT_EQ(tinlod("locate " + dir + "/h.gpkg " + dir + "/none.geojson " + dir + "/c.gpkg").exitCode, 1);
 }
 
 TEST(Cli, ExperimentWritesOneReportOfEveryRun) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "test_support.h"
@@ -119,7 +120,8 @@ Agreement expectAgreement(const Hierarchy& h, const HierarchyLocator& locator, s
     }
     ++a.found;
     if (!got.found()) {
-      ADD_FAILURE() << "(" << x << ", " << y << ") is in triangle " << expected.triangles.front() << " but was not found";
+      ADD_FAILURE() << "(" << x << ", " << y << ") is in triangle " << expected.triangles.front()
+                    << " but was not found";
       continue;
     }
     EXPECT_NE(std::find(expected.triangles.begin(), expected.triangles.end(), got.triangle), expected.triangles.end())
@@ -173,7 +175,8 @@ TEST(HierarchyLocator, VerticesAreFoundWithTheirOwnHeightAtEveryLevel) {
       const LocatedPoint got = locator.locate(p.x, p.y, level);
       ASSERT_TRUE(got.found()) << "vertex " << v << " at level " << level;
       const HierarchyTriangle& t = h.triangles[got.triangle];
-      EXPECT_TRUE(t.firstLevel <= level && level <= t.lastLevel) << "triangle " << got.triangle << " is not of level " << level;
+      EXPECT_TRUE(t.firstLevel <= level && level <= t.lastLevel)
+          << "triangle " << got.triangle << " is not of level " << level;
       EXPECT_NE(std::find(t.v.begin(), t.v.end(), VertexId(v)), t.v.end()) << "vertex " << v << " at level " << level;
       EXPECT_EQ(got.z, p.z) << "vertex " << v << " at level " << level;
       ++tested;
@@ -191,6 +194,47 @@ TEST(HierarchyLocator, SamePointSameAnswer) {
     if (p.found()) {
       EXPECT_EQ(p.z, q.z);
     }
+  }
+}
+
+TEST(HierarchyLocator, ThreadsShareOneLocator) {
+  const Hierarchy h = buildFrom(test::smallSyntheticDem());
+  const HierarchyLocator locator(h);
+  const auto points = randomPoints(h.base, 4000, 99);
+  std::vector<LocatedPoint> alone, shared(points.size());
+  for (const auto& [x, y] : points) alone.push_back(locator.locate(x, y, 1));
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < 4; ++k)
+    threads.emplace_back([&, k] {
+      for (std::size_t i = k; i < points.size(); i += 4) shared[i] = locator.locate(points[i][0], points[i][1], 1);
+    });
+  for (std::thread& t : threads) t.join();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_EQ(shared[i].triangle, alone[i].triangle) << "point " << i;
+    if (alone[i].found()) {
+      EXPECT_EQ(shared[i].z, alone[i].z) << "point " << i;
+    }
+  }
+}
+
+// A star whose triangles do not surround its vertex (as a corrupt file could give) is
+// refused when the locator is made, not met in the middle of a search.
+TEST(HierarchyLocator, InconsistentHierarchyIsRefused) {
+  Hierarchy h = buildFrom(test::smallSyntheticDem());
+  ASSERT_GE(h.groups.size(), 2u);
+  const Group& first = h.groups.front();
+  const TinVertex& v = h.base.vertices[first.vertex];
+  const auto far = std::find_if(h.groups.begin(), h.groups.end(), [&](const Group& g) {
+    const TinVertex& u = h.base.vertices[g.vertex];
+    return std::hypot(u.x - v.x, u.y - v.y) > 2000;
+  });
+  ASSERT_NE(far, h.groups.end());
+  h.links[first.acceptBegin] = h.links[far->acceptBegin];
+  try {
+    const HierarchyLocator locator(h);
+    FAIL() << "no error for a star with a triangle from elsewhere";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("inconsistent"), std::string::npos) << e.what();
   }
 }
 

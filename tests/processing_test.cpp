@@ -387,6 +387,30 @@ TEST(Processing, ExtractLodMatchesTheCommandLineCoreAndNamesMissingTests) {
   EXPECT_TRUE(none.error.contains("DROPOFF")) << none.error.toStdString();
 }
 
+TEST(Processing, LocateAddsElevationsAsTheCoreDoes) {
+  const std::string dir = test::tempDir();
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                           {{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", QString::fromStdString(dir + "/h.gpkg")}})
+                  .ok);
+  // Points stored in a file: the vertices of the hierarchy itself, each on the TIN.
+  const QString points = QString::fromStdString(dir + "/h.gpkg|layername=vertices");
+  const QString out = QString::fromStdString(dir + "/located.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:locate"), {{"INPUT", points},
+                                                                  {"HIERARCHY", QString::fromStdString(dir + "/h.gpkg")},
+                                                                  {"LEVEL", 2},
+                                                                  {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  EXPECT_GT(r.outputs.value("POINTS").toLongLong(), 1000);
+  EXPECT_EQ(r.outputs.value("LOCATED").toLongLong(), r.outputs.value("POINTS").toLongLong());
+  EXPECT_EQ(featureCount(out, "points"), r.outputs.value("POINTS").toLongLong());
+  const Result bad = runAlgorithm(QStringLiteral("tinlod:locate"), {{"INPUT", points},
+                                                                    {"HIERARCHY", QString::fromStdString(dir + "/h.gpkg")},
+                                                                    {"LEVEL", 99},
+                                                                    {"OUTPUT", QString::fromStdString(dir + "/bad.gpkg")}});
+  EXPECT_FALSE(bad.ok);
+  EXPECT_TRUE(bad.error.contains("-level 99 does not exist")) << bad.error.toStdString();
+}
+
 TEST(Processing, RealDemRuns) {
   const std::string dir = test::dataDir();
   if (dir.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM run skipped";

@@ -31,6 +31,7 @@ check "qgis_process list shows tinlod:buildhierarchy" grep -q "tinlod:buildhiera
 check "qgis_process list shows tinlod:accuracy" grep -q "tinlod:accuracy" "$work/list.txt"
 check "qgis_process list shows tinlod:greedyinsertion" grep -q "tinlod:greedyinsertion" "$work/list.txt"
 check "qgis_process list shows tinlod:extractlod" grep -q "tinlod:extractlod" "$work/list.txt"
+check "qgis_process list shows tinlod:locate" grep -q "tinlod:locate" "$work/list.txt"
 
 "$qp" help tinlod:sampletin > "$work/help.txt" 2>/dev/null
 check "qgis_process help describes the parameters" grep -q "TARGET_CRS" "$work/help.txt"
@@ -91,6 +92,18 @@ level0 = hierarchy.GetLayerByName("level_0").GetFeatureCount()
 assert int(outputs["TRIANGLES"]) == triangles.GetFeatureCount(), outputs
 assert 0 < triangles.GetFeatureCount() < level0, (triangles.GetFeatureCount(), level0)
 print("  %d triangles where level 0 has %d" % (triangles.GetFeatureCount(), level0))
+PY
+
+"$qp" --json run tinlod:locate --INPUT="$hier|layername=vertices" --HIERARCHY="$hier" --LEVEL=3 --OUTPUT="$work/located.gpkg" > "$work/loc.json" 2> "$work/loc.err" || true
+check "qgis_process --json run tinlod:locate gives every vertex an elevation" /usr/bin/python3 - "$work/loc.json" "$work/located.gpkg" <<'PY'
+import json, sys
+from osgeo import ogr
+outputs = json.load(open(sys.argv[1]))["results"]
+ds = ogr.Open(sys.argv[2])  # a layer lives only as long as its dataset
+points = ds.GetLayerByName("points")
+assert int(outputs["POINTS"]) == int(outputs["LOCATED"]) == points.GetFeatureCount() > 1000, outputs
+assert all(f.GetField("elevation") is not None for f in points)
+print("  %s points located on level 3" % outputs["LOCATED"])
 PY
 
 "$qp" --json run tinlod:accuracy --INPUT="$dem" --HIERARCHY="$hier" --ACCURACY="$work/acc.tif" --REPORT="$work/acc.json" > "$work/acc.out.json" 2> "$work/acc.err" || true

@@ -24,6 +24,7 @@ Commands:
   experiment  run the study's experiment over DEMs: methods x delete percentages, one report
   insert      greedy insertion (Garland and Heckbert): a TIN within a vertical tolerance
   lod         extract a TIN of varying level of detail from a hierarchy
+  locate      the elevation at points, located through the hierarchy
   info        describe a GeoPackage written by tinlod
   sample      sample a DEM into a Delaunay TIN, written to a GeoPackage
   makedem     write the project's synthetic default DEM (a GeoTIFF)
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
                                                  {"experiment", tinlod::cli::experimentCommand},
                                                  {"info", tinlod::cli::infoCommand},
                                                  {"insert", tinlod::cli::insertCommand},
+                                                 {"locate", tinlod::cli::locateCommand},
                                                  {"lod", tinlod::cli::lodCommand},
                                                  {"sample", tinlod::cli::sampleCommand},
                                                  {"makedem", tinlod::cli::makeDemCommand}};

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/locate_job.h"
+
+#include <chrono>
+
+#include "gdal_handles.h"
+#include "gpkg_output.h"
+#include "layer_transform.h"
+#include "text_and_paths.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_locator.h"
+#include "tinlod/hierarchy_reader.h"
+#include "tinlod/version.h"
+
+namespace tinlod {
+namespace {
+
+// A point feature's position, or false for another geometry (left without values).
+bool pointOf(const OGRFeature& f, double& x, double& y) {
+  const OGRGeometry* g = f.GetGeometryRef();
+  if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) return false;
+  x = g->toPoint()->getX(), y = g->toPoint()->getY();
+  return true;
+}
+
+OGRLayer* createPointsLayer(GpkgOutput& out, OGRLayer& source) {
+  const OGRSpatialReference* srs = source.GetSpatialRef();
+  const std::string wkt = srs ? wkt2(*srs) : std::string();
+  OGRLayer* layer = out.createLayer("points", wkbFlatten(source.GetGeomType()) == wkbPoint ? source.GetGeomType() : wkbPoint,
+                                    wkt, {});
+  OGRFeatureDefn* defn = source.GetLayerDefn();
+  for (int i = 0; i < defn->GetFieldCount(); ++i)
+    if (layer->CreateField(defn->GetFieldDefn(i)) != OGRERR_NONE)
+      throw Error("cannot copy the field '" + std::string(defn->GetFieldDefn(i)->GetNameRef()) + "' of the points");
+  for (const char* name : {"elevation", "triangle"}) {
+    if (defn->GetFieldIndex(name) >= 0)
+      throw Error("the points already have a field '" + std::string(name) + "': rename it first");
+    OGRFieldDefn field(name, std::string(name) == "elevation" ? OFTReal : OFTInteger);
+    layer->CreateField(&field);
+  }
+  return layer;
+}
+
+}  // namespace
+
+LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& pointsPath, const std::string& outPath,
+                           int level, bool overwrite, const Feedback& feedback) {
+  if (plainPathMissing(pointsPath)) throw Error("points: '" + pointsPath + "' does not exist");
+  GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "points"},
+                                            {"TINLOD_SOURCE", hierarchyPath}, {"TINLOD_LEVEL", std::to_string(level)}}};
+  checkOutputPath(outPath, writeOptions);
+  const ProgressRange all(feedback, 0, 1);
+  const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.4));
+  const Hierarchy& h = stored.hierarchy;
+  if (level < 0 || level > h.coarsest())
+    throw Error("-level " + std::to_string(level) + " does not exist: '" + hierarchyPath + "' has levels 0 to " +
+                std::to_string(h.coarsest()));
+  const DatasetPtr ds = openReadOnly(pointsPath, GDAL_OF_VECTOR);
+  if (!ds || ds->GetLayerCount() < 1) throw Error("points: '" + pointsPath + "' is not a vector file GDAL can read");
+  OGRLayer& source = *ds->GetLayer(0);
+  const auto transform = transformToTin(source, h.base.crsWkt, "points ('" + pointsPath + "')", all);
+  const HierarchyLocator locator(h);
+
+  GpkgOutput out(outPath, writeOptions, [](const std::string& name) { return name == "points"; });
+  OGRLayer* layer = createPointsLayer(out, source);
+  const int elevation = layer->GetLayerDefn()->GetFieldIndex("elevation");
+  const int triangle = layer->GetLayerDefn()->GetFieldIndex("triangle");
+  out.begin();
+  LocateSummary s;
+  s.level = level;
+  const GIntBig count = std::max<GIntBig>(1, source.GetFeatureCount());
+  double seconds = 0;
+  for (auto& f : source) {
+    OGRFeature copy(layer->GetLayerDefn());
+    copy.SetFrom(f.get(), TRUE);
+    double x, y;
+    if (pointOf(*f, x, y) && (!transform || transform->Transform(1, &x, &y))) {
+      const auto start = std::chrono::steady_clock::now();
+      const LocatedPoint p = locator.locate(x, y, level);
+      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (p.found()) {
+        copy.SetField(elevation, p.z);
+        copy.SetField(triangle, static_cast<GIntBig>(p.triangle) + 1);
+        ++s.located;
+      }
+    }
+    writeFeature(*layer, copy);
+    if ((++s.points & 0x3FFF) == 0) all.report(0.4 + 0.4 * double(s.points) / count, "Locating points");
+  }
+  out.commit();
+  out.finish(all.sub(0.8, 1));
+  s.seconds = seconds;
+  all.finish("Done");
+  return s;
+}
+
+}  // namespace tinlod

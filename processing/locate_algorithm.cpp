@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "locate_algorithm.h"
+
+#include <qgsprocessingoutputs.h>
+#include <qgsprocessingparameters.h>
+#include <qgsvectorlayer.h>
+
+#include "processing_feedback.h"
+#include "tinlod/locate_job.h"
+
+namespace tinlod::qgis {
+
+QString LocateAlgorithm::name() const { return QStringLiteral("locate"); }
+QString LocateAlgorithm::displayName() const { return QStringLiteral("TIN elevation at points"); }
+QString LocateAlgorithm::group() const { return QStringLiteral("TIN use"); }
+QString LocateAlgorithm::groupId() const { return QStringLiteral("use"); }
+QStringList LocateAlgorithm::tags() const {
+  return QStringLiteral("tin,elevation,height,point location,kirkpatrick,hierarchy,interpolate,drape").split(',');
+}
+
+QString LocateAlgorithm::shortHelpString() const {
+  return QStringLiteral(
+      "Adds the elevation of a TIN at every point of a point layer. Each point is located through the "
+      "hierarchy (Kirkpatrick's search: the coarsest level, then the triangles each one replaced, down to the "
+      "level asked for) and the height of the containing triangle is interpolated linearly.\n\n"
+      "Hierarchy: a GeoPackage of 'Build TIN hierarchy from DEM' (or a TIN of the other tinlod algorithms). "
+      "Level: 0, the default, is the original TIN.\n\n"
+      "Output: layer 'points' of a GeoPackage: every point with its attributes, in its own CRS, plus "
+      "'elevation' and 'triangle' (the id in the hierarchy's 'triangles' layer); both are null for a point "
+      "outside the TIN or in a hole.");
+}
+
+LocateAlgorithm* LocateAlgorithm::createInstance() const { return new LocateAlgorithm(); }
+
+void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
+  addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("INPUT"), QStringLiteral("Points"),
+                                                     QList<int>() << QgsProcessing::TypeVectorPoint));
+  addParameter(new QgsProcessingParameterFile(QStringLiteral("HIERARCHY"), QStringLiteral("Hierarchy GeoPackage"),
+                                              QgsProcessingParameterFile::File, QStringLiteral("gpkg")));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("LEVEL"), QStringLiteral("Level (0: the original TIN)"),
+                                                QgsProcessingParameterNumber::Integer, 0, false, 0));
+  addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Points with elevation"),
+                                                         QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("POINTS"), QStringLiteral("Points")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("LOCATED"), QStringLiteral("Points on the TIN")));
+}
+
+bool LocateAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
+  QgsVectorLayer* layer = parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context);
+  if (!layer || layer->providerType() != QLatin1String("ogr"))
+    throw QgsProcessingException(QStringLiteral("INPUT must be a point layer stored in a file GDAL reads (save it as a GeoPackage first)"));
+  points_ = layer->source().section('|', 0, 0).toStdString();
+  hierarchy_ = parameterAsFile(parameters, QStringLiteral("HIERARCHY"), context).toStdString();
+  if (hierarchy_.empty()) throw QgsProcessingException(QStringLiteral("HIERARCHY: choose a GeoPackage written by tinlod"));
+  level_ = parameterAsInt(parameters, QStringLiteral("LEVEL"), context);
+  return true;
+}
+
+QVariantMap LocateAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                              QgsProcessingFeedback* feedback) {
+  const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
+  const LocateSummary s = translateErrors(
+      [&] { return runLocateJob(hierarchy_, points_, output.toStdString(), level_, true, processingFeedback(feedback)); });
+  feedback->pushInfo(QStringLiteral("%1 of %2 points on the TIN of level %3").arg(s.located).arg(s.points).arg(s.level));
+  context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=points"),
+                                     QgsProcessingContext::LayerDetails(QStringLiteral("points with elevation"),
+                                                                        context.project(), QStringLiteral("OUTPUT")));
+  QVariantMap outputs;
+  outputs.insert(QStringLiteral("OUTPUT"), output);
+  outputs.insert(QStringLiteral("POINTS"), static_cast<qlonglong>(s.points));
+  outputs.insert(QStringLiteral("LOCATED"), static_cast<qlonglong>(s.located));
+  return outputs;
+}
+
+}  // namespace tinlod::qgis

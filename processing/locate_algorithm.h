@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <qgsprocessingalgorithm.h>
+
+#include <string>
+
+namespace tinlod::qgis {
+
+// tinlod:locate, "TIN elevation at points": the Processing face of `tinlod locate`.
+class LocateAlgorithm : public QgsProcessingAlgorithm {
+ public:
+  QString name() const override;
+  QString displayName() const override;
+  QString group() const override;
+  QString groupId() const override;
+  QStringList tags() const override;
+  QString shortHelpString() const override;
+  LocateAlgorithm* createInstance() const override;
+  void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
+
+ protected:
+  bool prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                        QgsProcessingFeedback* feedback) override;
+  QVariantMap processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                               QgsProcessingFeedback* feedback) override;
+
+ private:
+  std::string hierarchy_;
+  std::string points_;
+  int level_ = 0;
+};
+
+}  // namespace tinlod::qgis
