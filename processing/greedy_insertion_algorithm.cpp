@@ -80,8 +80,14 @@ bool GreedyInsertionAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Q
   insert_.maxVertices = static_cast<std::size_t>(parameterAsInt(parameters, QStringLiteral("MAX_VERTICES"), context));
   insert_.maxTriangles = static_cast<std::size_t>(parameterAsInt(parameters, QStringLiteral("MAX_TRIANGLES"), context));
   const QVariant maxError = parameters.value(QStringLiteral("MAX_ERROR"));
-  if (maxError.isValid() && !maxError.toString().isEmpty())
-    insert_.maxError = parameterAsDouble(parameters, QStringLiteral("MAX_ERROR"), context);
+  if (maxError.isValid() && !maxError.toString().isEmpty()) {
+    bool number = false;
+    insert_.maxError = maxError.toString().toDouble(&number);
+    // parameterAsDouble would read "abc" as 0: an exact TIN nobody asked for.
+    if (!number || insert_.maxError < 0)
+      throw QgsProcessingException(QStringLiteral("MAX_ERROR must be a number of metres, 0 or more (got '%1'); leave it empty "
+                                                  "for 1 m").arg(maxError.toString()));
+  }
   else
     insert_.maxError = insert_.maxVertices || insert_.maxTriangles ? 0 : 1;
   if (insert_.maxVertices != 0 && insert_.maxVertices < 3)

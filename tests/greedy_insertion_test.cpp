@@ -249,7 +249,9 @@ TEST(GreedyInsertion, GeographicDemIsTriangulatedInMetres) {
   const InsertGrid grid = makeInsertGrid(dem, CrsTransform::forDem(dem, "", "", kQuiet), nullptr);
   EXPECT_NEAR(grid.cellWidth, 63.4, 0.3);  // 92.77 m cos(46.92 deg)
   EXPECT_NEAR(grid.cellHeight, 92.7, 0.3);
-  EXPECT_EQ(test::delaunayViolations(groundGrid(out.tin, grid.cellWidth, grid.cellHeight)), 0u);
+  const std::array<double, 2> scale = delaunayScales(grid.cellWidth, grid.cellHeight);
+  EXPECT_NEAR(scale[0] / scale[1], grid.cellWidth / grid.cellHeight, 1e-6);
+  EXPECT_EQ(test::delaunayViolations(groundGrid(out.tin, scale[0], scale[1])), 0u);
   EXPECT_LE(out.summary.measuredMaxError, 1.0 + 1e-9);
   EXPECT_EQ(out.summary.uncoveredCells, 0u);
   // Cells of 1/1200 degree at 47 N: about 63 m by 93 m; the TIN spans the DEM's extent.
@@ -272,6 +274,15 @@ TEST(GreedyInsertion, GridDelaunayTreatsCellsAsSquares) {
   const InsertedTin ground = greedyInsertionTin(dem, o, kQuiet);
   EXPECT_NE(grid.tin.triangles, ground.tin.triangles);  // cells of 63 x 93 m: other triangles
   EXPECT_GT(test::delaunayViolations(groundGrid(grid.tin, 63.4, 92.7)), 0u);
+}
+
+TEST(GreedyInsertion, DelaunayScalesAreSmallWholeNumbers) {
+  EXPECT_EQ(delaunayScales(88.814, 88.81399999), (std::array<double, 2>{1, 1}));  // square up to rounding
+  EXPECT_EQ(delaunayScales(30, 60), (std::array<double, 2>{1, 2}));
+  const std::array<double, 2> s = delaunayScales(63.4562563, 92.6119);
+  EXPECT_NEAR(s[0] / s[1], 63.4562563 / 92.6119, 1e-6);
+  EXPECT_LE(s[1], 4096);
+  EXPECT_EQ(s[0], std::round(s[0]));
 }
 
 TEST(GreedyInsertion, BadOptionsNameTheParameter) {

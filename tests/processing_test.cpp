@@ -355,6 +355,11 @@ TEST(Processing, GreedyInsertionMatchesTheCoreAndNamesBadParameters) {
   ASSERT_TRUE(c.ok) << c.error.toStdString();
   EXPECT_EQ(c.outputs.value("VERTICES").toLongLong(), 777);
 
+  const Result text = runAlgorithm(QStringLiteral("tinlod:greedyinsertion"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                               {"MAX_ERROR", QStringLiteral("abc")},
+                                                                               {"OUTPUT", out + "y"}});
+  EXPECT_FALSE(text.ok);  // not read as 0, an exact TIN
+  EXPECT_TRUE(text.error.contains("MAX_ERROR")) << text.error.toStdString();
   const Result bad = runAlgorithm(QStringLiteral("tinlod:greedyinsertion"), {{"INPUT", QString::fromStdString(defaultDem())},
                                                                               {"MAX_VERTICES", 2},
                                                                               {"OUTPUT", out + "x"}});

@@ -35,8 +35,10 @@ Stopping (whichever comes first):
   -max_error m      every candidate within m metres of the TIN, vertically (default 1;
                     0 inserts until the TIN is exact). With only -max_vertices or
                     -max_triangles given, the default is 0: the count alone stops it.
-  -max_vertices n   at most n vertices (exactly n unless the tolerance is met first)
-  -max_triangles n  at most n triangles
+  -max_vertices n   at most n vertices: exactly n unless the tolerance is met first or
+                    the DEM has holes (vertices left in no triangle beside a hole are
+                    dropped); 0: no limit (default)
+  -max_triangles n  at most n triangles; 0: no limit (default)
 
 Options:
   -candidates c  'cells' (default): every valid DEM cell may become a vertex, the last row
@@ -50,7 +52,8 @@ Options:
   -b band        band holding the heights (default 1)
   -s_srs srs     CRS of the DEM, for a file with none or a wrong one
   -t_srs srs     metric CRS of the TIN (default: the DEM's own if in metres, else UTM)
-  -block k, -jitter m, -seed n   sampling of the 'samples' candidates (as 'tinlod sample')
+  -block k, -jitter m, -seed n   sampling of the 'samples' candidates (as 'tinlod sample');
+                 not used with 'cells'
   -overwrite     replace tinlod's layers of an existing GeoPackage; its other layers are kept
   -q             quiet: no progress or information, warnings only
 
@@ -80,6 +83,23 @@ InsertOptions insertOptions(Arguments& a) {
   return o;
 }
 
+void printSummary(const InsertSummary& s, const InsertOptions& o, const std::string& out) {
+  std::cout << "Wrote " << s.vertices << " vertices and " << s.triangles << " triangles (from " << s.candidates
+            << " candidates; insertion " << s.seconds << " s) in " << s.crsName << " to " << out << "\n";
+  if (o.candidates == InsertCandidates::Samples && std::isfinite(s.maxError))
+    std::cout << "Maximum error at the sampled candidates (where the tolerance applies) " << s.maxError
+              << " m; against every DEM cell, maximum error ";
+  else
+    std::cout << "Maximum error ";
+  std::cout << std::setprecision(10) << s.measuredMaxError << std::setprecision(6) << " m, RMSE "
+            << s.rmse << " m over " << s.measuredCells << " cells";
+  if (s.uncoveredCells)
+    std::cout << " (" << s.uncoveredCells << (s.uncoveredCells == 1 ? " valid cell" : " valid cells")
+              << (o.candidates == InsertCandidates::Cells ? " in no triangle: data one cell wide beside nodata)"
+                                                          : " outside the sampled TIN, as in tinlod sample)");
+  std::cout << std::endl;
+}
+
 }  // namespace
 
 int insertCommand(std::vector<std::string> args) {
@@ -94,12 +114,7 @@ int insertCommand(std::vector<std::string> args) {
   const std::vector<std::string> files = a.operands(2, kUsage);
 
   const InsertSummary s = runInsertJob(files[0], files[1], options, overwrite, terminalFeedback(quiet));
-  if (!quiet)
-    std::cout << "Wrote " << s.vertices << " vertices and " << s.triangles << " triangles (from " << s.candidates
-              << " candidates, in " << s.seconds << " s) in " << s.crsName << " to " << files[1] << "\n"
-              << "Maximum error " << std::setprecision(10) << s.measuredMaxError << std::setprecision(6) << " m, RMSE " << s.rmse << " m over " << s.measuredCells
-              << " cells" << (s.uncoveredCells ? " (" + std::to_string(s.uncoveredCells) + " valid cells not covered)" : "")
-              << std::endl;
+  if (!quiet) printSummary(s, options, files[1]);
   return 0;
 }
 

@@ -88,7 +88,13 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
   const CrsTransform toTin = CrsTransform::forDem(dem, sourceSrs, stored.hierarchy.base.crsWkt, quiet);
-  AccuracyReport report = measureAndWrite(dem, stored.hierarchy, toTin, outputs, all.sub(0.2, 1));
+  AccuracyOutputs chosen = outputs;
+  if (stored.info.kind != "hierarchy" && outputs.options.reference == Reference::Tin) {
+    // A single TIN against itself says nothing.
+    all.inform("'" + hierarchyPath + "' is a single TIN: measured against the DEM (-reference dem)");
+    chosen.options.reference = Reference::Dem;
+  }
+  AccuracyReport report = measureAndWrite(dem, stored.hierarchy, toTin, chosen, all.sub(0.2, 1));
   all.finish("Done");
   return report;
 }

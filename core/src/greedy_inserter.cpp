@@ -45,6 +45,19 @@ struct QueueEntry {
 
 }  // namespace
 
+std::array<double, 2> delaunayScales(double width, double height) {
+  const double ratio = width / height;
+  if (!(ratio > 0) || !std::isfinite(ratio)) return {1, 1};
+  std::array<double, 2> best{1, 1};
+  double bestError = std::fabs(1 - ratio) / ratio;
+  for (int q = 1; q <= 4096 && bestError > 1e-7; ++q) {
+    const double p = std::max(1.0, std::round(ratio * q));
+    const double error = std::fabs(p / q - ratio) / ratio;
+    if (error < bestError - 1e-12) best = {p, double(q)}, bestError = error;
+  }
+  return best;
+}
+
 struct GreedyInserter::Impl {
   InsertGrid grid;
   CandidateScanner scanner;
@@ -53,11 +66,14 @@ struct GreedyInserter::Impl {
   std::vector<InsertedVertex> inserted;
   std::uint32_t stamp = 0;
 
-  explicit Impl(InsertGrid g) : grid(std::move(g)), scanner(grid) {}
+  std::array<double, 2> scale;  // whole numbers: see delaunayScales
+
+  explicit Impl(InsertGrid g)
+      : grid(std::move(g)), scanner(grid), scale(delaunayScales(grid.cellWidth, grid.cellHeight)) {}
 
   // The Delaunay criterion holds in metres on the ground: cells need not be square.
   Point metric(std::uint32_t id) const {
-    return Point(scanner.col(id) * grid.cellWidth, scanner.row(id) * grid.cellHeight);
+    return Point(scanner.col(id) * scale[0], scanner.row(id) * scale[1]);
   }
 
   void scan(FaceHandle f) {

@@ -5,6 +5,7 @@
 #include <ogrsf_frmts.h>
 
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <iomanip>
@@ -37,7 +38,7 @@ void readLevels(GDALDataset& ds, HierarchyInfo& info) {
   if (OGRLayer* v = ds.GetLayerByName("vertices")) l.vertices = static_cast<std::size_t>(v->GetFeatureCount());
   if (OGRLayer* t = ds.GetLayerByName("triangles")) l.triangles = static_cast<std::size_t>(t->GetFeatureCount());
   // Greedy insertion records its maximum error over the candidates, as a build records each level's.
-  if (const auto e = info.metadata.find("max_error"); e != info.metadata.end()) l.maxError = std::atof(e->second.c_str());
+  if (const auto e = info.metadata.find("max_error"); e != info.metadata.end()) l.maxError = std::strtod(e->second.c_str(), nullptr);
   info.levels.push_back(l);
 }
 
@@ -90,7 +91,12 @@ std::string toJson(const HierarchyInfo& info) {
     out << (i ? ",\n" : "\n") << "    {\"level\": " << l.level << ", \"vertices\": " << l.vertices
         << ", \"triangles\": " << l.triangles << ", \"deleted\": " << l.deleted
         << ", \"select_seconds\": " << l.selectSeconds << ", \"delete_seconds\": " << l.deleteSeconds
-        << ", \"max_error\": " << l.maxError << "}";
+        << ", \"max_error\": ";
+    if (std::isfinite(l.maxError))
+      out << l.maxError;
+    else
+      out << "null";  // JSON has no infinity
+    out << "}";
   }
   out << "\n  ]\n}\n";
   return out.str();

@@ -105,16 +105,24 @@ InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* 
 
 InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, const ProgressRange& progress) {
   options.validate();
-  const CrsTransform toTin = CrsTransform::forDem(dem, options.sample.sourceSrs, options.sample.targetSrs, progress);
+  const bool cells = options.candidates == InsertCandidates::Cells;
+  // With sampled candidates the sampling says what it has to about the CRS, once.
+  const CrsTransform toTin = CrsTransform::forDem(dem, options.sample.sourceSrs, options.sample.targetSrs,
+                                                  cells ? progress : ProgressRange(Feedback{}, 0, 1));
   Tin sampled;
   if (options.candidates == InsertCandidates::Samples) sampled = sampleTin(dem, options.sample, progress.sub(0, 0.1));
-  const bool cells = options.candidates == InsertCandidates::Cells;
   InsertedTin out;
   out.summary.candidates = cells ? dem.validCount() : sampled.vertices.size();
 
   const auto start = std::chrono::steady_clock::now();
   GreedyInserter inserter(makeInsertGrid(dem, toTin, cells ? nullptr : &sampled, options.delaunayOnGrid),
                           progress.sub(0.1, 0.15));
+  if (options.maxVertices && options.maxVertices < inserter.vertexCount())
+    progress.warn("-max_vertices " + std::to_string(options.maxVertices) + " is less than the " +
+                  std::to_string(inserter.vertexCount()) + " corners of the valid area's hull, where every run starts");
+  if (options.maxTriangles && options.maxTriangles < inserter.triangleCount())
+    progress.warn("-max_triangles " + std::to_string(options.maxTriangles) + " is less than the " +
+                  std::to_string(inserter.triangleCount()) + " triangles of the valid area's hull, where every run starts");
   inserter.run({options.maxError, options.maxVertices, options.maxTriangles}, progress.sub(0.15, 0.9));
   out.summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.summary.maxError = inserter.maxError();
@@ -182,7 +190,7 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
           {"TINLOD_MAX_VERTICES_LIMIT", std::to_string(o.maxVertices)},
           {"TINLOD_MAX_TRIANGLES_LIMIT", std::to_string(o.maxTriangles)},
           {"TINLOD_DELAUNAY", o.delaunayOnGrid ? "grid" : "ground"},
-          {"TINLOD_MAX_ERROR", formatNumber(s.maxError)},
+          {"TINLOD_UNCOVERED_CELLS", std::to_string(s.uncoveredCells)},
           {"TINLOD_MEASURED_MAX_ERROR", formatNumber(s.measuredMaxError)},
           {"TINLOD_RMSE", formatNumber(s.rmse)},
           {"TINLOD_SOURCE_SRS", o.sample.sourceSrs.empty() ? "from file" : o.sample.sourceSrs},
@@ -201,6 +209,8 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   const Dem dem = readDem(demPath, options.sample.band, all.sub(0, 0.1));
   const InsertedTin result = greedyInsertionTin(dem, options, all.sub(0.1, 0.9));
   writeOptions.metadata = jobMetadata(demPath, options, result.summary);
+  // Not while a count stopped the run before the holes were cut out: no maximum then.
+  if (std::isfinite(result.summary.maxError)) writeOptions.metadata["TINLOD_MAX_ERROR"] = formatNumber(result.summary.maxError);
   if (options.candidates == InsertCandidates::Samples) {
     writeOptions.metadata["TINLOD_BLOCK"] = std::to_string(options.sample.block);
     writeOptions.metadata["TINLOD_JITTER"] = formatNumber(options.sample.jitter);

@@ -25,11 +25,12 @@ struct InsertGrid {
   int cols = 0, rows = 0;
   const float* z = nullptr;      // cols x rows heights, row-major, NaN where missing
   // Metres between cell centres along a row and along a column at the DEM's centre. The
-  // triangulation is Delaunay for (col * cellWidth, row * cellHeight): in the TIN's CRS
-  // for a projected DEM, and for a geographic one in its grid at the ground scale of its
-  // centre (a UTM zone bends the grid slightly, which only breaks the grid's ties between
-  // cocircular cells differently). Triangles are straight in the grid, where the
-  // candidates are scanned and where `tinlod accuracy` measures.
+  // triangulation is Delaunay for (col * p, row * q), p / q the ratio of the two as whole
+  // numbers (q <= 4096): the shape of the cells on the ground, kept exact. That is the
+  // TIN's CRS up to scale for a projected DEM, and for a geographic one its grid at the
+  // ground scale of its centre (a UTM zone bends the grid slightly, which only breaks the
+  // grid's ties between cocircular cells differently). Triangles are straight in the grid,
+  // where the candidates are scanned and where `tinlod accuracy` measures.
   double cellWidth = 1;
   double cellHeight = 1;
   // Empty: every valid cell is a candidate (id = row * cols + col). Otherwise these
@@ -42,6 +43,13 @@ struct InsertStop {
   std::size_t maxVertices = 0;   // 0: no limit
   std::size_t maxTriangles = 0;  // 0: no limit
 };
+
+// The cells' shape on the ground as a ratio of small whole numbers {p, q} (q <= 4096,
+// within 1e-7 or as close as that allows): the triangulation is Delaunay for
+// (col * p, row * q). Coordinates stay exact, so cells cocircular on the ground stay
+// exactly cocircular and ties are broken by the data, not by the rounding of metres
+// (which cost 3 % more vertices on 88.814 m cells).
+std::array<double, 2> delaunayScales(double cellWidth, double cellHeight);
 
 struct InsertedVertex {
   std::uint32_t candidate = 0;
