@@ -85,7 +85,7 @@ for dem in "$@"; do
       cat "$build/tinlod.log" >&2; echo "error: tinlod insert failed on $dem at $tol m" >&2; exit 1
     fi
     tv=$(sed -nE 's/^Wrote ([0-9]+) vertices .*/\1/p' <<<"$out")
-    ts=$(sed -nE 's/^Wrote .* in ([0-9.eE+-]+) s\).*/\1/p' <<<"$out")
+    ts=$(sed -nE 's/^Wrote .* insertion ([0-9.eE+-]+) s\).*/\1/p' <<<"$out")
     read -r te tr cells < <(sed -nE 's/^Maximum error ([0-9.eE+-]+) m, RMSE ([0-9.eE+-]+) m over ([0-9]+) cells.*/\1 \2 \3/p' <<<"$out") || true
     [[ -n $tv && -n $ts && -n $cells ]] || { echo "error: cannot parse tinlod's output: $out" >&2; exit 1; }
     # awk does the floating-point work: one table row, then the checks, whose failures
