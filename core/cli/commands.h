@@ -13,6 +13,7 @@ int buildCommand(std::vector<std::string> args);
 int infoCommand(std::vector<std::string> args);
 int insertCommand(std::vector<std::string> args);
 int lodCommand(std::vector<std::string> args);
+int linesCommand(std::vector<std::string> args);
 int locateCommand(std::vector<std::string> args);
 int accuracyCommand(std::vector<std::string> args);
 int experimentCommand(std::vector<std::string> args);

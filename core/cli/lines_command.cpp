@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <iostream>
+
+#include "arguments.h"
+#include "commands.h"
+#include "terminal_feedback.h"
+#include "tinlod/error.h"
+#include "tinlod/line_layers.h"
+
+namespace tinlod::cli {
+namespace {
+
+const char* const kUsage = "tinlod lines dp LINES OUT.gpkg [-threshold t] [-points] [-overwrite] [-q]";
+
+const char* const kHelp = R"(Tools for line layers (contours from gdal_contour, rivers, roads).
+
+Usage: tinlod lines dp LINES OUT.gpkg [options]
+
+dp: the Douglas-Peucker simplification value of every vertex, computed once so that any
+threshold can be applied later: a line simplified at threshold t keeps the vertices whose
+value exceeds t (the classic Douglas-Peucker simplification with tolerance t).
+
+  LINES          the first layer of a vector file GDAL reads; each part of a multi-line is
+                 a line. A layer in degrees is measured in the UTM zone of its centre.
+  OUT.gpkg       layer 'lines' (LineStringM: M is each vertex's value in metres; the
+                 endpoints, which every threshold keeps, have M = 1e300), with 'feature',
+                 the source feature id
+
+Options:
+  -threshold t   also write layer 'simplified' (the lines at threshold t metres) and count
+                 the crossings between simplified lines (contours that simplification
+                 makes cross), stored in the metadata as TINLOD_CROSSINGS
+  -points        also write layer 'vertices' (Point: line, vertex, value; null for the
+                 endpoints)
+  -overwrite     replace these layers of an existing GeoPackage
+  -q             quiet: no progress or information, warnings only
+
+In QGIS a threshold can then be applied without recomputing, e.g. with the expression
+m(point_n($geometry, n)) or by filtering the 'vertices' layer on "value" > t.
+)";
+
+}  // namespace
+
+int linesCommand(std::vector<std::string> args) {
+  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+    std::cout << kHelp;
+    return args.empty() ? 1 : 0;
+  }
+  if (args[0] != "dp") throw Error("unknown lines tool '" + args[0] + "': the tool is dp (see tinlod lines --help)");
+  Arguments a(std::vector<std::string>(args.begin() + 1, args.end()));
+  if (a.flag("--help") || a.flag("-h")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  DpOptions o;
+  o.threshold = a.number("-threshold", -1);
+  o.points = a.flag("-points");
+  const bool overwrite = a.flag("-overwrite");
+  const bool quiet = a.flag("-q");
+  const std::vector<std::string> files = a.operands(2, kUsage);
+  const DpSummary s = runDpJob(files[0], files[1], o, overwrite, terminalFeedback(quiet));
+  if (!quiet) {
+    std::cout << "Wrote the Douglas-Peucker values of " << s.vertices << " vertices of " << s.lines << " lines in "
+              << s.crsName << " to " << files[1] << "\n";
+    if (o.threshold >= 0)
+      std::cout << "At threshold " << o.threshold << " m: " << s.keptVertices << " vertices kept, " << s.crossings
+                << " crossings between simplified lines\n";
+    std::cout << std::flush;
+  }
+  return 0;
+}
+
+}  // namespace tinlod::cli

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "tinlod/douglas_peucker.h"
+#include "tinlod/feedback.h"
+
+namespace tinlod {
+
+// The lines of the first layer of a vector file, each part of a multi-line its own line,
+// in a metric CRS: the layer's own when it is projected, else the UTM zone of its centre
+// (as for DEMs). `feature` gives each line's feature id.
+struct LineSet {
+  std::vector<Polyline> lines;
+  std::vector<long long> feature;
+  std::string crsWkt;   // empty when the layer has none (taken as metric, with a warning)
+  std::string crsName;
+};
+
+LineSet readLines(const std::string& path, const ProgressRange& progress);
+
+// `tinlod lines dp`: every line with its vertices' Douglas-Peucker values as M (LineStringM,
+// layer 'lines'; the endpoints' infinity stored as M = 1e300, a value no threshold
+// reaches); optionally a point layer 'vertices' (line, vertex, value; null for endpoints);
+// and, for a threshold, layer 'simplified' and the count of crossings between simplified
+// lines. Written atomically to a GeoPackage.
+struct DpOptions {
+  bool points = false;
+  double threshold = -1;  // < 0: no simplified layer
+};
+struct DpSummary {
+  std::size_t lines = 0, vertices = 0, keptVertices = 0, crossings = 0;
+  std::string crsName;
+};
+DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const DpOptions& options, bool overwrite,
+                   const Feedback& feedback);
+
+}  // namespace tinlod

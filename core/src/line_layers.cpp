@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/line_layers.h"
+
+#include <cmath>
+#include <memory>
+
+#include "gdal_handles.h"
+#include "gpkg_output.h"
+#include "text_and_paths.h"
+#include "tinlod/crs_transform.h"
+#include "tinlod/error.h"
+#include "tinlod/version.h"
+
+namespace tinlod {
+namespace {
+
+// M for an endpoint: GeoPackage readers do not all take infinity.
+constexpr double kEndpointM = 1e300;
+
+void addParts(const OGRGeometry* g, long long fid, LineSet& out) {
+  if (!g) return;
+  switch (wkbFlatten(g->getGeometryType())) {
+    case wkbLineString: {
+      const OGRLineString* l = g->toLineString();
+      Polyline line;
+      for (int i = 0; i < l->getNumPoints(); ++i) line.push_back({l->getX(i), l->getY(i)});
+      if (line.size() >= 2) out.lines.push_back(std::move(line)), out.feature.push_back(fid);
+      break;
+    }
+    case wkbMultiLineString:
+      for (const OGRLineString* part : *g->toMultiLineString()) addParts(part, fid, out);
+      break;
+    default:
+      break;
+  }
+}
+
+// The layer's CRS when metric, else the UTM zone of its centre.
+std::unique_ptr<OGRCoordinateTransformation> toMetric(const OGRSpatialReference* src, OGRLayer& layer, LineSet& out,
+                                                      const ProgressRange& progress) {
+  if (!src) {
+    progress.warn("the lines have no CRS: their coordinates are taken as metres");
+    out.crsName = "no CRS";
+    return nullptr;
+  }
+  OGRSpatialReference source(*src);
+  source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (source.IsProjected() && std::fabs(source.GetLinearUnits() - 1) < 1e-9) {
+    out.crsWkt = wkt2(source);
+    out.crsName = source.GetName() ? source.GetName() : "";
+    return nullptr;
+  }
+  OGREnvelope extent;
+  if (layer.GetExtent(&extent, TRUE) != OGRERR_NONE) throw Error("the lines' extent cannot be read");
+  OGRSpatialReference wgs84;
+  wgs84.SetWellKnownGeogCS("WGS84");
+  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  double lon = (extent.MinX + extent.MaxX) / 2, lat = (extent.MinY + extent.MaxY) / 2;
+  std::unique_ptr<OGRCoordinateTransformation> toGeo(OGRCreateCoordinateTransformation(&source, &wgs84));
+  if (!toGeo || !toGeo->Transform(1, &lon, &lat)) throw Error("the lines' CRS cannot be transformed to WGS 84");
+  OGRSpatialReference utm;
+  utm.importFromEPSG(utmEpsgFor(lon, lat));
+  utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  out.crsWkt = wkt2(utm);
+  out.crsName = utm.GetName() ? utm.GetName() : "UTM";
+  progress.inform("the lines are not in metres: measured in " + out.crsName);
+  return std::unique_ptr<OGRCoordinateTransformation>(OGRCreateCoordinateTransformation(&source, &utm));
+}
+
+}  // namespace
+
+LineSet readLines(const std::string& path, const ProgressRange& progress) {
+  if (plainPathMissing(path)) throw Error("INPUT: '" + path + "' does not exist");
+  const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR);
+  if (!ds || ds->GetLayerCount() < 1) throw Error("INPUT: '" + path + "' is not a vector file GDAL can read");
+  OGRLayer& layer = *ds->GetLayer(0);
+  LineSet out;
+  const auto transform = toMetric(layer.GetSpatialRef(), layer, out, progress);
+  for (auto& f : layer) addParts(f->GetGeometryRef(), f->GetFID(), out);
+  if (out.lines.empty()) throw Error("INPUT: the first layer of '" + path + "' has no lines (a line layer is needed)");
+  if (transform)
+    for (Polyline& line : out.lines)
+      for (LinePoint& p : line)
+        if (!transform->Transform(1, &p[0], &p[1])) throw Error("a point of the lines cannot be transformed to " + out.crsName);
+  return out;
+}
+
+namespace {
+
+void writeLines(OGRLayer& layer, const LineSet& set, const std::vector<std::vector<double>>& values) {
+  OGRFeature f(layer.GetLayerDefn());
+  for (std::size_t l = 0; l < set.lines.size(); ++l) {
+    auto* line = new OGRLineString();
+    for (std::size_t i = 0; i < set.lines[l].size(); ++i)
+      line->addPointM(set.lines[l][i][0], set.lines[l][i][1], std::isinf(values[l][i]) ? kEndpointM : values[l][i]);
+    f.SetFID(OGRNullFID);
+    f.SetField("feature", static_cast<GIntBig>(set.feature[l]));
+    f.SetGeometryDirectly(line);
+    writeFeature(layer, f);
+  }
+}
+
+void writeVertices(OGRLayer& layer, const LineSet& set, const std::vector<std::vector<double>>& values) {
+  OGRFeature f(layer.GetLayerDefn());
+  for (std::size_t l = 0; l < set.lines.size(); ++l)
+    for (std::size_t i = 0; i < set.lines[l].size(); ++i) {
+      f.SetFID(OGRNullFID);
+      f.SetField("line", static_cast<GIntBig>(l) + 1);
+      f.SetField("vertex", static_cast<GIntBig>(i));
+      if (std::isinf(values[l][i]))
+        f.SetFieldNull(f.GetFieldIndex("value"));
+      else
+        f.SetField("value", values[l][i]);
+      f.SetGeometryDirectly(new OGRPoint(set.lines[l][i][0], set.lines[l][i][1]));
+      writeFeature(layer, f);
+    }
+}
+
+void writeSimplified(OGRLayer& layer, const LineSet& set, const std::vector<Polyline>& lines) {
+  OGRFeature f(layer.GetLayerDefn());
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    auto* line = new OGRLineString();
+    for (const LinePoint& p : lines[l]) line->addPoint(p[0], p[1]);
+    f.SetFID(OGRNullFID);
+    f.SetField("feature", static_cast<GIntBig>(set.feature[l]));
+    f.SetGeometryDirectly(line);
+    writeFeature(layer, f);
+  }
+}
+
+bool isDpLayer(const std::string& name) { return name == "lines" || name == "vertices" || name == "simplified"; }
+
+}  // namespace
+
+DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const DpOptions& options, bool overwrite,
+                   const Feedback& feedback) {
+  GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "dp_values"}, {"TINLOD_SOURCE", inPath}}};
+  checkOutputPath(outPath, writeOptions);
+  const ProgressRange all(feedback, 0, 1);
+  const LineSet set = readLines(inPath, all.sub(0, 0.2));
+  DpSummary s;
+  s.lines = set.lines.size(), s.crsName = set.crsName;
+  std::vector<std::vector<double>> values;
+  std::vector<Polyline> simple;
+  for (const Polyline& line : set.lines) {
+    values.push_back(douglasPeuckerValues(line));
+    s.vertices += line.size();
+    if (options.threshold >= 0) {
+      simple.push_back(simplified(line, values.back(), options.threshold));
+      s.keptVertices += simple.back().size();
+    }
+  }
+  all.report(0.5, "Douglas-Peucker values");
+  if (options.threshold >= 0) {
+    s.crossings = crossingCount(simple);
+    writeOptions.metadata["TINLOD_THRESHOLD"] = formatNumber(options.threshold);
+    writeOptions.metadata["TINLOD_CROSSINGS"] = std::to_string(s.crossings);
+  }
+  GpkgOutput out(outPath, writeOptions, isDpLayer);
+  OGRLayer* lines = out.createLayer("lines", wkbLineStringM, set.crsWkt, {{"feature"}});
+  OGRLayer* vertices = options.points ? out.createLayer("vertices", wkbPoint, set.crsWkt, {{"line"}, {"vertex"}, {"value", OFTReal}}) : nullptr;
+  OGRLayer* simplifiedLayer = options.threshold >= 0 ? out.createLayer("simplified", wkbLineString, set.crsWkt, {{"feature"}}) : nullptr;
+  out.begin();
+  writeLines(*lines, set, values);
+  if (vertices) writeVertices(*vertices, set, values);
+  if (simplifiedLayer) writeSimplified(*simplifiedLayer, set, simple);
+  out.commit();
+  out.finish(all.sub(0.6, 1));
+  all.finish("Done");
+  return s;
+}
+
+}  // namespace tinlod
