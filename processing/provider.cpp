@@ -5,6 +5,7 @@
 
 #include "accuracy_algorithm.h"
 #include "build_hierarchy_algorithm.h"
+#include "dp_values_algorithm.h"
 #include "extract_lod_algorithm.h"
 #include "greedy_insertion_algorithm.h"
 #include "locate_algorithm.h"
@@ -22,6 +23,7 @@ QIcon Provider::icon() const { return QgsApplication::getThemeIcon(QStringLitera
 void Provider::loadAlgorithms() {
   addAlgorithm(new AccuracyAlgorithm());
   addAlgorithm(new BuildHierarchyAlgorithm());
+  addAlgorithm(new DpValuesAlgorithm());
   addAlgorithm(new ExtractLodAlgorithm());
   addAlgorithm(new GreedyInsertionAlgorithm());
   addAlgorithm(new LocateAlgorithm());

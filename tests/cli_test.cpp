@@ -5,6 +5,7 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -323,6 +324,49 @@ TEST(Cli, LocateAddsTheElevationOfTheChosenLevelToEveryPoint) {
   EXPECT_TRUE(has(coarse.err, "-level 99 does not exist")) << coarse.err;
   EXPECT_FALSE(fs::exists(dir + "/c.gpkg"));
   EXPECT_EQ(tinlod("locate " + dir + "/h.gpkg " + dir + "/none.geojson " + dir + "/c.gpkg").exitCode, 1);
+}
+
+TEST(Cli, LinesDpWritesValuesAsMAndTheSimplifiedLines) {
+  const std::string dir = test::tempDir();
+  // The hand-worked line of the unit test, in metres, and a line in degrees.
+  std::ofstream(dir + "/l.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [[0, 0], [1, 1], [2, 0], [3, 3], [4, 0]]}}]})";
+  const CliRun r = tinlod("lines dp -threshold 1.2 -points " + dir + "/l.geojson " + dir + "/dp.gpkg");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "At threshold 1.2 m: 4 vertices kept, 0 crossings")) << r.out;
+  GDALAllRegister();
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/dp.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(ds);
+  OGRLayer* lines = ds->GetLayerByName("lines");
+  ASSERT_NE(lines, nullptr);
+  OGRFeatureUniquePtr f(lines->GetNextFeature());
+  ASSERT_TRUE(f);
+  const OGRLineString* line = f->GetGeometryRef()->toLineString();
+  ASSERT_EQ(line->getNumPoints(), 5);
+  EXPECT_DOUBLE_EQ(line->getM(1), 1);
+  EXPECT_DOUBLE_EQ(line->getM(2), std::sqrt(2));
+  EXPECT_DOUBLE_EQ(line->getM(3), 3);
+  EXPECT_EQ(line->getM(0), 1e300);
+  EXPECT_EQ(ds->GetLayerByName("vertices")->GetFeatureCount(), 5);
+  EXPECT_EQ(ds->GetLayerByName("simplified")->GetFeatureCount(), 1);
+  ds.reset();
+  const CliRun bad = tinlod("lines simplify " + dir + "/l.geojson " + dir + "/x.gpkg");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_TRUE(has(bad.err, "unknown lines tool 'simplify'")) << bad.err;
+  const CliRun points = tinlod("lines dp " + defaultDem() + " " + dir + "/x.gpkg");
+  EXPECT_EQ(points.exitCode, 1);
+  EXPECT_TRUE(has(points.err, "INPUT")) << points.err;
+}
+
+TEST(Cli, LinesDpOnContoursOfARealDem) {
+  const std::string data = test::dataDir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent: real-DEM contours skipped";
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(std::system(("gdal_contour -q -a elev -i 100 " + data + "/dead_sea_N31E035.tif " + dir + "/c.gpkg").c_str()), 0);
+  const CliRun r = tinlod("lines dp -threshold 50 " + dir + "/c.gpkg " + dir + "/dp.gpkg");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "UTM zone 36N")) << r.out;  // contours in degrees, measured in metres
+  EXPECT_TRUE(has(r.out, "crossings between simplified lines")) << r.out;
 }
 
 TEST(Cli, ExperimentWritesOneReportOfEveryRun) {

@@ -16,6 +16,7 @@
 #include <QFile>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include "test_support.h"
@@ -414,6 +415,30 @@ TEST(Processing, LocateAddsElevationsAsTheCoreDoes) {
                                                                     {"OUTPUT", QString::fromStdString(dir + "/bad.gpkg")}});
   EXPECT_FALSE(bad.ok);
   EXPECT_TRUE(bad.error.contains("-level 99 does not exist")) << bad.error.toStdString();
+}
+
+TEST(Processing, DpValuesMatchTheCoreAndCountCrossings) {
+  const std::string dir = test::tempDir();
+  std::ofstream(dir + "/l.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [[0, 0], [5, 4], [10, 0]]}},
+              {"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [[0, 1], [5, 4.5], [10, 1]]}}]})";
+  const QString out = QString::fromStdString(dir + "/dp.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:dpvalues"), {{"INPUT", QString::fromStdString(dir + "/l.geojson")},
+                                                                    {"THRESHOLD", 3.7},
+                                                                    {"POINTS", true},
+                                                                    {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  EXPECT_EQ(r.outputs.value("LINES").toLongLong(), 2);
+  EXPECT_EQ(r.outputs.value("VERTICES").toLongLong(), 6);
+  // The lower peak (value 4) outlives 3.7, the upper one (3.5) does not: its chord cuts the
+  // lower peak twice.
+  EXPECT_EQ(r.outputs.value("CROSSINGS").toLongLong(), 2);
+  EXPECT_EQ(featureCount(out, "vertices"), 6);
+  const Result cut = runAlgorithm(QStringLiteral("tinlod:dpvalues"), {{"INPUT", QString::fromStdString(dir + "/l.geojson")},
+                                                                      {"THRESHOLD", 4.5},
+                                                                      {"OUTPUT", QString::fromStdString(dir + "/dp2.gpkg")}});
+  ASSERT_TRUE(cut.ok) << cut.error.toStdString();
+  EXPECT_EQ(cut.outputs.value("CROSSINGS").toLongLong(), 0);  // both chords: parallel
 }
 
 TEST(Processing, RealDemRuns) {

@@ -32,6 +32,7 @@ check "qgis_process list shows tinlod:accuracy" grep -q "tinlod:accuracy" "$work
 check "qgis_process list shows tinlod:greedyinsertion" grep -q "tinlod:greedyinsertion" "$work/list.txt"
 check "qgis_process list shows tinlod:extractlod" grep -q "tinlod:extractlod" "$work/list.txt"
 check "qgis_process list shows tinlod:locate" grep -q "tinlod:locate" "$work/list.txt"
+check "qgis_process list shows tinlod:dpvalues" grep -q "tinlod:dpvalues" "$work/list.txt"
 
 "$qp" help tinlod:sampletin > "$work/help.txt" 2>/dev/null
 check "qgis_process help describes the parameters" grep -q "TARGET_CRS" "$work/help.txt"
@@ -104,6 +105,21 @@ points = ds.GetLayerByName("points")
 assert int(outputs["POINTS"]) == int(outputs["LOCATED"]) == points.GetFeatureCount() > 1000, outputs
 assert all(f.GetField("elevation") is not None for f in points)
 print("  %s points located on level 3" % outputs["LOCATED"])
+PY
+
+gdal_contour -q -a elev -i 100 "$dem" "$work/contours.gpkg"
+"$qp" --json run tinlod:dpvalues --INPUT="$work/contours.gpkg" --THRESHOLD=50 --OUTPUT="$work/dp.gpkg" > "$work/dp.json" 2> "$work/dp.err" || true
+check "qgis_process --json run tinlod:dpvalues on contours of the DEM" /usr/bin/python3 - "$work/dp.json" "$work/dp.gpkg" <<'PY'
+import json, sys
+from osgeo import ogr
+outputs = json.load(open(sys.argv[1]))["results"]
+ds = ogr.Open(sys.argv[2])  # a layer lives only as long as its dataset
+lines = ds.GetLayerByName("lines")
+assert int(outputs["LINES"]) == lines.GetFeatureCount() > 10, outputs
+assert ds.GetLayerByName("simplified").GetFeatureCount() == lines.GetFeatureCount()
+f = lines.GetNextFeature()
+assert f.GetGeometryRef().GetM(0) == 1e300, f.GetGeometryRef().GetM(0)
+print("  %s lines, %s crossings at 50 m" % (outputs["LINES"], outputs["CROSSINGS"]))
 PY
 
 "$qp" --json run tinlod:accuracy --INPUT="$dem" --HIERARCHY="$hier" --ACCURACY="$work/acc.tif" --REPORT="$work/acc.json" > "$work/acc.out.json" 2> "$work/acc.err" || true

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "dp_values_algorithm.h"
+
+#include <qgsprocessingoutputs.h>
+#include <qgsprocessingparameters.h>
+#include <qgsvectorlayer.h>
+
+#include "processing_feedback.h"
+
+namespace tinlod::qgis {
+
+QString DpValuesAlgorithm::name() const { return QStringLiteral("dpvalues"); }
+QString DpValuesAlgorithm::displayName() const { return QStringLiteral("Douglas-Peucker simplification values"); }
+QString DpValuesAlgorithm::group() const { return QStringLiteral("Lines"); }
+QString DpValuesAlgorithm::groupId() const { return QStringLiteral("lines"); }
+QStringList DpValuesAlgorithm::tags() const {
+  return QStringLiteral("douglas,peucker,ramer,simplify,generalize,contour,line,tolerance").split(',');
+}
+
+QString DpValuesAlgorithm::shortHelpString() const {
+  return QStringLiteral(
+      "Computes the Douglas-Peucker simplification value of every vertex of a line layer once, so that any "
+      "threshold can be applied later: a line simplified at threshold t keeps the vertices whose value exceeds t "
+      "(the classic Douglas-Peucker simplification with tolerance t).\n\n"
+      "Output: layer 'lines' (LineStringM: M is each vertex's value in metres; endpoints, kept at every "
+      "threshold, have M = 1e300) with the source feature id; optionally layer 'vertices' (points with line, "
+      "vertex and value). With a threshold, also layer 'simplified' and the number of crossings between "
+      "simplified lines (contours that simplification makes cross). A layer in degrees is measured in the UTM "
+      "zone of its centre.");
+}
+
+DpValuesAlgorithm* DpValuesAlgorithm::createInstance() const { return new DpValuesAlgorithm(); }
+
+void DpValuesAlgorithm::initAlgorithm(const QVariantMap&) {
+  addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("INPUT"), QStringLiteral("Lines"),
+                                                     QList<int>() << QgsProcessing::TypeVectorLine));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"),
+                                                QStringLiteral("Threshold for the simplified lines and crossings (metres)"),
+                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0));
+  addParameter(new QgsProcessingParameterBoolean(QStringLiteral("POINTS"), QStringLiteral("Also write a vertex layer"), false));
+  addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Lines with values"),
+                                                         QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("LINES"), QStringLiteral("Lines")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("CROSSINGS"), QStringLiteral("Crossings at the threshold")));
+}
+
+bool DpValuesAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
+  QgsVectorLayer* layer = parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context);
+  if (!layer || layer->providerType() != QLatin1String("ogr"))
+    throw QgsProcessingException(QStringLiteral("INPUT must be a line layer stored in a file GDAL reads (save it as a GeoPackage first)"));
+  lines_ = layer->source().section('|', 0, 0).toStdString();
+  options_ = DpOptions();
+  const QVariant threshold = parameters.value(QStringLiteral("THRESHOLD"));
+  if (threshold.isValid() && !threshold.toString().isEmpty())
+    options_.threshold = parameterAsDouble(parameters, QStringLiteral("THRESHOLD"), context);
+  options_.points = parameterAsBool(parameters, QStringLiteral("POINTS"), context);
+  return true;
+}
+
+QVariantMap DpValuesAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                                QgsProcessingFeedback* feedback) {
+  const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
+  const DpSummary s = translateErrors([&] { return runDpJob(lines_, output.toStdString(), options_, true, processingFeedback(feedback)); });
+  feedback->pushInfo(QStringLiteral("%1 vertices of %2 lines in %3").arg(s.vertices).arg(s.lines).arg(QString::fromStdString(s.crsName)));
+  if (options_.threshold >= 0)
+    feedback->pushInfo(QStringLiteral("At threshold %1 m: %2 vertices kept, %3 crossings between simplified lines")
+                           .arg(options_.threshold).arg(s.keptVertices).arg(s.crossings));
+  context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=lines"),
+                                     QgsProcessingContext::LayerDetails(QStringLiteral("lines with DP values"), context.project(),
+                                                                        QStringLiteral("OUTPUT")));
+  QVariantMap outputs;
+  outputs.insert(QStringLiteral("OUTPUT"), output);
+  outputs.insert(QStringLiteral("LINES"), static_cast<qlonglong>(s.lines));
+  outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(s.vertices));
+  outputs.insert(QStringLiteral("CROSSINGS"), static_cast<qlonglong>(s.crossings));
+  return outputs;
+}
+
+}  // namespace tinlod::qgis
