@@ -123,7 +123,7 @@ void BuildHierarchyAlgorithm::readFixedPoints(const QVariantMap& parameters, Qgs
   if (!layer || layer->providerType() != QLatin1String("ogr"))
     throw QgsProcessingException(QStringLiteral("FIXED_POINTS must be a point layer stored in a file GDAL reads "
                                                 "(GeoPackage, Shapefile, GeoJSON ...): save it to a file first"));
-  options_.fixedPoints = layer->source().section('|', 0, 0).toStdString();
+  options_.fixedPoints = layer->source().toStdString();  // with its |layername=, read by the core
 }
 
 QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

@@ -49,7 +49,7 @@ bool DpValuesAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProce
   QgsVectorLayer* layer = parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context);
   if (!layer || layer->providerType() != QLatin1String("ogr"))
     throw QgsProcessingException(QStringLiteral("INPUT must be a line layer stored in a file GDAL reads (save it as a GeoPackage first)"));
-  lines_ = layer->source().section('|', 0, 0).toStdString();
+  lines_ = layer->source().toStdString();  // with its |layername=, read by the core
   options_ = DpOptions();
   const QVariant threshold = parameters.value(QStringLiteral("THRESHOLD"));
   if (threshold.isValid() && !threshold.toString().isEmpty())

@@ -14,16 +14,18 @@
 namespace tinlod::qgis {
 namespace {
 
+// Set at all: a layer or point object from PyQGIS reads as an empty string, so test the
+// variant itself, not its text.
 bool given(const QVariantMap& parameters, const QString& name) {
   const QVariant v = parameters.value(name);
-  return v.isValid() && !v.toString().isEmpty();
+  return v.isValid() && !v.isNull() && !(v.type() == QVariant::String && v.toString().isEmpty());
 }
 
 // The file behind a vector layer parameter: the core reads it with GDAL.
 std::string layerFile(QgsVectorLayer* layer, const QString& name) {
   if (!layer || layer->providerType() != QLatin1String("ogr"))
     throw QgsProcessingException(QStringLiteral("%1 must be a layer stored in a file GDAL reads (save it as a GeoPackage first)").arg(name));
-  return layer->source().section('|', 0, 0).toStdString();
+  return layer->source().toStdString();  // with its |layername=, read by the core
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ bool LocateAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcess
   QgsVectorLayer* layer = parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context);
   if (!layer || layer->providerType() != QLatin1String("ogr"))
     throw QgsProcessingException(QStringLiteral("INPUT must be a point layer stored in a file GDAL reads (save it as a GeoPackage first)"));
-  points_ = layer->source().section('|', 0, 0).toStdString();
+  points_ = layer->source().toStdString();  // with its |layername=, read by the core
   hierarchy_ = parameterAsFile(parameters, QStringLiteral("HIERARCHY"), context).toStdString();
   if (hierarchy_.empty()) throw QgsProcessingException(QStringLiteral("HIERARCHY: choose a GeoPackage written by tinlod"));
   level_ = parameterAsInt(parameters, QStringLiteral("LEVEL"), context);

@@ -369,6 +369,35 @@ TEST(Cli, LinesDpOnContoursOfARealDem) {
   EXPECT_TRUE(has(r.out, "crossings between simplified lines")) << r.out;
 }
 
+TEST(Cli, LocateWorksOnALodTinAndOnANamedLayerAndRefusesDamage) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  ASSERT_EQ(tinlod("lod -q -center 404500 5203750 -dropoff 300 " + dir + "/h.gpkg " + dir + "/lod.gpkg").exitCode, 0);
+  // Points as the second layer of a GeoPackage: the hierarchy's vertices, all on the TIN.
+  ASSERT_EQ(std::system(("ogr2ogr -q -f GPKG " + dir + "/two.gpkg " + dir + "/h.gpkg levels -nln aaa && ogr2ogr -q -update " +
+                         dir + "/two.gpkg " + dir + "/h.gpkg vertices -nln wells")
+                            .c_str()),
+            0);
+  const CliRun onLod = tinlod("locate \"" + dir + "/two.gpkg|layername=wells\" " + dir + "/lod.gpkg " + dir + "/l.gpkg");
+  ASSERT_EQ(onLod.exitCode, 1);  // operands in the wrong order: the points are not a hierarchy
+  const CliRun r = tinlod("locate " + dir + "/lod.gpkg \"" + dir + "/two.gpkg|layername=wells\" " + dir + "/l.gpkg");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::size_t of = r.out.find(" of ");
+  ASSERT_NE(of, std::string::npos) << r.out;
+  EXPECT_EQ(r.out.substr(8, of - 8), r.out.substr(of + 4, r.out.find(' ', of + 4) - of - 4)) << r.out;  // every point located
+  // Writing into a tinlod file would replace its metadata.
+  const CliRun into = tinlod("locate -overwrite " + dir + "/h.gpkg \"" + dir + "/two.gpkg|layername=wells\" " + dir + "/lod.gpkg");
+  EXPECT_EQ(into.exitCode, 1);
+  EXPECT_TRUE(has(into.err, "is a tinlod GeoPackage")) << into.err;
+  // A hierarchy without its groups is refused, not read past its end.
+  ASSERT_EQ(std::system(("cp " + dir + "/h.gpkg " + dir + "/broken.gpkg && ogrinfo -q " + dir +
+                         "/broken.gpkg -sql \"DELLAYER:groups\" > /dev/null").c_str()),
+            0);
+  const CliRun broken = tinlod("lod -max_error 5 " + dir + "/broken.gpkg " + dir + "/x.gpkg");
+  EXPECT_EQ(broken.exitCode, 1);
+  EXPECT_TRUE(has(broken.err, "no groups layer")) << broken.err;
+}
+
 TEST(Cli, ExperimentWritesOneReportOfEveryRun) {
   const std::string dir = test::tempDir();
   const CliRun r = tinlod("experiment -q -methods volume,degree -delete_pcts 20 -stop_pct 30 -report " + dir +

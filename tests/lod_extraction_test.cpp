@@ -117,6 +117,31 @@ TEST(LodExtraction, ErrorTestKeepsEveryTriangleWithinTheTolerance) {
   EXPECT_LT(extractLod(h, grow, kQuiet).size(), extractLod(h, flat, kQuiet).size());
 }
 
+TEST(LodExtraction, RegionTestGivesLevelZeroWhereverATriangleMeetsTheRegion) {
+  const Hierarchy& h = hierarchy();
+  // A strip 30 m wide: few vertices lie in it, yet every triangle across it must be fine.
+  const double x0 = middle(h)[0], x1 = x0 + 30;
+  LodOptions o;
+  o.meetsRegion = [&](const std::array<std::array<double, 2>, 3>& t) {
+    const double lo = std::min({t[0][0], t[1][0], t[2][0]}), hi = std::max({t[0][0], t[1][0], t[2][0]});
+    return hi >= x0 && lo <= x1;
+  };
+  const std::vector<std::uint32_t> out = extractLod(h, o, kQuiet);
+  expectConforming(h, out);
+  std::size_t across = 0;
+  for (std::uint32_t t : out) {
+    const HierarchyTriangle& tri = h.triangles[t];
+    double lo = 1e300, hi = -1e300;
+    for (VertexId v : tri.v) lo = std::min(lo, h.base.vertices[v].x), hi = std::max(hi, h.base.vertices[v].x);
+    if (hi >= x0 && lo <= x1) {
+      ++across;
+      EXPECT_EQ(tri.firstLevel, 0);
+    }
+  }
+  EXPECT_GT(across, 50u);
+  EXPECT_LT(out.size(), h.levelTriangles(0).size() / 2);
+}
+
 TEST(LodExtraction, SeveralCentresAndBadOptions) {
   const Hierarchy& h = hierarchy();
   LodOptions one, two;
@@ -134,6 +159,11 @@ TEST(LodExtraction, SeveralCentresAndBadOptions) {
   LodOptions negative;
   negative.maxError = -1;
   EXPECT_THROW(extractLod(h, negative, kQuiet), Error);
+  LodOptions growthAlone;
+  growthAlone.dropoff = 100;
+  growthAlone.centres = {middle(h)};
+  growthAlone.errorGrowth = 0.1;
+  EXPECT_THROW(extractLod(h, growthAlone, kQuiet), Error);
 }
 
 }  // namespace

@@ -44,7 +44,9 @@ void readVertices(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress) 
   }
 }
 
-void readTriangles(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress) {
+// `levelled`: the file is a hierarchy; any other (a TIN, a level-of-detail TIN, whose
+// triangles keep their levels as plain attributes) is one level of its own.
+void readTriangles(OGRLayer& layer, Hierarchy& h, bool levelled, const ProgressRange& progress) {
   const GIntBig count = layer.GetFeatureCount();
   const std::size_t vertices = h.base.vertices.size();
   OGRFeatureDefn& defn = *layer.GetLayerDefn();
@@ -66,10 +68,10 @@ void readTriangles(OGRLayer& layer, Hierarchy& h, const ProgressRange& progress)
         throw Error("the triangles layer of the GeoPackage is damaged (a corner is not a vertex)");
       t.v[k] = static_cast<VertexId>(v);
     }
-    t.firstLevel = first >= 0 ? f->GetFieldAsInteger(first) : 0;
-    t.lastLevel = last >= 0 ? f->GetFieldAsInteger(last) : 0;
-    t.group = groupOf(*f, group);
-    t.replacedBy = groupOf(*f, replacedBy);
+    t.firstLevel = levelled && first >= 0 ? f->GetFieldAsInteger(first) : 0;
+    t.lastLevel = levelled && last >= 0 ? f->GetFieldAsInteger(last) : 0;
+    t.group = levelled ? groupOf(*f, group) : kNoGroup;
+    t.replacedBy = levelled ? groupOf(*f, replacedBy) : kNoGroup;
     if (error >= 0) t.error = f->GetFieldAsDouble(error);
     if (t.firstLevel == 0) h.base.triangles.push_back(t.v);
     h.triangles.push_back(t);
@@ -153,8 +155,13 @@ StoredHierarchy readHierarchy(const std::string& path, const ProgressRange& prog
   h.base.crsWkt = wktOf(*triangles);
   h.base.crsName = out.info.crsName;
   readVertices(*vertices, h, progress.sub(0, 0.2));
-  readTriangles(*triangles, h, progress.sub(0.2, 0.95));
-  if (OGRLayer* groups = ds->GetLayerByName("groups")) readGroups(*groups, h);
+  const bool levelled = out.info.kind == "hierarchy";
+  readTriangles(*triangles, h, levelled, progress.sub(0.2, 0.95));
+  if (levelled) {
+    OGRLayer* groups = ds->GetLayerByName("groups");
+    if (!groups) throw Error("'" + path + "' has no groups layer: the hierarchy is damaged; build it again with tinlod build");
+    readGroups(*groups, h);
+  }
   readOptions(out.info, h);
   return out;
 }

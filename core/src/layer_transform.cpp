@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "layer_transform.h"
 
+#include "tinlod/error.h"
+
 namespace tinlod {
 
 std::unique_ptr<OGRCoordinateTransformation> transformToTin(OGRLayer& layer, const std::string& targetWkt,
@@ -11,13 +13,21 @@ std::unique_ptr<OGRCoordinateTransformation> transformToTin(OGRLayer& layer, con
     return nullptr;
   }
   OGRSpatialReference target;
-  if (targetWkt.empty() || target.importFromWkt(targetWkt.c_str()) != OGRERR_NONE) return nullptr;
+  if (targetWkt.empty()) {
+    progress.warn(what + ": the TIN has no CRS: the layer's coordinates are used as they are");
+    return nullptr;
+  }
+  if (target.importFromWkt(targetWkt.c_str()) != OGRERR_NONE) throw Error(what + ": the TIN's CRS cannot be read");
   OGRSpatialReference source(*src);
   // x = easting or longitude, as the TIN's coordinates are stored.
   source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   if (source.IsSame(&target)) return nullptr;
-  return std::unique_ptr<OGRCoordinateTransformation>(OGRCreateCoordinateTransformation(&source, &target));
+  std::unique_ptr<OGRCoordinateTransformation> transform(OGRCreateCoordinateTransformation(&source, &target));
+  if (!transform)
+    throw Error(what + ": no transformation from " + (source.GetName() ? source.GetName() : std::string("its CRS")) + " to " +
+                (target.GetName() ? target.GetName() : std::string("the TIN's CRS")) + ": reproject the layer to the TIN's CRS first");
+  return transform;
 }
 
 }  // namespace tinlod

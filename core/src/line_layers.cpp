@@ -6,6 +6,7 @@
 
 #include "gdal_handles.h"
 #include "gpkg_output.h"
+#include "layer_source.h"
 #include "text_and_paths.h"
 #include "tinlod/crs_transform.h"
 #include "tinlod/error.h"
@@ -70,10 +71,8 @@ std::unique_ptr<OGRCoordinateTransformation> toMetric(const OGRSpatialReference*
 }  // namespace
 
 LineSet readLines(const std::string& path, const ProgressRange& progress) {
-  if (plainPathMissing(path)) throw Error("INPUT: '" + path + "' does not exist");
-  const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR);
-  if (!ds || ds->GetLayerCount() < 1) throw Error("INPUT: '" + path + "' is not a vector file GDAL can read");
-  OGRLayer& layer = *ds->GetLayer(0);
+  const OpenLayer open = openLayer(path, "INPUT");
+  OGRLayer& layer = *open.layer;
   LineSet out;
   const auto transform = toMetric(layer.GetSpatialRef(), layer, out, progress);
   for (auto& f : layer) addParts(f->GetGeometryRef(), f->GetFID(), out);

@@ -2,9 +2,11 @@
 #include "tinlod/locate_job.h"
 
 #include <chrono>
+#include <filesystem>
 
 #include "gdal_handles.h"
 #include "gpkg_output.h"
+#include "layer_source.h"
 #include "layer_transform.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
@@ -15,9 +17,21 @@
 namespace tinlod {
 namespace {
 
-// A point feature's position, or false for another geometry (left without values).
+bool isTinlodFile(const std::string& path) {
+  try {
+    readHierarchyInfo(path);
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+// A point feature's position (a multipoint of one point counts), or false for another
+// geometry, which is copied without values.
 bool pointOf(const OGRFeature& f, double& x, double& y) {
   const OGRGeometry* g = f.GetGeometryRef();
+  if (g && wkbFlatten(g->getGeometryType()) == wkbMultiPoint && g->toMultiPoint()->getNumGeometries() == 1)
+    g = g->toMultiPoint()->getGeometryRef(0);
   if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) return false;
   x = g->toPoint()->getX(), y = g->toPoint()->getY();
   return true;
@@ -26,8 +40,7 @@ bool pointOf(const OGRFeature& f, double& x, double& y) {
 OGRLayer* createPointsLayer(GpkgOutput& out, OGRLayer& source) {
   const OGRSpatialReference* srs = source.GetSpatialRef();
   const std::string wkt = srs ? wkt2(*srs) : std::string();
-  OGRLayer* layer = out.createLayer("points", wkbFlatten(source.GetGeomType()) == wkbPoint ? source.GetGeomType() : wkbPoint,
-                                    wkt, {});
+  OGRLayer* layer = out.createLayer("points", source.GetGeomType(), wkt, {});  // as the points are stored
   OGRFeatureDefn* defn = source.GetLayerDefn();
   for (int i = 0; i < defn->GetFieldCount(); ++i)
     if (layer->CreateField(defn->GetFieldDefn(i)) != OGRERR_NONE)
@@ -45,19 +58,22 @@ OGRLayer* createPointsLayer(GpkgOutput& out, OGRLayer& source) {
 
 LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& pointsPath, const std::string& outPath,
                            int level, bool overwrite, const Feedback& feedback) {
-  if (plainPathMissing(pointsPath)) throw Error("points: '" + pointsPath + "' does not exist");
+  if (plainPathMissing(parseLayerSource(pointsPath, "points").path))  // before the long work
+    throw Error("points: '" + pointsPath + "' does not exist");
   GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "points"},
                                             {"TINLOD_SOURCE", hierarchyPath}, {"TINLOD_LEVEL", std::to_string(level)}}};
   checkOutputPath(outPath, writeOptions);
+  // Its metadata would replace the file's own: a hierarchy would stop being one.
+  if (std::filesystem::exists(outPath) && isTinlodFile(outPath))
+    throw Error("'" + outPath + "' is a tinlod GeoPackage: write the points to another file");
   const ProgressRange all(feedback, 0, 1);
   const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.4));
   const Hierarchy& h = stored.hierarchy;
   if (level < 0 || level > h.coarsest())
     throw Error("-level " + std::to_string(level) + " does not exist: '" + hierarchyPath + "' has levels 0 to " +
                 std::to_string(h.coarsest()));
-  const DatasetPtr ds = openReadOnly(pointsPath, GDAL_OF_VECTOR);
-  if (!ds || ds->GetLayerCount() < 1) throw Error("points: '" + pointsPath + "' is not a vector file GDAL can read");
-  OGRLayer& source = *ds->GetLayer(0);
+  const OpenLayer open = openLayer(pointsPath, "points");
+  OGRLayer& source = *open.layer;
   const auto transform = transformToTin(source, h.base.crsWkt, "points ('" + pointsPath + "')", all);
   const HierarchyLocator locator(h);
 

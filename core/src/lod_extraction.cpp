@@ -11,13 +11,14 @@
 namespace tinlod {
 
 void LodOptions::validate() const {
-  if (std::isnan(dropoff) && std::isnan(maxError) && !inRegion)
+  if (std::isnan(dropoff) && std::isnan(maxError) && !meetsRegion)
     throw Error("give a test: -dropoff (distance to the centre), -max_error (vertical error) or -region (polygons)");
   if (!std::isnan(dropoff) && !(dropoff >= 0))
     throw Error("-dropoff must be 0 or more metres per level (0: the coarsest level everywhere)");
   if (!std::isnan(dropoff) && centres.empty()) throw Error("-dropoff needs a centre of detail: -center X Y");
   if (!std::isnan(maxError) && !(maxError >= 0)) throw Error("-max_error must be 0 or more metres");
   if (!(errorGrowth >= 0) || !std::isfinite(errorGrowth)) throw Error("-error_growth must be 0 or more metres per metre");
+  if (errorGrowth > 0 && std::isnan(maxError)) throw Error("-error_growth needs -max_error, the tolerance it grows from");
   if (errorGrowth > 0 && centres.empty()) throw Error("-error_growth needs a centre of detail: -center X Y");
 }
 
@@ -29,9 +30,19 @@ double nearestCentre(const LodOptions& o, const TinVertex& v) {
   return best;
 }
 
+bool meetsRegion(const Hierarchy& h, const LodOptions& o, const Group& g) {
+  const auto [begin, end] = h.reject(g);
+  for (const std::uint32_t* r = begin; r != end; ++r) {
+    std::array<std::array<double, 2>, 3> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = {h.base.vertices[h.triangles[*r].v[k]].x, h.base.vertices[h.triangles[*r].v[k]].y};
+    if (o.meetsRegion(corners)) return true;
+  }
+  return false;
+}
+
 bool accepted(const Hierarchy& h, const LodOptions& o, const Group& g) {
+  if (o.meetsRegion && meetsRegion(h, o, g)) return true;
   const TinVertex& v = h.base.vertices[g.vertex];
-  if (o.inRegion && o.inRegion(v.x, v.y)) return true;
   const double d = o.centres.empty() ? 0 : nearestCentre(o, v);
   if (!std::isnan(o.dropoff) && d < g.level * o.dropoff) return true;
   return !std::isnan(o.maxError) && g.error > o.maxError + o.errorGrowth * d;

@@ -27,7 +27,7 @@ void checkOptions(const LodJobOptions& o) {
   }
   if (!o.regionPath.empty()) {
     if (plainPathMissing(o.regionPath)) throw Error("-region: '" + o.regionPath + "' does not exist");
-    lod.inRegion = [](double, double) { return false; };
+    lod.meetsRegion = [](const std::array<std::array<double, 2>, 3>&) { return false; };
   }
   lod.validate();
 }
@@ -88,7 +88,7 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   std::unique_ptr<PolygonRegion> region;
   if (!options.regionPath.empty()) {
     region = std::make_unique<PolygonRegion>(options.regionPath, h.base.crsWkt, "-region", all);
-    lod.inRegion = [&region](double x, double y) { return region->contains(x, y); };
+    lod.meetsRegion = [&region](const std::array<std::array<double, 2>, 3>& t) { return region->meets(t); };
   }
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::uint32_t> triangles = extractLod(h, lod, all.sub(0.5, 0.6));

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "gdal_handles.h"
+#include "layer_source.h"
 #include "layer_transform.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
@@ -31,15 +32,13 @@ void addPoints(const OGRGeometry* g, std::vector<std::array<double, 2>>& out) {
 }  // namespace
 
 void checkPointsExist(const std::string& path, const std::string& what) {
-  if (plainPathMissing(path)) throw Error(what + ": '" + path + "' does not exist");
+  if (plainPathMissing(parseLayerSource(path, what).path)) throw Error(what + ": '" + path + "' does not exist");
 }
 
 std::vector<std::array<double, 2>> readPoints(const std::string& path, const std::string& targetWkt,
                                               const ProgressRange& progress, const std::string& what) {
-  checkPointsExist(path, what);
-  const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR);
-  if (!ds || ds->GetLayerCount() < 1) throw Error(what + ": '" + path + "' is not a vector file GDAL can read");
-  OGRLayer* layer = ds->GetLayer(0);
+  const OpenLayer open = openLayer(path, what);
+  OGRLayer* layer = open.layer;
   const auto transform = transformToTin(*layer, targetWkt, what + " ('" + path + "')", progress);
   std::vector<std::array<double, 2>> points;
   for (auto& feature : *layer) addPoints(feature->GetGeometryRef(), points);
@@ -47,7 +46,7 @@ std::vector<std::array<double, 2>> readPoints(const std::string& path, const std
     if (transform && !transform->Transform(1, &p[0], &p[1]))
       throw Error(what + ": a point of '" + path + "' cannot be transformed to the TIN's CRS");
   if (points.empty())
-    throw Error(what + ": the first layer of '" + path + "' has no point features (a point layer is needed)");
+    throw Error(what + ": the layer of '" + path + "' has no point features (a point layer is needed)");
   return points;
 }
 

@@ -4,7 +4,10 @@
 #include <geos_c.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
+
 #include "gdal_handles.h"
+#include "layer_source.h"
 #include "layer_transform.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
@@ -15,6 +18,7 @@ struct PolygonRegion::Impl {
   GEOSContextHandle_t context = GEOS_init_r();
   GEOSGeometry* area = nullptr;
   const GEOSPreparedGeometry* prepared = nullptr;
+  std::array<double, 4> envelope{};  // xmin, ymin, xmax, ymax
   ~Impl() {
     if (prepared) GEOSPreparedGeom_destroy_r(context, prepared);
     if (area) GEOSGeom_destroy_r(context, area);
@@ -45,10 +49,8 @@ OGRGeometryCollection polygonsOf(OGRLayer& layer, OGRCoordinateTransformation* t
 PolygonRegion::PolygonRegion(const std::string& path, const std::string& targetWkt, const std::string& what,
                              const ProgressRange& progress)
     : impl_(std::make_unique<Impl>()) {
-  if (plainPathMissing(path)) throw Error(what + ": '" + path + "' does not exist");
-  const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR);
-  if (!ds || ds->GetLayerCount() < 1) throw Error(what + ": '" + path + "' is not a vector file GDAL can read");
-  OGRLayer& layer = *ds->GetLayer(0);
+  const OpenLayer open = openLayer(path, what);
+  OGRLayer& layer = *open.layer;
   const auto transform = transformToTin(layer, targetWkt, what + " ('" + path + "')", progress);
   const OGRGeometryCollection polygons = polygonsOf(layer, transform.get(), what);
   if (polygons.IsEmpty()) throw Error(what + ": the first layer of '" + path + "' has no polygons (a polygon layer is needed)");
@@ -61,15 +63,26 @@ PolygonRegion::PolygonRegion(const std::string& path, const std::string& targetW
   if (valid) GEOSGeom_destroy_r(impl_->context, valid);
   if (!impl_->area) throw Error(what + ": the polygons of '" + path + "' cannot be joined into one area");
   impl_->prepared = GEOSPrepare_r(impl_->context, impl_->area);
+  if (!impl_->prepared) throw Error(what + ": the polygons of '" + path + "' cannot be prepared for testing");
+  OGREnvelope e;
+  polygons.getEnvelope(&e);
+  impl_->envelope = {e.MinX, e.MinY, e.MaxX, e.MaxY};
 }
 
 PolygonRegion::~PolygonRegion() = default;
 
-bool PolygonRegion::contains(double x, double y) const {
-  GEOSGeometry* point = GEOSGeom_createPointFromXY_r(impl_->context, x, y);
-  const char inside = GEOSPreparedIntersects_r(impl_->context, impl_->prepared, point);
-  GEOSGeom_destroy_r(impl_->context, point);
-  return inside == 1;
+bool PolygonRegion::meets(const std::array<std::array<double, 2>, 3>& t) const {
+  // Most triangles are far from the region: its envelope rejects them without GEOS.
+  const double x0 = std::min({t[0][0], t[1][0], t[2][0]}), x1 = std::max({t[0][0], t[1][0], t[2][0]});
+  const double y0 = std::min({t[0][1], t[1][1], t[2][1]}), y1 = std::max({t[0][1], t[1][1], t[2][1]});
+  if (x1 < impl_->envelope[0] || x0 > impl_->envelope[2] || y1 < impl_->envelope[1] || y0 > impl_->envelope[3]) return false;
+  GEOSContextHandle_t c = impl_->context;
+  GEOSCoordSequence* ring = GEOSCoordSeq_create_r(c, 4, 2);
+  for (unsigned k = 0; k < 4; ++k) GEOSCoordSeq_setXY_r(c, ring, k, t[k % 3][0], t[k % 3][1]);
+  GEOSGeometry* triangle = GEOSGeom_createPolygon_r(c, GEOSGeom_createLinearRing_r(c, ring), nullptr, 0);
+  const char meets = GEOSPreparedIntersects_r(c, impl_->prepared, triangle);
+  GEOSGeom_destroy_r(c, triangle);
+  return meets == 1;
 }
 
 }  // namespace tinlod

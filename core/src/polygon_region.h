@@ -2,6 +2,7 @@
 // Private: a polygon layer as a region to test points against (GEOS).
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 
@@ -19,8 +20,8 @@ class PolygonRegion {
   PolygonRegion(const PolygonRegion&) = delete;
   PolygonRegion& operator=(const PolygonRegion&) = delete;
 
-  // Inside or on the boundary. Not thread-safe (one GEOS context).
-  bool contains(double x, double y) const;
+  // Whether the closed triangle meets the region. Not thread-safe (one GEOS context).
+  bool meets(const std::array<std::array<double, 2>, 3>& triangle) const;
 
  private:
   struct Impl;

@@ -24,8 +24,9 @@ struct LodOptions {
   // tolerance is maxError everywhere). NaN: no error test.
   double maxError = std::numeric_limits<double>::quiet_NaN();
   double errorGrowth = 0;  // metres of tolerance per metre of distance
-  // The region test: restore every vertex for which this is true (inside a polygon layer).
-  std::function<bool(double x, double y)> inRegion;
+  // The region test: restore every vertex one of whose replacing triangles (corners given)
+  // meets the region, so that every triangle of the result that meets it is of level 0.
+  std::function<bool(const std::array<std::array<double, 2>, 3>& triangle)> meetsRegion;
   void validate() const;   // throws Error naming the option
 };
 
