@@ -18,8 +18,9 @@ std::vector<double> secantConcavity(const Polyline& line, double window);
 
 // The disk concavity of every vertex: the share of the disk of `radius` around it that
 // lies to the left of the line's section through the disk, minus one half, over one
-// half: in [-1, 1], 0 on a straight line, positive where the line bulges to its right
-// (more of the disk on the left). NaN where the section ends inside the disk.
+// half: in [-1, 1], 0 on a straight line, positive where the line bulges to its left (the
+// left side, concave there, holds more of the disk), as the secant measure. NaN where the
+// section ends inside the disk.
 std::vector<double> diskConcavity(const Polyline& line, double radius);
 
 enum class Curvature { Concave, Straight, Convex };

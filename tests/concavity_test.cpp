@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "tinlod/concavity.h"
+
+namespace tinlod {
+namespace {
+
+const double kPi = std::acos(-1.0);
+
+// A circle of radius r counter-clockwise from angle a0 to a1 (its centre on the left).
+Polyline arc(double r, double a0, double a1, int points) {
+  Polyline line;
+  for (int i = 0; i < points; ++i) {
+    const double a = a0 + (a1 - a0) * i / (points - 1);
+    line.push_back({5000 + r * std::cos(a), 7000 + r * std::sin(a)});
+  }
+  return line;
+}
+
+Polyline reversed(Polyline line) {
+  std::reverse(line.begin(), line.end());
+  return line;
+}
+
+// The secant measure straight from its definition: walk to the window's ends, close the
+// section with the secant and take its area.
+double secantByDefinition(const Polyline& line, std::size_t i, double d) {
+  std::vector<double> s(line.size(), 0);
+  for (std::size_t k = 1; k < line.size(); ++k) s[k] = s[k - 1] + std::hypot(line[k][0] - line[k - 1][0], line[k][1] - line[k - 1][1]);
+  if (s[i] < d || s[i] + d > s.back()) return NAN;
+  auto pointAt = [&](double at) {
+    std::size_t k = 0;
+    while (k + 2 < line.size() && s[k + 1] < at) ++k;
+    const double t = (at - s[k]) / (s[k + 1] - s[k]);
+    return LinePoint{line[k][0] + t * (line[k + 1][0] - line[k][0]), line[k][1] + t * (line[k + 1][1] - line[k][1])};
+  };
+  Polyline polygon{pointAt(s[i] - d)};
+  for (std::size_t k = 0; k < line.size(); ++k)
+    if (s[k] > s[i] - d && s[k] < s[i] + d) polygon.push_back(line[k]);
+  polygon.push_back(pointAt(s[i] + d));
+  double area = 0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const LinePoint &a = polygon[k], &b = polygon[(k + 1) % polygon.size()];
+    area += (a[0] - polygon[0][0]) * (b[1] - polygon[0][1]) - (a[1] - polygon[0][1]) * (b[0] - polygon[0][0]);
+  }
+  const LinePoint &t = polygon.front(), &h = polygon.back();
+  return -0.5 * area / ((h[0] - t[0]) * (h[0] - t[0]) + (h[1] - t[1]) * (h[1] - t[1]));
+}
+
+TEST(Concavity, StraightLineIsZeroAndEndsHaveNoValue) {
+  Polyline line;
+  for (int i = 0; i <= 100; ++i) line.push_back({1000.0 + 3 * i, 2000.0 + 4 * i});  // 5 m steps
+  const std::vector<double> secant = secantConcavity(line, 50), disk = diskConcavity(line, 40);
+  for (int i = 0; i <= 100; ++i) {
+    if (i < 10 || i > 90) {
+      EXPECT_TRUE(std::isnan(secant[i])) << i;
+    } else {
+      EXPECT_NEAR(secant[i], 0, 1e-12) << i;
+    }
+    if (i >= 9 && i <= 91) EXPECT_NEAR(disk[i], 0, 1e-9) << i;
+  }
+  EXPECT_TRUE(std::isnan(disk[3]));  // the line ends inside the disk
+}
+
+TEST(Concavity, CircleArcMatchesTheClosedFormsAndFlipsWhenReversed) {
+  const double R = 300, d = 120, r = 150;
+  const Polyline line = arc(R, 0, 2 * kPi * 0.9, 20000);
+  const std::size_t mid = 10000;
+  // Secant: the circular segment over the chord squared, theta = d / R.
+  const double theta = d / R;
+  const double secantExact = -(2 * theta - std::sin(2 * theta)) / (8 * std::sin(theta) * std::sin(theta));
+  EXPECT_NEAR(secantConcavity(line, d)[mid], secantExact, 1e-6);
+  EXPECT_NEAR(secantConcavity(reversed(line), d)[mid], -secantExact, 1e-6);
+  // Disk: the lens of the disk and the circle (centres R apart) over the disk.
+  const double lens = r * r * std::acos(r / (2 * R)) + R * R * std::acos(1 - r * r / (2 * R * R)) -
+                      0.5 * r * std::sqrt(4 * R * R - r * r);
+  const double diskExact = 2 * lens / (kPi * r * r) - 1;
+  EXPECT_NEAR(diskConcavity(line, r)[mid], diskExact, 1e-5);
+  EXPECT_NEAR(diskConcavity(reversed(line), r)[mid], -diskExact, 1e-5);
+  EXPECT_LT(diskExact, 0);  // the circle's inside, on the left, is convex: less than half the disk
+}
+
+TEST(Concavity, TheSweepMatchesTheDefinitionEverywhere) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> turn(-0.6, 0.6), step(1, 20);
+  Polyline line{{410000, 5200000}};
+  double heading = 0;
+  for (int i = 0; i < 500; ++i) {
+    heading += turn(rng);
+    const double len = step(rng);
+    line.push_back({line.back()[0] + len * std::cos(heading), line.back()[1] + len * std::sin(heading)});
+  }
+  for (double d : {15.0, 60.0, 250.0}) {
+    const std::vector<double> sweep = secantConcavity(line, d);
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const double brute = secantByDefinition(line, i, d);
+      if (std::isnan(brute)) {
+        EXPECT_TRUE(std::isnan(sweep[i])) << i;
+      } else {
+        EXPECT_NEAR(sweep[i], brute, 1e-9 * (1 + std::fabs(brute))) << "vertex " << i << ", window " << d;
+      }
+    }
+  }
+}
+
+TEST(Concavity, PartsFollowTheBends) {
+  // Straight east, a left turn (a quarter circle), straight north.
+  Polyline line;
+  for (int i = 0; i < 50; ++i) line.push_back({double(i) * 2, 0});
+  for (const LinePoint& p : arc(60, -kPi / 2, 0, 60)) line.push_back({p[0] - 5000 + 100, p[1] - 7000 + 60});
+  for (int i = 1; i < 50; ++i) line.push_back({160, 60 + 2.0 * i});
+  const std::vector<LinePart> parts = curvatureParts(line, secantConcavity(line, 10), 0.02);
+  ASSERT_EQ(parts.size(), 3u);
+  EXPECT_EQ(parts[0].curvature, Curvature::Straight);
+  EXPECT_EQ(parts[1].curvature, Curvature::Concave);  // a left turn bulges to the right: concave from the left
+  EXPECT_EQ(parts[2].curvature, Curvature::Straight);
+  EXPECT_EQ(parts[0].line.back(), parts[1].line.front());
+  EXPECT_EQ(curvatureName(Curvature::Concave), "concave");
+}
+
+}  // namespace
+}  // namespace tinlod
