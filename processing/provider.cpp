@@ -5,6 +5,7 @@
 
 #include "accuracy_algorithm.h"
 #include "build_hierarchy_algorithm.h"
+#include "concavity_algorithm.h"
 #include "dp_values_algorithm.h"
 #include "extract_lod_algorithm.h"
 #include "greedy_insertion_algorithm.h"
@@ -23,6 +24,7 @@ QIcon Provider::icon() const { return QgsApplication::getThemeIcon(QStringLitera
 void Provider::loadAlgorithms() {
   addAlgorithm(new AccuracyAlgorithm());
   addAlgorithm(new BuildHierarchyAlgorithm());
+  addAlgorithm(new ConcavityAlgorithm());
   addAlgorithm(new DpValuesAlgorithm());
   addAlgorithm(new ExtractLodAlgorithm());
   addAlgorithm(new GreedyInsertionAlgorithm());

@@ -358,6 +358,27 @@ TEST(Cli, LinesDpWritesValuesAsMAndTheSimplifiedLines) {
   EXPECT_TRUE(has(points.err, "INPUT")) << points.err;
 }
 
+TEST(Cli, LinesConcavityClassifiesTheBendsOfALine) {
+  const std::string dir = test::tempDir();
+  // East 100 m, a left turn of radius 60 m, north 100 m: straight, concave (a left turn
+  // bulges to the right), straight.
+  std::string coordinates;
+  for (int i = 0; i <= 50; ++i) coordinates += "[" + std::to_string(2 * i) + ", 0], ";
+  for (int k = 1; k < 60; ++k) {
+    const double a = -M_PI / 2 + (M_PI / 2) * k / 60;
+    coordinates += "[" + std::to_string(100 + 60 * std::cos(a)) + ", " + std::to_string(60 + 60 * std::sin(a)) + "], ";
+  }
+  for (int i = 0; i <= 50; ++i) coordinates += "[160, " + std::to_string(60 + 2 * i) + "]" + (i < 50 ? ", " : "");
+  std::ofstream(dir + "/l.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [)" << coordinates << "]}}]}";
+  const CliRun r = tinlod("lines concavity -window 10 " + dir + "/l.geojson " + dir + "/c.gpkg");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "Parts: 0 convex, 2 straight, 1 concave")) << r.out;
+  const CliRun none = tinlod("lines concavity " + dir + "/l.geojson " + dir + "/x.gpkg");
+  EXPECT_EQ(none.exitCode, 1);
+  EXPECT_TRUE(has(none.err, "-window")) << none.err;
+}
+
 TEST(Cli, LinesDpOnContoursOfARealDem) {
   const std::string data = test::dataDir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent: real-DEM contours skipped";
@@ -367,6 +388,9 @@ TEST(Cli, LinesDpOnContoursOfARealDem) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(has(r.out, "UTM zone 36N")) << r.out;  // contours in degrees, measured in metres
   EXPECT_TRUE(has(r.out, "crossings between simplified lines")) << r.out;
+  const CliRun c = tinlod("lines concavity -window 300 " + dir + "/c.gpkg " + dir + "/cc.gpkg");
+  ASSERT_EQ(c.exitCode, 0) << c.err;
+  EXPECT_TRUE(has(c.out, " convex, ")) << c.out;
 }
 
 TEST(Cli, LocateWorksOnALodTinAndOnANamedLayerAndRefusesDamage) {

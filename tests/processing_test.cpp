@@ -22,6 +22,7 @@
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/insert_job.h"
+#include "tinlod/line_layers.h"
 #include "tinlod/lod_job.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/synthetic_dem.h"
@@ -439,6 +440,24 @@ TEST(Processing, DpValuesMatchTheCoreAndCountCrossings) {
                                                                       {"OUTPUT", QString::fromStdString(dir + "/dp2.gpkg")}});
   ASSERT_TRUE(cut.ok) << cut.error.toStdString();
   EXPECT_EQ(cut.outputs.value("CROSSINGS").toLongLong(), 0);  // both chords: parallel
+}
+
+TEST(Processing, ConcavityAgreesWithTheCore) {
+  const std::string dir = test::tempDir();
+  std::ofstream(dir + "/l.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [[0, 0], [10, 0], [20, 0], [30, 5], [40, 0], [50, 0], [60, 0]]}}]})";
+  const Result r = runAlgorithm(QStringLiteral("tinlod:concavity"), {{"INPUT", QString::fromStdString(dir + "/l.geojson")},
+                                                                     {"WINDOW", 12},
+                                                                     {"OUTPUT", QString::fromStdString(dir + "/c.gpkg")}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  ConcavityOptions o;
+  o.window = 12;
+  const ConcavitySummary core = runConcavityJob(dir + "/l.geojson", dir + "/core.gpkg", o, false, Feedback{});
+  EXPECT_EQ(r.outputs.value("VERTICES").toLongLong(), 7);
+  EXPECT_EQ(r.outputs.value("CONVEX").toLongLong(), static_cast<long long>(core.convex));
+  EXPECT_EQ(r.outputs.value("CONCAVE").toLongLong(), static_cast<long long>(core.concave));
+  EXPECT_GE(core.convex, 1u);  // the bump to the left
+  EXPECT_EQ(featureCount(QString::fromStdString(dir + "/c.gpkg"), "vertices"), 7);
 }
 
 TEST(Processing, RealDemRuns) {

@@ -33,6 +33,7 @@ check "qgis_process list shows tinlod:greedyinsertion" grep -q "tinlod:greedyins
 check "qgis_process list shows tinlod:extractlod" grep -q "tinlod:extractlod" "$work/list.txt"
 check "qgis_process list shows tinlod:locate" grep -q "tinlod:locate" "$work/list.txt"
 check "qgis_process list shows tinlod:dpvalues" grep -q "tinlod:dpvalues" "$work/list.txt"
+check "qgis_process list shows tinlod:concavity" grep -q "tinlod:concavity" "$work/list.txt"
 
 "$qp" help tinlod:sampletin > "$work/help.txt" 2>/dev/null
 check "qgis_process help describes the parameters" grep -q "TARGET_CRS" "$work/help.txt"
@@ -120,6 +121,18 @@ assert ds.GetLayerByName("simplified").GetFeatureCount() == lines.GetFeatureCoun
 f = lines.GetNextFeature()
 assert f.GetGeometryRef().GetM(0) == 1e300, f.GetGeometryRef().GetM(0)
 print("  %s lines, %s crossings at 50 m" % (outputs["LINES"], outputs["CROSSINGS"]))
+PY
+
+"$qp" --json run tinlod:concavity --INPUT="$work/contours.gpkg" --WINDOW=300 --OUTPUT="$work/cc.gpkg" > "$work/cc.json" 2> "$work/cc.err" || true
+check "qgis_process --json run tinlod:concavity on contours of the DEM" /usr/bin/python3 - "$work/cc.json" "$work/cc.gpkg" <<'PY'
+import json, sys
+from osgeo import ogr
+outputs = json.load(open(sys.argv[1]))["results"]
+ds = ogr.Open(sys.argv[2])  # a layer lives only as long as its dataset
+parts = ds.GetLayerByName("parts").GetFeatureCount()
+assert parts == int(outputs["CONVEX"]) + int(outputs["STRAIGHT"]) + int(outputs["CONCAVE"]) > 10, outputs
+assert ds.GetLayerByName("vertices").GetFeatureCount() == int(outputs["VERTICES"])
+print("  %d parts: %s convex, %s concave" % (parts, outputs["CONVEX"], outputs["CONCAVE"]))
 PY
 
 "$qp" --json run tinlod:accuracy --INPUT="$dem" --HIERARCHY="$hier" --ACCURACY="$work/acc.tif" --REPORT="$work/acc.json" > "$work/acc.out.json" 2> "$work/acc.err" || true

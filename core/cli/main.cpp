@@ -24,7 +24,7 @@ Commands:
   experiment  run the study's experiment over DEMs: methods x delete percentages, one report
   insert      greedy insertion (Garland and Heckbert): a TIN within a vertical tolerance
   lod         extract a TIN of varying level of detail from a hierarchy
-  lines       tools for line layers: Douglas-Peucker simplification values (dp)
+  lines       tools for line layers: Douglas-Peucker values (dp), concavity
   locate      the elevation at points, located through the hierarchy
   info        describe a GeoPackage written by tinlod
   sample      sample a DEM into a Delaunay TIN, written to a GeoPackage

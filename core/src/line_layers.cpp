@@ -128,6 +128,20 @@ void writeSimplified(OGRLayer& layer, const LineSet& set, const std::vector<Poly
 }
 
 bool isDpLayer(const std::string& name) { return name == "lines" || name == "vertices" || name == "simplified"; }
+bool isConcavityLayer(const std::string& name) { return name == "vertices" || name == "parts"; }
+
+double lengthOf(const Polyline& line) {
+  double length = 0;
+  for (std::size_t i = 1; i < line.size(); ++i) length += std::hypot(line[i][0] - line[i - 1][0], line[i][1] - line[i - 1][1]);
+  return length;
+}
+
+void setOrNull(OGRFeature& f, const char* field, double value) {
+  if (std::isnan(value))
+    f.SetFieldNull(f.GetFieldIndex(field));
+  else
+    f.SetField(field, value);
+}
 
 }  // namespace
 
@@ -165,6 +179,61 @@ DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const 
   if (simplifiedLayer) writeSimplified(*simplifiedLayer, set, simple);
   out.commit();
   out.finish(all.sub(0.6, 1));
+  all.finish("Done");
+  return s;
+}
+
+void ConcavityOptions::validate() const {
+  if (!(window > 0) && !(windowFraction > 0))
+    throw Error("give the window: -window d (metres along the line) or -window_fraction f (of each line's length)");
+  if (window > 0 && windowFraction > 0) throw Error("give -window or -window_fraction, not both");
+  if (windowFraction >= 0.5) throw Error("-window_fraction must be below 0.5: the window reaches both ways");
+  if (radius < 0 || !std::isfinite(radius)) throw Error("-radius must be 0 (the window) or more metres");
+  if (!(threshold >= 0)) throw Error("-threshold must be 0 or more");
+}
+
+ConcavitySummary runConcavityJob(const std::string& inPath, const std::string& outPath, const ConcavityOptions& options,
+                                 bool overwrite, const Feedback& feedback) {
+  options.validate();
+  GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "concavity"}, {"TINLOD_SOURCE", inPath}}};
+  checkOutputPath(outPath, writeOptions);
+  const ProgressRange all(feedback, 0, 1);
+  const LineSet set = readLines(inPath, all.sub(0, 0.2));
+  ConcavitySummary s;
+  s.lines = set.lines.size(), s.crsName = set.crsName;
+  GpkgOutput out(outPath, writeOptions, isConcavityLayer);
+  OGRLayer* vertices = out.createLayer("vertices", wkbPoint, set.crsWkt, {{"line"}, {"vertex"}, {"secant", OFTReal}, {"disk", OFTReal}});
+  OGRLayer* parts = out.createLayer("parts", wkbLineString, set.crsWkt, {{"feature"}, {"class", OFTString}});
+  out.begin();
+  OGRFeature v(vertices->GetLayerDefn()), p(parts->GetLayerDefn());
+  for (std::size_t l = 0; l < set.lines.size(); ++l) {
+    const Polyline& line = set.lines[l];
+    const double window = options.window > 0 ? options.window : options.windowFraction * lengthOf(line);
+    const std::vector<double> secant = secantConcavity(line, window);
+    const std::vector<double> disk = diskConcavity(line, options.radius > 0 ? options.radius : window);
+    for (std::size_t i = 0; i < line.size(); ++i, ++s.vertices) {
+      v.SetFID(OGRNullFID);
+      v.SetField("line", static_cast<GIntBig>(l) + 1);
+      v.SetField("vertex", static_cast<GIntBig>(i));
+      setOrNull(v, "secant", secant[i]);
+      setOrNull(v, "disk", disk[i]);
+      v.SetGeometryDirectly(new OGRPoint(line[i][0], line[i][1]));
+      writeFeature(*vertices, v);
+    }
+    for (const LinePart& part : curvatureParts(line, secant, options.threshold)) {
+      ++(part.curvature == Curvature::Convex ? s.convex : part.curvature == Curvature::Concave ? s.concave : s.straight);
+      auto* geometry = new OGRLineString();
+      for (const LinePoint& q : part.line) geometry->addPoint(q[0], q[1]);
+      p.SetFID(OGRNullFID);
+      p.SetField("feature", static_cast<GIntBig>(set.feature[l]));
+      p.SetField("class", curvatureName(part.curvature).c_str());
+      p.SetGeometryDirectly(geometry);
+      writeFeature(*parts, p);
+    }
+    if ((l & 0xFF) == 0) all.report(0.2 + 0.5 * double(l) / set.lines.size(), "Concavity");
+  }
+  out.commit();
+  out.finish(all.sub(0.7, 1));
   all.finish("Done");
   return s;
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "tinlod/concavity.h"
 #include "tinlod/douglas_peucker.h"
 #include "tinlod/feedback.h"
 
@@ -37,5 +38,23 @@ struct DpSummary {
 };
 DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const DpOptions& options, bool overwrite,
                    const Feedback& feedback);
+
+// `tinlod lines concavity`: per vertex the secant measure (window d along the line) and
+// the disk measure (radius r), as layer 'vertices' (Point: line, vertex, secant, disk;
+// null where undefined), and the lines cut into convex, straight and concave parts by the
+// secant measure (layer 'parts': feature, class).
+struct ConcavityOptions {
+  double window = 0;          // metres along the line; or, with windowFraction, ...
+  double windowFraction = 0;  // ... this share of each line's length (for simplified lines)
+  double radius = 0;          // the disk's; 0: the window
+  double threshold = 0.02;    // |secant| above it: convex or concave
+  void validate() const;      // throws Error naming the option
+};
+struct ConcavitySummary {
+  std::size_t lines = 0, vertices = 0, convex = 0, straight = 0, concave = 0;  // parts by class
+  std::string crsName;
+};
+ConcavitySummary runConcavityJob(const std::string& inPath, const std::string& outPath, const ConcavityOptions& options,
+                                 bool overwrite, const Feedback& feedback);
 
 }  // namespace tinlod
