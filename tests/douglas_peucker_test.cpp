@@ -88,6 +88,9 @@ TEST(DouglasPeucker, ClosedContourAndShortLines) {
 TEST(DouglasPeucker, CrossingsOfSimplifiedContours) {
   EXPECT_EQ(crossingCount({{{0, 0}, {2, 2}}, {{0, 2}, {2, 0}}}), 1u);
   EXPECT_EQ(crossingCount({{{0, 0}, {2, 0}}, {{0, 1}, {2, 1}}}), 0u);
+  // A thin extent (all on one vertical line): overlapping segments touch; the grid copes.
+  EXPECT_EQ(crossingCount({{{0, 0}, {0, 10}}, {{0, 5}, {0, 20}}, {{0, 30}, {0, 40}}}), 1u);
+  EXPECT_EQ(crossingCount({{{0, 0}, {1, 1}}}), 0u);
   // Two nested peaks, one metre apart everywhere; the upper one simplified to its chord
   // cuts through the lower peak twice.
   const Polyline lower{{0, 0}, {5, 4}, {10, 0}};

@@ -72,7 +72,10 @@ class SegmentGrid {
       x0 = std::min(x0, box.xmin()), y0 = std::min(y0, box.ymin()), x1 = std::max(x1, box.xmax()), y1 = std::max(y1, box.ymax());
     }
     origin_ = {x0, y0};
-    const double side = std::sqrt(std::max((x1 - x0) * (y1 - y0), 1e-300) / std::max<std::size_t>(1, segments.size()));
+    // About one segment a cell; on a thin extent (all lines vertical, say) the area says
+    // nothing, and the longer side spreads them instead.
+    const double n = double(std::max<std::size_t>(1, segments.size()));
+    const double side = std::max(std::sqrt((x1 - x0) * (y1 - y0) / n), std::max(x1 - x0, y1 - y0) / n);
     cell_ = side > 0 ? side : 1;
     for (std::size_t i = 0; i < segments.size(); ++i) {
       const auto box = segments[i].s.bbox();
