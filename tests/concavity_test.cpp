@@ -84,6 +84,20 @@ TEST(Concavity, CircleArcMatchesTheClosedFormsAndFlipsWhenReversed) {
   EXPECT_LT(diskExact, 0);  // the circle's inside, on the left, is convex: less than half the disk
 }
 
+TEST(Concavity, AClosedContourHasNoEnds) {
+  const double R = 200, d = 50, r = 80;
+  Polyline ring = arc(R, 0, 2 * kPi, 2001);
+  ring.back() = ring.front();  // closed exactly
+  const std::vector<double> secant = secantConcavity(ring, d), disk = diskConcavity(ring, r);
+  const double theta = d / R;
+  const double secantExact = -(2 * theta - std::sin(2 * theta)) / (8 * std::sin(theta) * std::sin(theta));
+  for (std::size_t i : {std::size_t(0), std::size_t(1), std::size_t(1000), ring.size() - 1}) {
+    EXPECT_NEAR(secant[i], secantExact, 1e-4) << i;
+    EXPECT_FALSE(std::isnan(disk[i])) << i;
+    EXPECT_NEAR(disk[i], disk[1000], 1e-6) << i;
+  }
+}
+
 TEST(Concavity, TheSweepMatchesTheDefinitionEverywhere) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> turn(-0.6, 0.6), step(1, 20);

@@ -24,9 +24,8 @@ Polyline centred(const Polyline& line) {
 
 LinePoint along(const LinePoint& a, const LinePoint& b, double t) { return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])}; }
 
-}  // namespace
 
-std::vector<double> secantConcavity(const Polyline& input, double window) {
+std::vector<double> secantOpen(const Polyline& input, double window) {
   const std::size_t n = input.size();
   std::vector<double> out(n, kNaN);
   if (n < 3 || !(window > 0)) return out;
@@ -53,7 +52,6 @@ std::vector<double> secantConcavity(const Polyline& input, double window) {
   return out;
 }
 
-namespace {
 
 // Where the segment from a (inside the disk) to b leaves the circle of `radius` around p,
 // or false when b is inside too.
@@ -100,13 +98,34 @@ double diskAt(const Polyline& line, std::size_t i, double radius) {
   return 2 * left / (kPi * radius * radius) - 1;
 }
 
-}  // namespace
-
-std::vector<double> diskConcavity(const Polyline& line, double radius) {
+std::vector<double> diskOpen(const Polyline& line, double radius) {
   std::vector<double> out(line.size(), kNaN);
   if (!(radius > 0)) return out;
   for (std::size_t i = 0; i < line.size(); ++i) out[i] = diskAt(line, i, radius);
   return out;
+}
+
+bool isRing(const Polyline& line) { return line.size() >= 4 && line.front() == line.back(); }
+
+// A closed contour has no ends: it is measured on three laps of itself, the middle one
+// kept, so that its start is measured as any other vertex.
+template <class Measure>
+std::vector<double> onRing(const Polyline& ring, double size, Measure measure) {
+  Polyline laps(ring);
+  for (int lap = 0; lap < 2; ++lap) laps.insert(laps.end(), ring.begin() + 1, ring.end());
+  const std::vector<double> all = measure(laps, size);
+  std::vector<double> out(all.begin() + long(ring.size() - 1), all.begin() + long(2 * ring.size() - 1));
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> secantConcavity(const Polyline& line, double window) {
+  return isRing(line) ? onRing(line, window, secantOpen) : secantOpen(line, window);
+}
+
+std::vector<double> diskConcavity(const Polyline& line, double radius) {
+  return isRing(line) ? onRing(line, radius, diskOpen) : diskOpen(line, radius);
 }
 
 std::string curvatureName(Curvature c) {

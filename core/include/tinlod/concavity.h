@@ -13,7 +13,8 @@ namespace tinlod {
 // over the secant's length squared. Positive where the line bulges to its left (convex
 // seen from the left side), 0 on a straight line; NaN within `window` of an endpoint.
 // One sweep: the window's ends move along with the vertex and the area comes from
-// prefix sums, O(n) for the whole line.
+// prefix sums, O(n) for the whole line. A closed line (first vertex = last) has no ends:
+// it is measured around (both measures).
 std::vector<double> secantConcavity(const Polyline& line, double window);
 
 // The disk concavity of every vertex: the share of the disk of `radius` around it that
