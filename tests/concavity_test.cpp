@@ -96,6 +96,9 @@ TEST(Concavity, AClosedContourHasNoEnds) {
     EXPECT_FALSE(std::isnan(disk[i])) << i;
     EXPECT_NEAR(disk[i], disk[1000], 1e-6) << i;
   }
+  // A window reaching round the ring to itself measures nothing.
+  const std::vector<double> tooWide = secantConcavity(ring, 0.51 * 2 * kPi * R);
+  for (double v : tooWide) EXPECT_TRUE(std::isnan(v));
 }
 
 TEST(Concavity, TheSweepMatchesTheDefinitionEverywhere) {

@@ -80,7 +80,8 @@ TEST(DouglasPeucker, ClosedContourAndShortLines) {
   const std::vector<double> v = douglasPeuckerValues(ring);
   EXPECT_EQ(v.front(), kInfinity);
   EXPECT_EQ(v.back(), kInfinity);
-  EXPECT_DOUBLE_EQ(v[2], std::sqrt(2));  // the corner farthest from the start
+  EXPECT_EQ(v[2], kInfinity);  // the corner farthest from the start anchors the ring
+  EXPECT_EQ(simplified(ring, v, 1e9), (Polyline{{0, 0}, {1, 1}, {0, 0}}));  // never a point
   EXPECT_EQ(douglasPeuckerValues(Polyline{{0, 0}, {1, 1}}), (std::vector<double>{kInfinity, kInfinity}));
   EXPECT_TRUE(douglasPeuckerValues(Polyline{}).empty());
 }

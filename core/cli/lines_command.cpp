@@ -31,8 +31,9 @@ value exceeds t (the classic Douglas-Peucker simplification with tolerance t).
 
 Options:
   -threshold t   also write layer 'simplified' (the lines at threshold t metres) and count
-                 the crossings between simplified lines (contours that simplification
-                 makes cross), stored in the metadata as TINLOD_CROSSINGS
+                 the pairs of segments of different simplified lines that meet (where
+                 simplification makes contours cross; a crossing through a vertex counts
+                 once per pair of segments there), stored as TINLOD_CROSSINGS
   -points        also write layer 'vertices' (Point: line, vertex, value; null for the
                  endpoints)
   -overwrite     replace these layers of an existing GeoPackage
@@ -60,6 +61,10 @@ from its left side); reversing a line flips the signs.
 
 int concavityTool(std::vector<std::string> args) {
   Arguments a(std::move(args));
+  if (a.flag("--help") || a.flag("-h")) {
+    std::cout << kHelp;
+    return 0;
+  }
   ConcavityOptions o;
   o.window = a.number("-window", 0);
   o.windowFraction = a.number("-window_fraction", 0);

@@ -111,6 +111,10 @@ bool isRing(const Polyline& line) { return line.size() >= 4 && line.front() == l
 // kept, so that its start is measured as any other vertex.
 template <class Measure>
 std::vector<double> onRing(const Polyline& ring, double size, Measure measure) {
+  double perimeter = 0;
+  for (std::size_t i = 1; i < ring.size(); ++i) perimeter += std::hypot(ring[i][0] - ring[i - 1][0], ring[i][1] - ring[i - 1][1]);
+  // A window reaching round the ring to itself measures nothing.
+  if (2 * size >= perimeter) return std::vector<double>(ring.size(), kNaN);
   Polyline laps(ring);
   for (int lap = 0; lap < 2; ++lap) laps.insert(laps.end(), ring.begin() + 1, ring.end());
   const std::vector<double> all = measure(laps, size);

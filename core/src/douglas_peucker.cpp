@@ -29,6 +29,15 @@ std::vector<double> douglasPeuckerValues(const Polyline& line) {
   std::vector<double> values(line.size(), infinity);
   if (line.size() < 3) return values;
   std::vector<std::pair<std::size_t, std::size_t>> stretches{{0, line.size() - 1}};
+  if (line.front() == line.back()) {
+    // A closed line has no chord: it is anchored at its start and the vertex farthest from
+    // it too, so that no threshold shrinks it to a point.
+    std::size_t far = 1;
+    for (std::size_t i = 1; i + 1 < line.size(); ++i)
+      if (segmentDistance(line[i], line[0], line[0]) > segmentDistance(line[far], line[0], line[0])) far = i;
+    values[far] = infinity;
+    stretches = {{0, far}, {far, line.size() - 1}};
+  }
   while (!stretches.empty()) {
     const auto [a, b] = stretches.back();
     stretches.pop_back();

@@ -14,7 +14,8 @@ namespace tinlod {
 // seen from the left side), 0 on a straight line; NaN within `window` of an endpoint.
 // One sweep: the window's ends move along with the vertex and the area comes from
 // prefix sums, O(n) for the whole line. A closed line (first vertex = last) has no ends:
-// it is measured around (both measures).
+// it is measured around (both measures), where twice the window (radius) is shorter
+// than its perimeter; else NaN.
 std::vector<double> secantConcavity(const Polyline& line, double window);
 
 // The disk concavity of every vertex: the share of the disk of `radius` around it that
