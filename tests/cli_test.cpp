@@ -350,6 +350,12 @@ TEST(Cli, LinesDpWritesValuesAsMAndTheSimplifiedLines) {
   EXPECT_EQ(ds->GetLayerByName("vertices")->GetFeatureCount(), 5);
   EXPECT_EQ(ds->GetLayerByName("simplified")->GetFeatureCount(), 1);
   ds.reset();
+  // A line across the antimeridian is measured in its own UTM zone (1 or 60), not in 31.
+  std::ofstream(dir + "/am.geojson") << R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {},
+ "geometry": {"type": "LineString", "coordinates": [[179, -10], [179.5, -10.3], [-179.5, -10.5], [-179, -10]]}}]})";
+  const CliRun am = tinlod("lines dp " + dir + "/am.geojson " + dir + "/am.gpkg");
+  ASSERT_EQ(am.exitCode, 0) << am.err;
+  EXPECT_TRUE(has(am.out, "UTM zone 60S") || has(am.out, "UTM zone 1S")) << am.out;
   const CliRun bad = tinlod("lines simplify " + dir + "/l.geojson " + dir + "/x.gpkg");
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_TRUE(has(bad.err, "unknown lines tool 'simplify'")) << bad.err;

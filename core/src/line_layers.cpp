@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/line_layers.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -31,13 +33,38 @@ void addParts(const OGRGeometry* g, long long fid, LineSet& out) {
     case wkbMultiLineString:
       for (const OGRLineString* part : *g->toMultiLineString()) addParts(part, fid, out);
       break;
+    case wkbGeometryCollection:
+      for (const OGRGeometry* part : *g->toGeometryCollection()) addParts(part, fid, out);
+      break;
     default:
+      // Curves (circular strings, compound curves, multicurves) as the lines GDAL makes of them.
+      if (OGR_GT_IsCurve(g->getGeometryType()) || OGR_GT_IsSubClassOf(g->getGeometryType(), wkbMultiCurve)) {
+        std::unique_ptr<OGRGeometry> linear(g->getLinearGeometry());
+        if (linear && wkbFlatten(linear->getGeometryType()) != wkbFlatten(g->getGeometryType())) addParts(linear.get(), fid, out);
+      }
       break;
   }
 }
 
+// The centre of the lines, in their own CRS; longitudes spanning more than half the globe
+// are taken as crossing the antimeridian.
+std::array<double, 2> centreOf(const LineSet& set, bool geographic) {
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const Polyline& line : set.lines)
+    for (const LinePoint& p : line) x0 = std::min(x0, p[0]), x1 = std::max(x1, p[0]), y0 = std::min(y0, p[1]), y1 = std::max(y1, p[1]);
+  if (!geographic || x1 - x0 <= 180) return {(x0 + x1) / 2, (y0 + y1) / 2};
+  double e0 = 1e300, e1 = -1e300;  // eastern longitudes, 0 to 360
+  for (const Polyline& line : set.lines)
+    for (const LinePoint& p : line) {
+      const double east = p[0] < 0 ? p[0] + 360 : p[0];
+      e0 = std::min(e0, east), e1 = std::max(e1, east);
+    }
+  const double lon = (e0 + e1) / 2;
+  return {lon > 180 ? lon - 360 : lon, (y0 + y1) / 2};
+}
+
 // The layer's CRS when metric, else the UTM zone of its centre.
-std::unique_ptr<OGRCoordinateTransformation> toMetric(const OGRSpatialReference* src, OGRLayer& layer, LineSet& out,
+std::unique_ptr<OGRCoordinateTransformation> toMetric(const OGRSpatialReference* src, LineSet& out,
                                                       const ProgressRange& progress) {
   if (!src) {
     progress.warn("the lines have no CRS: their coordinates are taken as metres");
@@ -51,12 +78,11 @@ std::unique_ptr<OGRCoordinateTransformation> toMetric(const OGRSpatialReference*
     out.crsName = source.GetName() ? source.GetName() : "";
     return nullptr;
   }
-  OGREnvelope extent;
-  if (layer.GetExtent(&extent, TRUE) != OGRERR_NONE) throw Error("the lines' extent cannot be read");
   OGRSpatialReference wgs84;
   wgs84.SetWellKnownGeogCS("WGS84");
   wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  double lon = (extent.MinX + extent.MaxX) / 2, lat = (extent.MinY + extent.MaxY) / 2;
+  const std::array<double, 2> centre = centreOf(out, source.IsGeographic());
+  double lon = centre[0], lat = centre[1];
   std::unique_ptr<OGRCoordinateTransformation> toGeo(OGRCreateCoordinateTransformation(&source, &wgs84));
   if (!toGeo || !toGeo->Transform(1, &lon, &lat)) throw Error("the lines' CRS cannot be transformed to WGS 84");
   OGRSpatialReference utm;
@@ -74,9 +100,9 @@ LineSet readLines(const std::string& path, const ProgressRange& progress) {
   const OpenLayer open = openLayer(path, "INPUT");
   OGRLayer& layer = *open.layer;
   LineSet out;
-  const auto transform = toMetric(layer.GetSpatialRef(), layer, out, progress);
   for (auto& f : layer) addParts(f->GetGeometryRef(), f->GetFID(), out);
-  if (out.lines.empty()) throw Error("INPUT: the first layer of '" + path + "' has no lines (a line layer is needed)");
+  if (out.lines.empty()) throw Error("INPUT: the layer of '" + path + "' has no lines (a line layer is needed)");
+  const auto transform = toMetric(layer.GetSpatialRef(), out, progress);
   if (transform)
     for (Polyline& line : out.lines)
       for (LinePoint& p : line)
