@@ -183,6 +183,12 @@ bool transformAll(OGRCoordinateTransformation& ct, std::vector<double>& x, std::
 
 }  // namespace
 
+double CrsTransform::groundDistance(double x0, double y0, double x1, double y1) const {
+  std::vector<double> x{x0, x1}, y{y0, y1};
+  apply(x, y);
+  return std::hypot(x[1] - x[0], y[1] - y[0]);
+}
+
 void CrsTransform::apply(std::vector<double>& x, std::vector<double>& y) const {
   if (!impl_->transform) return;
   if (!transformAll(*impl_->transform, x, y))

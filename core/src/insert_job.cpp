@@ -22,10 +22,8 @@ namespace {
 // Metres between neighbouring cell centres at the DEM's centre, along a row and a column.
 std::array<double, 2> cellSizeMetres(const Dem& dem, const CrsTransform& toTin) {
   const int row = std::max(0, dem.height / 2 - 1), col = std::max(0, dem.width / 2 - 1);
-  std::vector<double> x{dem.centreX(col), dem.centreX(col + 1), dem.centreX(col)};
-  std::vector<double> y{dem.centreY(row), dem.centreY(row), dem.centreY(row + 1)};
-  toTin.apply(x, y);
-  return {std::hypot(x[1] - x[0], y[1] - y[0]), std::hypot(x[2] - x[0], y[2] - y[0])};
+  const double x = dem.centreX(col), y = dem.centreY(row);
+  return {toTin.groundDistance(x, y, dem.centreX(col + 1), y), toTin.groundDistance(x, y, x, dem.centreY(row + 1))};
 }
 
 // Where the sampled TIN's (jittered) vertices are, in DEM cell units.

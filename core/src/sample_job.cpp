@@ -47,10 +47,7 @@ std::vector<TinVertex> toVertices(const Dem& dem, const std::vector<SampleCell>&
 // The distance between two neighbouring cell centres in the TIN's metric CRS.
 double cellSizeMetres(const Dem& dem, const CrsTransform& transform) {
   const int row = dem.height / 2, col = std::max(0, dem.width / 2 - 1);
-  std::vector<double> x{dem.centreX(col), dem.centreX(col + 1)};
-  std::vector<double> y{dem.centreY(row), dem.centreY(row)};
-  transform.apply(x, y);
-  return std::hypot(x[1] - x[0], y[1] - y[0]);
+  return transform.groundDistance(dem.centreX(col), dem.centreY(row), dem.centreX(col + 1), dem.centreY(row));
 }
 
 // Jitter is meant to break ties, not to move points: beyond a cell it moves them past

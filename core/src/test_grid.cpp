@@ -6,17 +6,6 @@
 #include "tinlod/error.h"
 
 namespace tinlod {
-namespace {
-
-// Metres between two DEM points, measured in the TIN's (metric) CRS.
-double groundDistance(const CrsTransform& toTin, double x0, double y0, double x1, double y1) {
-  std::vector<double> x{x0, x1}, y{y0, y1};
-  toTin.apply(x, y);
-  return std::hypot(x[1] - x[0], y[1] - y[0]);
-}
-
-}  // namespace
-
 TestGrid makeTestGrid(const Dem& dem, int step, const CrsTransform& toTin) {
   if (step < 1) throw Error("-step must be 1 or more (test points every step-th DEM cell), not " + std::to_string(step));
   TestGrid g;
@@ -29,10 +18,10 @@ TestGrid makeTestGrid(const Dem& dem, int step, const CrsTransform& toTin) {
   g.geotransform = {gt[0] + 0.5 * (1 - step) * gt[1], step * gt[1], 0, gt[3] + 0.5 * (1 - step) * gt[5], 0, step * gt[5]};
   g.crsWkt = dem.crsWkt;
   const double midX = g.x(g.cols / 2);
-  g.cellHeight = groundDistance(toTin, midX, g.y(g.rows / 2), midX, g.y(g.rows / 2) + g.geotransform[5]);
+  g.cellHeight = toTin.groundDistance(midX, g.y(g.rows / 2), midX, g.y(g.rows / 2) + g.geotransform[5]);
   g.cellWidth.resize(g.rows);
   for (int r = 0; r < g.rows; ++r)
-    g.cellWidth[r] = groundDistance(toTin, midX, g.y(r), midX + g.geotransform[1], g.y(r));
+    g.cellWidth[r] = toTin.groundDistance(midX, g.y(r), midX + g.geotransform[1], g.y(r));
   return g;
 }
 

@@ -35,6 +35,8 @@ class CrsTransform {
   // From the TIN's CRS back to the DEM's, in place: where the accuracy of a TIN is
   // measured on the DEM's own grid.
   void applyInverse(std::vector<double>& x, std::vector<double>& y) const;
+  // Metres between two points of the DEM's CRS, measured in the TIN's.
+  double groundDistance(double x0, double y0, double x1, double y1) const;
 
  private:
   struct Impl;
