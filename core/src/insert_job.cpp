@@ -142,25 +142,17 @@ InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, con
   }
   // The triangles tinlod sample would keep: none over a hole, no sliver the jitter of
   // sampled candidates leaves along a straight edge.
-  std::vector<Triangle> triangles = trianglesOnValidData(dem, inserter.triangulation(), all);
+  all.triangles = trianglesOnValidData(dem, inserter.triangulation(), all);
 
   // Keep the vertices some triangle uses, in insertion order.
-  std::vector<std::int64_t> index(inserted.size(), -1);
-  for (const Triangle& t : triangles)
-    for (VertexId v : t) index[v] = 0;
   std::vector<std::array<double, 2>> cellPositions;
-  for (std::size_t i = 0; i < inserted.size(); ++i) {
-    if (index[i] < 0) continue;
-    index[i] = std::int64_t(out.tin.vertices.size());
-    out.tin.vertices.push_back(all.vertices[i]);
-    out.tin.vertices.back().outline = false;
+  for (VertexId i : dropUnusedVertices(all)) {
     cellPositions.push_back({inserter.candidateCol(inserted[i].candidate), inserter.candidateRow(inserted[i].candidate)});
     out.insertion.push_back(std::uint32_t(i + 1));
     out.errorBefore.push_back(inserted[i].errorBefore);
   }
-  for (Triangle& t : triangles)
-    for (VertexId& v : t) v = VertexId(index[v]);
-  out.tin.triangles = std::move(triangles);
+  out.tin = std::move(all);
+  for (TinVertex& v : out.tin.vertices) v.outline = false;  // set anew from the kept triangles
   out.tin.crsWkt = toTin.targetWkt();
   out.tin.crsName = toTin.targetName();
   orientTriangles(out.tin);

@@ -34,22 +34,11 @@ void checkOptions(const LodJobOptions& o) {
 
 // The extracted triangles as a TIN of the vertices they use, in hierarchy order.
 Tin extractedTin(const Hierarchy& h, const std::vector<std::uint32_t>& triangles, std::vector<double>& vertexLevel) {
-  std::vector<std::int64_t> index(h.base.vertices.size(), -1);
-  for (std::uint32_t t : triangles)
-    for (VertexId v : h.triangles[t].v) index[v] = 0;
   Tin tin;
   tin.crsWkt = h.base.crsWkt, tin.crsName = h.base.crsName;
-  for (std::size_t v = 0; v < index.size(); ++v) {
-    if (index[v] < 0) continue;
-    index[v] = std::int64_t(tin.vertices.size());
-    tin.vertices.push_back(h.base.vertices[v]);
-    vertexLevel.push_back(h.vertexLevel[v]);
-  }
-  for (std::uint32_t t : triangles) {
-    Triangle tri = h.triangles[t].v;
-    for (VertexId& v : tri) v = VertexId(index[v]);
-    tin.triangles.push_back(tri);
-  }
+  tin.vertices = h.base.vertices;
+  for (std::uint32_t t : triangles) tin.triangles.push_back(h.triangles[t].v);
+  for (VertexId v : dropUnusedVertices(tin)) vertexLevel.push_back(h.vertexLevel[v]);
   return tin;
 }
 

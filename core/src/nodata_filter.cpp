@@ -129,25 +129,6 @@ class TriangleFilter {
   Corners scratch_;
 };
 
-std::size_t dropUnusedVertices(Tin& tin) {
-  constexpr VertexId kUnused = UINT32_MAX;
-  std::vector<VertexId> newId(tin.vertices.size(), kUnused);
-  for (const Triangle& t : tin.triangles)
-    for (VertexId v : t) newId[v] = 0;
-  VertexId next = 0;
-  std::vector<TinVertex> kept;
-  for (std::size_t i = 0; i < tin.vertices.size(); ++i)
-    if (newId[i] != kUnused) {
-      newId[i] = next++;
-      kept.push_back(tin.vertices[i]);
-    }
-  for (Triangle& t : tin.triangles)
-    for (VertexId& v : t) v = newId[v];
-  const std::size_t dropped = tin.vertices.size() - kept.size();
-  tin.vertices = std::move(kept);
-  return dropped;
-}
-
 }  // namespace
 
 std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin) {
@@ -162,7 +143,8 @@ std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triang
   progress.report(0, "Cutting out nodata");
   tin.triangles = trianglesOnValidData(dem, triangulation, tin);
   progress.report(0.9, "Cutting out nodata");
-  return dropUnusedVertices(tin);
+  const std::size_t before = tin.vertices.size();
+  return before - dropUnusedVertices(tin).size();
 }
 
 }  // namespace tinlod

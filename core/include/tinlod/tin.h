@@ -31,6 +31,10 @@ struct Tin {
 };
 
 double triangleArea(const Tin& tin, const Triangle& t);  // signed, positive when CCW
+
+// Drops the vertices no triangle uses and renumbers the triangles; the kept vertices keep
+// their order. Returns each kept vertex's index before, for data held beside the TIN.
+std::vector<VertexId> dropUnusedVertices(Tin& tin);
 double totalArea(const Tin& tin);
 
 }  // namespace tinlod
