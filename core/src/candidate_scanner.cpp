@@ -17,17 +17,6 @@ std::int64_t floorDiv(std::int64_t a, std::int64_t b) {
 }
 std::int64_t ceilDiv(std::int64_t a, std::int64_t b) { return -floorDiv(-a, b); }
 
-// The triangle's plane z = za + gx (x - ax) + gy (y - ay), in cell units.
-struct Plane {
-  double ax, ay, za, gx, gy;
-  Plane(double ax_, double ay_, double za_, double bx, double by, double zb, double cx, double cy, double zc)
-      : ax(ax_), ay(ay_), za(za_) {
-    const double det = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-    gx = ((zb - za) * (cy - ay) - (zc - za) * (by - ay)) / det;
-    gy = ((zc - za) * (bx - ax) - (zb - za) * (cx - ax)) / det;
-  }
-  double at(double x, double y) const { return za + gx * (x - ax) + gy * (y - ay); }
-};
 
 // Twice the signed area of (p, q, r): exact for the whole cell numbers of the cells mode.
 double orient(double px, double py, double qx, double qy, double rx, double ry) {
@@ -61,6 +50,9 @@ CandidateScanner::CandidateScanner(const InsertGrid& grid) : grid_(grid) {
 
 double CandidateScanner::col(std::uint32_t id) const {
   return grid_.samples.empty() ? double(id % std::uint32_t(grid_.cols)) : grid_.samples[id].col;
+}
+double CandidateScanner::height(std::uint32_t id) const {
+  return grid_.samples.empty() ? grid_.z[id] : grid_.samples[id].z;
 }
 double CandidateScanner::row(std::uint32_t id) const {
   return grid_.samples.empty() ? double(id / std::uint32_t(grid_.cols)) : grid_.samples[id].row;
@@ -155,6 +147,23 @@ ScanResult CandidateScanner::scanCells(std::array<std::uint32_t, 3> c) const {
   return result;
 }
 
+CandidateScanner::Plane CandidateScanner::planeOf(const std::array<std::uint32_t, 3>& c) const {
+  double x[3], y[3], z[3];
+  for (int k = 0; k < 3; ++k) x[k] = col(c[k]), y[k] = row(c[k]), z[k] = height(c[k]);
+  return Plane(x[0], y[0], z[0], x[1], y[1], z[1], x[2], y[2], z[2]);
+}
+
+// The cells around the triangle, one more on each side: a sampled point lies within a
+// cell of its cell's centre.
+CandidateScanner::CellBlock CandidateScanner::blockAround(const std::array<std::uint32_t, 3>& c) const {
+  double x[3], y[3];
+  for (int k = 0; k < 3; ++k) x[k] = col(c[k]), y[k] = row(c[k]);
+  return {std::max(0, int(std::floor(std::min({y[0], y[1], y[2]}))) - 1),
+          std::min(grid_.rows - 1, int(std::ceil(std::max({y[0], y[1], y[2]}))) + 1),
+          std::max(0, int(std::floor(std::min({x[0], x[1], x[2]}))) - 1),
+          std::min(grid_.cols - 1, int(std::ceil(std::max({x[0], x[1], x[2]}))) + 1)};
+}
+
 bool CandidateScanner::inside(const std::array<std::uint32_t, 3>& c, double px, double py) const {
   double x[3], y[3];
   for (int k = 0; k < 3; ++k) x[k] = col(c[k]), y[k] = row(c[k]);
@@ -190,17 +199,12 @@ bool CandidateScanner::footprintHolds(const std::array<std::uint32_t, 3>& c, int
 // Sampled candidates lie within a cell of their cell's centre: the block of cells around
 // the triangle holds them all, and its missing cells are tested at their centres.
 ScanResult CandidateScanner::scanSamples(const std::array<std::uint32_t, 3>& c) const {
-  double x[3], y[3], zc[3];
-  for (int k = 0; k < 3; ++k) x[k] = col(c[k]), y[k] = row(c[k]), zc[k] = grid_.samples[c[k]].z;
-  const Plane plane(x[0], y[0], zc[0], x[1], y[1], zc[1], x[2], y[2], zc[2]);
-  const int r0 = std::max(0, int(std::floor(std::min({y[0], y[1], y[2]}))) - 1);
-  const int r1 = std::min(grid_.rows - 1, int(std::ceil(std::max({y[0], y[1], y[2]}))) + 1);
-  const int c0 = std::max(0, int(std::floor(std::min({x[0], x[1], x[2]}))) - 1);
-  const int c1 = std::min(grid_.cols - 1, int(std::ceil(std::max({x[0], x[1], x[2]}))) + 1);
+  const Plane plane = planeOf(c);
+  const CellBlock b = blockAround(c);
   ScanResult result;
   std::size_t others = 0;
-  for (int r = r0; r <= r1; ++r)
-    for (int cc = c0; cc <= c1; ++cc) {
+  for (int r = b.r0; r <= b.r1; ++r)
+    for (int cc = b.c0; cc <= b.c1; ++cc) {
       const std::size_t cell = std::size_t(r) * grid_.cols + cc;
       const std::int32_t s = sampleOfCell_[cell];
       if (s < 0) {
@@ -222,20 +226,12 @@ ScanResult CandidateScanner::scanSamples(const std::array<std::uint32_t, 3>& c) 
 // A triangle over a hole and over data: split it at a candidate on the hole's edge if it
 // has one (the outline the TIN must follow), else at any; the worst first.
 std::uint32_t CandidateScanner::splitCandidate(const std::array<std::uint32_t, 3>& c) const {
-  double x[3], y[3], zc[3];
-  for (int k = 0; k < 3; ++k) {
-    x[k] = col(c[k]), y[k] = row(c[k]);
-    zc[k] = grid_.samples.empty() ? grid_.z[c[k]] : grid_.samples[c[k]].z;
-  }
-  const Plane plane(x[0], y[0], zc[0], x[1], y[1], zc[1], x[2], y[2], zc[2]);
-  const int r0 = std::max(0, int(std::floor(std::min({y[0], y[1], y[2]}))) - 1);
-  const int r1 = std::min(grid_.rows - 1, int(std::ceil(std::max({y[0], y[1], y[2]}))) + 1);
-  const int c0 = std::max(0, int(std::floor(std::min({x[0], x[1], x[2]}))) - 1);
-  const int c1 = std::min(grid_.cols - 1, int(std::ceil(std::max({x[0], x[1], x[2]}))) + 1);
+  const Plane plane = planeOf(c);
+  const CellBlock b = blockAround(c);
   std::uint32_t best = c[0];
   std::pair<bool, double> bestKey{false, -1};
-  for (int r = r0; r <= r1; ++r)
-    for (int cc = c0; cc <= c1; ++cc) {
+  for (int r = b.r0; r <= b.r1; ++r)
+    for (int cc = b.c0; cc <= b.c1; ++cc) {
       const std::size_t cell = std::size_t(r) * grid_.cols + cc;
       std::uint32_t id;
       double px, py, pz;
