@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "gdal_handles.h"
@@ -112,6 +113,32 @@ LineSet readLines(const std::string& path, const ProgressRange& progress) {
 
 namespace {
 
+void setOrNull(OGRFeature& f, const char* field, double value) {
+  if (std::isnan(value))
+    f.SetFieldNull(f.GetFieldIndex(field));
+  else
+    f.SetField(field, value);
+}
+
+// A line of `feature` with the fields already set on `f`.
+void writeLineFeature(OGRLayer& layer, OGRFeature& f, const Polyline& points, long long feature) {
+  auto* line = new OGRLineString();
+  for (const LinePoint& p : points) line->addPoint(p[0], p[1]);
+  f.SetFID(OGRNullFID);
+  f.SetField("feature", static_cast<GIntBig>(feature));
+  f.SetGeometryDirectly(line);
+  writeFeature(layer, f);
+}
+
+// Vertex i of line l (numbered from 1) with the fields already set on `f`.
+void writeVertexFeature(OGRLayer& layer, OGRFeature& f, const LinePoint& p, std::size_t l, std::size_t i) {
+  f.SetFID(OGRNullFID);
+  f.SetField("line", static_cast<GIntBig>(l) + 1);
+  f.SetField("vertex", static_cast<GIntBig>(i));
+  f.SetGeometryDirectly(new OGRPoint(p[0], p[1]));
+  writeFeature(layer, f);
+}
+
 void writeLines(OGRLayer& layer, const LineSet& set, const std::vector<std::vector<double>>& values) {
   OGRFeature f(layer.GetLayerDefn());
   for (std::size_t l = 0; l < set.lines.size(); ++l) {
@@ -129,28 +156,14 @@ void writeVertices(OGRLayer& layer, const LineSet& set, const std::vector<std::v
   OGRFeature f(layer.GetLayerDefn());
   for (std::size_t l = 0; l < set.lines.size(); ++l)
     for (std::size_t i = 0; i < set.lines[l].size(); ++i) {
-      f.SetFID(OGRNullFID);
-      f.SetField("line", static_cast<GIntBig>(l) + 1);
-      f.SetField("vertex", static_cast<GIntBig>(i));
-      if (std::isinf(values[l][i]))
-        f.SetFieldNull(f.GetFieldIndex("value"));
-      else
-        f.SetField("value", values[l][i]);
-      f.SetGeometryDirectly(new OGRPoint(set.lines[l][i][0], set.lines[l][i][1]));
-      writeFeature(layer, f);
+      setOrNull(f, "value", std::isinf(values[l][i]) ? std::numeric_limits<double>::quiet_NaN() : values[l][i]);
+      writeVertexFeature(layer, f, set.lines[l][i], l, i);
     }
 }
 
 void writeSimplified(OGRLayer& layer, const LineSet& set, const std::vector<Polyline>& lines) {
   OGRFeature f(layer.GetLayerDefn());
-  for (std::size_t l = 0; l < lines.size(); ++l) {
-    auto* line = new OGRLineString();
-    for (const LinePoint& p : lines[l]) line->addPoint(p[0], p[1]);
-    f.SetFID(OGRNullFID);
-    f.SetField("feature", static_cast<GIntBig>(set.feature[l]));
-    f.SetGeometryDirectly(line);
-    writeFeature(layer, f);
-  }
+  for (std::size_t l = 0; l < lines.size(); ++l) writeLineFeature(layer, f, lines[l], set.feature[l]);
 }
 
 bool isDpLayer(const std::string& name) { return name == "lines" || name == "vertices" || name == "simplified"; }
@@ -162,12 +175,6 @@ double lengthOf(const Polyline& line) {
   return length;
 }
 
-void setOrNull(OGRFeature& f, const char* field, double value) {
-  if (std::isnan(value))
-    f.SetFieldNull(f.GetFieldIndex(field));
-  else
-    f.SetField(field, value);
-}
 
 }  // namespace
 
@@ -238,23 +245,14 @@ ConcavitySummary runConcavityJob(const std::string& inPath, const std::string& o
     const std::vector<double> secant = secantConcavity(line, window);
     const std::vector<double> disk = diskConcavity(line, options.radius > 0 ? options.radius : window);
     for (std::size_t i = 0; i < line.size(); ++i, ++s.vertices) {
-      v.SetFID(OGRNullFID);
-      v.SetField("line", static_cast<GIntBig>(l) + 1);
-      v.SetField("vertex", static_cast<GIntBig>(i));
       setOrNull(v, "secant", secant[i]);
       setOrNull(v, "disk", disk[i]);
-      v.SetGeometryDirectly(new OGRPoint(line[i][0], line[i][1]));
-      writeFeature(*vertices, v);
+      writeVertexFeature(*vertices, v, line[i], l, i);
     }
     for (const LinePart& part : curvatureParts(line, secant, options.threshold)) {
       ++(part.curvature == Curvature::Convex ? s.convex : part.curvature == Curvature::Concave ? s.concave : s.straight);
-      auto* geometry = new OGRLineString();
-      for (const LinePoint& q : part.line) geometry->addPoint(q[0], q[1]);
-      p.SetFID(OGRNullFID);
-      p.SetField("feature", static_cast<GIntBig>(set.feature[l]));
       p.SetField("class", curvatureName(part.curvature).c_str());
-      p.SetGeometryDirectly(geometry);
-      writeFeature(*parts, p);
+      writeLineFeature(*parts, p, part.line, set.feature[l]);
     }
     if ((l & 0xFF) == 0) all.report(0.2 + 0.5 * double(l) / set.lines.size(), "Concavity");
   }
