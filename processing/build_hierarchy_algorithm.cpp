@@ -8,6 +8,7 @@
 #include <QFileInfo>
 #include <cmath>
 
+#include "layer_file.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
 #include "tinlod/build_job.h"
@@ -119,11 +120,8 @@ void BuildHierarchyAlgorithm::readFixedPoints(const QVariantMap& parameters, Qgs
   if (!parameters.value(QStringLiteral("FIXED_POINTS")).isValid() ||
       parameters.value(QStringLiteral("FIXED_POINTS")).toString().isEmpty())
     return;
-  QgsVectorLayer* layer = parameterAsVectorLayer(parameters, QStringLiteral("FIXED_POINTS"), context);
-  if (!layer || layer->providerType() != QLatin1String("ogr"))
-    throw QgsProcessingException(QStringLiteral("FIXED_POINTS must be a point layer stored in a file GDAL reads "
-                                                "(GeoPackage, Shapefile, GeoJSON ...): save it to a file first"));
-  options_.fixedPoints = layer->source().toStdString();  // with its |layername=, read by the core
+  options_.fixedPoints = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("FIXED_POINTS"), context),
+                                   QStringLiteral("FIXED_POINTS"), QStringLiteral("a point layer"));
 }
 
 QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

@@ -5,6 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
+#include "layer_file.h"
 #include "processing_feedback.h"
 
 namespace tinlod::qgis {
@@ -58,10 +59,8 @@ void ConcavityAlgorithm::initAlgorithm(const QVariantMap&) {
 }
 
 bool ConcavityAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
-  QgsVectorLayer* layer = parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context);
-  if (!layer || layer->providerType() != QLatin1String("ogr"))
-    throw QgsProcessingException(QStringLiteral("INPUT must be a line layer stored in a file GDAL reads (save it as a GeoPackage first)"));
-  lines_ = layer->source().toStdString();  // with its |layername=, read by the core
+  lines_ = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context), QStringLiteral("INPUT"),
+                      QStringLiteral("a line layer"));
   options_ = ConcavityOptions();
   options_.windowFraction = parameterAsDouble(parameters, QStringLiteral("WINDOW_FRACTION"), context);
   options_.window = options_.windowFraction > 0 ? 0 : parameterAsDouble(parameters, QStringLiteral("WINDOW"), context);

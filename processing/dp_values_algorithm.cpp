@@ -5,6 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
+#include "layer_file.h"
 #include "processing_feedback.h"
 
 namespace tinlod::qgis {
@@ -46,10 +47,8 @@ void DpValuesAlgorithm::initAlgorithm(const QVariantMap&) {
 }
 
 bool DpValuesAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
-  QgsVectorLayer* layer = parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context);
-  if (!layer || layer->providerType() != QLatin1String("ogr"))
-    throw QgsProcessingException(QStringLiteral("INPUT must be a line layer stored in a file GDAL reads (save it as a GeoPackage first)"));
-  lines_ = layer->source().toStdString();  // with its |layername=, read by the core
+  lines_ = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context), QStringLiteral("INPUT"),
+                      QStringLiteral("a line layer"));
   options_ = DpOptions();
   const QVariant threshold = parameters.value(QStringLiteral("THRESHOLD"));
   if (threshold.isValid() && !threshold.toString().isEmpty())

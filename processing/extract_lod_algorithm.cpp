@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "layer_file.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
 
@@ -19,13 +20,6 @@ namespace {
 bool given(const QVariantMap& parameters, const QString& name) {
   const QVariant v = parameters.value(name);
   return v.isValid() && !v.isNull() && !(v.type() == QVariant::String && v.toString().isEmpty());
-}
-
-// The file behind a vector layer parameter: the core reads it with GDAL.
-std::string layerFile(QgsVectorLayer* layer, const QString& name) {
-  if (!layer || layer->providerType() != QLatin1String("ogr"))
-    throw QgsProcessingException(QStringLiteral("%1 must be a layer stored in a file GDAL reads (save it as a GeoPackage first)").arg(name));
-  return layer->source().toStdString();  // with its |layername=, read by the core
 }
 
 }  // namespace
@@ -89,8 +83,11 @@ bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsPro
     const QgsPointXY p = parameterAsPoint(parameters, QStringLiteral("CENTER"), context, triangles.crs());
     options_.lod.centres.push_back({p.x(), p.y()});
   }
-  if (given(parameters, QStringLiteral("CENTERS"))) options_.centresPath = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("CENTERS"), context), QStringLiteral("CENTERS"));
-  if (given(parameters, QStringLiteral("REGION"))) options_.regionPath = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("REGION"), context), QStringLiteral("REGION"));
+  auto fileOf = [&](const QString& name, const QString& kind) {
+    return layerFile(parameterAsVectorLayer(parameters, name, context), name, kind);
+  };
+  if (given(parameters, QStringLiteral("CENTERS"))) options_.centresPath = fileOf(QStringLiteral("CENTERS"), QStringLiteral("a point layer"));
+  if (given(parameters, QStringLiteral("REGION"))) options_.regionPath = fileOf(QStringLiteral("REGION"), QStringLiteral("a polygon layer"));
   options_.lod.dropoff = given(parameters, QStringLiteral("DROPOFF")) ? parameterAsDouble(parameters, QStringLiteral("DROPOFF"), context) : nan;
   options_.lod.maxError =
       given(parameters, QStringLiteral("MAX_ERROR")) ? parameterAsDouble(parameters, QStringLiteral("MAX_ERROR"), context) : nan;

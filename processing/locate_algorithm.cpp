@@ -5,6 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
+#include "layer_file.h"
 #include "processing_feedback.h"
 #include "tinlod/locate_job.h"
 
@@ -46,10 +47,8 @@ void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
 }
 
 bool LocateAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
-  QgsVectorLayer* layer = parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context);
-  if (!layer || layer->providerType() != QLatin1String("ogr"))
-    throw QgsProcessingException(QStringLiteral("INPUT must be a point layer stored in a file GDAL reads (save it as a GeoPackage first)"));
-  points_ = layer->source().toStdString();  // with its |layername=, read by the core
+  points_ = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context), QStringLiteral("INPUT"),
+                       QStringLiteral("a point layer"));
   hierarchy_ = parameterAsFile(parameters, QStringLiteral("HIERARCHY"), context).toStdString();
   if (hierarchy_.empty()) throw QgsProcessingException(QStringLiteral("HIERARCHY: choose a GeoPackage written by tinlod"));
   level_ = parameterAsInt(parameters, QStringLiteral("LEVEL"), context);
