@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "text_and_paths.h"
+#include "tinlod/accuracy_statistics.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
 #include "tinlod/gpkg_writer.h"
@@ -71,21 +72,18 @@ void measure(const Dem& dem, const InsertedTin& out, const std::vector<std::arra
   std::vector<double> z(out.tin.vertices.size());
   for (std::size_t i = 0; i < z.size(); ++i) z[i] = out.tin.vertices[i].z;
   const Grid heights = rasterizeTin(cellPositions, z, out.tin.triangles, dem.width, dem.height, progress);
-  double sum = 0;
+  ErrorStatistics errors;
   for (int r = 0; r < dem.height; ++r)
     for (int c = 0; c < dem.width; ++c) {
       if (!dem.valid(r, c)) continue;
-      const double h = heights.at(c, r);
-      if (std::isnan(h)) {
+      if (std::isnan(heights.at(c, r)))
         ++s.uncoveredCells;
-        continue;
-      }
-      const double e = std::fabs(h - dem.at(r, c));
-      sum += e * e;
-      s.measuredMaxError = std::max(s.measuredMaxError, e);
-      ++s.measuredCells;
+      else
+        errors.add(heights.at(c, r) - dem.at(r, c), c, r);
     }
-  s.rmse = s.measuredCells ? std::sqrt(sum / s.measuredCells) : 0;
+  s.measuredCells = errors.count();
+  s.measuredMaxError = s.measuredCells ? errors.maxAbs() : 0;
+  s.rmse = s.measuredCells ? errors.rmse() : 0;
 }
 
 }  // namespace
