@@ -71,7 +71,8 @@ struct GreedyInserter::Impl {
   explicit Impl(InsertGrid g)
       : grid(std::move(g)), scanner(grid), scale(delaunayScales(grid.cellWidth, grid.cellHeight)) {}
 
-  // The Delaunay criterion holds in metres on the ground: cells need not be square.
+  // Where a candidate is for the Delaunay criterion: the grid scaled to the cells' shape
+  // on the ground by whole numbers (delaunayScales).
   Point metric(std::uint32_t id) const {
     return Point(scanner.col(id) * scale[0], scanner.row(id) * scale[1]);
   }
