@@ -7,8 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 #include <utility>
+
+#include "box_grid.h"
 
 namespace tinlod {
 namespace {
@@ -71,42 +72,6 @@ struct Segment {
   Kernel::Segment_2 s;
 };
 
-// Segments bucketed by a uniform grid of about one cell per segment.
-class SegmentGrid {
- public:
-  explicit SegmentGrid(const std::vector<Segment>& segments) {
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const Segment& g : segments) {
-      const auto box = g.s.bbox();
-      x0 = std::min(x0, box.xmin()), y0 = std::min(y0, box.ymin()), x1 = std::max(x1, box.xmax()), y1 = std::max(y1, box.ymax());
-    }
-    origin_ = {x0, y0};
-    // About one segment a cell; on a thin extent (all lines vertical, say) the area says
-    // nothing, and the longer side spreads them instead.
-    const double n = double(std::max<std::size_t>(1, segments.size()));
-    const double side = std::max(std::sqrt((x1 - x0) * (y1 - y0) / n), std::max(x1 - x0, y1 - y0) / n);
-    cell_ = side > 0 ? side : 1;
-    for (std::size_t i = 0; i < segments.size(); ++i) {
-      const auto box = segments[i].s.bbox();
-      for (long cx = key(box.xmin(), 0); cx <= key(box.xmax(), 0); ++cx)
-        for (long cy = key(box.ymin(), 1); cy <= key(box.ymax(), 1); ++cy) cells_[{cx, cy}].push_back(i);
-    }
-  }
-  template <class Visit>
-  void eachCell(Visit visit) const {
-    for (const auto& [k, members] : cells_) visit(members);
-  }
-
- private:
-  struct Hash {
-    std::size_t operator()(const std::pair<long, long>& k) const { return std::hash<long>()(k.first * 73856093L ^ k.second); }
-  };
-  long key(double v, int axis) const { return static_cast<long>(std::floor((v - origin_[axis]) / cell_)); }
-  std::array<double, 2> origin_{};
-  double cell_ = 1;
-  std::unordered_map<std::pair<long, long>, std::vector<std::size_t>, Hash> cells_;
-};
-
 }  // namespace
 
 std::size_t crossingCount(const std::vector<Polyline>& lines) {
@@ -115,13 +80,15 @@ std::size_t crossingCount(const std::vector<Polyline>& lines) {
     for (std::size_t i = 0; i + 1 < lines[l].size(); ++i)
       segments.push_back({l, Kernel::Segment_2({lines[l][i][0], lines[l][i][1]}, {lines[l][i + 1][0], lines[l][i + 1][1]})});
   if (segments.empty()) return 0;
-  // A pair sharing several cells is counted once: a set of the pairs found.
+  std::vector<Box> boxes;
+  for (const Segment& g : segments) boxes.push_back({g.s.bbox().xmin(), g.s.bbox().ymin(), g.s.bbox().xmax(), g.s.bbox().ymax()});
+  // A pair sharing several buckets is counted once: a set of the pairs found.
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  SegmentGrid(segments).eachCell([&](const std::vector<std::size_t>& members) {
-    for (std::size_t i = 0; i < members.size(); ++i)
-      for (std::size_t j = i + 1; j < members.size(); ++j) {
-        const Segment &a = segments[members[i]], &b = segments[members[j]];
-        if (a.line != b.line && CGAL::do_intersect(a.s, b.s)) pairs.push_back(std::minmax(members[i], members[j]));
+  BoxGrid(boxes).eachBucket([&](const std::uint32_t* first, const std::uint32_t* last) {
+    for (const std::uint32_t* i = first; i != last; ++i)
+      for (const std::uint32_t* j = i + 1; j != last; ++j) {
+        const Segment &a = segments[*i], &b = segments[*j];
+        if (a.line != b.line && CGAL::do_intersect(a.s, b.s)) pairs.push_back(std::minmax<std::size_t>(*i, *j));
       }
   });
   std::sort(pairs.begin(), pairs.end());

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "box_grid.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -36,72 +37,18 @@ struct TopTriangle {
   std::uint32_t fan;  // the block of the group whose reject triangle it is; kNone at level 0
 };
 
-// A uniform grid of buckets over the coarsest level: each bucket lists the triangles
-// whose bounding box overlaps it, in ascending id, so that the start of a search costs
-// a few containment tests whatever the size of the TIN.
-struct BucketGrid {
-  double x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // the triangles' bounding box; empty by default
-  double cellW = 1, cellH = 1;
-  int nx = 0, ny = 0;
-  std::vector<std::uint32_t> start;  // bucket k holds items[start[k] .. start[k + 1])
-  std::vector<std::uint32_t> items;  // indices into the top triangles
-
-  bool covers(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }  // false for NaN
-  // Coordinates inside the box only: the quotient is then >= 0, so truncation is floor,
-  // and it is monotone in x, so a point inside a triangle's box maps inside the
-  // triangle's range of buckets. The clamp takes the box's far edge into the last bucket.
-  int column(double x) const { return std::min(static_cast<int>((x - x0) / cellW), nx - 1); }
-  int row(double y) const { return std::min(static_cast<int>((y - y0) / cellH), ny - 1); }
-  std::size_t bucket(int c, int r) const { return static_cast<std::size_t>(r) * nx + c; }
-};
-
-struct Box {
-  double x0, y0, x1, y1;
-};
-
 Box boxOf(const TopTriangle& t) {
   return {std::min({t.a.x(), t.b.x(), t.c.x()}), std::min({t.a.y(), t.b.y(), t.c.y()}),
           std::max({t.a.x(), t.b.x(), t.c.x()}), std::max({t.a.y(), t.b.y(), t.c.y()})};
 }
 
-// About one bucket per triangle, square-ish buckets. A degenerate extent (impossible in
-// a TIN, but a file can say anything) keeps one row or column instead of dividing by zero.
-void sizeGrid(BucketGrid& grid, std::size_t triangles) {
-  const double w = grid.x1 - grid.x0, h = grid.y1 - grid.y0;
-  const double n = std::max<double>(1, static_cast<double>(triangles));
-  const double aspect = (w > 0 && h > 0) ? w / h : 1;
-  grid.nx = static_cast<int>(std::clamp(std::round(std::sqrt(n * aspect)), 1.0, n));
-  grid.ny = static_cast<int>(std::clamp(std::ceil(n / grid.nx), 1.0, n));
-  grid.cellW = w > 0 ? w / grid.nx : 1;
-  grid.cellH = h > 0 ? h / grid.ny : 1;
-}
-
-// Two passes over the triangles (count, then fill) build the buckets as one flat array.
-BucketGrid makeGrid(const std::vector<TopTriangle>& top) {
-  BucketGrid grid;
-  if (top.empty()) return grid;
+// Buckets over the coarsest level, in ascending triangle id, so that the start of a search
+// costs a few containment tests whatever the size of the TIN.
+BoxGrid makeGrid(const std::vector<TopTriangle>& top) {
   std::vector<Box> boxes;
   boxes.reserve(top.size());
   for (const TopTriangle& t : top) boxes.push_back(boxOf(t));
-  grid.x0 = grid.y0 = INFINITY;
-  grid.x1 = grid.y1 = -INFINITY;
-  for (const Box& b : boxes) {
-    grid.x0 = std::min(grid.x0, b.x0), grid.y0 = std::min(grid.y0, b.y0);
-    grid.x1 = std::max(grid.x1, b.x1), grid.y1 = std::max(grid.y1, b.y1);
-  }
-  sizeGrid(grid, top.size());
-  const auto eachBucket = [&grid](const Box& b, auto&& visit) {
-    for (int r = grid.row(b.y0); r <= grid.row(b.y1); ++r)
-      for (int c = grid.column(b.x0); c <= grid.column(b.x1); ++c) visit(grid.bucket(c, r));
-  };
-  grid.start.assign(grid.bucket(0, grid.ny) + 1, 0);
-  for (const Box& b : boxes) eachBucket(b, [&grid](std::size_t k) { ++grid.start[k + 1]; });
-  for (std::size_t k = 1; k < grid.start.size(); ++k) grid.start[k] += grid.start[k - 1];
-  grid.items.resize(grid.start.back());
-  std::vector<std::uint32_t> next(grid.start.begin(), grid.start.end() - 1);
-  for (std::uint32_t i = 0; i < boxes.size(); ++i)
-    eachBucket(boxes[i], [&](std::size_t k) { grid.items[next[k]++] = i; });
-  return grid;
+  return BoxGrid(boxes);
 }
 
 std::vector<Point> pointsOf(const Tin& base) {
@@ -253,7 +200,7 @@ std::vector<FanEntry> makeFans(const Hierarchy& h, const std::vector<Point>& poi
 struct HierarchyLocator::Impl {
   const Hierarchy& h;
   std::vector<TopTriangle> top;
-  BucketGrid grid;
+  BoxGrid grid;
   std::vector<FanEntry> fans;  // every group's block
 
   explicit Impl(const Hierarchy& hierarchy) : h(hierarchy) {
@@ -266,10 +213,9 @@ struct HierarchyLocator::Impl {
 
   // The first triangle of p's bucket that holds it, or null (off the TIN, or in a hole).
   const TopTriangle* start(const Point& p) const {
-    if (!grid.covers(p.x(), p.y())) return nullptr;
-    const std::size_t k = grid.bucket(grid.column(p.x()), grid.row(p.y()));
-    for (std::uint32_t i = grid.start[k]; i < grid.start[k + 1]; ++i) {
-      const TopTriangle& t = top[grid.items[i]];
+    const auto [first, last] = grid.at(p.x(), p.y());
+    for (const std::uint32_t* i = first; i != last; ++i) {
+      const TopTriangle& t = top[*i];
       if (contains(t.a, t.b, t.c, p)) return &t;
     }
     return nullptr;
