@@ -130,8 +130,11 @@ InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, con
   std::vector<double> x, y;
   for (const InsertedVertex& iv : inserted) {
     const std::uint32_t c = iv.candidate;
-    all.vertices.push_back(cells ? TinVertex{0, 0, dem.z[c], std::int32_t(c / dem.width), std::int32_t(c % dem.width), false}
-                                 : sampled.vertices[c]);
+    if (!cells) {
+      all.vertices.push_back(sampled.vertices[c]);  // already on the map
+      continue;
+    }
+    all.vertices.push_back({0, 0, dem.z[c], std::int32_t(c / dem.width), std::int32_t(c % dem.width), false});
     x.push_back(dem.centreX(all.vertices.back().col)), y.push_back(dem.centreY(all.vertices.back().row));
   }
   if (cells) {
