@@ -1,23 +1,23 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/hierarchy_builder.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <queue>
 
-#include "cgal_types.h"
+#include "nearest_vertices.h"
 #include "parallel_blocks.h"
+#include "simplification_mesh.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
 namespace {
 
-using cgal::FaceHandle;
-using cgal::FaceTag;
-using cgal::VertexHandle;
 using Clock = std::chrono::steady_clock;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 constexpr std::int32_t kOpenLevel = std::numeric_limits<std::int32_t>::max();
 constexpr std::int32_t kNoSample = -1;
@@ -25,29 +25,36 @@ constexpr std::size_t kMinLevelShare = 100;  // a level must delete at least 1 /
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
-bool containsXY(const cgal::Point& a, const cgal::Point& b, const cgal::Point& c, const cgal::Point& p) {
-  const cgal::Traits traits;
-  const auto orientation = traits.orientation_2_object();
-  return orientation(a, b, p) != CGAL::RIGHT_TURN && orientation(b, c, p) != CGAL::RIGHT_TURN &&
-         orientation(c, a, p) != CGAL::RIGHT_TURN;
+bool containsXY(const Point3& a, const Point3& b, const Point3& c, const Point3& p) {
+  const K::Point_2 pa(a.x, a.y), pb(b.x, b.y), pc(c.x, c.y), pp(p.x, p.y);
+  return CGAL::orientation(pa, pb, pp) != CGAL::RIGHT_TURN && CGAL::orientation(pb, pc, pp) != CGAL::RIGHT_TURN &&
+         CGAL::orientation(pc, pa, pp) != CGAL::RIGHT_TURN;
 }
 
-double planeZ(const cgal::Point& a, const cgal::Point& b, const cgal::Point& c, double x, double y) {
-  const double d = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
-  const double wb = ((x - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (y - a.y())) / d;
-  const double wc = ((b.x() - a.x()) * (y - a.y()) - (x - a.x()) * (b.y() - a.y())) / d;
-  return a.z() + wb * (b.z() - a.z()) + wc * (c.z() - a.z());
+double planeZ(const Point3& a, const Point3& b, const Point3& c, double x, double y) {
+  const double d = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+  const double wb = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / d;
+  const double wc = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / d;
+  return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
 }
 
-// Deletes independent sets of vertices level by level from a CGAL Delaunay
-// triangulation of level 0, recording the hierarchy. Faces carry their triangle id;
-// faces over holes or outside the data carry kOutside and never change, because only
-// vertices whose whole star is data are deleted.
+// A vertex chosen for deletion, and where its part of the level's plan starts.
+struct Pick {
+  double importance;
+  VertexId id;
+  std::uint32_t degree;
+  std::size_t plan = 0;  // offset of its degree - 2 new triangles in the plan arrays
+};
+
+// Deletes independent sets of vertices level by level from level 0, recording the
+// hierarchy. Each level is planned on every core (the stars of an independent set are
+// disjoint, so their retriangulations and the samples under them are computed apart) and
+// then applied to the mesh in one pass.
 class Simplifier {
  public:
   Simplifier(const Tin& base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
              const ProgressRange& progress)
-      : options_(options), progress_(progress) {
+      : options_(options), progress_(progress), mesh_(base) {
     h_.base = base;
     h_.options = options;
     h_.fixed = std::move(fixed);
@@ -55,10 +62,8 @@ class Simplifier {
   }
 
   Hierarchy run(const std::vector<PointXY>& keep) {
-    buildTriangulation();
-    fixOutline();
-    fixNearest(keep);
-    const std::size_t original = dt_.number_of_vertices();
+    setUp(keep);
+    const std::size_t original = h_.base.vertices.size();
     const std::size_t stopCount = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original));
     h_.levels.push_back({0, original, h_.base.triangles.size(), 0, 0, 0, 0});
     current_ = original;
@@ -66,17 +71,15 @@ class Simplifier {
     while (current_ > stopCount && (options_.maxLevels == 0 || h_.coarsest() < options_.maxLevels)) {
       const std::int32_t level = h_.coarsest() + 1;
       const Clock::time_point t0 = Clock::now();
-      const std::vector<std::pair<double, VertexId>> selected = inMemoryOrder(select(level, stopCount));
+      std::vector<Pick> picks = select(level, stopCount);
       const Clock::time_point t1 = Clock::now();
       // A level that deletes almost nothing only adds a layer: the rest is fixed.
-      if (selected.empty() || (!options_.thresholdMode && selected.size() * kMinLevelShare < current_)) break;
-      for (std::size_t k = 0; k < selected.size(); ++k) {
-        remove(selected[k].second, selected[k].first, level);
-        if ((k & 0xFFF) == 0) reportProgress(original, stopCount);
-      }
+      if (picks.empty() || (!options_.thresholdMode && picks.size() * kMinLevelShare < current_)) break;
+      plan(picks, level);
+      apply(picks, level, original, stopCount);
       const Clock::time_point t2 = Clock::now();
-      current_ -= selected.size();
-      h_.levels.push_back({level, current_, triangles_, selected.size(), seconds(t0, t1), seconds(t1, t2), levelError()});
+      current_ -= picks.size();
+      h_.levels.push_back({level, current_, triangles_, picks.size(), seconds(t0, t1), seconds(t1, t2), levelError()});
       reportProgress(original, stopCount);
     }
     finish();
@@ -84,105 +87,70 @@ class Simplifier {
   }
 
  private:
-  void buildTriangulation() {
-    handles_ = cgal::insertVertices(dt_, h_.base.vertices, progress_.sub(0, 0.1));
-    for (auto f = dt_.all_faces_begin(); f != dt_.all_faces_end(); ++f) f->info().id = FaceTag::kOutside;
+  void setUp(const std::vector<PointXY>& keep) {
+    const std::size_t nv = h_.base.vertices.size();
     h_.triangles.reserve(h_.base.triangles.size() * 3);
-    for (std::size_t t = 0; t < h_.base.triangles.size(); ++t) {
-      const Triangle& tri = h_.base.triangles[t];
-      FaceHandle f;
-      if (!dt_.is_face(handles_[tri[0]], handles_[tri[1]], handles_[tri[2]], f))
-        throw Error("a level-0 triangle is not Delaunay: the TIN was not made by tinlod sample");
-      f->info().id = static_cast<std::int32_t>(t);
+    for (const Triangle& tri : h_.base.triangles) {
       HierarchyTriangle ht;
       ht.v = tri;
       ht.lastLevel = kOpenLevel;
       h_.triangles.push_back(ht);
     }
-    bucketHead_.assign(h_.triangles.size(), kNoSample);
-    bucketNext_.assign(h_.base.vertices.size(), kNoSample);
-    h_.vertexLevel.assign(h_.base.vertices.size(), 0);
-  }
-
-  // A vertex on the outline or on a hole's edge has a face that is not data: deleting it
-  // would change the TIN's extent.
-  void fixOutline() {
-    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) {
-      v->info().fixed = h_.fixed[v->info().id];
-      auto f = dt_.incident_faces(v), done = f;
-      do {
-        if (dt_.is_infinite(f) || f->info().id < 0) {
-          h_.fixed[v->info().id] = 1;
-          v->info().fixed = true;
-          break;
-        }
-      } while (++f != done);
+    bucketHead_.assign(mesh_.slotCount(), kNoSample);
+    bucketNext_.assign(nv, kNoSample);
+    target_.assign(nv, 0);
+    slotError_.assign(mesh_.slotCount(), 0.0);
+    h_.vertexLevel.assign(nv, kOpenLevel);
+    importance_.assign(nv, 0.0);
+    stamp_.assign(nv, -1);
+    stale_.assign(nv, 1);
+    fixNearest(keep);
+    // A vertex on the outline or on a hole's edge would change the TIN's extent.
+    for (VertexId v = 0; v < nv; ++v) {
+      if (mesh_.open(v)) h_.fixed[v] = 1;
+      if (!h_.fixed[v]) live_.push_back(v);
     }
   }
 
   // Each point keeps the vertex nearest to it, if it falls on the TIN's data.
   void fixNearest(const std::vector<PointXY>& keep) {
     std::size_t off = 0;
-    FaceHandle hint;
-    for (const PointXY& p : keep) {
-      const cgal::Point q(p[0], p[1], 0);
-      const FaceHandle f = dt_.locate(q, hint);
-      hint = f;
-      if (dt_.is_infinite(f) || f->info().id < 0) {
-        ++off;
-        continue;
-      }
-      const VertexHandle v = dt_.nearest_vertex(q, f);
-      v->info().fixed = true;
-      h_.fixed[v->info().id] = 1;
-    }
+    for (VertexId v : nearestVerticesOnData(h_.base, keep, off, progress_.sub(0, 0.1))) h_.fixed[v] = 1;
     if (off > 0)
       progress_.warn(std::to_string(off) + " of the " + std::to_string(keep.size()) +
                      " points to keep fall outside the TIN's data and were ignored");
   }
 
-  bool eligible(VertexHandle v) const {
-    if (v->info().fixed) return false;
-    return options_.measure != Measure::Degree || static_cast<int>(dt_.degree(v)) <= options_.maxDegree;
+  bool eligible(VertexId v) const {
+    return options_.measure != Measure::Degree || mesh_.degree(v) <= options_.maxDegree;
   }
 
-  const Star& starOf(VertexHandle v, Star& star) const {
-    star.centre = point3(v->point());
-    star.ring.clear();
-    auto n = dt_.incident_vertices(v), done = n;
-    do star.ring.push_back(point3(n->point()));
-    while (++n != done);
-    return star;
+  void samplesAround(VertexId v, std::vector<Point3>& samples) const {
+    samples.clear();
+    mesh_.eachAround(v, [&](std::int32_t slot, int) {
+      for (std::int32_t s = bucketHead_[slot]; s != kNoSample; s = bucketNext_[s]) samples.push_back(mesh_.point(s));
+    });
   }
 
-  std::vector<Point3> samplesAround(VertexHandle v) const {
-    std::vector<Point3> samples;
-    auto f = dt_.incident_faces(v), done = f;
-    do
-      for (std::int32_t s = bucketHead_[f->info().id]; s != kNoSample; s = bucketNext_[s])
-        samples.push_back(point3(h_.base.vertices[s]));
-    while (++f != done);
-    return samples;
-  }
-
-  // Only reads the triangulation and writes the vertex's own tag: safe in parallel.
-  void updateImportance(VertexHandle v, Star& scratch) const {
-    cgal::VertexTag& tag = v->info();
-    const std::vector<Point3> samples = options_.measure == Measure::Error ? samplesAround(v) : std::vector<Point3>();
-    tag.importance = importance(options_.measure, starOf(v, scratch), samples);
-    tag.stale = false;
+  // Only reads the mesh and writes the vertex's own entry: safe in parallel.
+  void updateImportance(VertexId v, Star& star, std::vector<Point3>& samples) {
+    mesh_.geometryOf(v, star);
+    if (options_.measure == Measure::Error) samplesAround(v, samples);
+    importance_[v] = importance(options_.measure, star, samples);
+    stale_[v] = 0;
   }
 
   // Importances change only around deleted vertices; those are recomputed at the start of
   // each level, split over the machine's cores (a cancel stops every thread).
   void updateStaleImportances(std::int32_t level) {
-    std::vector<VertexHandle> stale;
-    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v)
-      if (v->info().stale && eligible(v)) stale.push_back(v);
+    std::vector<VertexId> stale;
+    for (VertexId v : live_)
+      if (stale_[v] && eligible(v)) stale.push_back(v);
     const std::string phase = "Selecting level " + std::to_string(level);
     forEachBlock(static_cast<int>(stale.size()), [&](int begin, int end) {
-      Star scratch;
-      for (int i = begin; i < end; ++i) updateImportance(stale[i], scratch);
+      Star star;
+      std::vector<Point3> samples;
+      for (int i = begin; i < end; ++i) updateImportance(stale[i], star, samples);
     }, [&](double) { progress_.report(lastFraction_, phase); });
   }
 
@@ -192,154 +160,147 @@ class Simplifier {
   }
 
   // Best first, ties broken by vertex id: the result never depends on memory layout.
-  // Each pick blocks its neighbours, so the set is independent.
-  std::vector<std::pair<double, VertexId>> select(std::int32_t level, std::size_t stopCount) {
+  // Each pick blocks its neighbours, so the set is independent. Returned in vertex order,
+  // which is the TIN's spatial order: the plan and the mesh are then walked in cache.
+  std::vector<Pick> select(std::int32_t level, std::size_t stopCount) {
     updateStaleImportances(level);
     std::vector<std::pair<double, VertexId>> candidates;
-    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v)
-      if (eligible(v) && wanted(v->info().importance)) candidates.emplace_back(v->info().importance, v->info().id);
+    candidates.reserve(live_.size());
+    for (VertexId v : live_)
+      if (eligible(v) && wanted(importance_[v])) candidates.emplace_back(importance_[v], v);
     std::sort(candidates.begin(), candidates.end());
     std::size_t limit = current_ - stopCount;
     if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
-    std::vector<std::pair<double, VertexId>> selected;
-    for (const auto& [imp, id] : candidates) {
-      if (selected.size() >= limit) break;
-      const VertexHandle v = handles_[id];
-      if (v->info().stamp == level) continue;
-      selected.emplace_back(imp, id);
-      v->info().stamp = level;
-      auto n = dt_.incident_vertices(v), done = n;
-      do n->info().stamp = level;
-      while (++n != done);
+    std::vector<Pick> picks;
+    for (const auto& [imp, v] : candidates) {
+      if (picks.size() >= limit) break;
+      if (stamp_[v] == level) continue;
+      std::uint32_t degree = 0;
+      stamp_[v] = level;
+      mesh_.eachAround(v, [&](std::int32_t slot, int k) {
+        stamp_[mesh_.triangle(slot).v[(k + 1) % 3]] = level;
+        ++degree;
+      });
+      picks.push_back({imp, v, degree});
     }
-    return selected;
+    std::sort(picks.begin(), picks.end(), [](const Pick& a, const Pick& b) { return a.id < b.id; });
+    std::size_t offset = 0;
+    for (Pick& p : picks) p.plan = offset, offset += p.degree - 2;
+    fill_.resize(offset);
+    fillError_.resize(offset);
+    return picks;
   }
 
-  // Removing in the spatial order of insertion rather than best-first keeps CGAL's faces
-  // and vertices in cache: about 15 % off the delete step on alps_2x2.
-  std::vector<std::pair<double, VertexId>> inMemoryOrder(std::vector<std::pair<double, VertexId>> selected) const {
-    std::sort(selected.begin(), selected.end(), [&](const auto& a, const auto& b) {
-      return handles_[a.second]->info().rank < handles_[b.second]->info().rank;
+  // For every pick, on every core: the retriangulation of its star, and for each sample
+  // under the star (and the vertex itself) the new triangle that holds it. Reads the
+  // mesh only; writes the pick's own part of the plan and its samples' entries.
+  void plan(const std::vector<Pick>& picks, std::int32_t level) {
+    const std::string phase = "Simplifying level " + std::to_string(level);
+    forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
+      Star star;
+      std::vector<LocalTriangle> fill;
+      for (int i = begin; i < end; ++i) planPick(picks[i], star, fill);
+    }, [&](double) { progress_.report(lastFraction_, phase); });
+  }
+
+  void planPick(const Pick& pick, Star& star, std::vector<LocalTriangle>& fill) {
+    mesh_.geometryOf(pick.id, star);
+    retriangulateStar(star, fill);
+    if (fill.size() > std::numeric_limits<std::uint16_t>::max() || fill.size() + 2 != star.ring.size())
+      throw Error("internal error: deleting a vertex of degree " + std::to_string(star.ring.size()) + " made " +
+                  std::to_string(fill.size()) + " triangles");
+    std::copy(fill.begin(), fill.end(), fill_.begin() + pick.plan);
+    double* error = fillError_.data() + pick.plan;
+    std::fill(error, error + fill.size(), 0.0);
+    auto place = [&](VertexId s) {
+      const Point3& p = mesh_.point(s);
+      for (std::size_t j = 0; j < fill.size(); ++j) {
+        const Point3 &a = star.ring[fill[j][0]], &b = star.ring[fill[j][1]], &c = star.ring[fill[j][2]];
+        if (!containsXY(a, b, c, p)) continue;
+        target_[s] = static_cast<std::uint16_t>(j);
+        error[j] = std::max(error[j], std::fabs(p.z - planeZ(a, b, c, p.x, p.y)));
+        return;
+      }
+      throw Error("internal error: a sample left its star");
+    };
+    place(pick.id);
+    mesh_.eachAround(pick.id, [&](std::int32_t slot, int) {
+      for (std::int32_t s = bucketHead_[slot]; s != kNoSample; s = bucketNext_[s]) place(static_cast<VertexId>(s));
     });
-    return selected;
   }
 
-  void remove(VertexId id, double importance, std::int32_t level) {
-    const VertexHandle v = handles_[id];
-    const std::int32_t g = static_cast<std::int32_t>(h_.groups.size());
-    Group group;
-    group.vertex = id;
-    group.level = level;
-    group.importance = importance;
+  void apply(const std::vector<Pick>& picks, std::int32_t level, std::size_t original, std::size_t stopCount) {
+    for (std::size_t k = 0; k < picks.size(); ++k) {
+      remove(picks[k], level);
+      if ((k & 0xFFF) == 0) reportProgress(original, stopCount);
+    }
+    std::vector<VertexId> live;
+    live.reserve(live_.size());
+    for (VertexId v : live_)
+      if (h_.vertexLevel[v] == kOpenLevel) live.push_back(v);
+    live_.swap(live);
+  }
 
-    // One walk around the star: its faces become the accept triangles, the vertex
-    // counter-clockwise after v in each face is the next ring vertex, and the faces'
-    // samples and the vertex itself go to the reject triangles.
-    std::vector<VertexHandle>& ring = ring_;
-    ring.clear();
-    std::vector<std::int32_t>& samples = samples_;
-    samples.assign(1, static_cast<std::int32_t>(id));
+  void remove(const Pick& pick, std::int32_t level) {
+    const std::int32_t g = static_cast<std::int32_t>(h_.groups.size());
+    MeshStar& star = star_;
+    mesh_.starOf(pick.id, star);
+    Group group;
+    group.vertex = pick.id;
+    group.level = level;
+    group.importance = pick.importance;
     group.acceptBegin = static_cast<std::uint32_t>(h_.links.size());
-    auto f = dt_.incident_faces(v), fdone = f;
-    do {
-      ring.push_back(f->vertex(dt_.ccw(f->index(v))));
-      const std::int32_t t = f->info().id;
+    samples_.assign(1, static_cast<std::int32_t>(pick.id));
+    for (std::int32_t slot : star.slots) {
+      const std::int32_t t = mesh_.triangle(slot).id;
       h_.links.push_back(static_cast<std::uint32_t>(t));
       h_.triangles[t].lastLevel = level - 1;
       h_.triangles[t].replacedBy = g;
-      for (std::int32_t s = bucketHead_[t]; s != kNoSample; s = bucketNext_[s]) samples.push_back(s);
-      f->info().id = FaceTag::kDying;  // CGAL may reuse a star face for a new one
-    } while (++f != fdone);
+      for (std::int32_t s = bucketHead_[slot]; s != kNoSample; s = bucketNext_[s]) samples_.push_back(s);
+      bucketHead_[slot] = kNoSample;
+      slotError_[slot] = 0;
+    }
     group.acceptEnd = static_cast<std::uint32_t>(h_.links.size());
     group.ringBegin = static_cast<std::uint32_t>(h_.rings.size());
-    for (VertexHandle u : ring) h_.rings.push_back(u->info().id);
+    h_.rings.insert(h_.rings.end(), star.ring.begin(), star.ring.end());
     group.ringEnd = static_cast<std::uint32_t>(h_.rings.size());
 
-    dt_.remove(v);
-    handles_[id] = VertexHandle();
-    h_.vertexLevel[id] = level - 1;
-
+    const LocalTriangle* fill = fill_.data() + pick.plan;
+    const double* error = fillError_.data() + pick.plan;
+    const std::size_t count = star.ring.size() - 2;
+    ids_.clear();
     group.rejectBegin = static_cast<std::uint32_t>(h_.links.size());
-    const std::vector<FaceHandle>& created = numberNewFaces(ring.front(), level, g);
+    for (std::size_t j = 0; j < count; ++j) {
+      const std::int32_t t = static_cast<std::int32_t>(h_.triangles.size());
+      HierarchyTriangle ht;
+      ht.v = {star.ring[fill[j][0]], star.ring[fill[j][1]], star.ring[fill[j][2]]};
+      ht.firstLevel = level;
+      ht.lastLevel = kOpenLevel;
+      ht.group = g;
+      ht.error = error[j];
+      h_.triangles.push_back(ht);
+      h_.links.push_back(static_cast<std::uint32_t>(t));
+      ids_.push_back(t);
+      slotError_[star.slots[j]] = error[j];
+      group.error = std::max(group.error, error[j]);
+    }
     group.rejectEnd = static_cast<std::uint32_t>(h_.links.size());
-    if (created.size() + 2 != ring.size())
-      throw Error("internal error: deleting a vertex of degree " + std::to_string(ring.size()) + " made " +
-                  std::to_string(created.size()) + " triangles");
-    group.error = redistribute(samples, created);
-    for (FaceHandle f : created) errorHeap_.push({h_.triangles[f->info().id].error, f->info().id});
-    for (VertexHandle u : ring) u->info().stale = true;
+    mesh_.replaceStar(star, fill, ids_.data());
+    for (std::int32_t s : samples_) {
+      const std::int32_t slot = star.slots[target_[s]];
+      bucketNext_[s] = bucketHead_[slot];
+      bucketHead_[slot] = s;
+    }
+    for (VertexId u : star.ring) stale_[u] = 1;
+    h_.vertexLevel[pick.id] = level - 1;
     h_.groups.push_back(group);
     triangles_ -= 2;
   }
 
-  static bool isNew(FaceHandle f) { return f->info().id == FaceTag::kFresh || f->info().id == FaceTag::kDying; }
-
-  // The faces that filled the hole are connected and each touches the ring: find one
-  // around a ring vertex, then walk across edges to the others.
-  const std::vector<FaceHandle>& numberNewFaces(VertexHandle ringVertex, std::int32_t level, std::int32_t g) {
-    std::vector<FaceHandle>& created = created_;
-    created.clear();
-    auto f = dt_.incident_faces(ringVertex), done = f;
-    do
-      if (isNew(f)) {
-        number(f, level, g);
-        break;
-      }
-    while (++f != done);
-    for (std::size_t k = 0; k < created.size(); ++k)
-      for (int i = 0; i < 3; ++i) {
-        const FaceHandle n = created[k]->neighbor(i);
-        if (isNew(n)) number(n, level, g);
-      }
-    return created;
-  }
-
-  void number(FaceHandle f, std::int32_t level, std::int32_t g) {
-    const std::int32_t t = static_cast<std::int32_t>(h_.triangles.size());
-    f->info().id = t;
-    HierarchyTriangle ht;
-    ht.v = {f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id};
-    ht.firstLevel = level;
-    ht.lastLevel = kOpenLevel;
-    ht.group = g;
-    h_.triangles.push_back(ht);
-    bucketHead_.push_back(kNoSample);
-    h_.links.push_back(static_cast<std::uint32_t>(t));
-    created_.push_back(f);
-  }
-
-  // Puts each sample in the new triangle that holds it, and measures its vertical
-  // distance there: the certified error of the level, whatever the measure.
-  double redistribute(const std::vector<std::int32_t>& samples, const std::vector<FaceHandle>& created) {
-    double worst = 0;
-    for (std::int32_t s : samples) {
-      const TinVertex& sv = h_.base.vertices[s];
-      const cgal::Point p(sv.x, sv.y, sv.z);
-      FaceHandle home;
-      for (FaceHandle f : created)
-        if (containsXY(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(), p)) {
-          home = f;
-          break;
-        }
-      if (home == FaceHandle()) throw Error("internal error: a sample left its star");
-      const std::int32_t t = home->info().id;
-      bucketNext_[s] = bucketHead_[t];
-      bucketHead_[t] = s;
-      const double e = std::fabs(sv.z - planeZ(home->vertex(0)->point(), home->vertex(1)->point(),
-                                               home->vertex(2)->point(), sv.x, sv.y));
-      h_.triangles[t].error = std::max(h_.triangles[t].error, e);
-      worst = std::max(worst, e);
-    }
-    return worst;
-  }
-
-  // The largest error of the current triangles: a max-heap of every triangle made, whose
-  // top is dropped while it belongs to a replaced triangle.
-  double levelError() {
-    while (!errorHeap_.empty() && h_.triangles[errorHeap_.top().second].lastLevel != kOpenLevel) errorHeap_.pop();
-    return errorHeap_.empty() ? 0.0 : errorHeap_.top().first;
-  }
+  // The largest error of the current triangles; a replaced triangle's slot holds 0 until
+  // a new triangle takes it.
+  double levelError() const { return slotError_.empty() ? 0.0 : *std::max_element(slotError_.begin(), slotError_.end()); }
 
   void reportProgress(std::size_t original, std::size_t stopCount) {
     const double span = std::max<double>(1.0, double(original) - double(stopCount));
@@ -351,23 +312,27 @@ class Simplifier {
     const std::int32_t top = h_.coarsest();
     for (HierarchyTriangle& t : h_.triangles)
       if (t.lastLevel == kOpenLevel) t.lastLevel = top;
-    for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) h_.vertexLevel[v->info().id] = top;
+    for (std::int32_t& l : h_.vertexLevel)
+      if (l == kOpenLevel) l = top;
   }
-
-  static Point3 point3(const cgal::Point& p) { return {p.x(), p.y(), p.z()}; }
-  static Point3 point3(const TinVertex& v) { return {v.x, v.y, v.z}; }
 
   const HierarchyOptions& options_;
   ProgressRange progress_;
   Hierarchy h_;
-  cgal::Delaunay dt_;
-  std::vector<VertexHandle> handles_;         // by vertex id; null once deleted
-  std::vector<std::int32_t> bucketHead_;      // by triangle id: first deleted sample under it
-  std::vector<std::int32_t> bucketNext_;      // by vertex id: next sample in the same bucket
-  std::priority_queue<std::pair<double, std::int32_t>> errorHeap_;  // (error, triangle id)
-  std::vector<VertexHandle> ring_;            // scratch buffers, reused to spare allocations
+  SimplificationMesh mesh_;
+  std::vector<VertexId> live_;               // vertices not fixed and not yet deleted
+  std::vector<double> importance_;           // by vertex
+  std::vector<std::int32_t> stamp_;          // by vertex: the level in which it or a neighbour was picked
+  std::vector<std::uint8_t> stale_;          // by vertex: its importance must be recomputed
+  std::vector<std::int32_t> bucketHead_;     // by slot: first deleted sample under its triangle
+  std::vector<std::int32_t> bucketNext_;     // by vertex: next sample in the same bucket
+  std::vector<std::uint16_t> target_;        // by vertex: the planned new triangle of a sample
+  std::vector<double> slotError_;            // by slot: its triangle's error
+  std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
+  std::vector<double> fillError_;            //   and their errors
+  MeshStar star_;                            // scratch buffers, reused to spare allocations
   std::vector<std::int32_t> samples_;
-  std::vector<FaceHandle> created_;
+  std::vector<std::int32_t> ids_;
   std::size_t current_ = 0, triangles_ = 0;
   double lastFraction_ = 0.1;
 };

@@ -73,43 +73,66 @@ Measure parseMeasure(const std::string& name) {
 
 namespace {
 
-// Fills `out`; `polygon` is scratch. Buffers are the caller's, so that the hot path of
-// the simplifier reuses them instead of allocating twice per vertex.
-void retriangulate(const Star& star, std::vector<int>& polygon, std::vector<LocalTriangle>& out) {
+// Whether the ear at position i of the polygon (indices into the ring) is convex and no
+// other vertex of the polygon is strictly inside its circumcircle: then it is a triangle
+// of the polygon's Delaunay triangulation (exact predicates).
+bool delaunayEar(const std::vector<Point3>& ring, const std::vector<int>& polygon, std::size_t i) {
+  const std::size_t m = polygon.size();
+  const Point3 &a = ring[polygon[(i + m - 1) % m]], &b = ring[polygon[i]], &c = ring[polygon[(i + 1) % m]];
+  if (!leftTurn(a, b, c)) return false;
+  const K::Point_2 pa = xy(a), pb = xy(b), pc = xy(c);
+  for (std::size_t j = (i + 2) % m; j != (i + m - 1) % m; j = (j + 1) % m)
+    if (CGAL::side_of_oriented_circle(pa, pb, pc, xy(ring[polygon[j]])) == CGAL::ON_POSITIVE_SIDE) return false;
+  return true;
+}
+
+// Devillers' ranking in floating point picks the ear; the exact test above confirms it,
+// and in the rare near tie where it does not, the first ear that passes is taken.
+std::size_t nextEar(const Star& star, const std::vector<int>& polygon) {
   const std::vector<Point3>& ring = star.ring;
-  polygon.resize(ring.size());
-  for (std::size_t i = 0; i < ring.size(); ++i) polygon[i] = static_cast<int>(i);
+  const std::size_t m = polygon.size();
+  std::size_t best = m;
+  double bestPower = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < m; ++i) {
+    const int a = polygon[(i + m - 1) % m], b = polygon[i], c = polygon[(i + 1) % m];
+    if (!leftTurn(ring[a], ring[b], ring[c])) continue;
+    const double pw = power(star.centre, ring[a], ring[b], ring[c]);
+    if (best == m || pw > bestPower) best = i, bestPower = pw;
+  }
+  if (best < m && delaunayEar(ring, polygon, best)) return best;
+  for (std::size_t i = 0; i < m; ++i)
+    if (delaunayEar(ring, polygon, i)) return i;
+  throw Error("internal error: a star polygon has no Delaunay ear");
+}
+
+}  // namespace
+
+void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out) {
+  thread_local std::vector<int> polygon;
+  polygon.resize(star.ring.size());
+  for (std::size_t i = 0; i < polygon.size(); ++i) polygon[i] = static_cast<int>(i);
   out.clear();
   while (polygon.size() > 3) {
-    const std::size_t m = polygon.size();
-    std::size_t best = m;
-    double bestPower = -std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < m; ++i) {
-      const int a = polygon[(i + m - 1) % m], b = polygon[i], c = polygon[(i + 1) % m];
-      if (!leftTurn(ring[a], ring[b], ring[c])) continue;
-      const double pw = power(star.centre, ring[a], ring[b], ring[c]);
-      if (best == m || pw > bestPower) best = i, bestPower = pw;
-    }
-    if (best == m) break;  // no convex ear: not a star polygon (cannot happen for a star)
+    const std::size_t m = polygon.size(), best = nextEar(star, polygon);
     out.push_back({polygon[(best + m - 1) % m], polygon[best], polygon[(best + 1) % m]});
     polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(best));
   }
   if (polygon.size() == 3) out.push_back({polygon[0], polygon[1], polygon[2]});
 }
 
+namespace {
+
 const std::vector<LocalTriangle>& retriangulateInScratch(const Star& star) {
-  thread_local std::vector<int> polygon;
   thread_local std::vector<LocalTriangle> out;
-  retriangulate(star, polygon, out);
+  retriangulateStar(star, out);
   return out;
 }
 
 }  // namespace
 
 std::vector<LocalTriangle> retriangulateStar(const Star& star) {
-  std::vector<int> polygon;
   std::vector<LocalTriangle> out;
-  retriangulate(star, polygon, out);
+  retriangulateStar(star, out);
   return out;
 }
 

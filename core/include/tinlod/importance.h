@@ -28,9 +28,12 @@ using LocalTriangle = std::array<int, 3>;  // indices into Star::ring, counter-c
 // The Delaunay triangulation of the star's polygon without its centre, by Devillers'
 // ear queue: repeatedly cut the convex ear whose circumcircle has the greatest power with
 // respect to the centre (the centre is inside every such circle; the Delaunay ear's is
-// the one it is least inside). Checked against CGAL's own removal in the tests. The ranking uses floating point (a near tie only changes an
-// importance value a little); convexity uses exact orientation, so the result is always
-// a triangulation of the polygon.
+// the one it is least inside). The ranking uses floating point; each ear is then
+// confirmed with CGAL's exact orientation and in-circle tests (no other polygon vertex
+// strictly inside its circle), so the result is always the polygon's Delaunay
+// triangulation, as CGAL's own removal makes it (checked in the tests). The simplifier
+// deletes vertices with it. `out` is the caller's, to spare allocations.
+void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out);
 std::vector<LocalTriangle> retriangulateStar(const Star& star);
 
 // |volume under the star - volume under its retriangulation| (cubic metres).

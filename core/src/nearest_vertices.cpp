@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "nearest_vertices.h"
+
+#include <algorithm>
+
+#include "box_grid.h"
+#include "cgal_types.h"
+
+namespace tinlod {
+namespace {
+
+bool onTriangle(const Tin& tin, const Triangle& t, const cgal::Point& p) {
+  const cgal::Traits traits;
+  const auto orientation = traits.orientation_2_object();
+  const TinVertex &a = tin.vertices[t[0]], &b = tin.vertices[t[1]], &c = tin.vertices[t[2]];
+  const cgal::Point pa(a.x, a.y, 0), pb(b.x, b.y, 0), pc(c.x, c.y, 0);
+  return orientation(pa, pb, p) != CGAL::RIGHT_TURN && orientation(pb, pc, p) != CGAL::RIGHT_TURN &&
+         orientation(pc, pa, p) != CGAL::RIGHT_TURN;
+}
+
+BoxGrid triangleGrid(const Tin& tin) {
+  std::vector<Box> boxes;
+  boxes.reserve(tin.triangles.size());
+  for (const Triangle& t : tin.triangles) {
+    const TinVertex &a = tin.vertices[t[0]], &b = tin.vertices[t[1]], &c = tin.vertices[t[2]];
+    boxes.push_back({std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}), std::max({a.x, b.x, c.x}),
+                     std::max({a.y, b.y, c.y})});
+  }
+  return BoxGrid(boxes);
+}
+
+}  // namespace
+
+// The triangles say whether a point is on the data; the Delaunay triangulation of all
+// the vertices finds the nearest one, which may lie across a hole.
+std::vector<VertexId> nearestVerticesOnData(const Tin& tin, const std::vector<std::array<double, 2>>& points,
+                                            std::size_t& off, const ProgressRange& progress) {
+  off = 0;
+  std::vector<VertexId> nearest;
+  if (points.empty()) return nearest;
+  const BoxGrid grid = triangleGrid(tin);
+  cgal::Delaunay dt;
+  cgal::insertVertices(dt, tin.vertices, progress);
+  cgal::FaceHandle hint;
+  for (const auto& p : points) {
+    const cgal::Point q(p[0], p[1], 0);
+    const auto [first, last] = grid.at(p[0], p[1]);
+    if (std::none_of(first, last, [&](std::uint32_t t) { return onTriangle(tin, tin.triangles[t], q); })) {
+      ++off;
+      continue;
+    }
+    hint = dt.locate(q, hint);
+    nearest.push_back(dt.nearest_vertex(q, hint)->info().id);
+  }
+  return nearest;
+}
+
+}  // namespace tinlod
