@@ -38,18 +38,20 @@ double planeZ(const Point3& a, const Point3& b, const Point3& c, double x, doubl
   return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
 }
 
-// A vertex chosen for deletion, and where its part of the level's plan starts.
+// A vertex chosen for deletion, and where its parts of the level's arrays start.
 struct Pick {
   double importance;
   VertexId id;
   std::uint32_t degree;
-  std::size_t plan = 0;  // offset of its degree - 2 new triangles in the plan arrays
+  std::size_t fill = 0;  // its degree - 2 new triangles, in fill_, fillError_ and new triangle ids
+  std::size_t ring = 0;  // its degree ring vertices, slots and outer triangles
 };
 
 // Deletes independent sets of vertices level by level from level 0, recording the
-// hierarchy. Each level is planned on every core (the stars of an independent set are
-// disjoint, so their retriangulations and the samples under them are computed apart) and
-// then applied to the mesh in one pass.
+// hierarchy. The stars of an independent set are disjoint, so each level is done on
+// every core in two passes: one plans every deletion and records it in the hierarchy
+// (reading the mesh only), the other changes the mesh. Every count is known once the
+// set is chosen, so each deletion writes its own ranges of the hierarchy's arrays.
 class Simplifier {
  public:
   Simplifier(const Tin& base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
@@ -63,10 +65,11 @@ class Simplifier {
 
   Hierarchy run(const std::vector<PointXY>& keep) {
     setUp(keep);
-    const std::size_t original = h_.base.vertices.size();
-    const std::size_t stopCount = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original));
-    h_.levels.push_back({0, original, h_.base.triangles.size(), 0, 0, 0, 0});
-    current_ = original;
+    original_ = h_.base.vertices.size();
+    const std::size_t stopCount = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original_));
+    stopCount_ = stopCount;
+    h_.levels.push_back({0, original_, h_.base.triangles.size(), 0, 0, 0, 0});
+    current_ = original_;
     triangles_ = h_.base.triangles.size();
     while (current_ > stopCount && (options_.maxLevels == 0 || h_.coarsest() < options_.maxLevels)) {
       const std::int32_t level = h_.coarsest() + 1;
@@ -75,12 +78,11 @@ class Simplifier {
       const Clock::time_point t1 = Clock::now();
       // A level that deletes almost nothing only adds a layer: the rest is fixed.
       if (picks.empty() || (!options_.thresholdMode && picks.size() * kMinLevelShare < current_)) break;
-      plan(picks, level);
-      apply(picks, level, original, stopCount);
+      deleteAll(picks, level);
       const Clock::time_point t2 = Clock::now();
       current_ -= picks.size();
       h_.levels.push_back({level, current_, triangles_, picks.size(), seconds(t0, t1), seconds(t1, t2), levelError()});
-      reportProgress(original, stopCount);
+      reportProgress(level + 1, 0, 0);
     }
     finish();
     return std::move(h_);
@@ -185,33 +187,72 @@ class Simplifier {
       picks.push_back({imp, v, degree});
     }
     std::sort(picks.begin(), picks.end(), [](const Pick& a, const Pick& b) { return a.id < b.id; });
-    std::size_t offset = 0;
-    for (Pick& p : picks) p.plan = offset, offset += p.degree - 2;
-    fill_.resize(offset);
-    fillError_.resize(offset);
+    std::size_t fills = 0, rings = 0;
+    for (Pick& p : picks) p.fill = fills, p.ring = rings, fills += p.degree - 2, rings += p.degree;
+    fill_.resize(fills);
+    fillError_.resize(fills);
+    slots_.resize(rings);
+    outer_.resize(rings);
     return picks;
   }
 
-  // For every pick, on every core: the retriangulation of its star, and for each sample
-  // under the star (and the vertex itself) the new triangle that holds it. Reads the
-  // mesh only; writes the pick's own part of the plan and its samples' entries.
-  void plan(const std::vector<Pick>& picks, std::int32_t level) {
+  void deleteAll(const std::vector<Pick>& picks, std::int32_t level) {
+    const std::size_t triangles = h_.triangles.size(), links = h_.links.size(), rings = h_.rings.size();
+    const std::size_t groups = h_.groups.size(), ringCount = slots_.size();
+    h_.triangles.resize(triangles + fill_.size());
+    h_.links.resize(links + ringCount + fill_.size());
+    h_.rings.resize(rings + ringCount);
+    h_.groups.resize(groups + picks.size());
+    mesh_.beginRound();
     const std::string phase = "Simplifying level " + std::to_string(level);
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       Star star;
       std::vector<LocalTriangle> fill;
-      for (int i = begin; i < end; ++i) planPick(picks[i], star, fill);
-    }, [&](double) { progress_.report(lastFraction_, phase); });
+      for (int i = begin; i < end; ++i) plan(picks[i], level, Ranges{groups + i, triangles, links, rings}, star, fill);
+    }, [&](double f) { reportProgress(level, f / 2, picks.size()); });
+    forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
+      std::vector<std::int32_t> samples;
+      for (int i = begin; i < end; ++i) replace(picks[i], triangles, rings, samples);
+    }, [&](double f) { reportProgress(level, 0.5 + f / 2, picks.size()); });
+    std::vector<VertexId> live;
+    live.reserve(live_.size());
+    for (VertexId v : live_)
+      if (h_.vertexLevel[v] == kOpenLevel) live.push_back(v);
+    live_.swap(live);
+    triangles_ -= 2 * picks.size();
   }
 
-  void planPick(const Pick& pick, Star& star, std::vector<LocalTriangle>& fill) {
-    mesh_.geometryOf(pick.id, star);
+  // Where a level's records start in the hierarchy's arrays.
+  struct Ranges {
+    std::size_t group, triangles, links, rings;
+  };
+
+  StarView view(const Pick& pick, std::size_t rings) const {
+    return {h_.rings.data() + rings + pick.ring, slots_.data() + pick.ring, outer_.data() + pick.ring,
+            static_cast<int>(pick.degree)};
+  }
+
+  // The first pass, for one pick: its star, its retriangulation, the new triangle that
+  // will hold each sample under the star (and the vertex itself), and its group. Reads
+  // the mesh; writes only the pick's own entries.
+  void plan(const Pick& pick, std::int32_t level, const Ranges& at, Star& star, std::vector<LocalTriangle>& fill) {
+    VertexId* ring = h_.rings.data() + at.rings + pick.ring;
+    mesh_.starOf(pick.id, ring, slots_.data() + pick.ring, outer_.data() + pick.ring);
+    star.centre = mesh_.point(pick.id);
+    star.ring.resize(pick.degree);
+    for (std::uint32_t k = 0; k < pick.degree; ++k) star.ring[k] = mesh_.point(ring[k]);
     retriangulateStar(star, fill);
     if (fill.size() > std::numeric_limits<std::uint16_t>::max() || fill.size() + 2 != star.ring.size())
       throw Error("internal error: deleting a vertex of degree " + std::to_string(star.ring.size()) + " made " +
                   std::to_string(fill.size()) + " triangles");
-    std::copy(fill.begin(), fill.end(), fill_.begin() + pick.plan);
-    double* error = fillError_.data() + pick.plan;
+    std::copy(fill.begin(), fill.end(), fill_.begin() + pick.fill);
+    placeSamples(pick, star, fill);
+    mesh_.retire(view(pick, at.rings), fill_.data() + pick.fill);
+    record(pick, level, at, ring);
+  }
+
+  void placeSamples(const Pick& pick, const Star& star, const std::vector<LocalTriangle>& fill) {
+    double* error = fillError_.data() + pick.fill;
     std::fill(error, error + fill.size(), 0.0);
     auto place = [&](VertexId s) {
       const Point3& p = mesh_.point(s);
@@ -225,87 +266,85 @@ class Simplifier {
       throw Error("internal error: a sample left its star");
     };
     place(pick.id);
-    mesh_.eachAround(pick.id, [&](std::int32_t slot, int) {
-      for (std::int32_t s = bucketHead_[slot]; s != kNoSample; s = bucketNext_[s]) place(static_cast<VertexId>(s));
-    });
+    for (std::uint32_t k = 0; k < pick.degree; ++k)
+      for (std::int32_t s = bucketHead_[slots_[pick.ring + k]]; s != kNoSample; s = bucketNext_[s])
+        place(static_cast<VertexId>(s));
   }
 
-  void apply(const std::vector<Pick>& picks, std::int32_t level, std::size_t original, std::size_t stopCount) {
-    for (std::size_t k = 0; k < picks.size(); ++k) {
-      remove(picks[k], level);
-      if ((k & 0xFFF) == 0) reportProgress(original, stopCount);
-    }
-    std::vector<VertexId> live;
-    live.reserve(live_.size());
-    for (VertexId v : live_)
-      if (h_.vertexLevel[v] == kOpenLevel) live.push_back(v);
-    live_.swap(live);
-  }
-
-  void remove(const Pick& pick, std::int32_t level) {
-    const std::int32_t g = static_cast<std::int32_t>(h_.groups.size());
-    MeshStar& star = star_;
-    mesh_.starOf(pick.id, star);
-    Group group;
+  // The group of a pick, its accept triangles (the star's) and its reject triangles (the
+  // new ones).
+  void record(const Pick& pick, std::int32_t level, const Ranges& at, const VertexId* ring) {
+    const std::int32_t g = static_cast<std::int32_t>(at.group);
+    const std::uint32_t d = pick.degree;
+    Group& group = h_.groups[at.group];
     group.vertex = pick.id;
     group.level = level;
     group.importance = pick.importance;
-    group.acceptBegin = static_cast<std::uint32_t>(h_.links.size());
-    samples_.assign(1, static_cast<std::int32_t>(pick.id));
-    for (std::int32_t slot : star.slots) {
-      const std::int32_t t = mesh_.triangle(slot).id;
-      h_.links.push_back(static_cast<std::uint32_t>(t));
+    group.acceptBegin = static_cast<std::uint32_t>(at.links + pick.ring + pick.fill);
+    group.acceptEnd = group.acceptBegin + d;
+    group.rejectBegin = group.acceptEnd;
+    group.rejectEnd = group.rejectBegin + d - 2;
+    group.ringBegin = static_cast<std::uint32_t>(at.rings + pick.ring);
+    group.ringEnd = group.ringBegin + d;
+    for (std::uint32_t k = 0; k < d; ++k) {
+      const std::int32_t t = mesh_.triangle(slots_[pick.ring + k]).id;
+      h_.links[group.acceptBegin + k] = static_cast<std::uint32_t>(t);
       h_.triangles[t].lastLevel = level - 1;
       h_.triangles[t].replacedBy = g;
-      for (std::int32_t s = bucketHead_[slot]; s != kNoSample; s = bucketNext_[s]) samples_.push_back(s);
-      bucketHead_[slot] = kNoSample;
-      slotError_[slot] = 0;
+      __atomic_store_n(&stale_[ring[k]], 1, __ATOMIC_RELAXED);  // stars that share a ring vertex race here
     }
-    group.acceptEnd = static_cast<std::uint32_t>(h_.links.size());
-    group.ringBegin = static_cast<std::uint32_t>(h_.rings.size());
-    h_.rings.insert(h_.rings.end(), star.ring.begin(), star.ring.end());
-    group.ringEnd = static_cast<std::uint32_t>(h_.rings.size());
-
-    const LocalTriangle* fill = fill_.data() + pick.plan;
-    const double* error = fillError_.data() + pick.plan;
-    const std::size_t count = star.ring.size() - 2;
-    ids_.clear();
-    group.rejectBegin = static_cast<std::uint32_t>(h_.links.size());
-    for (std::size_t j = 0; j < count; ++j) {
-      const std::int32_t t = static_cast<std::int32_t>(h_.triangles.size());
-      HierarchyTriangle ht;
-      ht.v = {star.ring[fill[j][0]], star.ring[fill[j][1]], star.ring[fill[j][2]]};
+    const LocalTriangle* fill = fill_.data() + pick.fill;
+    for (std::uint32_t j = 0; j + 2 < d; ++j) {
+      const std::size_t t = at.triangles + pick.fill + j;
+      HierarchyTriangle& ht = h_.triangles[t];
+      ht.v = {ring[fill[j][0]], ring[fill[j][1]], ring[fill[j][2]]};
       ht.firstLevel = level;
       ht.lastLevel = kOpenLevel;
       ht.group = g;
-      ht.error = error[j];
-      h_.triangles.push_back(ht);
-      h_.links.push_back(static_cast<std::uint32_t>(t));
-      ids_.push_back(t);
-      slotError_[star.slots[j]] = error[j];
-      group.error = std::max(group.error, error[j]);
+      ht.error = fillError_[pick.fill + j];
+      h_.links[group.rejectBegin + j] = static_cast<std::uint32_t>(t);
+      group.error = std::max(group.error, ht.error);
     }
-    group.rejectEnd = static_cast<std::uint32_t>(h_.links.size());
-    mesh_.replaceStar(star, fill, ids_.data());
-    for (std::int32_t s : samples_) {
+    h_.vertexLevel[pick.id] = level - 1;
+  }
+
+  // The second pass, for one pick: the new triangles go into the mesh and the samples
+  // into their buckets. Writes the pick's own slots, and the links back to them.
+  void replace(const Pick& pick, std::size_t triangles, std::size_t rings, std::vector<std::int32_t>& samples) {
+    const StarView star = view(pick, rings);
+    samples.assign(1, static_cast<std::int32_t>(pick.id));
+    for (int k = 0; k < star.degree; ++k) {
+      std::int32_t& head = bucketHead_[star.slots[k]];
+      for (std::int32_t s = head; s != kNoSample; s = bucketNext_[s]) samples.push_back(s);
+      head = kNoSample;
+      slotError_[star.slots[k]] = 0;
+    }
+    std::int32_t ids[64];
+    std::vector<std::int32_t> many;
+    std::int32_t* id = ids;
+    if (star.degree > 66) many.resize(star.degree - 2), id = many.data();
+    for (int j = 0; j + 2 < star.degree; ++j) {
+      id[j] = static_cast<std::int32_t>(triangles + pick.fill + j);
+      slotError_[star.slots[j]] = fillError_[pick.fill + j];
+    }
+    mesh_.replaceStar(star, fill_.data() + pick.fill, id);
+    for (std::int32_t s : samples) {
       const std::int32_t slot = star.slots[target_[s]];
       bucketNext_[s] = bucketHead_[slot];
       bucketHead_[slot] = s;
     }
-    for (VertexId u : star.ring) stale_[u] = 1;
-    h_.vertexLevel[pick.id] = level - 1;
-    h_.groups.push_back(group);
-    triangles_ -= 2;
   }
 
   // The largest error of the current triangles; a replaced triangle's slot holds 0 until
   // a new triangle takes it.
   double levelError() const { return slotError_.empty() ? 0.0 : *std::max_element(slotError_.begin(), slotError_.end()); }
 
-  void reportProgress(std::size_t original, std::size_t stopCount) {
-    const double span = std::max<double>(1.0, double(original) - double(stopCount));
-    lastFraction_ = std::clamp(0.1 + 0.9 * (double(original) - double(current_)) / span, 0.1, 1.0);
-    progress_.report(lastFraction_, "Simplifying level " + std::to_string(h_.coarsest() + 1));
+  // `within` of the way through deleting `deleting` vertices to make `level`.
+  void reportProgress(std::int32_t level, double within, std::size_t deleting) {
+    const double span = std::max<double>(1.0, double(original_) - double(stopCount_));
+    const double gone = double(original_) - double(current_) + within * double(deleting);
+    lastFraction_ = std::clamp(0.1 + 0.9 * gone / span, 0.1, 1.0);
+    progress_.report(lastFraction_, "Simplifying level " + std::to_string(level));
   }
 
   void finish() {
@@ -330,10 +369,9 @@ class Simplifier {
   std::vector<double> slotError_;            // by slot: its triangle's error
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
   std::vector<double> fillError_;            //   and their errors
-  MeshStar star_;                            // scratch buffers, reused to spare allocations
-  std::vector<std::int32_t> samples_;
-  std::vector<std::int32_t> ids_;
-  std::size_t current_ = 0, triangles_ = 0;
+  std::vector<std::int32_t> slots_;          //   and each pick's star slots
+  std::vector<std::int32_t> outer_;          //   and the triangles beyond its ring
+  std::size_t original_ = 0, stopCount_ = 0, current_ = 0, triangles_ = 0;
   double lastFraction_ = 0.1;
 };
 

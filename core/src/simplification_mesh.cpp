@@ -97,56 +97,85 @@ int SimplificationMesh::degree(VertexId v) const {
   return d;
 }
 
-void SimplificationMesh::starOf(VertexId v, MeshStar& star) const {
-  star.ring.clear();
-  star.slots.clear();
+// Visits (slot, k) around v starting at the slot whose next ring vertex has the
+// smallest id. One walk, kept, then visited from there: the walk is the costly part.
+template <class Visit>
+void SimplificationMesh::canonicalWalk(VertexId v, Visit visit) const {
+  thread_local std::vector<std::pair<std::int32_t, int>> around;
+  around.clear();
+  std::size_t best = 0;
+  std::int32_t bestId = 0;
   eachAround(v, [&](std::int32_t t, int k) {
-    star.ring.push_back(static_cast<VertexId>(triangles_[t].v[(k + 1) % 3]));
-    star.slots.push_back(t);
+    const std::int32_t id = triangles_[t].v[(k + 1) % 3];
+    if (around.empty() || id < bestId) best = around.size(), bestId = id;
+    around.emplace_back(t, k);
+  });
+  for (std::size_t i = best; i < around.size(); ++i) visit(around[i].first, around[i].second);
+  for (std::size_t i = 0; i < best; ++i) visit(around[i].first, around[i].second);
+}
+
+void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer) const {
+  int i = 0;
+  canonicalWalk(v, [&](std::int32_t t, int k) {
+    const MeshTriangle& tri = triangles_[t];
+    ring[i] = static_cast<VertexId>(tri.v[(k + 1) % 3]);
+    slots[i] = t;
+    outer[i++] = tri.n[k];
   });
 }
 
 void SimplificationMesh::geometryOf(VertexId v, Star& star) const {
   star.centre = points_[v];
   star.ring.clear();
-  eachAround(v, [&](std::int32_t t, int k) { star.ring.push_back(points_[triangles_[t].v[(k + 1) % 3]]); });
+  canonicalWalk(v, [&](std::int32_t t, int k) { star.ring.push_back(points_[triangles_[t].v[(k + 1) % 3]]); });
 }
 
-// Ring edge k (ring[k] -> ring[k + 1]) is the edge of slots[k] opposite the vertex; the
-// triangle beyond it now faces the new triangle that has that edge. Diagonals pair up
-// through `owner_`, indexed by directed edge (p, q) of local ring indices.
-void SimplificationMesh::replaceStar(const MeshStar& star, const LocalTriangle* fill, const std::int32_t* ids) {
-  const int d = static_cast<int>(star.ring.size());
-  const std::size_t count = star.ring.size() - 2;
-  std::array<std::int32_t, 64> outerSmall;
-  std::vector<std::int32_t> outerLarge;
-  std::int32_t* outer = outerSmall.data();
-  if (d > 64) outerLarge.resize(d), outer = outerLarge.data();
-  for (int k = 0; k < d; ++k) {
-    const MeshTriangle& tri = triangles_[star.slots[k]];
-    const std::int32_t a = static_cast<std::int32_t>(star.ring[k]);
-    const int i = tri.v[0] == a ? 0 : tri.v[1] == a ? 1 : 2;  // a follows the vertex: the edge is opposite it
-    outer[k] = tri.n[(i + 2) % 3];
-  }
-  if (owner_.size() < static_cast<std::size_t>(d) * d) owner_.resize(static_cast<std::size_t>(d) * d);
-  for (std::size_t j = 0; j < count; ++j)
-    for (int e = 0; e < 3; ++e) owner_[fill[j][e] * d + fill[j][(e + 1) % 3]] = star.slots[j];
-  for (std::size_t j = 0; j < count; ++j) {
+void SimplificationMesh::beginRound() {
+  if (successor_.empty()) successor_.assign(triangles_.size(), kNoTriangle), retired_.assign(triangles_.size(), 0);
+  ++round_;
+}
+
+void SimplificationMesh::retire(const StarView& star, const LocalTriangle* fill) {
+  const int d = star.degree;
+  for (int j = 0; j + 2 < d; ++j)
+    for (int e = 0; e < 3; ++e) {
+      const int p = fill[j][e], q = fill[j][(e + 1) % 3];
+      if (q != (p + 1) % d) continue;
+      successor_[star.slots[p]] = star.slots[j];
+      retired_[star.slots[p]] = round_;
+    }
+}
+
+// Diagonals pair up through `owner`, indexed by directed edge (p, q) of local ring
+// indices. A ring edge faces the triangle beyond it, or that triangle's successor when
+// its own star is being replaced too (which then links back by itself).
+void SimplificationMesh::replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids) {
+  const int d = star.degree;
+  thread_local std::vector<std::int32_t> owner;
+  if (owner.size() < static_cast<std::size_t>(d) * d) owner.resize(static_cast<std::size_t>(d) * d);
+  for (int j = 0; j + 2 < d; ++j)
+    for (int e = 0; e < 3; ++e) owner[fill[j][e] * d + fill[j][(e + 1) % 3]] = star.slots[j];
+  for (int j = 0; j + 2 < d; ++j) {
     const std::int32_t slot = star.slots[j];
     MeshTriangle& tri = triangles_[slot];
     tri.id = ids[j];
     for (int e = 0; e < 3; ++e) {
       const int p = fill[j][(e + 1) % 3], q = fill[j][(e + 2) % 3];  // the edge opposite corner e
-      tri.v[e] = static_cast<std::int32_t>(star.ring[fill[j][e]]);
-      start_[star.ring[fill[j][e]]] = slot;
+      const VertexId corner = star.ring[fill[j][e]];
+      tri.v[e] = static_cast<std::int32_t>(corner);
+      // Stars that share a ring vertex race here; either new triangle is a right answer.
+      __atomic_store_n(&start_[corner], slot, __ATOMIC_RELAXED);
       if (q != (p + 1) % d) {
-        tri.n[e] = owner_[q * d + p];
+        tri.n[e] = owner[q * d + p];
         continue;
       }
-      const std::int32_t beyond = outer[p];
+      const std::int32_t beyond = star.outer[p];
+      if (beyond != kNoTriangle && retired_[beyond] == round_) {
+        tri.n[e] = successor_[beyond];
+        continue;
+      }
       tri.n[e] = beyond;
       if (beyond == kNoTriangle) continue;
-      // Found by its edge, not by the old slot, which a new triangle may have taken.
       MeshTriangle& b = triangles_[beyond];
       const std::int32_t head = static_cast<std::int32_t>(star.ring[q]);
       b.n[b.v[1] == head ? 0 : b.v[2] == head ? 1 : 2] = slot;

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Private: the TIN the delete simplification works on, as flat arrays of triangles with
 // their neighbours. CGAL's triangulation is a general structure (infinite faces, handles
-// in a container, a remove() that checks dimensions and degrees); the simplifier only
-// ever deletes interior vertices of an independent set, and flat arrays in the TIN's own
-// order keep each star walk in cache. Predicates stay CGAL's exact ones.
+// in a container, a remove() that checks dimensions and degrees, one vertex at a time);
+// the simplifier only ever deletes interior vertices of an independent set, whose stars
+// are disjoint, so here a whole set is deleted in two passes that each run on every core,
+// and the arrays, in the TIN's own order, keep each star walk in cache. Predicates stay
+// CGAL's exact ones.
 #pragma once
 
 #include <array>
@@ -23,11 +25,15 @@ struct MeshTriangle {
   std::int32_t id;                // the triangle's id in the hierarchy
 };
 
-// A vertex's star as the simplifier needs it: ring[k], ring[k + 1] and the vertex make
-// slots[k], counter-clockwise.
-struct MeshStar {
-  std::vector<VertexId> ring;
-  std::vector<std::int32_t> slots;
+// A vertex's star, `degree` long: ring[k], ring[k + 1] and the vertex make slots[k],
+// counter-clockwise, and outer[k] is the triangle beyond ring edge k (or kNoTriangle).
+// The ring starts at its smallest vertex id, so nothing computed from a star depends on
+// where a walk happened to start.
+struct StarView {
+  const VertexId* ring;
+  const std::int32_t* slots;
+  const std::int32_t* outer;
+  int degree;
 };
 
 class SimplificationMesh {
@@ -44,8 +50,8 @@ class SimplificationMesh {
   // closed star and is never deleted.
   bool open(VertexId v) const { return open_[v] != 0; }
 
-  // Calls visit(slot, k) for each triangle around an interior vertex, counter-clockwise,
-  // where k is the vertex's index in the triangle.
+  // Calls visit(slot, k) for each triangle around an interior vertex, counter-clockwise
+  // from wherever the walk starts, where k is the vertex's index in the triangle.
   template <class Visit>
   void eachAround(VertexId v, Visit visit) const {
     const std::int32_t first = start_[v];
@@ -58,23 +64,32 @@ class SimplificationMesh {
     } while (t != first);
   }
   int degree(VertexId v) const;
-  void starOf(VertexId v, MeshStar& star) const;
-  void geometryOf(VertexId v, Star& star) const;  // the same star as points, for importance
+  // Writes the star of an interior vertex into arrays of degree(v) entries each.
+  void starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer) const;
+  void geometryOf(VertexId v, Star& star) const;  // the same ring as points, for importance
 
-  // Deletes an interior vertex: `fill` (ring.size() - 2 triangles of local indices, from
-  // retriangulateStar) triangulates its star's ring. The new triangles take the first
-  // star slots, in fill's order, with `ids` as their hierarchy ids; the last two slots die.
-  void replaceStar(const MeshStar& star, const LocalTriangle* fill, const std::int32_t* ids);
+  // Deleting an independent set: beginRound(), then retire() for every star (it only
+  // reads the triangles), then replaceStar() for every star, each on any thread.
+  // `fill` (degree - 2 triangles of local ring indices, from retriangulateStar)
+  // triangulates the ring; the new triangles take the first star slots, in fill's order,
+  // with `ids` as their hierarchy ids, and the last two slots die.
+  void beginRound();
+  void retire(const StarView& star, const LocalTriangle* fill);
+  void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
 
  private:
   void link();
   void checkDelaunay() const;
+  template <class Visit>
+  void canonicalWalk(VertexId v, Visit visit) const;
 
   std::vector<Point3> points_;
   std::vector<MeshTriangle> triangles_;
-  std::vector<std::int32_t> start_;  // by vertex: one triangle around it
+  std::vector<std::int32_t> start_;      // by vertex: one triangle around it
   std::vector<std::uint8_t> open_;
-  std::vector<std::int32_t> owner_;  // scratch of replaceStar: the new triangle of each ring edge
+  std::vector<std::int32_t> successor_;  // by slot retired this round: the new slot holding its ring edge
+  std::vector<std::uint32_t> retired_;   // by slot: the round that retired it
+  std::uint32_t round_ = 0;
 };
 
 }  // namespace tinlod
