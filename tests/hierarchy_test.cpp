@@ -222,6 +222,66 @@ TEST(Hierarchy, RealDemsEveryMeasure) {
   }
 }
 
+// The same TIN with its triangles listed in another order, each starting at another
+// corner: the simplifier walks stars from their smallest vertex and breaks ties by id, so
+// the same vertices go at the same levels with the same importances, and every level has
+// the same triangles.
+TEST(Hierarchy, ResultDoesNotDependOnTheOrderOfTheTriangles) {
+  const Tin tin = sampleTin(test::smallSyntheticDem(), {}, kQuiet);
+  Tin shuffled = tin;
+  std::reverse(shuffled.triangles.begin(), shuffled.triangles.end());
+  for (std::size_t t = 0; t < shuffled.triangles.size(); t += 2)
+    std::rotate(shuffled.triangles[t].begin(), shuffled.triangles[t].begin() + 1, shuffled.triangles[t].end());
+  for (Measure m : {Measure::Volume, Measure::Error}) {
+    HierarchyOptions o;
+    o.measure = m;
+    const Hierarchy a = buildHierarchy(tin, {}, o, kQuiet), b = buildHierarchy(shuffled, {}, o, kQuiet);
+    ASSERT_EQ(a.groups.size(), b.groups.size());
+    for (std::size_t g = 0; g < a.groups.size(); ++g) {
+      ASSERT_EQ(a.groups[g].vertex, b.groups[g].vertex);
+      ASSERT_EQ(a.groups[g].level, b.groups[g].level);
+      ASSERT_EQ(a.groups[g].importance, b.groups[g].importance);
+      ASSERT_EQ(a.groups[g].error, b.groups[g].error);
+    }
+    for (std::int32_t level = 0; level <= a.coarsest(); ++level) {
+      auto triangles = [&](const Hierarchy& h) {
+        std::set<std::array<VertexId, 3>> out;
+        for (std::uint32_t t : h.levelTriangles(level)) {
+          Triangle v = h.triangles[t].v;
+          std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+          out.insert(v);
+        }
+        return out;
+      };
+      EXPECT_EQ(triangles(a), triangles(b)) << measureName(m) << " level " << level;
+    }
+  }
+}
+
+// Level 0 must be a Delaunay TIN with counter-clockwise triangles: a flipped diagonal,
+// a clockwise triangle or two triangles on one side of an edge are refused.
+TEST(Hierarchy, RefusesALevelZeroThatIsNotDelaunay) {
+  Tin quad;
+  quad.vertices = {{0, 0, 0}, {10, 0, 0}, {10, 1, 0}, {0, 1, 0}};
+  quad.triangles = {{0, 1, 2}, {0, 2, 3}};  // cocircular: either diagonal is Delaunay
+  EXPECT_NO_THROW(buildHierarchy(quad, {}, {}, kQuiet));
+  Tin bad;
+  bad.vertices = {{0, 0, 0}, {10, 0, 0}, {5, 1, 0}, {5, -1, 0}};
+  bad.triangles = {{0, 1, 2}, {1, 0, 3}};  // the long diagonal 0-1 of a thin rhombus
+  try {
+    buildHierarchy(bad, {}, {}, kQuiet);
+    ADD_FAILURE() << "a non-Delaunay diagonal was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not a Delaunay triangulation"), std::string::npos) << e.what();
+  }
+  Tin clockwise = quad;
+  std::swap(clockwise.triangles[0][1], clockwise.triangles[0][2]);
+  EXPECT_THROW(buildHierarchy(clockwise, {}, {}, kQuiet), Error);
+  Tin doubled = quad;
+  doubled.triangles.push_back({0, 1, 2});
+  EXPECT_THROW(buildHierarchy(doubled, {}, {}, kQuiet), Error);
+}
+
 TEST(Hierarchy, PatagoniaSeaSimplifiesDeterministically) {
   const std::string dir = test::dataDir();
   if (dir.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";

@@ -101,6 +101,33 @@ TEST(Importance, FlatnessIsOneOnAPlaneAndCosOfTheSlopeOnAPyramid) {
   EXPECT_NEAR(importance(Measure::Normal, tilted, {}), 0.0, 1e-12);
 }
 
+// Twelve points with whole coordinates exactly on the circle of radius 5: every
+// triangulation of the polygon is Delaunay, so floating-point ranking of ears is all
+// ties. The result must still be a triangulation with no vertex strictly inside any
+// triangle's circumcircle (exact test).
+TEST(Importance, RetriangulationOfAnExactlyCocircularStar) {
+  Star s;
+  s.centre = {0.5, 0.25, 1};
+  for (auto [x, y] : std::vector<std::pair<double, double>>{{5, 0}, {4, 3}, {3, 4}, {0, 5}, {-3, 4}, {-4, 3},
+                                                             {-5, 0}, {-4, -3}, {-3, -4}, {0, -5}, {3, -4}, {4, -3}})
+    s.ring.push_back({x, y, 0});
+  const std::vector<LocalTriangle> tris = retriangulateStar(s);
+  ASSERT_EQ(tris.size(), 10u);
+  double area = 0, polygon = 0;
+  for (std::size_t i = 0; i < s.ring.size(); ++i) {
+    const Point3 &a = s.ring[i], &b = s.ring[(i + 1) % s.ring.size()];
+    polygon += 0.5 * (a.x * b.y - b.x * a.y);
+  }
+  for (const LocalTriangle& t : tris) {
+    const K::Point_2 a(s.ring[t[0]].x, s.ring[t[0]].y), b(s.ring[t[1]].x, s.ring[t[1]].y), c(s.ring[t[2]].x, s.ring[t[2]].y);
+    ASSERT_EQ(CGAL::orientation(a, b, c), CGAL::LEFT_TURN);
+    area += CGAL::area(a, b, c);
+    for (const Point3& q : s.ring)
+      EXPECT_NE(CGAL::side_of_oriented_circle(a, b, c, K::Point_2(q.x, q.y)), CGAL::ON_POSITIVE_SIDE);
+  }
+  EXPECT_DOUBLE_EQ(area, polygon);
+}
+
 TEST(Importance, VerticalErrorOfTheCentreAndOfSamples) {
   const Star p = pyramid(6, 10, 2.5);
   const auto tris = retriangulateStar(p);

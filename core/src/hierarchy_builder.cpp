@@ -10,6 +10,7 @@
 
 #include "nearest_vertices.h"
 #include "parallel_blocks.h"
+#include "sample_buckets.h"
 #include "simplification_mesh.h"
 #include "tinlod/error.h"
 
@@ -20,7 +21,6 @@ using Clock = std::chrono::steady_clock;
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 constexpr std::int32_t kOpenLevel = std::numeric_limits<std::int32_t>::max();
-constexpr std::int32_t kNoSample = -1;
 constexpr std::size_t kMinLevelShare = 100;  // a level must delete at least 1 / 100 of its vertices
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
@@ -98,9 +98,7 @@ class Simplifier {
       ht.lastLevel = kOpenLevel;
       h_.triangles.push_back(ht);
     }
-    bucketHead_.assign(mesh_.slotCount(), kNoSample);
-    bucketNext_.assign(nv, kNoSample);
-    target_.assign(nv, 0);
+    samples_.reset(mesh_.slotCount());
     slotError_.assign(mesh_.slotCount(), 0.0);
     h_.vertexLevel.assign(nv, kOpenLevel);
     importance_.assign(nv, 0.0);
@@ -130,7 +128,7 @@ class Simplifier {
   void samplesAround(VertexId v, std::vector<Point3>& samples) const {
     samples.clear();
     mesh_.eachAround(v, [&](std::int32_t slot, int) {
-      for (std::int32_t s = bucketHead_[slot]; s != kNoSample; s = bucketNext_[s]) samples.push_back(mesh_.point(s));
+      for (std::size_t i = samples_.begin(slot); i < samples_.end(slot); ++i) samples.push_back(samples_.point(i));
     });
   }
 
@@ -156,21 +154,43 @@ class Simplifier {
     }, [&](double) { progress_.report(lastFraction_, phase); });
   }
 
+  // Halves sorted apart, one on each core, then merged.
+  static void sortOnTwoCores(std::vector<std::pair<double, VertexId>>& candidates) {
+    const auto middle = candidates.begin() + static_cast<std::ptrdiff_t>(candidates.size() / 2);
+    forEachBlock(2, [&](int begin, int end) {
+      for (int half = begin; half < end; ++half)
+        half == 0 ? std::sort(candidates.begin(), middle) : std::sort(middle, candidates.end());
+    }, {});
+    std::inplace_merge(candidates.begin(), middle, candidates.end());
+  }
+
   bool wanted(double importance) const {
     if (options_.measure == Measure::Error && importance > options_.maxError) return false;
     return !options_.thresholdMode || importance < options_.threshold;
   }
 
+  // Samples and errors follow their triangles to the compacted slots.
+  void compact() {
+    const std::size_t oldSlots = mesh_.slotCount();
+    const std::vector<std::int32_t> oldOf = mesh_.compact();
+    samples_.rebuild(oldOf, oldSlots);
+    std::vector<double> errors(oldOf.size());
+    for (std::size_t slot = 0; slot < oldOf.size(); ++slot) errors[slot] = slotError_[oldOf[slot]];
+    slotError_.swap(errors);
+  }
+
   // Best first, ties broken by vertex id: the result never depends on memory layout.
   // Each pick blocks its neighbours, so the set is independent. Returned in vertex order,
   // which is the TIN's spatial order: the plan and the mesh are then walked in cache.
+
   std::vector<Pick> select(std::int32_t level, std::size_t stopCount) {
+    if (level > 1) compact();
     updateStaleImportances(level);
     std::vector<std::pair<double, VertexId>> candidates;
     candidates.reserve(live_.size());
     for (VertexId v : live_)
       if (eligible(v) && wanted(importance_[v])) candidates.emplace_back(importance_[v], v);
-    std::sort(candidates.begin(), candidates.end());
+    sortOnTwoCores(candidates);
     std::size_t limit = current_ - stopCount;
     if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
@@ -181,7 +201,7 @@ class Simplifier {
       std::uint32_t degree = 0;
       stamp_[v] = level;
       mesh_.eachAround(v, [&](std::int32_t slot, int k) {
-        stamp_[mesh_.triangle(slot).v[(k + 1) % 3]] = level;
+        stamp_[mesh_.corner(slot, (k + 1) % 3)] = level;
         ++degree;
       });
       picks.push_back({imp, v, degree});
@@ -193,6 +213,7 @@ class Simplifier {
     fillError_.resize(fills);
     slots_.resize(rings);
     outer_.resize(rings);
+    samples_.expect(picks.size());
     return picks;
   }
 
@@ -208,11 +229,10 @@ class Simplifier {
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       Star star;
       std::vector<LocalTriangle> fill;
-      for (int i = begin; i < end; ++i) plan(picks[i], level, Ranges{groups + i, triangles, links, rings}, star, fill);
+      for (int i = begin; i < end; ++i) plan(picks, i, level, Ranges{groups + i, triangles, links, rings}, star, fill);
     }, [&](double f) { reportProgress(level, f / 2, picks.size()); });
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
-      std::vector<std::int32_t> samples;
-      for (int i = begin; i < end; ++i) replace(picks[i], triangles, rings, samples);
+      for (int i = begin; i < end; ++i) replace(picks[i], triangles, rings);
     }, [&](double f) { reportProgress(level, 0.5 + f / 2, picks.size()); });
     std::vector<VertexId> live;
     live.reserve(live_.size());
@@ -235,40 +255,40 @@ class Simplifier {
   // The first pass, for one pick: its star, its retriangulation, the new triangle that
   // will hold each sample under the star (and the vertex itself), and its group. Reads
   // the mesh; writes only the pick's own entries.
-  void plan(const Pick& pick, std::int32_t level, const Ranges& at, Star& star, std::vector<LocalTriangle>& fill) {
+  void plan(const std::vector<Pick>& picks, std::size_t index, std::int32_t level, const Ranges& at, Star& star,
+            std::vector<LocalTriangle>& fill) {
+    const Pick& pick = picks[index];
     VertexId* ring = h_.rings.data() + at.rings + pick.ring;
-    mesh_.starOf(pick.id, ring, slots_.data() + pick.ring, outer_.data() + pick.ring);
-    star.centre = mesh_.point(pick.id);
-    star.ring.resize(pick.degree);
-    for (std::uint32_t k = 0; k < pick.degree; ++k) star.ring[k] = mesh_.point(ring[k]);
+    mesh_.starOf(pick.id, ring, slots_.data() + pick.ring, outer_.data() + pick.ring, star);
     retriangulateStar(star, fill);
-    if (fill.size() > std::numeric_limits<std::uint16_t>::max() || fill.size() + 2 != star.ring.size())
+    if (fill.size() + 2 != star.ring.size())
       throw Error("internal error: deleting a vertex of degree " + std::to_string(star.ring.size()) + " made " +
                   std::to_string(fill.size()) + " triangles");
     std::copy(fill.begin(), fill.end(), fill_.begin() + pick.fill);
-    placeSamples(pick, star, fill);
+    placeSamples(pick, index, star, fill);
     mesh_.retire(view(pick, at.rings), fill_.data() + pick.fill);
     record(pick, level, at, ring);
   }
 
-  void placeSamples(const Pick& pick, const Star& star, const std::vector<LocalTriangle>& fill) {
+  // The vertex becomes a sample of the new triangle that holds it, and the samples
+  // under the star move to theirs.
+  void placeSamples(const Pick& pick, std::size_t index, const Star& star, const std::vector<LocalTriangle>& fill) {
     double* error = fillError_.data() + pick.fill;
     std::fill(error, error + fill.size(), 0.0);
-    auto place = [&](VertexId s) {
-      const Point3& p = mesh_.point(s);
+    const std::int32_t* slots = slots_.data() + pick.ring;
+    auto place = [&](const Point3& p) {
       for (std::size_t j = 0; j < fill.size(); ++j) {
         const Point3 &a = star.ring[fill[j][0]], &b = star.ring[fill[j][1]], &c = star.ring[fill[j][2]];
         if (!containsXY(a, b, c, p)) continue;
-        target_[s] = static_cast<std::uint16_t>(j);
         error[j] = std::max(error[j], std::fabs(p.z - planeZ(a, b, c, p.x, p.y)));
-        return;
+        return slots[j];
       }
       throw Error("internal error: a sample left its star");
     };
-    place(pick.id);
+    samples_.add(index, star.centre, place(star.centre));
     for (std::uint32_t k = 0; k < pick.degree; ++k)
-      for (std::int32_t s = bucketHead_[slots_[pick.ring + k]]; s != kNoSample; s = bucketNext_[s])
-        place(static_cast<VertexId>(s));
+      for (std::size_t i = samples_.begin(slots[k]); i < samples_.end(slots[k]); ++i)
+        samples_.moveTo(i, place(samples_.point(i)));
   }
 
   // The group of a pick, its accept triangles (the star's) and its reject triangles (the
@@ -287,7 +307,7 @@ class Simplifier {
     group.ringBegin = static_cast<std::uint32_t>(at.rings + pick.ring);
     group.ringEnd = group.ringBegin + d;
     for (std::uint32_t k = 0; k < d; ++k) {
-      const std::int32_t t = mesh_.triangle(slots_[pick.ring + k]).id;
+      const std::int32_t t = mesh_.triangleId(slots_[pick.ring + k]);
       h_.links[group.acceptBegin + k] = static_cast<std::uint32_t>(t);
       h_.triangles[t].lastLevel = level - 1;
       h_.triangles[t].replacedBy = g;
@@ -310,15 +330,8 @@ class Simplifier {
 
   // The second pass, for one pick: the new triangles go into the mesh and the samples
   // into their buckets. Writes the pick's own slots, and the links back to them.
-  void replace(const Pick& pick, std::size_t triangles, std::size_t rings, std::vector<std::int32_t>& samples) {
+  void replace(const Pick& pick, std::size_t triangles, std::size_t rings) {
     const StarView star = view(pick, rings);
-    samples.assign(1, static_cast<std::int32_t>(pick.id));
-    for (int k = 0; k < star.degree; ++k) {
-      std::int32_t& head = bucketHead_[star.slots[k]];
-      for (std::int32_t s = head; s != kNoSample; s = bucketNext_[s]) samples.push_back(s);
-      head = kNoSample;
-      slotError_[star.slots[k]] = 0;
-    }
     std::int32_t ids[64];
     std::vector<std::int32_t> many;
     std::int32_t* id = ids;
@@ -327,12 +340,8 @@ class Simplifier {
       id[j] = static_cast<std::int32_t>(triangles + pick.fill + j);
       slotError_[star.slots[j]] = fillError_[pick.fill + j];
     }
+    slotError_[star.slots[star.degree - 2]] = slotError_[star.slots[star.degree - 1]] = 0;
     mesh_.replaceStar(star, fill_.data() + pick.fill, id);
-    for (std::int32_t s : samples) {
-      const std::int32_t slot = star.slots[target_[s]];
-      bucketNext_[s] = bucketHead_[slot];
-      bucketHead_[slot] = s;
-    }
   }
 
   // The largest error of the current triangles; a replaced triangle's slot holds 0 until
@@ -363,9 +372,7 @@ class Simplifier {
   std::vector<double> importance_;           // by vertex
   std::vector<std::int32_t> stamp_;          // by vertex: the level in which it or a neighbour was picked
   std::vector<std::uint8_t> stale_;          // by vertex: its importance must be recomputed
-  std::vector<std::int32_t> bucketHead_;     // by slot: first deleted sample under its triangle
-  std::vector<std::int32_t> bucketNext_;     // by vertex: next sample in the same bucket
-  std::vector<std::uint16_t> target_;        // by vertex: the planned new triangle of a sample
+  SampleBuckets samples_;                    // the level-0 samples under each slot
   std::vector<double> slotError_;            // by slot: its triangle's error
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
   std::vector<double> fillError_;            //   and their errors

@@ -73,58 +73,91 @@ Measure parseMeasure(const std::string& name) {
 
 namespace {
 
-// Whether the ear at position i of the polygon (indices into the ring) is convex and no
-// other vertex of the polygon is strictly inside its circumcircle: then it is a triangle
-// of the polygon's Delaunay triangulation (exact predicates).
-bool delaunayEar(const std::vector<Point3>& ring, const std::vector<int>& polygon, std::size_t i) {
-  const std::size_t m = polygon.size();
-  const Point3 &a = ring[polygon[(i + m - 1) % m]], &b = ring[polygon[i]], &c = ring[polygon[(i + 1) % m]];
-  if (!leftTurn(a, b, c)) return false;
-  const K::Point_2 pa = xy(a), pb = xy(b), pc = xy(c);
-  for (std::size_t j = (i + 2) % m; j != (i + m - 1) % m; j = (j + 1) % m)
-    if (CGAL::side_of_oriented_circle(pa, pb, pc, xy(ring[polygon[j]])) == CGAL::ON_POSITIVE_SIDE) return false;
-  return true;
-}
-
-// Devillers' ranking in floating point picks the ear; the exact test above confirms it,
-// and in the rare near tie where it does not, the first ear that passes is taken.
-std::size_t nextEar(const Star& star, const std::vector<int>& polygon) {
-  const std::vector<Point3>& ring = star.ring;
-  const std::size_t m = polygon.size();
-  std::size_t best = m;
-  double bestPower = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < m; ++i) {
-    const int a = polygon[(i + m - 1) % m], b = polygon[i], c = polygon[(i + 1) % m];
-    if (!leftTurn(ring[a], ring[b], ring[c])) continue;
-    const double pw = power(star.centre, ring[a], ring[b], ring[c]);
-    if (best == m || pw > bestPower) best = i, bestPower = pw;
+// Devillers' ear queue over the ring as a cyclic list: each ear keeps its rank, and
+// clipping one re-ranks only its two neighbours.
+class EarClipper {
+ public:
+  explicit EarClipper(const Star& star) : star_(star), prev_(lists_.prev), next_(lists_.next), power_(lists_.power), convex_(lists_.convex) {
+    const int d = static_cast<int>(star.ring.size());
+    prev_.resize(d), next_.resize(d), power_.resize(d), convex_.resize(d);
+    for (int i = 0; i < d; ++i) prev_[i] = (i + d - 1) % d, next_[i] = (i + 1) % d;
+    for (int i = 0; i < d; ++i) rank(i);
   }
-  if (best < m && delaunayEar(ring, polygon, best)) return best;
-  for (std::size_t i = 0; i < m; ++i)
-    if (delaunayEar(ring, polygon, i)) return i;
-  throw Error("internal error: a star polygon has no Delaunay ear");
-}
+
+  // exact: confirm each ear with exact predicates, as the deletion needs; otherwise the
+  // floating-point ranking alone, enough for an importance value.
+  void run(std::vector<LocalTriangle>& out, bool exact) {
+    out.clear();
+    int head = 0;
+    for (int m = static_cast<int>(star_.ring.size()); m > 3; --m) {
+      int ear = bestEar(head, m);
+      if (exact && (ear < 0 || !delaunay(ear))) ear = firstDelaunayEar(head, m);
+      if (ear < 0) return;  // no convex ear: not a star polygon (cannot happen for a star)
+      out.push_back({prev_[ear], ear, next_[ear]});
+      next_[prev_[ear]] = next_[ear], prev_[next_[ear]] = prev_[ear];
+      if (head == ear) head = next_[ear];
+      rank(prev_[ear]), rank(next_[ear]);
+    }
+    if (star_.ring.size() >= 3) out.push_back({head, next_[head], next_[next_[head]]});
+  }
+
+ private:
+  void rank(int i) {
+    const std::vector<Point3>& ring = star_.ring;
+    convex_[i] = leftTurn(ring[prev_[i]], ring[i], ring[next_[i]]);
+    if (convex_[i]) power_[i] = power(star_.centre, ring[prev_[i]], ring[i], ring[next_[i]]);
+  }
+
+  int bestEar(int head, int m) const {
+    int best = -1;
+    for (int i = head, k = 0; k < m; ++k, i = next_[i])
+      if (convex_[i] && (best < 0 || power_[i] > power_[best])) best = i;
+    return best;
+  }
+
+  // Convex, and no other vertex of the polygon strictly inside its circumcircle: a
+  // triangle of the polygon's Delaunay triangulation (exact predicates).
+  bool delaunay(int i) const {
+    if (!convex_[i]) return false;
+    const std::vector<Point3>& ring = star_.ring;
+    const K::Point_2 a = xy(ring[prev_[i]]), b = xy(ring[i]), c = xy(ring[next_[i]]);
+    for (int j = next_[next_[i]]; j != prev_[i]; j = next_[j])
+      if (CGAL::side_of_oriented_circle(a, b, c, xy(ring[j])) == CGAL::ON_POSITIVE_SIDE) return false;
+    return true;
+  }
+
+  // Only in a near tie, where the floating-point ranking chose an ear the exact test
+  // refuses.
+  int firstDelaunayEar(int head, int m) const {
+    for (int i = head, k = 0; k < m; ++k, i = next_[i])
+      if (delaunay(i)) return i;
+    throw Error("internal error: a star polygon has no Delaunay ear");
+  }
+
+  // Kept per thread: the simplifier clips millions of small stars.
+  struct Lists {
+    std::vector<int> prev, next;
+    std::vector<double> power;
+    std::vector<char> convex;
+  };
+  static thread_local Lists lists_;
+  const Star& star_;
+  std::vector<int>&prev_, &next_;
+  std::vector<double>& power_;
+  std::vector<char>& convex_;
+};
+
+thread_local EarClipper::Lists EarClipper::lists_;
 
 }  // namespace
 
-void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out) {
-  thread_local std::vector<int> polygon;
-  polygon.resize(star.ring.size());
-  for (std::size_t i = 0; i < polygon.size(); ++i) polygon[i] = static_cast<int>(i);
-  out.clear();
-  while (polygon.size() > 3) {
-    const std::size_t m = polygon.size(), best = nextEar(star, polygon);
-    out.push_back({polygon[(best + m - 1) % m], polygon[best], polygon[(best + 1) % m]});
-    polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(best));
-  }
-  if (polygon.size() == 3) out.push_back({polygon[0], polygon[1], polygon[2]});
-}
+void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out) { EarClipper(star).run(out, true); }
 
 namespace {
 
 const std::vector<LocalTriangle>& retriangulateInScratch(const Star& star) {
   thread_local std::vector<LocalTriangle> out;
-  retriangulateStar(star, out);
+  EarClipper(star).run(out, false);
   return out;
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "parallel_blocks.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -23,6 +24,9 @@ const char* kNotSampled = "the level-0 TIN is not a Delaunay triangulation: it w
 SimplificationMesh::SimplificationMesh(const Tin& base) {
   points_.reserve(base.vertices.size());
   for (const TinVertex& v : base.vertices) points_.push_back({v.x, v.y, v.z});
+  global_.resize(points_.size());
+  localOf_.resize(points_.size());
+  for (std::size_t v = 0; v < points_.size(); ++v) global_[v] = static_cast<VertexId>(v), localOf_[v] = static_cast<std::int32_t>(v);
   std::vector<std::uint32_t> first(points_.size() + 1, 0);
   for (const Triangle& tri : base.triangles) {
     for (VertexId v : tri)
@@ -33,8 +37,6 @@ SimplificationMesh::SimplificationMesh(const Tin& base) {
   triangles_.resize(base.triangles.size());
   for (std::size_t t = 0; t < base.triangles.size(); ++t) {
     const Triangle& tri = base.triangles[t];
-    if (CGAL::orientation(xy(points_[tri[0]]), xy(points_[tri[1]]), xy(points_[tri[2]])) != CGAL::LEFT_TURN)
-      throw Error(kNotSampled);
     triangles_[first[*std::min_element(tri.begin(), tri.end())]++] = {
         {std::int32_t(tri[0]), std::int32_t(tri[1]), std::int32_t(tri[2])},
         {kNoTriangle, kNoTriangle, kNoTriangle},
@@ -44,51 +46,58 @@ SimplificationMesh::SimplificationMesh(const Tin& base) {
   checkDelaunay();
 }
 
-// Each edge a -> b finds its twin b -> a among the triangles around b (a vertex-to-
-// triangles index built by counting), so linking is linear in the TIN's size.
+// Each edge a -> b finds its twin b -> a among the half-edges leaving b, listed per
+// vertex by counting: linear in the TIN's size, and the lists are compact to scan.
 void SimplificationMesh::link() {
   const std::size_t nv = points_.size();
+  const int count = static_cast<int>(triangles_.size());
+  struct HalfEdge {
+    std::int32_t head, corner;  // corner: slot * 3 + the corner opposite the edge
+  };
   std::vector<std::int32_t> first(nv + 1, 0);
   for (const MeshTriangle& t : triangles_)
     for (std::int32_t v : t.v) ++first[v + 1];
   for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
-  std::vector<std::int32_t> around(first.back()), fill(first.begin(), first.end() - 1);
-  for (std::size_t t = 0; t < triangles_.size(); ++t)
-    for (std::int32_t v : triangles_[t].v) around[fill[v]++] = static_cast<std::int32_t>(t);
-
+  std::vector<HalfEdge> out(first.back());
+  std::vector<std::int32_t> fill(first.begin(), first.end() - 1);
+  for (int t = 0; t < count; ++t)
+    for (int k = 0; k < 3; ++k) out[fill[triangles_[t].v[(k + 1) % 3]]++] = {triangles_[t].v[(k + 2) % 3], t * 3 + k};
+  forEachBlock(count, [&](int begin, int end) {
+    for (int t = begin; t < end; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t a = triangles_[t].v[(k + 1) % 3], b = triangles_[t].v[(k + 2) % 3];
+        for (std::int32_t i = first[b]; i < first[b + 1]; ++i) {
+          if (out[i].head != a) continue;
+          if (triangles_[t].n[k] != kNoTriangle) throw Error(kNotSampled);  // overlapping triangles
+          triangles_[t].n[k] = out[i].corner / 3;
+        }
+      }
+  }, {});
   start_.assign(nv, kNoTriangle);
   open_.assign(nv, 1);
   for (std::size_t v = 0; v < nv; ++v)
-    if (first[v] < first[v + 1]) start_[v] = around[first[v]], open_[v] = 0;
-  for (std::size_t t = 0; t < triangles_.size(); ++t) {
-    MeshTriangle& tri = triangles_[t];
-    for (int k = 0; k < 3; ++k) {
-      const std::int32_t a = tri.v[(k + 1) % 3], b = tri.v[(k + 2) % 3];
-      for (std::int32_t i = first[b]; i < first[b + 1]; ++i) {
-        const MeshTriangle& other = triangles_[around[i]];
-        const int j = other.v[0] == b ? 0 : other.v[1] == b ? 1 : 2;
-        if (other.v[(j + 1) % 3] != a) continue;
-        if (tri.n[k] != kNoTriangle) throw Error(kNotSampled);  // an edge of three triangles
-        tri.n[k] = around[i];
-      }
-      if (tri.n[k] == kNoTriangle) open_[a] = open_[b] = 1;
-    }
-  }
+    if (first[v] < first[v + 1]) start_[v] = out[first[v]].corner / 3, open_[v] = 0;
+  for (const MeshTriangle& t : triangles_)
+    for (int k = 0; k < 3; ++k)
+      if (t.n[k] == kNoTriangle) open_[t.v[(k + 1) % 3]] = open_[t.v[(k + 2) % 3]] = 1;
 }
 
 void SimplificationMesh::checkDelaunay() const {
-  for (std::size_t t = 0; t < triangles_.size(); ++t) {
-    const MeshTriangle& tri = triangles_[t];
-    for (int k = 0; k < 3; ++k) {
-      const std::int32_t u = tri.n[k];
-      if (u < static_cast<std::int32_t>(t)) continue;  // each shared edge once; none across the outline
-      const MeshTriangle& other = triangles_[u];
-      const int j = other.n[0] == std::int32_t(t) ? 0 : other.n[1] == std::int32_t(t) ? 1 : 2;
-      if (CGAL::side_of_oriented_circle(xy(points_[tri.v[0]]), xy(points_[tri.v[1]]), xy(points_[tri.v[2]]),
-                                        xy(points_[other.v[j]])) == CGAL::ON_POSITIVE_SIDE)
-        throw Error(kNotSampled);
+  forEachBlock(static_cast<int>(triangles_.size()), [&](int begin, int end) {
+    for (int t = begin; t < end; ++t) {
+      const MeshTriangle& tri = triangles_[t];
+      const K::Point_2 a = xy(points_[tri.v[0]]), b = xy(points_[tri.v[1]]), c = xy(points_[tri.v[2]]);
+      if (CGAL::orientation(a, b, c) != CGAL::LEFT_TURN) throw Error(kNotSampled);
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t u = tri.n[k];
+        if (u < t) continue;  // each shared edge once; none across the outline
+        const MeshTriangle& other = triangles_[u];
+        const int j = other.n[0] == t ? 0 : other.n[1] == t ? 1 : 2;
+        if (CGAL::side_of_oriented_circle(a, b, c, xy(points_[other.v[j]])) == CGAL::ON_POSITIVE_SIDE)
+          throw Error(kNotSampled);
+      }
     }
-  }
+  }, {});
 }
 
 int SimplificationMesh::degree(VertexId v) const {
@@ -105,7 +114,7 @@ void SimplificationMesh::canonicalWalk(VertexId v, Visit visit) const {
   around.clear();
   std::size_t best = 0;
   std::int32_t bestId = 0;
-  eachAround(v, [&](std::int32_t t, int k) {
+  aroundLocal(localOf_[v], [&](std::int32_t t, int k) {
     const std::int32_t id = triangles_[t].v[(k + 1) % 3];
     if (around.empty() || id < bestId) best = around.size(), bestId = id;
     around.emplace_back(t, k);
@@ -114,25 +123,81 @@ void SimplificationMesh::canonicalWalk(VertexId v, Visit visit) const {
   for (std::size_t i = 0; i < best; ++i) visit(around[i].first, around[i].second);
 }
 
-void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer) const {
+void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer,
+                                Star& geometry) const {
   int i = 0;
+  geometry.centre = point(v);
+  geometry.ring.clear();
   canonicalWalk(v, [&](std::int32_t t, int k) {
     const MeshTriangle& tri = triangles_[t];
-    ring[i] = static_cast<VertexId>(tri.v[(k + 1) % 3]);
+    ring[i] = global_[tri.v[(k + 1) % 3]];
+    geometry.ring.push_back(points_[tri.v[(k + 1) % 3]]);
     slots[i] = t;
     outer[i++] = tri.n[k];
   });
 }
 
 void SimplificationMesh::geometryOf(VertexId v, Star& star) const {
-  star.centre = points_[v];
+  star.centre = point(v);
   star.ring.clear();
   canonicalWalk(v, [&](std::int32_t t, int k) { star.ring.push_back(points_[triangles_[t].v[(k + 1) % 3]]); });
 }
 
 void SimplificationMesh::beginRound() {
-  if (successor_.empty()) successor_.assign(triangles_.size(), kNoTriangle), retired_.assign(triangles_.size(), 0);
+  if (successor_.size() != triangles_.size()) successor_.assign(triangles_.size(), kNoTriangle), retired_.assign(triangles_.size(), 0);
   ++round_;
+}
+
+// Ordered by smallest vertex again (a counting sort), as level 0 was: new triangles
+// left where their stars were drift from the order the vertices are visited in.
+std::vector<std::int32_t> SimplificationMesh::compact() {
+  std::vector<std::int32_t> first(points_.size() + 1, 0), newOf(triangles_.size(), kNoTriangle);
+  auto smallest = [](const MeshTriangle& t) { return std::min({t.v[0], t.v[1], t.v[2]}); };
+  for (const MeshTriangle& t : triangles_)
+    if (t.v[0] >= 0) ++first[smallest(t) + 1];
+  for (std::size_t v = 0; v + 1 < first.size(); ++v) first[v + 1] += first[v];
+  std::vector<std::int32_t> oldOf(first.back());
+  for (std::size_t t = 0; t < triangles_.size(); ++t)
+    if (triangles_[t].v[0] >= 0) {
+      const std::int32_t slot = first[smallest(triangles_[t])]++;
+      newOf[t] = slot, oldOf[slot] = static_cast<std::int32_t>(t);
+    }
+  std::vector<MeshTriangle> compacted(oldOf.size());
+  for (std::size_t t = 0; t < triangles_.size(); ++t) {
+    if (newOf[t] == kNoTriangle) continue;
+    MeshTriangle tri = triangles_[t];
+    for (std::int32_t& n : tri.n)
+      if (n != kNoTriangle) n = newOf[n];
+    compacted[newOf[t]] = tri;
+  }
+  triangles_.swap(compacted);
+  for (std::int32_t& s : start_)
+    if (s != kNoTriangle) s = newOf[s];
+  successor_.clear();
+  retired_.clear();
+  compactVertices();
+  return oldOf;
+}
+
+// Keeps the vertices some triangle still has, in their order.
+void SimplificationMesh::compactVertices() {
+  std::vector<std::int32_t> newOf(points_.size(), -1);
+  for (const MeshTriangle& t : triangles_)
+    for (std::int32_t v : t.v) newOf[v] = 0;
+  std::int32_t kept = 0;
+  for (std::size_t v = 0; v < newOf.size(); ++v) {
+    if (newOf[v] < 0) {
+      localOf_[global_[v]] = -1;
+      continue;
+    }
+    newOf[v] = kept;
+    points_[kept] = points_[v], start_[kept] = start_[v], global_[kept] = global_[v];
+    localOf_[global_[kept]] = kept;
+    ++kept;
+  }
+  points_.resize(kept), start_.resize(kept), global_.resize(kept);
+  for (MeshTriangle& t : triangles_)
+    for (std::int32_t& v : t.v) v = newOf[v];
 }
 
 void SimplificationMesh::retire(const StarView& star, const LocalTriangle* fill) {
@@ -161,8 +226,8 @@ void SimplificationMesh::replaceStar(const StarView& star, const LocalTriangle* 
     tri.id = ids[j];
     for (int e = 0; e < 3; ++e) {
       const int p = fill[j][(e + 1) % 3], q = fill[j][(e + 2) % 3];  // the edge opposite corner e
-      const VertexId corner = star.ring[fill[j][e]];
-      tri.v[e] = static_cast<std::int32_t>(corner);
+      const std::int32_t corner = localOf_[star.ring[fill[j][e]]];
+      tri.v[e] = corner;
       // Stars that share a ring vertex race here; either new triangle is a right answer.
       __atomic_store_n(&start_[corner], slot, __ATOMIC_RELAXED);
       if (q != (p + 1) % d) {
@@ -177,7 +242,7 @@ void SimplificationMesh::replaceStar(const StarView& star, const LocalTriangle* 
       tri.n[e] = beyond;
       if (beyond == kNoTriangle) continue;
       MeshTriangle& b = triangles_[beyond];
-      const std::int32_t head = static_cast<std::int32_t>(star.ring[q]);
+      const std::int32_t head = localOf_[star.ring[q]];
       b.n[b.v[1] == head ? 0 : b.v[2] == head ? 1 : 2] = slot;
     }
   }

@@ -20,7 +20,7 @@ namespace tinlod {
 constexpr std::int32_t kNoTriangle = -1;
 
 struct MeshTriangle {
-  std::array<std::int32_t, 3> v;  // vertex ids, counter-clockwise; v[0] < 0 for a dead slot
+  std::array<std::int32_t, 3> v;  // the mesh's own vertex numbers, counter-clockwise; v[0] < 0 for a dead slot
   std::array<std::int32_t, 3> n;  // n[k]: the triangle across the edge opposite v[k], or kNoTriangle
   std::int32_t id;                // the triangle's id in the hierarchy
 };
@@ -43,8 +43,11 @@ class SimplificationMesh {
   // not locally Delaunay (exact in-circle): such a TIN was not made by tinlod sample.
   explicit SimplificationMesh(const Tin& base);
 
-  const Point3& point(VertexId v) const { return points_[v]; }
-  const MeshTriangle& triangle(std::int32_t slot) const { return triangles_[slot]; }
+  // Vertices are named by their TIN ids; inside, the mesh numbers the vertices still in
+  // it densely, in the same order, and renumbers them when it is compacted.
+  const Point3& point(VertexId v) const { return points_[localOf_[v]]; }
+  std::int32_t triangleId(std::int32_t slot) const { return triangles_[slot].id; }
+  VertexId corner(std::int32_t slot, int k) const { return global_[triangles_[slot].v[k]]; }
   std::size_t slotCount() const { return triangles_.size(); }
   // True for a vertex on the outline or a hole's edge, or in no triangle: it has no
   // closed star and is never deleted.
@@ -54,18 +57,12 @@ class SimplificationMesh {
   // from wherever the walk starts, where k is the vertex's index in the triangle.
   template <class Visit>
   void eachAround(VertexId v, Visit visit) const {
-    const std::int32_t first = start_[v];
-    std::int32_t t = first;
-    do {
-      const MeshTriangle& tri = triangles_[t];
-      const int k = tri.v[0] == static_cast<std::int32_t>(v) ? 0 : tri.v[1] == static_cast<std::int32_t>(v) ? 1 : 2;
-      visit(t, k);
-      t = tri.n[(k + 1) % 3];
-    } while (t != first);
+    aroundLocal(localOf_[v], visit);
   }
   int degree(VertexId v) const;
-  // Writes the star of an interior vertex into arrays of degree(v) entries each.
-  void starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer) const;
+  // Writes the star of an interior vertex into arrays of degree(v) entries each, and
+  // its points into `geometry`.
+  void starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer, Star& geometry) const;
   void geometryOf(VertexId v, Star& star) const;  // the same ring as points, for importance
 
   // Deleting an independent set: beginRound(), then retire() for every star (it only
@@ -74,6 +71,10 @@ class SimplificationMesh {
   // triangulates the ring; the new triangles take the first star slots, in fill's order,
   // with `ids` as their hierarchy ids, and the last two slots die.
   void beginRound();
+  // Drops the dead slots and the deleted vertices and orders the rest by smallest vertex
+  // again, so that the stars of the vertices still there stay side by side in memory as
+  // the TIN thins out. Returns, for each new slot, its old slot.
+  std::vector<std::int32_t> compact();
   void retire(const StarView& star, const LocalTriangle* fill);
   void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
 
@@ -81,12 +82,26 @@ class SimplificationMesh {
   void link();
   void checkDelaunay() const;
   template <class Visit>
+  void aroundLocal(std::int32_t v, Visit visit) const {
+    const std::int32_t first = start_[v];
+    std::int32_t t = first;
+    do {
+      const MeshTriangle& tri = triangles_[t];
+      const int k = tri.v[0] == v ? 0 : tri.v[1] == v ? 1 : 2;
+      visit(t, k);
+      t = tri.n[(k + 1) % 3];
+    } while (t != first);
+  }
+  template <class Visit>
   void canonicalWalk(VertexId v, Visit visit) const;
+  void compactVertices();
 
-  std::vector<Point3> points_;
+  std::vector<Point3> points_;           // by mesh vertex
   std::vector<MeshTriangle> triangles_;
-  std::vector<std::int32_t> start_;      // by vertex: one triangle around it
-  std::vector<std::uint8_t> open_;
+  std::vector<std::int32_t> start_;      // by mesh vertex: one triangle around it
+  std::vector<VertexId> global_;         // by mesh vertex: its TIN id
+  std::vector<std::int32_t> localOf_;    // by TIN id: its mesh vertex, -1 once gone
+  std::vector<std::uint8_t> open_;       // by TIN id
   std::vector<std::int32_t> successor_;  // by slot retired this round: the new slot holding its ring edge
   std::vector<std::uint32_t> retired_;   // by slot: the round that retired it
   std::uint32_t round_ = 0;

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "sample_buckets.h"
+
+#include "simplification_mesh.h"
+
+namespace tinlod {
+
+// A counting sort by new slot of every sample, the untouched ones included: a slot
+// that no deletion touched still moves when the mesh is compacted.
+void SampleBuckets::rebuild(const std::vector<std::int32_t>& oldOf, std::size_t oldSlots) {
+  std::vector<std::int32_t> newOf(oldSlots, kNoTriangle);
+  for (std::size_t s = 0; s < oldOf.size(); ++s) newOf[oldOf[s]] = static_cast<std::int32_t>(s);
+  std::vector<std::uint32_t> start(oldOf.size() + 1, 0);
+  for (std::int32_t s : slot_) ++start[newOf[s] + 1];
+  for (const Added& a : added_) ++start[newOf[a.slot] + 1];
+  for (std::size_t s = 0; s < oldOf.size(); ++s) start[s + 1] += start[s];
+  std::vector<Point3> points(start.back());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < points_.size(); ++i) points[fill[newOf[slot_[i]]]++] = points_[i];
+  for (const Added& a : added_) points[fill[newOf[a.slot]]++] = a.p;
+  slot_.resize(points.size());
+  for (std::size_t s = 0; s < oldOf.size(); ++s)
+    for (std::uint32_t i = start[s]; i < start[s + 1]; ++i) slot_[i] = static_cast<std::int32_t>(s);
+  points_.swap(points);
+  start_.swap(start);
+  added_.clear();
+}
+
+}  // namespace tinlod
