@@ -21,24 +21,14 @@ namespace tinlod::cgal {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 // Delaunay in x/y with z carried along: a 2.5D terrain.
 using Traits = CGAL::Projection_traits_xy_3<Kernel>;
-// What a vertex is to tinlod: its id, and the simplifier's per-vertex state kept on the
-// vertex itself, where the circulators already are (side arrays indexed by id would be
-// read in random order).
+// What a vertex is to tinlod: its id in the TIN.
 struct VertexTag {
   VertexId id = 0;
-  std::uint32_t rank = 0;      // position in the spatial insertion order: a memory-friendly order
-  std::int32_t stamp = -1;     // the level in which the vertex or a neighbour was selected
-  bool fixed = false;
-  bool stale = true;           // its importance must be recomputed
-  double importance = 0;
 };
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<VertexTag, Traits>;
-// What a face is to tinlod. The default marks a face CGAL has just created.
+// What a face is to tinlod: its triangle's index, or a negative mark.
 struct FaceTag {
-  static constexpr std::int32_t kFresh = -2;    // created by CGAL, not yet numbered
-  static constexpr std::int32_t kOutside = -1;  // over nodata or outside the convex hull of data
-  static constexpr std::int32_t kDying = -3;    // in the star of a vertex being removed
-  std::int32_t id = kFresh;                     // >= 0: a triangle of the TIN
+  std::int32_t id = -1;
 };
 // Faces carry their tag, so adjacency and membership are read without lookup tables.
 using FaceBase = CGAL::Triangulation_face_base_with_info_2<FaceTag, Traits>;

@@ -40,7 +40,6 @@ std::vector<cgal::VertexHandle> cgal::insertVertices(cgal::Delaunay& dt, const s
     cgal::Delaunay::Vertex_handle v = dt.insert(points[order[k]], hint);
     if (dt.number_of_vertices() > before) {
       v->info().id = static_cast<VertexId>(order[k]);
-      v->info().rank = static_cast<std::uint32_t>(k);
       handles[order[k]] = v;
     }
     hint = v->face();
