@@ -107,20 +107,22 @@ int SimplificationMesh::degree(VertexId v) const {
 }
 
 // Visits (slot, k) around v starting at the slot whose next ring vertex has the
-// smallest id. One walk, kept, then visited from there: the walk is the costly part.
+// smallest id.
 template <class Visit>
 void SimplificationMesh::canonicalWalk(VertexId v, Visit visit) const {
-  thread_local std::vector<std::pair<std::int32_t, int>> around;
-  around.clear();
-  std::size_t best = 0;
-  std::int32_t bestId = 0;
-  aroundLocal(localOf_[v], [&](std::int32_t t, int k) {
+  const std::int32_t local = localOf_[v];
+  std::int32_t best = kNoTriangle, bestId = 0;
+  aroundLocal(local, [&](std::int32_t t, int k) {
     const std::int32_t id = triangles_[t].v[(k + 1) % 3];
-    if (around.empty() || id < bestId) best = around.size(), bestId = id;
-    around.emplace_back(t, k);
+    if (best == kNoTriangle || id < bestId) best = t, bestId = id;
   });
-  for (std::size_t i = best; i < around.size(); ++i) visit(around[i].first, around[i].second);
-  for (std::size_t i = 0; i < best; ++i) visit(around[i].first, around[i].second);
+  std::int32_t t = best;  // the second walk finds every triangle in cache
+  do {
+    const MeshTriangle& tri = triangles_[t];
+    const int k = tri.v[0] == local ? 0 : tri.v[1] == local ? 1 : 2;
+    visit(t, k);
+    t = tri.n[(k + 1) % 3];
+  } while (t != best);
 }
 
 void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer,
