@@ -282,6 +282,44 @@ TEST(Hierarchy, RefusesALevelZeroThatIsNotDelaunay) {
   EXPECT_THROW(buildHierarchy(doubled, {}, {}, kQuiet), Error);
 }
 
+// A vertex of degree 100 (above the small-star scratch) in the middle of a ring, deleted in
+// threshold mode: its hole is filled with 98 Delaunay triangles over the same area.
+TEST(Hierarchy, DeletesAVertexOfVeryHighDegree) {
+  Tin fan;
+  fan.vertices.push_back({0, 0, 5});
+  const int n = 100;
+  for (int i = 0; i < n; ++i)
+    fan.vertices.push_back({1000 * std::cos(2 * M_PI * i / n), 1000 * std::sin(2 * M_PI * i / n), 0});
+  for (int i = 0; i < n; ++i) fan.triangles.push_back({0, VertexId(1 + i), VertexId(1 + (i + 1) % n)});
+  HierarchyOptions o;
+  o.thresholdMode = true;
+  o.threshold = 1e300;
+  o.maxLevels = 1;
+  const Hierarchy h = buildHierarchy(fan, {}, o, kQuiet);
+  ASSERT_EQ(h.coarsest(), 1);
+  ASSERT_EQ(h.groups.size(), 1u);
+  const Tin top = h.levelTin(1);
+  EXPECT_EQ(top.triangles.size(), std::size_t(n - 2));
+  EXPECT_EQ(test::delaunayViolations(top), 0u);
+  EXPECT_NEAR(totalArea(top), totalArea(fan), 1e-9 * totalArea(fan));
+  EXPECT_DOUBLE_EQ(h.groups[0].error, 5.0);  // the centre, over a flat ring
+}
+
+// With the error measure a vertex's importance is the error its deletion certifies, so
+// -max_error bounds every group and every level.
+TEST(Hierarchy, ErrorImportanceIsTheCertifiedErrorAndMaxErrorHolds) {
+  HierarchyOptions o;
+  o.measure = Measure::Error;
+  o.maxError = 40;
+  const Hierarchy h = buildHierarchy(sampleTin(test::smallSyntheticDem(), {}, kQuiet), {}, o, kQuiet);
+  ASSERT_GE(h.coarsest(), 2);
+  for (const Group& g : h.groups) {
+    ASSERT_EQ(g.importance, g.error) << "vertex " << g.vertex;
+    ASSERT_LE(g.error, 40);
+  }
+  for (const LevelStats& l : h.levels) EXPECT_LE(l.maxError, 40);
+}
+
 TEST(Hierarchy, PatagoniaSeaSimplifiesDeterministically) {
   const std::string dir = test::dataDir();
   if (dir.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/hierarchy_builder.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,25 +16,11 @@ namespace tinlod {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 constexpr std::int32_t kOpenLevel = std::numeric_limits<std::int32_t>::max();
 constexpr std::size_t kMinLevelShare = 100;  // a level must delete at least 1 / 100 of its vertices
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-
-bool containsXY(const Point3& a, const Point3& b, const Point3& c, const Point3& p) {
-  const K::Point_2 pa(a.x, a.y), pb(b.x, b.y), pc(c.x, c.y), pp(p.x, p.y);
-  return CGAL::orientation(pa, pb, pp) != CGAL::RIGHT_TURN && CGAL::orientation(pb, pc, pp) != CGAL::RIGHT_TURN &&
-         CGAL::orientation(pc, pa, pp) != CGAL::RIGHT_TURN;
-}
-
-double planeZ(const Point3& a, const Point3& b, const Point3& c, double x, double y) {
-  const double d = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-  const double wb = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / d;
-  const double wc = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / d;
-  return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
-}
 
 // A vertex chosen for deletion, and where its parts of the level's arrays start.
 struct Pick {
@@ -169,7 +153,8 @@ class Simplifier {
     return !options_.thresholdMode || importance < options_.threshold;
   }
 
-  // Samples and errors follow their triangles to the compacted slots.
+  // After each level, so the next walks stars that lie side by side. Samples and errors
+  // follow their triangles to the compacted slots.
   void compact() {
     const std::size_t oldSlots = mesh_.slotCount();
     const std::vector<std::int32_t> oldOf = mesh_.compact();
@@ -182,9 +167,7 @@ class Simplifier {
   // Best first, ties broken by vertex id: the result never depends on memory layout.
   // Each pick blocks its neighbours, so the set is independent. Returned in vertex order,
   // which is the TIN's spatial order: the plan and the mesh are then walked in cache.
-
   std::vector<Pick> select(std::int32_t level, std::size_t stopCount) {
-    if (level > 1) compact();
     updateStaleImportances(level);
     std::vector<std::pair<double, VertexId>> candidates;
     candidates.reserve(live_.size());
@@ -234,12 +217,14 @@ class Simplifier {
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       for (int i = begin; i < end; ++i) replace(picks[i], triangles, rings);
     }, [&](double f) { reportProgress(level, 0.5 + f / 2, picks.size()); });
+    for (std::size_t k = rings; k < h_.rings.size(); ++k) stale_[h_.rings[k]] = 1;  // the ring vertices' stars changed
     std::vector<VertexId> live;
     live.reserve(live_.size());
     for (VertexId v : live_)
       if (h_.vertexLevel[v] == kOpenLevel) live.push_back(v);
     live_.swap(live);
     triangles_ -= 2 * picks.size();
+    compact();
   }
 
   // Where a level's records start in the hierarchy's arrays.
@@ -254,7 +239,8 @@ class Simplifier {
 
   // The first pass, for one pick: its star, its retriangulation, the new triangle that
   // will hold each sample under the star (and the vertex itself), and its group. Reads
-  // the mesh; writes only the pick's own entries.
+  // the mesh and writes only entries that are the pick's own: its ranges of the level's
+  // arrays and of the hierarchy's, its star's triangles, its samples, its slots' retirement.
   void plan(const std::vector<Pick>& picks, std::size_t index, std::int32_t level, const Ranges& at, Star& star,
             std::vector<LocalTriangle>& fill) {
     const Pick& pick = picks[index];
@@ -277,13 +263,10 @@ class Simplifier {
     std::fill(error, error + fill.size(), 0.0);
     const std::int32_t* slots = slots_.data() + pick.ring;
     auto place = [&](const Point3& p) {
-      for (std::size_t j = 0; j < fill.size(); ++j) {
-        const Point3 &a = star.ring[fill[j][0]], &b = star.ring[fill[j][1]], &c = star.ring[fill[j][2]];
-        if (!containsXY(a, b, c, p)) continue;
-        error[j] = std::max(error[j], std::fabs(p.z - planeZ(a, b, c, p.x, p.y)));
-        return slots[j];
-      }
-      throw Error("internal error: a sample left its star");
+      const int j = triangleHolding(star, fill.data(), fill.size(), p);
+      if (j < 0) throw Error("internal error: a sample left its star");
+      error[j] = std::max(error[j], verticalDistance(star, fill[j], p));
+      return slots[j];
     };
     samples_.add(index, star.centre, place(star.centre));
     for (std::uint32_t k = 0; k < pick.degree; ++k)
@@ -311,7 +294,6 @@ class Simplifier {
       h_.links[group.acceptBegin + k] = static_cast<std::uint32_t>(t);
       h_.triangles[t].lastLevel = level - 1;
       h_.triangles[t].replacedBy = g;
-      __atomic_store_n(&stale_[ring[k]], 1, __ATOMIC_RELAXED);  // stars that share a ring vertex race here
     }
     const LocalTriangle* fill = fill_.data() + pick.fill;
     for (std::uint32_t j = 0; j + 2 < d; ++j) {
@@ -328,14 +310,15 @@ class Simplifier {
     h_.vertexLevel[pick.id] = level - 1;
   }
 
-  // The second pass, for one pick: the new triangles go into the mesh and the samples
-  // into their buckets. Writes the pick's own slots, and the links back to them.
+  // The second pass, for one pick: the new triangles go into the mesh (the samples moved
+  // in the first pass and are sorted into their slots when the mesh is compacted). Writes
+  // the pick's own slots, and the links back to them.
   void replace(const Pick& pick, std::size_t triangles, std::size_t rings) {
     const StarView star = view(pick, rings);
-    std::int32_t ids[64];
+    std::int32_t ids[kSmallStar];
     std::vector<std::int32_t> many;
     std::int32_t* id = ids;
-    if (star.degree > 66) many.resize(star.degree - 2), id = many.data();
+    if (star.degree - 2 > kSmallStar) many.resize(star.degree - 2), id = many.data();
     for (int j = 0; j + 2 < star.degree; ++j) {
       id[j] = static_cast<std::int32_t>(triangles + pick.fill + j);
       slotError_[star.slots[j]] = fillError_[pick.fill + j];

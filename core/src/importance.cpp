@@ -4,7 +4,6 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <cmath>
-#include <limits>
 
 #include "tinlod/error.h"
 
@@ -198,17 +197,23 @@ double normalFlatness(const Star& star) {
   return sum / normals.size();
 }
 
+int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p) {
+  for (std::size_t j = 0; j < count; ++j)
+    if (contains(star.ring[tris[j][0]], star.ring[tris[j][1]], star.ring[tris[j][2]], p)) return static_cast<int>(j);
+  return -1;
+}
+
+double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& p) {
+  const Point3 &a = star.ring[t[0]], &b = star.ring[t[1]], &c = star.ring[t[2]];
+  return std::fabs(p.z - planeZ(a, b, c, p.x, p.y));
+}
+
 double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
                         const std::vector<Point3>& samples) {
   double worst = 0;
   auto measure = [&](const Point3& s) {
-    for (const LocalTriangle& t : without) {
-      const Point3 &a = star.ring[t[0]], &b = star.ring[t[1]], &c = star.ring[t[2]];
-      if (contains(a, b, c, s)) {
-        worst = std::max(worst, std::fabs(s.z - planeZ(a, b, c, s.x, s.y)));
-        return;
-      }
-    }
+    const int j = triangleHolding(star, without.data(), without.size(), s);
+    if (j >= 0) worst = std::max(worst, verticalDistance(star, without[j], s));
   };
   measure(star.centre);
   for (const Point3& s : samples) measure(s);
@@ -220,7 +225,12 @@ double importance(Measure measure, const Star& star, const std::vector<Point3>& 
     case Measure::Degree: return static_cast<double>(star.ring.size());
     case Measure::Normal: return 1.0 - normalFlatness(star);
     case Measure::Volume: return volumeChange(star, retriangulateInScratch(star));
-    case Measure::Error: return maxVerticalError(star, retriangulateInScratch(star), samples);
+    // Exact, as the deletion's: the error is then the one the deletion certifies.
+    case Measure::Error: {
+      thread_local std::vector<LocalTriangle> exact;
+      retriangulateStar(star, exact);
+      return maxVerticalError(star, exact, samples);
+    }
   }
   return 0;
 }

@@ -62,15 +62,18 @@ void SimplificationMesh::link() {
   std::vector<std::int32_t> fill(first.begin(), first.end() - 1);
   for (int t = 0; t < count; ++t)
     for (int k = 0; k < 3; ++k) out[fill[triangles_[t].v[(k + 1) % 3]]++] = {triangles_[t].v[(k + 2) % 3], t * 3 + k};
+  // Two triangles on the same side of an edge, or on one edge three times, overlap.
+  auto heads = [&](std::int32_t from, std::int32_t to) {
+    return std::count_if(out.begin() + first[from], out.begin() + first[from + 1],
+                         [to](const HalfEdge& h) { return h.head == to; });
+  };
   forEachBlock(count, [&](int begin, int end) {
     for (int t = begin; t < end; ++t)
       for (int k = 0; k < 3; ++k) {
         const std::int32_t a = triangles_[t].v[(k + 1) % 3], b = triangles_[t].v[(k + 2) % 3];
-        for (std::int32_t i = first[b]; i < first[b + 1]; ++i) {
-          if (out[i].head != a) continue;
-          if (triangles_[t].n[k] != kNoTriangle) throw Error(kNotSampled);  // overlapping triangles
-          triangles_[t].n[k] = out[i].corner / 3;
-        }
+        if (heads(a, b) != 1 || heads(b, a) > 1) throw Error(kNotSampled);
+        for (std::int32_t i = first[b]; i < first[b + 1]; ++i)
+          if (out[i].head == a) triangles_[t].n[k] = out[i].corner / 3;
       }
   }, {});
   start_.assign(nv, kNoTriangle);
@@ -80,6 +83,12 @@ void SimplificationMesh::link() {
   for (const MeshTriangle& t : triangles_)
     for (int k = 0; k < 3; ++k)
       if (t.n[k] == kNoTriangle) open_[t.v[(k + 1) % 3]] = open_[t.v[(k + 2) % 3]] = 1;
+  // A closed vertex must have one fan of all its triangles: two fans meeting at a vertex
+  // would be deleted as one star.
+  forEachBlock(static_cast<int>(nv), [&](int begin, int end) {
+    for (int v = begin; v < end; ++v)
+      if (!open_[v] && degree(static_cast<VertexId>(v)) != first[v + 1] - first[v]) throw Error(kNotSampled);
+  }, {});
 }
 
 void SimplificationMesh::checkDelaunay() const {
@@ -173,12 +182,36 @@ std::vector<std::int32_t> SimplificationMesh::compact() {
     compacted[newOf[t]] = tri;
   }
   triangles_.swap(compacted);
-  for (std::int32_t& s : start_)
-    if (s != kNoTriangle) s = newOf[s];
+  for (std::size_t t = 0; t < triangles_.size(); ++t)
+    for (std::int32_t v : triangles_[t].v) start_[v] = static_cast<std::int32_t>(t);
   successor_.clear();
   retired_.clear();
   compactVertices();
   return oldOf;
+}
+
+std::size_t SimplificationMesh::liveTriangles() const {
+  return static_cast<std::size_t>(
+      std::count_if(triangles_.begin(), triangles_.end(), [](const MeshTriangle& t) { return t.v[0] >= 0; }));
+}
+
+std::size_t SimplificationMesh::brokenLinks() const {
+  std::size_t broken = 0;
+  for (std::size_t t = 0; t < triangles_.size(); ++t) {
+    const MeshTriangle& tri = triangles_[t];
+    if (tri.v[0] < 0) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t u = tri.n[k];
+      if (u == kNoTriangle) continue;
+      const MeshTriangle& other = triangles_[u];
+      const std::int32_t a = tri.v[(k + 1) % 3], b = tri.v[(k + 2) % 3];
+      bool back = false;
+      for (int j = 0; j < 3; ++j)
+        back = back || (other.n[j] == std::int32_t(t) && other.v[(j + 1) % 3] == b && other.v[(j + 2) % 3] == a);
+      broken += !back;
+    }
+  }
+  return broken;
 }
 
 // Keeps the vertices some triangle still has, in their order.
@@ -213,27 +246,38 @@ void SimplificationMesh::retire(const StarView& star, const LocalTriangle* fill)
     }
 }
 
-// Diagonals pair up through `owner`, indexed by directed edge (p, q) of local ring
-// indices. A ring edge faces the triangle beyond it, or that triangle's successor when
-// its own star is being replaced too (which then links back by itself).
+// Diagonals pair up by directed edge (p, q) of local ring indices: through a d x d table
+// for usual stars, through sorted keys for a huge one. A ring edge faces the triangle
+// beyond it, or that triangle's successor when its own star is being replaced too (which
+// then links back by itself). No walk runs before compact(), which sets start_ again.
 void SimplificationMesh::replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids) {
   const int d = star.degree;
-  thread_local std::vector<std::int32_t> owner;
-  if (owner.size() < static_cast<std::size_t>(d) * d) owner.resize(static_cast<std::size_t>(d) * d);
+  const bool small = d <= kSmallStar;
+  thread_local std::vector<std::int32_t> table;
+  thread_local std::vector<std::pair<std::uint64_t, std::int32_t>> sorted;
+  auto key = [d](int p, int q) { return static_cast<std::uint64_t>(p) * static_cast<std::uint64_t>(d) + q; };
+  if (small) table.resize(static_cast<std::size_t>(d) * d);
+  else sorted.clear();
   for (int j = 0; j + 2 < d; ++j)
-    for (int e = 0; e < 3; ++e) owner[fill[j][e] * d + fill[j][(e + 1) % 3]] = star.slots[j];
+    for (int e = 0; e < 3; ++e) {
+      const std::uint64_t k = key(fill[j][e], fill[j][(e + 1) % 3]);
+      if (small) table[k] = star.slots[j];
+      else sorted.emplace_back(k, star.slots[j]);
+    }
+  if (!small) std::sort(sorted.begin(), sorted.end());
+  auto owner = [&](int p, int q) {
+    if (small) return table[key(p, q)];
+    return std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(key(p, q), std::int32_t{-1}))->second;
+  };
   for (int j = 0; j + 2 < d; ++j) {
     const std::int32_t slot = star.slots[j];
     MeshTriangle& tri = triangles_[slot];
     tri.id = ids[j];
     for (int e = 0; e < 3; ++e) {
       const int p = fill[j][(e + 1) % 3], q = fill[j][(e + 2) % 3];  // the edge opposite corner e
-      const std::int32_t corner = localOf_[star.ring[fill[j][e]]];
-      tri.v[e] = corner;
-      // Stars that share a ring vertex race here; either new triangle is a right answer.
-      __atomic_store_n(&start_[corner], slot, __ATOMIC_RELAXED);
+      tri.v[e] = localOf_[star.ring[fill[j][e]]];
       if (q != (p + 1) % d) {
-        tri.n[e] = owner[q * d + p];
+        tri.n[e] = owner(q, p);
         continue;
       }
       const std::int32_t beyond = star.outer[p];

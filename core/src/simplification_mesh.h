@@ -18,6 +18,7 @@
 namespace tinlod {
 
 constexpr std::int32_t kNoTriangle = -1;
+constexpr int kSmallStar = 64;  // stars of up to this degree are handled in fixed-size scratch
 
 struct MeshTriangle {
   std::array<std::int32_t, 3> v;  // the mesh's own vertex numbers, counter-clockwise; v[0] < 0 for a dead slot
@@ -66,17 +67,22 @@ class SimplificationMesh {
   void geometryOf(VertexId v, Star& star) const;  // the same ring as points, for importance
 
   // Deleting an independent set: beginRound(), then retire() for every star (it only
-  // reads the triangles), then replaceStar() for every star, each on any thread.
-  // `fill` (degree - 2 triangles of local ring indices, from retriangulateStar)
-  // triangulates the ring; the new triangles take the first star slots, in fill's order,
-  // with `ids` as their hierarchy ids, and the last two slots die.
+  // reads the triangles), then replaceStar() for every star, each on any thread, then
+  // compact() before the next walk. `fill` (degree - 2 triangles of local ring indices,
+  // from retriangulateStar) triangulates the ring; the new triangles take the first star
+  // slots, in fill's order, with `ids` as their hierarchy ids, and the last two slots die.
   void beginRound();
+  void retire(const StarView& star, const LocalTriangle* fill);
+  void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
   // Drops the dead slots and the deleted vertices and orders the rest by smallest vertex
   // again, so that the stars of the vertices still there stay side by side in memory as
   // the TIN thins out. Returns, for each new slot, its old slot.
   std::vector<std::int32_t> compact();
-  void retire(const StarView& star, const LocalTriangle* fill);
-  void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
+
+  // The live triangles, and how many of their links are wrong (a neighbour that does not
+  // share the edge or does not link back): for the tests.
+  std::size_t liveTriangles() const;
+  std::size_t brokenLinks() const;
 
  private:
   void link();

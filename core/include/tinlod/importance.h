@@ -30,9 +30,10 @@ using LocalTriangle = std::array<int, 3>;  // indices into Star::ring, counter-c
 // respect to the centre (the centre is inside every such circle; the Delaunay ear's is
 // the one it is least inside). The ranking uses floating point; each ear is then
 // confirmed with CGAL's exact orientation and in-circle tests (no other polygon vertex
-// strictly inside its circle), so the result is always the polygon's Delaunay
-// triangulation, as CGAL's own removal makes it (checked in the tests). The simplifier
-// deletes vertices with it. `out` is the caller's, to spare allocations.
+// strictly inside its circle), so the result is always a Delaunay triangulation of the
+// polygon: CGAL's own removal makes the same one, up to the choice among cocircular
+// points (checked in the tests). The simplifier deletes vertices with it. `out` is the
+// caller's, to spare allocations.
 void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out);
 std::vector<LocalTriangle> retriangulateStar(const Star& star);
 
@@ -43,13 +44,21 @@ double volumeChange(const Star& star, const std::vector<LocalTriangle>& without)
 // a plane, less where the star bends.
 double normalFlatness(const Star& star);
 
+// The first of `count` triangles of the star's ring that holds p in x/y (CGAL's exact
+// orientation; on a shared edge, the first), or -1.
+int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p);
+// |p.z - the height of triangle t's plane at p|.
+double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& p);
+
 // Largest vertical distance from the retriangulated star to the samples (which must
 // lie in the star's polygon) and to the centre itself.
 double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
                         const std::vector<Point3>& samples);
 
 // The measure's importance of the star's centre: degree, volume change, 1 - flatness,
-// or vertical error. Smaller means less important.
+// or vertical error. Smaller means less important. The volume is measured on the ear
+// queue's floating-point ranking alone; the error on the exact retriangulation, so that
+// it is the error the deletion certifies.
 double importance(Measure measure, const Star& star, const std::vector<Point3>& samples);
 
 }  // namespace tinlod
