@@ -125,13 +125,7 @@ void SimplificationMesh::canonicalWalk(VertexId v, Visit visit) const {
     const std::int32_t id = triangles_[t].v[(k + 1) % 3];
     if (best == kNoTriangle || id < bestId) best = t, bestId = id;
   });
-  std::int32_t t = best;  // the second walk finds every triangle in cache
-  do {
-    const MeshTriangle& tri = triangles_[t];
-    const int k = tri.v[0] == local ? 0 : tri.v[1] == local ? 1 : 2;
-    visit(t, k);
-    t = tri.n[(k + 1) % 3];
-  } while (t != best);
+  aroundFrom(local, best, visit);  // the second walk finds every triangle in cache
 }
 
 void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer,

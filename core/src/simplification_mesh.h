@@ -89,7 +89,11 @@ class SimplificationMesh {
   void checkDelaunay() const;
   template <class Visit>
   void aroundLocal(std::int32_t v, Visit visit) const {
-    const std::int32_t first = start_[v];
+    aroundFrom(v, start_[v], visit);
+  }
+  // From triangle `first`, which must hold mesh vertex v.
+  template <class Visit>
+  void aroundFrom(std::int32_t v, std::int32_t first, Visit visit) const {
     std::int32_t t = first;
     do {
       const MeshTriangle& tri = triangles_[t];
