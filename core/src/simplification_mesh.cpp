@@ -154,10 +154,12 @@ void SimplificationMesh::beginRound() {
 }
 
 // Ordered by smallest vertex again (a counting sort), as level 0 was: new triangles
-// left where their stars were drift from the order the vertices are visited in.
+// left where their stars were drift from the order the vertices are visited in. The
+// vertices are renumbered first, so each triangle is copied once, on every core.
 std::vector<std::int32_t> SimplificationMesh::compact() {
+  const std::vector<std::int32_t> vertexOf = compactVertices();
   std::vector<std::int32_t> first(points_.size() + 1, 0), newOf(triangles_.size(), kNoTriangle);
-  auto smallest = [](const MeshTriangle& t) { return std::min({t.v[0], t.v[1], t.v[2]}); };
+  auto smallest = [&](const MeshTriangle& t) { return vertexOf[std::min({t.v[0], t.v[1], t.v[2]})]; };
   for (const MeshTriangle& t : triangles_)
     if (t.v[0] >= 0) ++first[smallest(t) + 1];
   for (std::size_t v = 0; v + 1 < first.size(); ++v) first[v + 1] += first[v];
@@ -168,19 +170,20 @@ std::vector<std::int32_t> SimplificationMesh::compact() {
       newOf[t] = slot, oldOf[slot] = static_cast<std::int32_t>(t);
     }
   std::vector<MeshTriangle> compacted(oldOf.size());
-  for (std::size_t t = 0; t < triangles_.size(); ++t) {
-    if (newOf[t] == kNoTriangle) continue;
-    MeshTriangle tri = triangles_[t];
-    for (std::int32_t& n : tri.n)
-      if (n != kNoTriangle) n = newOf[n];
-    compacted[newOf[t]] = tri;
-  }
+  forEachBlock(static_cast<int>(oldOf.size()), [&](int begin, int end) {
+    for (int slot = begin; slot < end; ++slot) {
+      MeshTriangle tri = triangles_[oldOf[slot]];
+      for (std::int32_t& v : tri.v) v = vertexOf[v];
+      for (std::int32_t& n : tri.n)
+        if (n != kNoTriangle) n = newOf[n];
+      compacted[slot] = tri;
+    }
+  }, {});
   triangles_.swap(compacted);
   for (std::size_t t = 0; t < triangles_.size(); ++t)
     for (std::int32_t v : triangles_[t].v) start_[v] = static_cast<std::int32_t>(t);
   successor_.clear();
   retired_.clear();
-  compactVertices();
   return oldOf;
 }
 
@@ -208,11 +211,13 @@ std::size_t SimplificationMesh::brokenLinks() const {
   return broken;
 }
 
-// Keeps the vertices some triangle still has, in their order.
-void SimplificationMesh::compactVertices() {
+// Keeps the vertices some live triangle still has, in their order; returns the new
+// number of each old one (-1 when gone). The triangles are renumbered by the caller.
+std::vector<std::int32_t> SimplificationMesh::compactVertices() {
   std::vector<std::int32_t> newOf(points_.size(), -1);
   for (const MeshTriangle& t : triangles_)
-    for (std::int32_t v : t.v) newOf[v] = 0;
+    if (t.v[0] >= 0)
+      for (std::int32_t v : t.v) newOf[v] = 0;
   std::int32_t kept = 0;
   for (std::size_t v = 0; v < newOf.size(); ++v) {
     if (newOf[v] < 0) {
@@ -220,13 +225,12 @@ void SimplificationMesh::compactVertices() {
       continue;
     }
     newOf[v] = kept;
-    points_[kept] = points_[v], start_[kept] = start_[v], global_[kept] = global_[v];
+    points_[kept] = points_[v], global_[kept] = global_[v];
     localOf_[global_[kept]] = kept;
     ++kept;
   }
   points_.resize(kept), start_.resize(kept), global_.resize(kept);
-  for (MeshTriangle& t : triangles_)
-    for (std::int32_t& v : t.v) v = newOf[v];
+  return newOf;
 }
 
 void SimplificationMesh::retire(const StarView& star, const LocalTriangle* fill) {

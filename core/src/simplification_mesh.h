@@ -104,7 +104,7 @@ class SimplificationMesh {
   }
   template <class Visit>
   void canonicalWalk(VertexId v, Visit visit) const;
-  void compactVertices();
+  std::vector<std::int32_t> compactVertices();
 
   std::vector<Point3> points_;           // by mesh vertex
   std::vector<MeshTriangle> triangles_;
