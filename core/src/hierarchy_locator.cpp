@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "box_grid.h"
+#include "triangle_contains.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -21,14 +22,6 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_2;
 
 constexpr std::uint32_t kNone = UINT32_MAX;
-
-// Closed: a point on an edge or a vertex is inside (the triangle is counter-clockwise).
-// CGAL's filtered predicate is exact, so the triangles of a level leave no gaps between
-// them, and a star's accept triangles cover exactly the points its reject triangles do.
-bool contains(const Point& a, const Point& b, const Point& c, const Point& p) {
-  return CGAL::orientation(a, b, p) != CGAL::RIGHT_TURN && CGAL::orientation(b, c, p) != CGAL::RIGHT_TURN &&
-         CGAL::orientation(c, a, p) != CGAL::RIGHT_TURN;
-}
 
 // A triangle of the coarsest level with its corners: the start of every search.
 struct TopTriangle {
@@ -216,16 +209,18 @@ struct HierarchyLocator::Impl {
     const auto [first, last] = grid.at(p.x(), p.y());
     for (const std::uint32_t* i = first; i != last; ++i) {
       const TopTriangle& t = top[*i];
-      if (contains(t.a, t.b, t.c, p)) return &t;
+      if (triangleContains(t.a, t.b, t.c, p)) return &t;
     }
     return nullptr;
   }
 
-  // The accept triangle of a block that holds p, first in ring order: a ring entry.
+  // The accept triangle of a block that holds p, first in ring order: a ring entry. The
+  // test is closed and exact, so the accept triangles cover exactly the points the reject
+  // triangles do.
   const FanEntry& finer(const FanEntry* head, const Point& p) const {
     const std::uint32_t k = head->a;
     for (std::uint32_t i = 1; i <= k; ++i)
-      if (contains(head->p, head[i].p, head[i == k ? 1 : i + 1].p, p)) return head[i];
+      if (triangleContains(head->p, head[i].p, head[i == k ? 1 : i + 1].p, p)) return head[i];
     throw Error("internal error: the hierarchy is inconsistent: a point of the reject triangles of the vertex at (" +
                 std::to_string(head->p.x()) + ", " + std::to_string(head->p.y()) +
                 ") is in none of its accept triangles");

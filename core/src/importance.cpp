@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "tinlod/error.h"
+#include "triangle_contains.h"
 
 namespace tinlod {
 namespace {
@@ -46,10 +47,7 @@ double planeZ(const Point3& a, const Point3& b, const Point3& c, double x, doubl
 }
 
 bool contains(const Point3& a, const Point3& b, const Point3& c, const Point3& s) {
-  const K::Point_2 p = xy(s);
-  return CGAL::orientation(xy(a), xy(b), p) != CGAL::RIGHT_TURN &&
-         CGAL::orientation(xy(b), xy(c), p) != CGAL::RIGHT_TURN &&
-         CGAL::orientation(xy(c), xy(a), p) != CGAL::RIGHT_TURN;
+  return triangleContains(xy(a), xy(b), xy(c), xy(s));
 }
 
 }  // namespace

@@ -5,17 +5,14 @@
 
 #include "box_grid.h"
 #include "cgal_types.h"
+#include "triangle_contains.h"
 
 namespace tinlod {
 namespace {
 
-bool onTriangle(const Tin& tin, const Triangle& t, const cgal::Point& p) {
-  const cgal::Traits traits;
-  const auto orientation = traits.orientation_2_object();
+bool onTriangle(const Tin& tin, const Triangle& t, const ExactPoint2& p) {
   const TinVertex &a = tin.vertices[t[0]], &b = tin.vertices[t[1]], &c = tin.vertices[t[2]];
-  const cgal::Point pa(a.x, a.y, 0), pb(b.x, b.y, 0), pc(c.x, c.y, 0);
-  return orientation(pa, pb, p) != CGAL::RIGHT_TURN && orientation(pb, pc, p) != CGAL::RIGHT_TURN &&
-         orientation(pc, pa, p) != CGAL::RIGHT_TURN;
+  return triangleContains({a.x, a.y}, {b.x, b.y}, {c.x, c.y}, p);
 }
 
 BoxGrid triangleGrid(const Tin& tin) {
@@ -45,7 +42,7 @@ std::vector<VertexId> nearestVerticesOnData(const Tin& tin, const std::vector<st
   for (const auto& p : points) {
     const cgal::Point q(p[0], p[1], 0);
     const auto [first, last] = grid.at(p[0], p[1]);
-    if (std::none_of(first, last, [&](std::uint32_t t) { return onTriangle(tin, tin.triangles[t], q); })) {
+    if (std::none_of(first, last, [&](std::uint32_t t) { return onTriangle(tin, tin.triangles[t], {p[0], p[1]}); })) {
       ++off;
       continue;
     }
