@@ -50,15 +50,14 @@ class Simplifier {
   Hierarchy run(const std::vector<PointXY>& keep) {
     setUp(keep);
     original_ = h_.base.vertices.size();
-    const std::size_t stopCount = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original_));
-    stopCount_ = stopCount;
+    stopCount_ = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original_));
     h_.levels.push_back({0, original_, h_.base.triangles.size(), 0, 0, 0, 0});
     current_ = original_;
     triangles_ = h_.base.triangles.size();
-    while (current_ > stopCount && (options_.maxLevels == 0 || h_.coarsest() < options_.maxLevels)) {
+    while (current_ > stopCount_ && (options_.maxLevels == 0 || h_.coarsest() < options_.maxLevels)) {
       const std::int32_t level = h_.coarsest() + 1;
       const Clock::time_point t0 = Clock::now();
-      std::vector<Pick> picks = select(level, stopCount);
+      std::vector<Pick> picks = select(level);
       const Clock::time_point t1 = Clock::now();
       // A level that deletes almost nothing only adds a layer: the rest is fixed.
       if (picks.empty() || (!options_.thresholdMode && picks.size() * kMinLevelShare < current_)) break;
@@ -156,25 +155,24 @@ class Simplifier {
   // After each level, so the next walks stars that lie side by side. Samples and errors
   // follow their triangles to the compacted slots.
   void compact() {
-    const std::size_t oldSlots = mesh_.slotCount();
-    const std::vector<std::int32_t> oldOf = mesh_.compact();
-    samples_.rebuild(oldOf, oldSlots);
-    std::vector<double> errors(oldOf.size());
-    for (std::size_t slot = 0; slot < oldOf.size(); ++slot) errors[slot] = slotError_[oldOf[slot]];
+    const Compaction slots = mesh_.compact();
+    samples_.rebuild(slots);
+    std::vector<double> errors(slots.oldOf.size());
+    for (std::size_t slot = 0; slot < errors.size(); ++slot) errors[slot] = slotError_[slots.oldOf[slot]];
     slotError_.swap(errors);
   }
 
   // Best first, ties broken by vertex id: the result never depends on memory layout.
   // Each pick blocks its neighbours, so the set is independent. Returned in vertex order,
   // which is the TIN's spatial order: the plan and the mesh are then walked in cache.
-  std::vector<Pick> select(std::int32_t level, std::size_t stopCount) {
+  std::vector<Pick> select(std::int32_t level) {
     updateStaleImportances(level);
     std::vector<std::pair<double, VertexId>> candidates;
     candidates.reserve(live_.size());
     for (VertexId v : live_)
       if (eligible(v) && wanted(importance_[v])) candidates.emplace_back(importance_[v], v);
     sortOnTwoCores(candidates);
-    std::size_t limit = current_ - stopCount;
+    std::size_t limit = current_ - stopCount_;
     if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
     std::vector<Pick> picks;
@@ -208,7 +206,6 @@ class Simplifier {
     h_.rings.resize(rings + ringCount);
     h_.groups.resize(groups + picks.size());
     mesh_.beginRound();
-    const std::string phase = "Simplifying level " + std::to_string(level);
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       Star star;
       std::vector<LocalTriangle> fill;
@@ -218,11 +215,8 @@ class Simplifier {
       for (int i = begin; i < end; ++i) replace(picks[i], triangles, rings);
     }, [&](double f) { reportProgress(level, 0.5 + f / 2, picks.size()); });
     for (std::size_t k = rings; k < h_.rings.size(); ++k) stale_[h_.rings[k]] = 1;  // the ring vertices' stars changed
-    std::vector<VertexId> live;
-    live.reserve(live_.size());
-    for (VertexId v : live_)
-      if (h_.vertexLevel[v] == kOpenLevel) live.push_back(v);
-    live_.swap(live);
+    live_.erase(std::remove_if(live_.begin(), live_.end(), [&](VertexId v) { return h_.vertexLevel[v] != kOpenLevel; }),
+                live_.end());
     triangles_ -= 2 * picks.size();
     compact();
   }

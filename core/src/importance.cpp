@@ -152,9 +152,9 @@ void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out) { EarC
 
 namespace {
 
-const std::vector<LocalTriangle>& retriangulateInScratch(const Star& star) {
+const std::vector<LocalTriangle>& retriangulateInScratch(const Star& star, bool exact) {
   thread_local std::vector<LocalTriangle> out;
-  EarClipper(star).run(out, false);
+  EarClipper(star).run(out, exact);
   return out;
 }
 
@@ -222,13 +222,9 @@ double importance(Measure measure, const Star& star, const std::vector<Point3>& 
   switch (measure) {
     case Measure::Degree: return static_cast<double>(star.ring.size());
     case Measure::Normal: return 1.0 - normalFlatness(star);
-    case Measure::Volume: return volumeChange(star, retriangulateInScratch(star));
+    case Measure::Volume: return volumeChange(star, retriangulateInScratch(star, false));
     // Exact, as the deletion's: the error is then the one the deletion certifies.
-    case Measure::Error: {
-      thread_local std::vector<LocalTriangle> exact;
-      retriangulateStar(star, exact);
-      return maxVerticalError(star, exact, samples);
-    }
+    case Measure::Error: return maxVerticalError(star, retriangulateInScratch(star, true), samples);
   }
   return 0;
 }

@@ -1,15 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "sample_buckets.h"
 
-#include "simplification_mesh.h"
-
 namespace tinlod {
 
 // A counting sort by new slot of every sample, the untouched ones included: a slot
 // that no deletion touched still moves when the mesh is compacted.
-void SampleBuckets::rebuild(const std::vector<std::int32_t>& oldOf, std::size_t oldSlots) {
-  std::vector<std::int32_t> newOf(oldSlots, kNoTriangle);
-  for (std::size_t s = 0; s < oldOf.size(); ++s) newOf[oldOf[s]] = static_cast<std::int32_t>(s);
+void SampleBuckets::rebuild(const Compaction& slots) {
+  const std::vector<std::int32_t>& oldOf = slots.oldOf;
+  const std::vector<std::int32_t>& newOf = slots.newOf;
   std::vector<std::uint32_t> start(oldOf.size() + 1, 0);
   for (std::int32_t s : slot_) ++start[newOf[s] + 1];
   for (const Added& a : added_) ++start[newOf[a.slot] + 1];

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "simplification_mesh.h"
 #include "tinlod/importance.h"
 
 namespace tinlod {
@@ -26,9 +27,8 @@ class SampleBuckets {
   void expect(std::size_t added) { added_.resize(added); }
   void add(std::size_t k, const Point3& p, std::int32_t slot) { added_[k] = {p, slot}; }
 
-  // After the mesh is compacted (`oldOf`: the old slot of each new one, from
-  // SimplificationMesh::compact): the samples, old and added, ordered by their new slot.
-  void rebuild(const std::vector<std::int32_t>& oldOf, std::size_t oldSlots);
+  // After the mesh is compacted: the samples, old and added, ordered by their new slot.
+  void rebuild(const Compaction& slots);
 
  private:
   struct Added {

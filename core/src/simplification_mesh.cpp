@@ -17,30 +17,44 @@ K::Point_2 xy(const Point3& p) { return K::Point_2(p.x, p.y); }
 
 const char* kNotSampled = "the level-0 TIN is not a Delaunay triangulation: it was not made by tinlod sample";
 
+// A counting sort of `count` triangles by the smallest of their vertices (numbered below
+// `vertices`), as smallest(t) gives it, -1 for a triangle to drop: the simplifier visits
+// vertices in order, so the stars it walks one after another lie side by side.
+template <class Smallest>
+Compaction orderBySmallestVertex(std::size_t count, std::size_t vertices, Smallest smallest) {
+  std::vector<std::int32_t> first(vertices + 1, 0);
+  for (std::size_t t = 0; t < count; ++t)
+    if (smallest(t) >= 0) ++first[smallest(t) + 1];
+  for (std::size_t v = 0; v < vertices; ++v) first[v + 1] += first[v];
+  Compaction c{std::vector<std::int32_t>(first.back()), std::vector<std::int32_t>(count, kNoTriangle)};
+  for (std::size_t t = 0; t < count; ++t)
+    if (smallest(t) >= 0) {
+      const std::int32_t slot = first[smallest(t)]++;
+      c.newOf[t] = slot, c.oldOf[slot] = static_cast<std::int32_t>(t);
+    }
+  return c;
+}
+
 }  // namespace
 
-// Slots are ordered by their triangles' smallest vertex id: the simplifier visits
-// vertices in id order, so the stars it walks one after another lie side by side.
 SimplificationMesh::SimplificationMesh(const Tin& base) {
   points_.reserve(base.vertices.size());
   for (const TinVertex& v : base.vertices) points_.push_back({v.x, v.y, v.z});
   global_.resize(points_.size());
   localOf_.resize(points_.size());
   for (std::size_t v = 0; v < points_.size(); ++v) global_[v] = static_cast<VertexId>(v), localOf_[v] = static_cast<std::int32_t>(v);
-  std::vector<std::uint32_t> first(points_.size() + 1, 0);
-  for (const Triangle& tri : base.triangles) {
+  for (const Triangle& tri : base.triangles)
     for (VertexId v : tri)
       if (v >= points_.size()) throw Error("internal error: a triangle names a vertex the TIN does not have");
-    ++first[*std::min_element(tri.begin(), tri.end()) + 1];
-  }
-  for (std::size_t v = 0; v < points_.size(); ++v) first[v + 1] += first[v];
+  const Compaction order = orderBySmallestVertex(base.triangles.size(), points_.size(), [&](std::size_t t) {
+    return static_cast<std::int32_t>(*std::min_element(base.triangles[t].begin(), base.triangles[t].end()));
+  });
   triangles_.resize(base.triangles.size());
   for (std::size_t t = 0; t < base.triangles.size(); ++t) {
     const Triangle& tri = base.triangles[t];
-    triangles_[first[*std::min_element(tri.begin(), tri.end())]++] = {
-        {std::int32_t(tri[0]), std::int32_t(tri[1]), std::int32_t(tri[2])},
-        {kNoTriangle, kNoTriangle, kNoTriangle},
-        static_cast<std::int32_t>(t)};
+    triangles_[order.newOf[t]] = {{std::int32_t(tri[0]), std::int32_t(tri[1]), std::int32_t(tri[2])},
+                                  {kNoTriangle, kNoTriangle, kNoTriangle},
+                                  static_cast<std::int32_t>(t)};
   }
   link();
   checkDelaunay();
@@ -148,43 +162,36 @@ void SimplificationMesh::geometryOf(VertexId v, Star& star) const {
   canonicalWalk(v, [&](std::int32_t t, int k) { star.ring.push_back(points_[triangles_[t].v[(k + 1) % 3]]); });
 }
 
+// Entries of earlier rounds, even from before a compaction, carry an older round number.
 void SimplificationMesh::beginRound() {
-  if (successor_.size() != triangles_.size()) successor_.assign(triangles_.size(), kNoTriangle), retired_.assign(triangles_.size(), 0);
+  successor_.resize(triangles_.size(), kNoTriangle);
+  retired_.resize(triangles_.size(), 0);
   ++round_;
 }
 
-// Ordered by smallest vertex again (a counting sort), as level 0 was: new triangles
-// left where their stars were drift from the order the vertices are visited in. The
-// vertices are renumbered first, so each triangle is copied once, on every core.
-std::vector<std::int32_t> SimplificationMesh::compact() {
+// Ordered by smallest vertex again, as level 0 was: new triangles left where their stars
+// were drift from the order the vertices are visited in. The vertices are renumbered
+// first, so each triangle is copied once, on every core.
+Compaction SimplificationMesh::compact() {
   const std::vector<std::int32_t> vertexOf = compactVertices();
-  std::vector<std::int32_t> first(points_.size() + 1, 0), newOf(triangles_.size(), kNoTriangle);
-  auto smallest = [&](const MeshTriangle& t) { return vertexOf[std::min({t.v[0], t.v[1], t.v[2]})]; };
-  for (const MeshTriangle& t : triangles_)
-    if (t.v[0] >= 0) ++first[smallest(t) + 1];
-  for (std::size_t v = 0; v + 1 < first.size(); ++v) first[v + 1] += first[v];
-  std::vector<std::int32_t> oldOf(first.back());
-  for (std::size_t t = 0; t < triangles_.size(); ++t)
-    if (triangles_[t].v[0] >= 0) {
-      const std::int32_t slot = first[smallest(triangles_[t])]++;
-      newOf[t] = slot, oldOf[slot] = static_cast<std::int32_t>(t);
-    }
-  std::vector<MeshTriangle> compacted(oldOf.size());
-  forEachBlock(static_cast<int>(oldOf.size()), [&](int begin, int end) {
+  Compaction c = orderBySmallestVertex(triangles_.size(), points_.size(), [&](std::size_t t) {
+    const MeshTriangle& tri = triangles_[t];
+    return tri.v[0] < 0 ? -1 : vertexOf[std::min({tri.v[0], tri.v[1], tri.v[2]})];
+  });
+  std::vector<MeshTriangle> compacted(c.oldOf.size());
+  forEachBlock(static_cast<int>(c.oldOf.size()), [&](int begin, int end) {
     for (int slot = begin; slot < end; ++slot) {
-      MeshTriangle tri = triangles_[oldOf[slot]];
+      MeshTriangle tri = triangles_[c.oldOf[slot]];
       for (std::int32_t& v : tri.v) v = vertexOf[v];
       for (std::int32_t& n : tri.n)
-        if (n != kNoTriangle) n = newOf[n];
+        if (n != kNoTriangle) n = c.newOf[n];
       compacted[slot] = tri;
     }
   }, {});
   triangles_.swap(compacted);
   for (std::size_t t = 0; t < triangles_.size(); ++t)
     for (std::int32_t v : triangles_[t].v) start_[v] = static_cast<std::int32_t>(t);
-  successor_.clear();
-  retired_.clear();
-  return oldOf;
+  return c;
 }
 
 std::size_t SimplificationMesh::liveTriangles() const {

@@ -20,6 +20,12 @@ namespace tinlod {
 constexpr std::int32_t kNoTriangle = -1;
 constexpr int kSmallStar = 64;  // stars of up to this degree are handled in fixed-size scratch
 
+// Slots renumbered: for each new slot its old one, and for each old slot its new one
+// (kNoTriangle when dropped).
+struct Compaction {
+  std::vector<std::int32_t> oldOf, newOf;
+};
+
 struct MeshTriangle {
   std::array<std::int32_t, 3> v;  // the mesh's own vertex numbers, counter-clockwise; v[0] < 0 for a dead slot
   std::array<std::int32_t, 3> n;  // n[k]: the triangle across the edge opposite v[k], or kNoTriangle
@@ -76,8 +82,8 @@ class SimplificationMesh {
   void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
   // Drops the dead slots and the deleted vertices and orders the rest by smallest vertex
   // again, so that the stars of the vertices still there stay side by side in memory as
-  // the TIN thins out. Returns, for each new slot, its old slot.
-  std::vector<std::int32_t> compact();
+  // the TIN thins out.
+  Compaction compact();
 
   // The live triangles, and how many of their links are wrong (a neighbour that does not
   // share the edge or does not link back): for the tests.
