@@ -4,6 +4,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <cmath>
+#include <limits>
 
 #include "tinlod/error.h"
 #include "triangle_contains.h"
@@ -19,14 +20,16 @@ bool leftTurn(const Point3& a, const Point3& b, const Point3& c) {
   return CGAL::orientation(xy(a), xy(b), xy(c)) == CGAL::LEFT_TURN;
 }
 
-// Power of p with respect to the circle through a, b, c (counter-clockwise): negative
-// inside. From the in-circle determinant D and the orientation O, both relative to p:
-// D = O (r^2 - |p - centre|^2).
-double power(const Point3& p, const Point3& a, const Point3& b, const Point3& c) {
-  const double ax = a.x - p.x, ay = a.y - p.y, bx = b.x - p.x, by = b.y - p.y, cx = c.x - p.x, cy = c.y - p.y;
-  const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-  const double d = ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
-  const double o = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+// Power of the centre (the origin of the relative coordinates) with respect to the circle
+// through a, b, c (counter-clockwise): negative inside. From the in-circle determinant D
+// and the orientation O, both relative to the centre: D = O (r^2 - |centre - m|^2).
+struct Relative {
+  double x, y, r2;  // x, y relative to the star's centre, and x^2 + y^2
+};
+
+double power(const Relative& a, const Relative& b, const Relative& c) {
+  const double d = a.x * (b.y * c.r2 - b.r2 * c.y) - a.y * (b.x * c.r2 - b.r2 * c.x) + a.r2 * (b.x * c.y - b.y * c.x);
+  const double o = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
   return -d / o;
 }
 
@@ -74,10 +77,14 @@ namespace {
 // clipping one re-ranks only its two neighbours.
 class EarClipper {
  public:
-  explicit EarClipper(const Star& star) : star_(star), prev_(lists_.prev), next_(lists_.next), power_(lists_.power), convex_(lists_.convex) {
+  explicit EarClipper(const Star& star) : star_(star), lists_(scratch()) {
     const int d = static_cast<int>(star.ring.size());
-    prev_.resize(d), next_.resize(d), power_.resize(d), convex_.resize(d);
-    for (int i = 0; i < d; ++i) prev_[i] = (i + d - 1) % d, next_[i] = (i + 1) % d;
+    lists_.resize(d);
+    for (int i = 0; i < d; ++i) {
+      const double x = star.ring[i].x - star.centre.x, y = star.ring[i].y - star.centre.y;
+      lists_.rel[i] = {x, y, x * x + y * y};
+      lists_.prev[i] = i == 0 ? d - 1 : i - 1, lists_.next[i] = i + 1 == d ? 0 : i + 1;
+    }
     for (int i = 0; i < d; ++i) rank(i);
   }
 
@@ -85,40 +92,54 @@ class EarClipper {
   // floating-point ranking alone, enough for an importance value.
   void run(std::vector<LocalTriangle>& out, bool exact) {
     out.clear();
+    int* prev = lists_.prev.data();
+    int* next = lists_.next.data();
     int head = 0;
     for (int m = static_cast<int>(star_.ring.size()); m > 3; --m) {
       int ear = bestEar(head, m);
       if (exact && (ear < 0 || !delaunay(ear))) ear = firstDelaunayEar(head, m);
       if (ear < 0) return;  // no convex ear: not a star polygon (cannot happen for a star)
-      out.push_back({prev_[ear], ear, next_[ear]});
-      next_[prev_[ear]] = next_[ear], prev_[next_[ear]] = prev_[ear];
-      if (head == ear) head = next_[ear];
-      rank(prev_[ear]), rank(next_[ear]);
+      out.push_back({prev[ear], ear, next[ear]});
+      next[prev[ear]] = next[ear], prev[next[ear]] = prev[ear];
+      if (head == ear) head = next[ear];
+      rank(prev[ear]), rank(next[ear]);
     }
-    if (star_.ring.size() >= 3) out.push_back({head, next_[head], next_[next_[head]]});
+    if (star_.ring.size() >= 3) out.push_back({head, next[head], next[next[head]]});
   }
 
  private:
+  // A reflex vertex ranks below every convex one (whose power, in a degenerate
+  // floating-point case, is clamped above it), so it is never the best ear.
   void rank(int i) {
     const std::vector<Point3>& ring = star_.ring;
-    convex_[i] = leftTurn(ring[prev_[i]], ring[i], ring[next_[i]]);
-    if (convex_[i]) power_[i] = power(star_.centre, ring[prev_[i]], ring[i], ring[next_[i]]);
+    const int p = lists_.prev[i], n = lists_.next[i];
+    constexpr double lowest = -std::numeric_limits<double>::max();
+    if (!leftTurn(ring[p], ring[i], ring[n])) {
+      lists_.power[i] = -std::numeric_limits<double>::infinity();
+      return;
+    }
+    const double pw = power(lists_.rel[p], lists_.rel[i], lists_.rel[n]);
+    lists_.power[i] = pw > lowest ? pw : lowest;
   }
+  bool convex(int i) const { return lists_.power[i] != -std::numeric_limits<double>::infinity(); }
 
   int bestEar(int head, int m) const {
-    int best = -1;
-    for (int i = head, k = 0; k < m; ++k, i = next_[i])
-      if (convex_[i] && (best < 0 || power_[i] > power_[best])) best = i;
-    return best;
+    const double* power = lists_.power.data();
+    const int* next = lists_.next.data();
+    int best = head;
+    for (int i = next[head], k = 1; k < m; ++k, i = next[i])
+      if (power[i] > power[best]) best = i;
+    return convex(best) ? best : -1;
   }
 
   // Convex, and no other vertex of the polygon strictly inside its circumcircle: a
   // triangle of the polygon's Delaunay triangulation (exact predicates).
   bool delaunay(int i) const {
-    if (!convex_[i]) return false;
+    if (!convex(i)) return false;
     const std::vector<Point3>& ring = star_.ring;
-    const K::Point_2 a = xy(ring[prev_[i]]), b = xy(ring[i]), c = xy(ring[next_[i]]);
-    for (int j = next_[next_[i]]; j != prev_[i]; j = next_[j])
+    const int* next = lists_.next.data();
+    const K::Point_2 a = xy(ring[lists_.prev[i]]), b = xy(ring[i]), c = xy(ring[next[i]]);
+    for (int j = next[next[i]]; j != lists_.prev[i]; j = next[j])
       if (CGAL::side_of_oriented_circle(a, b, c, xy(ring[j])) == CGAL::ON_POSITIVE_SIDE) return false;
     return true;
   }
@@ -126,7 +147,7 @@ class EarClipper {
   // Only in a near tie, where the floating-point ranking chose an ear the exact test
   // refuses.
   int firstDelaunayEar(int head, int m) const {
-    for (int i = head, k = 0; k < m; ++k, i = next_[i])
+    for (int i = head, k = 0; k < m; ++k, i = lists_.next[i])
       if (delaunay(i)) return i;
     throw Error("internal error: a star polygon has no Delaunay ear");
   }
@@ -135,16 +156,16 @@ class EarClipper {
   struct Lists {
     std::vector<int> prev, next;
     std::vector<double> power;
-    std::vector<char> convex;
+    std::vector<Relative> rel;
+    void resize(int d) { prev.resize(d), next.resize(d), power.resize(d), rel.resize(d); }
   };
-  static thread_local Lists lists_;
+  static Lists& scratch() {
+    thread_local Lists lists;
+    return lists;
+  }
   const Star& star_;
-  std::vector<int>&prev_, &next_;
-  std::vector<double>& power_;
-  std::vector<char>& convex_;
+  Lists& lists_;
 };
-
-thread_local EarClipper::Lists EarClipper::lists_;
 
 }  // namespace
 
