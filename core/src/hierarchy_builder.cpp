@@ -10,6 +10,7 @@
 #include "parallel_blocks.h"
 #include "sample_buckets.h"
 #include "simplification_mesh.h"
+#include "vertex_rings.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -48,9 +49,9 @@ class Simplifier {
   }
 
   Hierarchy run(const std::vector<PointXY>& keep) {
-    setUp(keep);
     original_ = h_.base.vertices.size();
     stopCount_ = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original_));
+    setUp(keep);
     h_.levels.push_back({0, original_, h_.base.triangles.size(), 0, 0, 0, 0});
     current_ = original_;
     triangles_ = h_.base.triangles.size();
@@ -74,7 +75,7 @@ class Simplifier {
  private:
   void setUp(const std::vector<PointXY>& keep) {
     const std::size_t nv = h_.base.vertices.size();
-    h_.triangles.reserve(h_.base.triangles.size() * 3);
+    reserveForDeletions();
     for (const Triangle& tri : h_.base.triangles) {
       HierarchyTriangle ht;
       ht.v = tri;
@@ -87,12 +88,25 @@ class Simplifier {
     importance_.assign(nv, 0.0);
     stamp_.assign(nv, -1);
     stale_.assign(nv, 1);
+    rings_.reset(nv);
     fixNearest(keep);
     // A vertex on the outline or on a hole's edge would change the TIN's extent.
     for (VertexId v = 0; v < nv; ++v) {
       if (mesh_.open(v)) h_.fixed[v] = 1;
       if (!h_.fixed[v]) live_.push_back(v);
     }
+  }
+
+  // Every deletion adds to the hierarchy's arrays. Reserved once, for as many deletions
+  // as the run may make at a generous mean degree, they are not copied level after level
+  // as they grow; reserve that is never written takes address space, not memory.
+  void reserveForDeletions() {
+    constexpr std::size_t kMeanDegree = 7;
+    const std::size_t deletions = original_ - std::min(original_, stopCount_);
+    h_.triangles.reserve(h_.base.triangles.size() + deletions * (kMeanDegree - 2));
+    h_.links.reserve(deletions * (2 * kMeanDegree - 2));
+    h_.rings.reserve(deletions * kMeanDegree);
+    h_.groups.reserve(deletions);
   }
 
   // Each point keeps the vertex nearest to it, if it falls on the TIN's data.
@@ -117,7 +131,7 @@ class Simplifier {
 
   // Only reads the mesh and writes the vertex's own entry: safe in parallel.
   void updateImportance(VertexId v, Star& star, std::vector<Point3>& samples) {
-    mesh_.geometryOf(v, star);
+    rings_.setDegree(v, mesh_.geometryOf(v, star, rings_.place(v), VertexRings::kCapacity));
     if (options_.measure == Measure::Error) samplesAround(v, samples);
     importance_[v] = importance(options_.measure, star, samples);
     stale_[v] = 0;
@@ -179,13 +193,14 @@ class Simplifier {
     for (const auto& [imp, v] : candidates) {
       if (picks.size() >= limit) break;
       if (stamp_[v] == level) continue;
-      std::uint32_t degree = 0;
       stamp_[v] = level;
-      mesh_.eachAround(v, [&](std::int32_t slot, int k) {
-        stamp_[mesh_.corner(slot, (k + 1) % 3)] = level;
-        ++degree;
-      });
-      picks.push_back({imp, v, degree});
+      if (rings_.kept(v)) {
+        const VertexId* ring = rings_.ring(v);
+        for (int k = 0; k < rings_.degree(v); ++k) stamp_[ring[k]] = level;
+      } else {
+        mesh_.eachAround(v, [&](std::int32_t slot, int k) { stamp_[mesh_.corner(slot, (k + 1) % 3)] = level; });
+      }
+      picks.push_back({imp, v, static_cast<std::uint32_t>(rings_.degree(v))});
     }
     std::sort(picks.begin(), picks.end(), [](const Pick& a, const Pick& b) { return a.id < b.id; });
     std::size_t fills = 0, rings = 0;
@@ -349,6 +364,7 @@ class Simplifier {
   std::vector<double> importance_;           // by vertex
   std::vector<std::int32_t> stamp_;          // by vertex: the level in which it or a neighbour was picked
   std::vector<std::uint8_t> stale_;          // by vertex: its importance must be recomputed
+  VertexRings rings_;                        // by vertex: its neighbours, as last measured
   SampleBuckets samples_;                    // the level-0 samples under each slot
   std::vector<double> slotError_;            // by slot: its triangle's error
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles

@@ -70,7 +70,9 @@ class SimplificationMesh {
   // Writes the star of an interior vertex into arrays of degree(v) entries each, and
   // its points into `geometry`.
   void starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer, Star& geometry) const;
-  void geometryOf(VertexId v, Star& star) const;  // the same ring as points, for importance
+  // The same ring as points, for importance, and as TIN ids in `ids` when the degree
+  // (returned) is at most `capacity`.
+  int geometryOf(VertexId v, Star& star, VertexId* ids, int capacity) const;
 
   // Deleting an independent set: beginRound(), then retire() for every star (it only
   // reads the triangles), then replaceStar() for every star, each on any thread, then

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: each vertex's ring of neighbours as TIN ids, one cache line a vertex, written
+// whenever the simplifier measures a vertex again (its star changed). The best-first pick
+// blocks a picked vertex's neighbours in importance order, which jumps about the TIN:
+// there one line is read where a star walk would wait on each of its triangles in turn.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tinlod/tin.h"
+
+namespace tinlod {
+
+class VertexRings {
+ public:
+  static constexpr int kCapacity = 15;  // larger rings are walked in the mesh instead
+
+  void reset(std::size_t vertices) { rows_.assign(vertices, Row{}); }
+  // Where the ring of v is written; then its degree (the ring is kept only up to kCapacity).
+  VertexId* place(VertexId v) { return rows_[v].ids; }
+  void setDegree(VertexId v, int degree) { rows_[v].degree = degree; }
+
+  int degree(VertexId v) const { return rows_[v].degree; }
+  bool kept(VertexId v) const { return rows_[v].degree <= kCapacity; }
+  const VertexId* ring(VertexId v) const { return rows_[v].ids; }
+
+ private:
+  struct alignas(64) Row {
+    std::int32_t degree = 0;
+    VertexId ids[kCapacity] = {};
+  };
+  std::vector<Row> rows_;
+};
+
+}  // namespace tinlod
