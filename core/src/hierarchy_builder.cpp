@@ -8,6 +8,7 @@
 
 #include "nearest_vertices.h"
 #include "parallel_blocks.h"
+#include "radix_sort.h"
 #include "sample_buckets.h"
 #include "simplification_mesh.h"
 #include "vertex_rings.h"
@@ -82,7 +83,7 @@ class Simplifier {
       ht.lastLevel = kOpenLevel;
       h_.triangles.push_back(ht);
     }
-    samples_.reset(mesh_.slotCount());
+    samples_.reset(mesh_.slotCount(), original_ - std::min(original_, stopCount_));
     slotError_.assign(mesh_.slotCount(), 0.0);
     h_.vertexLevel.assign(nv, kOpenLevel);
     importance_.assign(nv, 0.0);
@@ -151,16 +152,6 @@ class Simplifier {
     }, [&](double) { progress_.report(lastFraction_, phase); });
   }
 
-  // Halves sorted apart, one on each core, then merged.
-  static void sortOnTwoCores(std::vector<std::pair<double, VertexId>>& candidates) {
-    const auto middle = candidates.begin() + static_cast<std::ptrdiff_t>(candidates.size() / 2);
-    forEachBlock(2, [&](int begin, int end) {
-      for (int half = begin; half < end; ++half)
-        half == 0 ? std::sort(candidates.begin(), middle) : std::sort(middle, candidates.end());
-    }, {});
-    std::inplace_merge(candidates.begin(), middle, candidates.end());
-  }
-
   bool wanted(double importance) const {
     if (options_.measure == Measure::Error && importance > options_.maxError) return false;
     return !options_.thresholdMode || importance < options_.threshold;
@@ -169,23 +160,26 @@ class Simplifier {
   // After each level, so the next walks stars that lie side by side. Samples and errors
   // follow their triangles to the compacted slots.
   void compact() {
-    const Compaction slots = mesh_.compact();
+    const Compaction& slots = mesh_.compact();
     samples_.rebuild(slots);
-    std::vector<double> errors(slots.oldOf.size());
+    std::vector<double>& errors = spareError_;
+    errors.resize(slots.oldOf.size());
     for (std::size_t slot = 0; slot < errors.size(); ++slot) errors[slot] = slotError_[slots.oldOf[slot]];
     slotError_.swap(errors);
   }
 
-  // Best first, ties broken by vertex id: the result never depends on memory layout.
+  // Best first, ties broken by vertex id (the candidates are listed by id and the sort is
+  // stable): the result never depends on memory layout.
   // Each pick blocks its neighbours, so the set is independent. Returned in vertex order,
   // which is the TIN's spatial order: the plan and the mesh are then walked in cache.
   std::vector<Pick> select(std::int32_t level) {
     updateStaleImportances(level);
-    std::vector<std::pair<double, VertexId>> candidates;
+    std::vector<std::pair<double, VertexId>>& candidates = candidates_;
+    candidates.clear();
     candidates.reserve(live_.size());
     for (VertexId v : live_)
       if (eligible(v) && wanted(importance_[v])) candidates.emplace_back(importance_[v], v);
-    sortOnTwoCores(candidates);
+    radixSort(candidates, [](const std::pair<double, VertexId>& c) { return orderedBits(c.first); }, sortScratch_);
     std::size_t limit = current_ - stopCount_;
     if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
@@ -271,8 +265,9 @@ class Simplifier {
     double* error = fillError_.data() + pick.fill;
     std::fill(error, error + fill.size(), 0.0);
     const std::int32_t* slots = slots_.data() + pick.ring;
+    const bool convex = convexRing(star);
     auto place = [&](const Point3& p) {
-      const int j = triangleHolding(star, fill.data(), fill.size(), p);
+      const int j = triangleHolding(star, fill.data(), fill.size(), p, convex);
       if (j < 0) throw Error("internal error: a sample left its star");
       error[j] = std::max(error[j], verticalDistance(star, fill[j], p));
       return slots[j];
@@ -367,6 +362,8 @@ class Simplifier {
   VertexRings rings_;                        // by vertex: its neighbours, as last measured
   SampleBuckets samples_;                    // the level-0 samples under each slot
   std::vector<double> slotError_;            // by slot: its triangle's error
+  std::vector<double> spareError_;           //   and the previous level's array, reused
+  std::vector<std::pair<double, VertexId>> candidates_, sortScratch_;  // the level's, by importance
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
   std::vector<double> fillError_;            //   and their errors
   std::vector<std::int32_t> slots_;          //   and each pick's star slots
