@@ -136,5 +136,74 @@ TEST(Importance, VerticalErrorOfTheCentreAndOfSamples) {
   EXPECT_EQ(importance(Measure::Degree, p, {}), 6.0);
 }
 
+// triangleHolding takes the last triangle without a test, and tests only the diagonals
+// of a convex polygon, since the points it is given lie in the star's polygon: it must
+// still name the first triangle that holds each point, corners and shared edges
+// included, in convex and bent stars alike (dropping the convexity condition fails).
+TEST(Importance, TriangleHoldingIsTheFirstTriangleThatHoldsThePoint) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 100), w(0, 1);
+  Dt dt;
+  std::vector<std::pair<K::Point_2, int>> points;
+  for (int i = 0; i < 300; ++i) points.push_back({K::Point_2(u(rng), u(rng)), i});
+  dt.insert(points.begin(), points.end());
+  auto xy = [](const Point3& p) { return K::Point_2(p.x, p.y); };
+  int checked = 0;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    Star star;
+    star.centre = {v->point().x(), v->point().y(), 0};
+    bool onHull = false;
+    auto n = dt.incident_vertices(v), nd = n;
+    do {
+      onHull = onHull || dt.is_infinite(n);
+      star.ring.push_back({n->point().x(), n->point().y(), 0});
+    } while (++n != nd);
+    if (onHull) continue;
+    const std::vector<LocalTriangle> fill = retriangulateStar(star);
+    std::vector<Point3> probes{star.centre};
+    const std::size_t d = star.ring.size();
+    for (std::size_t i = 0; i < d; ++i) {
+      const Point3 &a = star.ring[i], &b = star.ring[(i + 1) % d];
+      probes.push_back(a);
+      probes.push_back({(a.x + b.x) / 2, (a.y + b.y) / 2, 0});
+      for (int k = 0; k < 4; ++k) {  // inside the old star's triangle centre, a, b
+        double s = w(rng), t = w(rng);
+        if (s + t > 1) s = 1 - s, t = 1 - t;
+        probes.push_back({star.centre.x + s * (a.x - star.centre.x) + t * (b.x - star.centre.x),
+                          star.centre.y + s * (a.y - star.centre.y) + t * (b.y - star.centre.y), 0});
+      }
+    }
+    for (const LocalTriangle& t : fill)  // on the diagonals
+      for (int e = 0; e < 3; ++e) {
+        const Point3 &a = star.ring[t[e]], &b = star.ring[t[(e + 1) % 3]];
+        probes.push_back({(a.x + b.x) / 2, (a.y + b.y) / 2, 0});
+      }
+    auto inOldStar = [&](const Point3& p) {  // rounding can put a midpoint just outside
+      for (std::size_t i = 0; i < d; ++i) {
+        const K::Point_2 c = xy(star.centre), a = xy(star.ring[i]), b = xy(star.ring[(i + 1) % d]);
+        if (CGAL::orientation(c, a, xy(p)) != CGAL::RIGHT_TURN && CGAL::orientation(a, b, xy(p)) != CGAL::RIGHT_TURN &&
+            CGAL::orientation(b, c, xy(p)) != CGAL::RIGHT_TURN)
+          return true;
+      }
+      return false;
+    };
+    for (const Point3& p : probes) {
+      if (!inOldStar(p)) continue;
+      int first = -1;
+      for (std::size_t j = 0; j < fill.size() && first < 0; ++j) {
+        const K::Point_2 a = xy(star.ring[fill[j][0]]), b = xy(star.ring[fill[j][1]]), c = xy(star.ring[fill[j][2]]);
+        if (CGAL::orientation(a, b, xy(p)) != CGAL::RIGHT_TURN && CGAL::orientation(b, c, xy(p)) != CGAL::RIGHT_TURN &&
+            CGAL::orientation(c, a, xy(p)) != CGAL::RIGHT_TURN)
+          first = static_cast<int>(j);
+      }
+      ASSERT_GE(first, 0);
+      ASSERT_EQ(triangleHolding(star, fill.data(), fill.size(), p, convexRing(star)), first) << "star of degree " << d;
+      ASSERT_EQ(triangleHolding(star, fill.data(), fill.size(), p, false), first) << "star of degree " << d;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 5000);
+}
+
 }  // namespace
 }  // namespace tinlod

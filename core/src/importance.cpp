@@ -7,7 +7,6 @@
 #include <limits>
 
 #include "tinlod/error.h"
-#include "triangle_contains.h"
 
 namespace tinlod {
 namespace {
@@ -47,10 +46,6 @@ double planeZ(const Point3& a, const Point3& b, const Point3& c, double x, doubl
   const double wb = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / d;
   const double wc = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / d;
   return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
-}
-
-bool contains(const Point3& a, const Point3& b, const Point3& c, const Point3& s) {
-  return triangleContains(xy(a), xy(b), xy(c), xy(s));
 }
 
 }  // namespace
@@ -216,10 +211,29 @@ double normalFlatness(const Star& star) {
   return sum / normals.size();
 }
 
-int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p) {
-  for (std::size_t j = 0; j < count; ++j)
-    if (contains(star.ring[tris[j][0]], star.ring[tris[j][1]], star.ring[tris[j][2]], p)) return static_cast<int>(j);
-  return -1;
+bool convexRing(const Star& star) {
+  const std::size_t d = star.ring.size();
+  for (std::size_t i = 0; i < d; ++i)
+    if (!leftTurn(star.ring[(i + d - 1) % d], star.ring[i], star.ring[(i + 1) % d])) return false;
+  return true;
+}
+
+// The polygon holds p, so when it is convex its ring edges need no test, only the
+// diagonals (in a polygon that bends back, p can lie beyond a ring edge's line and
+// still inside); and when every other triangle has refused p, the last one holds it.
+int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex) {
+  const int d = static_cast<int>(star.ring.size());
+  const K::Point_2 q = xy(p);
+  for (std::size_t j = 0; j + 1 < count; ++j) {
+    bool holds = true;
+    for (int e = 0; e < 3 && holds; ++e) {
+      const int a = tris[j][e], b = tris[j][(e + 1) % 3];
+      if (convex && b == (a + 1) % d) continue;
+      holds = CGAL::orientation(xy(star.ring[a]), xy(star.ring[b]), q) != CGAL::RIGHT_TURN;
+    }
+    if (holds) return static_cast<int>(j);
+  }
+  return count > 0 ? static_cast<int>(count) - 1 : -1;
 }
 
 double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& p) {
@@ -230,8 +244,9 @@ double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& 
 double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
                         const std::vector<Point3>& samples) {
   double worst = 0;
+  const bool convex = convexRing(star);
   auto measure = [&](const Point3& s) {
-    const int j = triangleHolding(star, without.data(), without.size(), s);
+    const int j = triangleHolding(star, without.data(), without.size(), s, convex);
     if (j >= 0) worst = std::max(worst, verticalDistance(star, without[j], s));
   };
   measure(star.centre);

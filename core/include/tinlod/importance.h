@@ -44,9 +44,13 @@ double volumeChange(const Star& star, const std::vector<LocalTriangle>& without)
 // a plane, less where the star bends.
 double normalFlatness(const Star& star);
 
-// The first of `count` triangles of the star's ring that holds p in x/y (CGAL's exact
-// orientation; on a shared edge, the first), or -1.
-int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p);
+// Whether the star's ring is a convex polygon (CGAL's exact orientation).
+bool convexRing(const Star& star);
+// The first of `count` triangles, which triangulate the star's polygon, that holds p in
+// x/y (CGAL's exact orientation; on a shared edge, the first). p must lie in the polygon
+// (closed), as the samples under a star do; `convex` is convexRing(star), which spares
+// the tests on the ring's edges.
+int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex);
 // |p.z - the height of triangle t's plane at p|.
 double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& p);
 
