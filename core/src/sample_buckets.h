@@ -15,7 +15,12 @@ namespace tinlod {
 
 class SampleBuckets {
  public:
-  void reset(std::size_t slots) { start_.assign(slots + 1, 0), points_.clear(), slot_.clear(); }
+  // For a run that turns at most `samples` vertices into samples: the arrays then never
+  // move as they grow.
+  void reset(std::size_t slots, std::size_t samples) {
+    start_.assign(slots + 1, 0), points_.clear(), slot_.clear();
+    points_.reserve(samples), sparePoints_.reserve(samples), slot_.reserve(samples);
+  }
 
   std::size_t begin(std::int32_t slot) const { return start_[slot]; }
   std::size_t end(std::int32_t slot) const { return start_[slot + 1]; }
@@ -39,6 +44,8 @@ class SampleBuckets {
   std::vector<Point3> points_;
   std::vector<std::int32_t> slot_;    // by sample: its slot once this level's deletions are done
   std::vector<Added> added_;
+  std::vector<std::uint32_t> spareStart_, fill_;  // rebuild's, kept from level to level
+  std::vector<Point3> sparePoints_;
 };
 
 }  // namespace tinlod

@@ -19,20 +19,22 @@ const char* kNotSampled = "the level-0 TIN is not a Delaunay triangulation: it w
 
 // A counting sort of `count` triangles by the smallest of their vertices (numbered below
 // `vertices`), as smallest(t) gives it, -1 for a triangle to drop: the simplifier visits
-// vertices in order, so the stars it walks one after another lie side by side.
+// vertices in order, so the stars it walks one after another lie side by side. Writes
+// into c and first, whose memory is reused level after level.
 template <class Smallest>
-Compaction orderBySmallestVertex(std::size_t count, std::size_t vertices, Smallest smallest) {
-  std::vector<std::int32_t> first(vertices + 1, 0);
+void orderBySmallestVertex(std::size_t count, std::size_t vertices, Smallest smallest, Compaction& c,
+                           std::vector<std::int32_t>& first) {
+  first.assign(vertices + 1, 0);
   for (std::size_t t = 0; t < count; ++t)
     if (smallest(t) >= 0) ++first[smallest(t) + 1];
   for (std::size_t v = 0; v < vertices; ++v) first[v + 1] += first[v];
-  Compaction c{std::vector<std::int32_t>(first.back()), std::vector<std::int32_t>(count, kNoTriangle)};
+  c.oldOf.resize(first.back());
+  c.newOf.assign(count, kNoTriangle);
   for (std::size_t t = 0; t < count; ++t)
     if (smallest(t) >= 0) {
       const std::int32_t slot = first[smallest(t)]++;
       c.newOf[t] = slot, c.oldOf[slot] = static_cast<std::int32_t>(t);
     }
-  return c;
 }
 
 }  // namespace
@@ -46,9 +48,10 @@ SimplificationMesh::SimplificationMesh(const Tin& base) {
   for (const Triangle& tri : base.triangles)
     for (VertexId v : tri)
       if (v >= points_.size()) throw Error("internal error: a triangle names a vertex the TIN does not have");
-  const Compaction order = orderBySmallestVertex(base.triangles.size(), points_.size(), [&](std::size_t t) {
+  Compaction& order = compaction_;
+  orderBySmallestVertex(base.triangles.size(), points_.size(), [&](std::size_t t) {
     return static_cast<std::int32_t>(*std::min_element(base.triangles[t].begin(), base.triangles[t].end()));
-  });
+  }, order, scratch_);
   triangles_.resize(base.triangles.size());
   for (std::size_t t = 0; t < base.triangles.size(); ++t) {
     const Triangle& tri = base.triangles[t];
@@ -189,14 +192,17 @@ void SimplificationMesh::beginRound() {
 
 // Ordered by smallest vertex again, as level 0 was: new triangles left where their stars
 // were drift from the order the vertices are visited in. The vertices are renumbered
-// first, so each triangle is copied once, on every core.
-Compaction SimplificationMesh::compact() {
-  const std::vector<std::int32_t> vertexOf = compactVertices();
-  Compaction c = orderBySmallestVertex(triangles_.size(), points_.size(), [&](std::size_t t) {
+// first, so each triangle is copied once, on every core, into the array the previous
+// compaction left (the arrays only shrink, so no fresh memory is faulted in).
+const Compaction& SimplificationMesh::compact() {
+  const std::vector<std::int32_t>& vertexOf = compactVertices();
+  Compaction& c = compaction_;
+  orderBySmallestVertex(triangles_.size(), points_.size(), [&](std::size_t t) {
     const MeshTriangle& tri = triangles_[t];
     return tri.v[0] < 0 ? -1 : vertexOf[std::min({tri.v[0], tri.v[1], tri.v[2]})];
-  });
-  std::vector<MeshTriangle> compacted(c.oldOf.size());
+  }, c, scratch_);
+  std::vector<MeshTriangle>& compacted = spare_;
+  compacted.resize(c.oldOf.size());
   forEachBlock(static_cast<int>(c.oldOf.size()), [&](int begin, int end) {
     for (int slot = begin; slot < end; ++slot) {
       MeshTriangle tri = triangles_[c.oldOf[slot]];
@@ -238,8 +244,9 @@ std::size_t SimplificationMesh::brokenLinks() const {
 
 // Keeps the vertices some live triangle still has, in their order; returns the new
 // number of each old one (-1 when gone). The triangles are renumbered by the caller.
-std::vector<std::int32_t> SimplificationMesh::compactVertices() {
-  std::vector<std::int32_t> newOf(points_.size(), -1);
+const std::vector<std::int32_t>& SimplificationMesh::compactVertices() {
+  std::vector<std::int32_t>& newOf = vertexOf_;
+  newOf.assign(points_.size(), -1);
   for (const MeshTriangle& t : triangles_)
     if (t.v[0] >= 0)
       for (std::int32_t v : t.v) newOf[v] = 0;

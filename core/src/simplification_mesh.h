@@ -85,7 +85,7 @@ class SimplificationMesh {
   // Drops the dead slots and the deleted vertices and orders the rest by smallest vertex
   // again, so that the stars of the vertices still there stay side by side in memory as
   // the TIN thins out.
-  Compaction compact();
+  const Compaction& compact();  // valid until the next compaction
 
   // The live triangles, and how many of their links are wrong (a neighbour that does not
   // share the edge or does not link back): for the tests.
@@ -112,7 +112,7 @@ class SimplificationMesh {
   }
   template <class Visit>
   void canonicalWalk(VertexId v, Visit visit) const;
-  std::vector<std::int32_t> compactVertices();
+  const std::vector<std::int32_t>& compactVertices();
 
   std::vector<Point3> points_;           // by mesh vertex
   std::vector<MeshTriangle> triangles_;
@@ -123,6 +123,10 @@ class SimplificationMesh {
   std::vector<std::int32_t> successor_;  // by slot retired this round: the new slot holding its ring edge
   std::vector<std::uint32_t> retired_;   // by slot: the round that retired it
   std::uint32_t round_ = 0;
+  // Compaction's own arrays, kept from level to level.
+  Compaction compaction_;
+  std::vector<MeshTriangle> spare_;
+  std::vector<std::int32_t> vertexOf_, scratch_;
 };
 
 }  // namespace tinlod
