@@ -6,7 +6,7 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
+#include <memory>
 
 #include "tinlod/tin.h"
 
@@ -16,7 +16,9 @@ class VertexRings {
  public:
   static constexpr int kCapacity = 15;  // larger rings are walked in the mesh instead
 
-  void reset(std::size_t vertices) { rows_.assign(vertices, Row{}); }
+  // The rows are left unwritten: each is written when its vertex is first measured, on
+  // the core that measures it, before anything reads it.
+  void reset(std::size_t vertices) { rows_.reset(new Row[vertices]); }
   // Where the ring of v is written; then its degree (the ring is kept only up to kCapacity).
   VertexId* place(VertexId v) { return rows_[v].ids; }
   void setDegree(VertexId v, int degree) { rows_[v].degree = degree; }
@@ -27,10 +29,10 @@ class VertexRings {
 
  private:
   struct alignas(64) Row {
-    std::int32_t degree = 0;
-    VertexId ids[kCapacity] = {};
+    std::int32_t degree;
+    VertexId ids[kCapacity];
   };
-  std::vector<Row> rows_;
+  std::unique_ptr<Row[]> rows_;
 };
 
 }  // namespace tinlod
