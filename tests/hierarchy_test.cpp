@@ -280,6 +280,9 @@ TEST(Hierarchy, RefusesALevelZeroThatIsNotDelaunay) {
   Tin doubled = quad;
   doubled.triangles.push_back({0, 1, 2});
   EXPECT_THROW(buildHierarchy(doubled, {}, {}, kQuiet), Error);
+  Tin doubledInside = quad;  // the copy shares the inner diagonal, not only outline edges
+  doubledInside.triangles.push_back({2, 3, 0});
+  EXPECT_THROW(buildHierarchy(doubledInside, {}, {}, kQuiet), Error);
 }
 
 // A vertex of degree 100 (above the small-star scratch) in the middle of a ring, deleted in

@@ -79,7 +79,9 @@ void SimplificationMesh::link() {
   std::vector<std::int32_t> fill(first.begin(), first.end() - 1);
   for (int t = 0; t < count; ++t)
     for (int k = 0; k < 3; ++k) out[fill[triangles_[t].v[(k + 1) % 3]]++] = {triangles_[t].v[(k + 2) % 3], t * 3 + k};
-  // Two triangles on the same side of an edge, or on one edge three times, overlap.
+  // Two triangles on the same side of an edge overlap: the edge then finds its twin twice
+  // (thrown here), or its twin links back to only one of them (thrown by checkDelaunay),
+  // or, on the outline, a's list holds the edge twice.
   auto heads = [&](std::int32_t from, std::int32_t to) {
     return std::count_if(out.begin() + first[from], out.begin() + first[from + 1],
                          [to](const HalfEdge& h) { return h.head == to; });
@@ -88,9 +90,10 @@ void SimplificationMesh::link() {
     for (int t = begin; t < end; ++t)
       for (int k = 0; k < 3; ++k) {
         const std::int32_t a = triangles_[t].v[(k + 1) % 3], b = triangles_[t].v[(k + 2) % 3];
-        if (heads(a, b) != 1 || heads(b, a) > 1) throw Error(kNotSampled);
+        int twins = 0;
         for (std::int32_t i = first[b]; i < first[b + 1]; ++i)
-          if (out[i].head == a) triangles_[t].n[k] = out[i].corner / 3;
+          if (out[i].head == a) triangles_[t].n[k] = out[i].corner / 3, ++twins;
+        if (twins > 1 || (twins == 0 && heads(a, b) != 1)) throw Error(kNotSampled);
       }
   }, {});
   start_.assign(nv, kNoTriangle);
@@ -116,9 +119,11 @@ void SimplificationMesh::checkDelaunay() const {
       if (CGAL::orientation(a, b, c) != CGAL::LEFT_TURN) throw Error(kNotSampled);
       for (int k = 0; k < 3; ++k) {
         const std::int32_t u = tri.n[k];
-        if (u < t) continue;  // each shared edge once; none across the outline
+        if (u == kNoTriangle) continue;
         const MeshTriangle& other = triangles_[u];
-        const int j = other.n[0] == t ? 0 : other.n[1] == t ? 1 : 2;
+        const int j = other.n[0] == t ? 0 : other.n[1] == t ? 1 : other.n[2] == t ? 2 : -1;
+        if (j < 0) throw Error(kNotSampled);  // not linked back: two triangles on one side of the edge
+        if (u < t) continue;  // each shared edge's in-circle test once
         if (CGAL::side_of_oriented_circle(a, b, c, xy(points_[other.v[j]])) == CGAL::ON_POSITIVE_SIDE)
           throw Error(kNotSampled);
       }
