@@ -164,7 +164,9 @@ class Simplifier {
     samples_.rebuild(slots);
     std::vector<double>& errors = spareError_;
     errors.resize(slots.oldOf.size());
-    for (std::size_t slot = 0; slot < errors.size(); ++slot) errors[slot] = slotError_[slots.oldOf[slot]];
+    forEachBlock(static_cast<int>(errors.size()), [&](int begin, int end) {
+      for (int slot = begin; slot < end; ++slot) errors[slot] = slotError_[slots.oldOf[slot]];
+    }, {});
     slotError_.swap(errors);
   }
 

@@ -11,7 +11,7 @@
 namespace tinlod {
 
 void forEachBlock(int count, const std::function<void(int, int)>& work, const std::function<void(double)>& progress) {
-  const int block = std::max(1, std::min(64, count / 64));
+  const int block = std::max(1, std::min(4096, count / 64));
   std::atomic<int> next{0}, done{0};
   std::atomic<bool> stop{false};
   std::exception_ptr failure;

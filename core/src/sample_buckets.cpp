@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "sample_buckets.h"
 
+#include "parallel_blocks.h"
+
 namespace tinlod {
 
 // A counting sort by new slot of every sample, the untouched ones included: a slot
@@ -22,8 +24,10 @@ void SampleBuckets::rebuild(const Compaction& slots) {
   for (std::size_t i = 0; i < points_.size(); ++i) points[fill[newOf[slot_[i]]]++] = points_[i];
   for (const Added& a : added_) points[fill[newOf[a.slot]]++] = a.p;
   slot_.resize(points.size());
-  for (std::size_t s = 0; s < oldOf.size(); ++s)
-    for (std::uint32_t i = start[s]; i < start[s + 1]; ++i) slot_[i] = static_cast<std::int32_t>(s);
+  forEachBlock(static_cast<int>(oldOf.size()), [&](int begin, int end) {
+    for (int s = begin; s < end; ++s)
+      for (std::uint32_t i = start[s]; i < start[s + 1]; ++i) slot_[i] = s;
+  }, {});
   points_.swap(points);
   start_.swap(start);
   added_.clear();
