@@ -108,6 +108,7 @@ Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange&
                     "along a straight edge) and were left out");
   if (tin.triangles.empty())
     throw Error("'" + dem.path + "' gives no triangle: its valid cells are isolated or in a line");
+  orderSpatially(tin);
   return tin;
 }
 

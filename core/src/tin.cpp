@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/tin.h"
 
+#include <algorithm>
+#include <utility>
+
 namespace tinlod {
 
 double triangleArea(const Tin& tin, const Triangle& t) {
@@ -27,6 +30,50 @@ std::vector<VertexId> dropUnusedVertices(Tin& tin) {
     for (VertexId& v : t) v = newId[v];
   tin.vertices = std::move(kept);
   return oldId;
+}
+
+namespace {
+
+// Position along a Z-order curve over the TIN's bounding box, 16 bits an axis.
+std::uint32_t zOrder(double x, double y, double x0, double y0, double sx, double sy) {
+  auto spread = [](std::uint32_t v) {
+    v = (v | (v << 8)) & 0x00FF00FFu;
+    v = (v | (v << 4)) & 0x0F0F0F0Fu;
+    v = (v | (v << 2)) & 0x33333333u;
+    return (v | (v << 1)) & 0x55555555u;
+  };
+  const auto qx = static_cast<std::uint32_t>(std::clamp((x - x0) * sx, 0.0, 65535.0));
+  const auto qy = static_cast<std::uint32_t>(std::clamp((y - y0) * sy, 0.0, 65535.0));
+  return spread(qx) | (spread(qy) << 1);
+}
+
+}  // namespace
+
+void orderSpatially(Tin& tin) {
+  const std::size_t n = tin.vertices.size();
+  if (n == 0) return;
+  double x0 = tin.vertices[0].x, x1 = x0, y0 = tin.vertices[0].y, y1 = y0;
+  for (const TinVertex& v : tin.vertices)
+    x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
+  const double sx = x1 > x0 ? 65535.0 / (x1 - x0) : 0, sy = y1 > y0 ? 65535.0 / (y1 - y0) : 0;
+  std::vector<std::pair<std::uint32_t, VertexId>> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+    order[i] = {zOrder(tin.vertices[i].x, tin.vertices[i].y, x0, y0, sx, sy), static_cast<VertexId>(i)};
+  std::sort(order.begin(), order.end());  // equal positions keep their old order
+  std::vector<VertexId> newId(n);
+  std::vector<TinVertex> vertices(n);
+  for (std::size_t i = 0; i < n; ++i) newId[order[i].second] = static_cast<VertexId>(i), vertices[i] = tin.vertices[order[i].second];
+  tin.vertices.swap(vertices);
+  for (Triangle& t : tin.triangles)
+    for (VertexId& v : t) v = newId[v];
+  // A stable counting sort of the triangles by their smallest vertex.
+  std::vector<std::size_t> first(n + 1, 0);
+  auto smallest = [](const Triangle& t) { return std::min({t[0], t[1], t[2]}); };
+  for (const Triangle& t : tin.triangles) ++first[smallest(t) + 1];
+  for (std::size_t v = 0; v < n; ++v) first[v + 1] += first[v];
+  std::vector<Triangle> ordered(tin.triangles.size());
+  for (const Triangle& t : tin.triangles) ordered[first[smallest(t)]++] = t;
+  tin.triangles.swap(ordered);
 }
 
 double totalArea(const Tin& tin) {
