@@ -68,38 +68,47 @@ Measure parseMeasure(const std::string& name) {
 
 namespace {
 
+// The ear queue's lists: on the stack for the usual small star, per thread beyond.
+struct EarLists {
+  int* prev;
+  int* next;
+  double* power;
+  Relative* rel;
+};
+
 // Devillers' ear queue over the ring as a cyclic list: each ear keeps its rank, and
 // clipping one re-ranks only its two neighbours.
 class EarClipper {
  public:
-  explicit EarClipper(const Star& star) : star_(star), lists_(scratch()) {
+  EarClipper(const Star& star, const EarLists& lists) : star_(star), l_(lists) {
     const int d = static_cast<int>(star.ring.size());
-    lists_.resize(d);
     for (int i = 0; i < d; ++i) {
       const double x = star.ring[i].x - star.centre.x, y = star.ring[i].y - star.centre.y;
-      lists_.rel[i] = {x, y, x * x + y * y};
-      lists_.prev[i] = i == 0 ? d - 1 : i - 1, lists_.next[i] = i + 1 == d ? 0 : i + 1;
+      l_.rel[i] = {x, y, x * x + y * y};
+      l_.prev[i] = i == 0 ? d - 1 : i - 1, l_.next[i] = i + 1 == d ? 0 : i + 1;
     }
     for (int i = 0; i < d; ++i) rank(i);
   }
 
-  // exact: confirm each ear with exact predicates, as the deletion needs; otherwise the
-  // floating-point ranking alone, enough for an importance value.
-  void run(std::vector<LocalTriangle>& out, bool exact) {
-    out.clear();
-    int* prev = lists_.prev.data();
-    int* next = lists_.next.data();
+  // Calls emit(triangle) for each of the d - 2 triangles. exact: confirm each ear with
+  // exact predicates, as the deletion needs; otherwise the floating-point ranking alone,
+  // enough for an importance value.
+  template <class Emit>
+  void run(bool exact, Emit emit) {
+    int* prev = l_.prev;
+    int* next = l_.next;
     int head = 0;
     for (int m = static_cast<int>(star_.ring.size()); m > 3; --m) {
-      int ear = bestEar(head, m);
+      int ear = bestEar();
       if (exact && (ear < 0 || !delaunay(ear))) ear = firstDelaunayEar(head, m);
       if (ear < 0) return;  // no convex ear: not a star polygon (cannot happen for a star)
-      out.push_back({prev[ear], ear, next[ear]});
+      emit(LocalTriangle{prev[ear], ear, next[ear]});
       next[prev[ear]] = next[ear], prev[next[ear]] = prev[ear];
+      l_.power[ear] = -std::numeric_limits<double>::infinity();  // clipped: never the best again
       if (head == ear) head = next[ear];
       rank(prev[ear]), rank(next[ear]);
     }
-    if (star_.ring.size() >= 3) out.push_back({head, next[head], next[next[head]]});
+    if (star_.ring.size() >= 3) emit(LocalTriangle{head, next[head], next[next[head]]});
   }
 
  private:
@@ -107,23 +116,25 @@ class EarClipper {
   // floating-point case, is clamped above it), so it is never the best ear.
   void rank(int i) {
     const std::vector<Point3>& ring = star_.ring;
-    const int p = lists_.prev[i], n = lists_.next[i];
+    const int p = l_.prev[i], n = l_.next[i];
     constexpr double lowest = -std::numeric_limits<double>::max();
     if (!leftTurn(ring[p], ring[i], ring[n])) {
-      lists_.power[i] = -std::numeric_limits<double>::infinity();
+      l_.power[i] = -std::numeric_limits<double>::infinity();
       return;
     }
-    const double pw = power(lists_.rel[p], lists_.rel[i], lists_.rel[n]);
-    lists_.power[i] = pw > lowest ? pw : lowest;
+    const double pw = power(l_.rel[p], l_.rel[i], l_.rel[n]);
+    l_.power[i] = pw > lowest ? pw : lowest;
   }
-  bool convex(int i) const { return lists_.power[i] != -std::numeric_limits<double>::infinity(); }
+  bool convex(int i) const { return l_.power[i] != -std::numeric_limits<double>::infinity(); }
 
-  int bestEar(int head, int m) const {
-    const double* power = lists_.power.data();
-    const int* next = lists_.next.data();
-    int best = head;
-    for (int i = next[head], k = 1; k < m; ++k, i = next[i])
-      if (power[i] > power[best]) best = i;
+  // The head is always the smallest index left, so the list from the head runs in index
+  // order: a scan of the whole array, clipped ears ranked lowest, picks the same ear
+  // without following the links.
+  int bestEar() const {
+    const int d = static_cast<int>(star_.ring.size());
+    int best = 0;
+    for (int i = 1; i < d; ++i)
+      if (l_.power[i] > l_.power[best]) best = i;
     return convex(best) ? best : -1;
   }
 
@@ -132,9 +143,8 @@ class EarClipper {
   bool delaunay(int i) const {
     if (!convex(i)) return false;
     const std::vector<Point3>& ring = star_.ring;
-    const int* next = lists_.next.data();
-    const K::Point_2 a = xy(ring[lists_.prev[i]]), b = xy(ring[i]), c = xy(ring[next[i]]);
-    for (int j = next[next[i]]; j != lists_.prev[i]; j = next[j])
+    const K::Point_2 a = xy(ring[l_.prev[i]]), b = xy(ring[i]), c = xy(ring[l_.next[i]]);
+    for (int j = l_.next[l_.next[i]]; j != l_.prev[i]; j = l_.next[j])
       if (CGAL::side_of_oriented_circle(a, b, c, xy(ring[j])) == CGAL::ON_POSITIVE_SIDE) return false;
     return true;
   }
@@ -142,39 +152,41 @@ class EarClipper {
   // Only in a near tie, where the floating-point ranking chose an ear the exact test
   // refuses.
   int firstDelaunayEar(int head, int m) const {
-    for (int i = head, k = 0; k < m; ++k, i = lists_.next[i])
+    for (int i = head, k = 0; k < m; ++k, i = l_.next[i])
       if (delaunay(i)) return i;
     throw Error("internal error: a star polygon has no Delaunay ear");
   }
 
-  // Kept per thread: the simplifier clips millions of small stars.
-  struct Lists {
-    std::vector<int> prev, next;
-    std::vector<double> power;
-    std::vector<Relative> rel;
-    void resize(int d) { prev.resize(d), next.resize(d), power.resize(d), rel.resize(d); }
-  };
-  static Lists& scratch() {
-    thread_local Lists lists;
-    return lists;
-  }
   const Star& star_;
-  Lists& lists_;
+  EarLists l_;
 };
 
-}  // namespace
-
-void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out) { EarClipper(star).run(out, true); }
-
-namespace {
-
-const std::vector<LocalTriangle>& retriangulateInScratch(const Star& star, bool exact) {
-  thread_local std::vector<LocalTriangle> out;
-  EarClipper(star).run(out, exact);
-  return out;
+// Runs the ear queue with lists on the stack for stars of up to kStackEars vertices,
+// which is nearly all: the simplifier clips millions of them.
+template <class Emit>
+void clipEars(const Star& star, bool exact, Emit emit) {
+  constexpr std::size_t kStackEars = 32;
+  const std::size_t d = star.ring.size();
+  if (d <= kStackEars) {
+    int prev[kStackEars], next[kStackEars];
+    double power[kStackEars];
+    Relative rel[kStackEars];
+    EarClipper(star, {prev, next, power, rel}).run(exact, emit);
+    return;
+  }
+  thread_local std::vector<int> prev, next;
+  thread_local std::vector<double> power;
+  thread_local std::vector<Relative> rel;
+  prev.resize(d), next.resize(d), power.resize(d), rel.resize(d);
+  EarClipper(star, {prev.data(), next.data(), power.data(), rel.data()}).run(exact, emit);
 }
 
 }  // namespace
+
+void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out) {
+  out.clear();
+  clipEars(star, true, [&](const LocalTriangle& t) { out.push_back(t); });
+}
 
 std::vector<LocalTriangle> retriangulateStar(const Star& star) {
   std::vector<LocalTriangle> out;
@@ -182,12 +194,29 @@ std::vector<LocalTriangle> retriangulateStar(const Star& star) {
   return out;
 }
 
-double volumeChange(const Star& star, const std::vector<LocalTriangle>& without) {
-  double with = 0, after = 0;
+namespace {
+
+// The volume under the star with its centre.
+double coneVolume(const Star& star) {
+  double with = 0;
   const std::size_t n = star.ring.size();
   for (std::size_t i = 0; i < n; ++i) with += prismVolume(star.centre, star.ring[i], star.ring[(i + 1) % n]);
+  return with;
+}
+
+// volumeChange on the floating-point ranking, summed as the ears are clipped.
+double volumeChangeRanked(const Star& star) {
+  double after = 0;
+  clipEars(star, false, [&](const LocalTriangle& t) { after += prismVolume(star.ring[t[0]], star.ring[t[1]], star.ring[t[2]]); });
+  return std::fabs(coneVolume(star) - after);
+}
+
+}  // namespace
+
+double volumeChange(const Star& star, const std::vector<LocalTriangle>& without) {
+  double after = 0;
   for (const LocalTriangle& t : without) after += prismVolume(star.ring[t[0]], star.ring[t[1]], star.ring[t[2]]);
-  return std::fabs(with - after);
+  return std::fabs(coneVolume(star) - after);
 }
 
 double normalFlatness(const Star& star) {
@@ -258,9 +287,13 @@ double importance(Measure measure, const Star& star, const std::vector<Point3>& 
   switch (measure) {
     case Measure::Degree: return static_cast<double>(star.ring.size());
     case Measure::Normal: return 1.0 - normalFlatness(star);
-    case Measure::Volume: return volumeChange(star, retriangulateInScratch(star, false));
+    case Measure::Volume: return volumeChangeRanked(star);
     // Exact, as the deletion's: the error is then the one the deletion certifies.
-    case Measure::Error: return maxVerticalError(star, retriangulateInScratch(star, true), samples);
+    case Measure::Error: {
+      thread_local std::vector<LocalTriangle> exact;
+      retriangulateStar(star, exact);
+      return maxVerticalError(star, exact, samples);
+    }
   }
   return 0;
 }
