@@ -198,7 +198,7 @@ class Simplifier {
       }
       picks.push_back({imp, v, static_cast<std::uint32_t>(rings_.degree(v))});
     }
-    std::sort(picks.begin(), picks.end(), [](const Pick& a, const Pick& b) { return a.id < b.id; });
+    radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, pickScratch_);
     std::size_t fills = 0, rings = 0;
     for (Pick& p : picks) p.fill = fills, p.ring = rings, fills += p.degree - 2, rings += p.degree;
     fill_.resize(fills);
@@ -366,6 +366,7 @@ class Simplifier {
   std::vector<double> slotError_;            // by slot: its triangle's error
   std::vector<double> spareError_;           //   and the previous level's array, reused
   std::vector<std::pair<double, VertexId>> candidates_, sortScratch_;  // the level's, by importance
+  std::vector<Pick> pickScratch_;
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
   std::vector<double> fillError_;            //   and their errors
   std::vector<std::int32_t> slots_;          //   and each pick's star slots
