@@ -52,7 +52,8 @@ void deleteRound(SimplificationMesh& mesh, const std::vector<VertexId>& picks, s
     mesh.replaceStar({rings[i].data(), slots[i].data(), outer[i].data(), static_cast<int>(rings[i].size())},
                      fills[i].data(), ids.data());
   }
-  mesh.compact();
+  mesh.planCompaction();
+  mesh.applyCompaction();
 }
 
 TEST(SimplificationMesh, DeletingAHugeStarKeepsEveryLink) {

@@ -160,8 +160,8 @@ class Simplifier {
   // After each level, so the next walks stars that lie side by side. Samples and errors
   // follow their triangles to the compacted slots.
   void compact() {
-    const Compaction& slots = mesh_.compact();
-    samples_.rebuild(slots);
+    const Compaction& slots = mesh_.planCompaction();
+    runBoth([&] { mesh_.applyCompaction(); }, [&] { samples_.rebuild(slots); });
     std::vector<double>& errors = spareError_;
     errors.resize(slots.oldOf.size());
     forEachBlock(static_cast<int>(errors.size()), [&](int begin, int end) {

@@ -37,4 +37,23 @@ void forEachBlock(int count, const std::function<void(int, int)>& work, const st
   if (failure) std::rethrow_exception(failure);
 }
 
+void runBoth(const std::function<void()>& first, const std::function<void()>& second) {
+  std::exception_ptr failure;
+  std::thread other([&] {
+    try {
+      second();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  });
+  try {
+    first();
+  } catch (...) {
+    other.join();
+    throw;
+  }
+  other.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
 }  // namespace tinlod

@@ -199,13 +199,19 @@ void SimplificationMesh::beginRound() {
 // were drift from the order the vertices are visited in. The vertices are renumbered
 // first, so each triangle is copied once, on every core, into the array the previous
 // compaction left (the arrays only shrink, so no fresh memory is faulted in).
-const Compaction& SimplificationMesh::compact() {
+const Compaction& SimplificationMesh::planCompaction() {
   const std::vector<std::int32_t>& vertexOf = compactVertices();
   Compaction& c = compaction_;
   orderBySmallestVertex(triangles_.size(), points_.size(), [&](std::size_t t) {
     const MeshTriangle& tri = triangles_[t];
     return tri.v[0] < 0 ? -1 : vertexOf[std::min({tri.v[0], tri.v[1], tri.v[2]})];
   }, c, scratch_);
+  return c;
+}
+
+void SimplificationMesh::applyCompaction() {
+  const Compaction& c = compaction_;
+  const std::vector<std::int32_t>& vertexOf = vertexOf_;
   std::vector<MeshTriangle>& compacted = spare_;
   compacted.resize(c.oldOf.size());
   forEachBlock(static_cast<int>(c.oldOf.size()), [&](int begin, int end) {
@@ -220,7 +226,6 @@ const Compaction& SimplificationMesh::compact() {
   triangles_.swap(compacted);
   for (std::size_t t = 0; t < triangles_.size(); ++t)
     for (std::int32_t v : triangles_[t].v) start_[v] = static_cast<std::int32_t>(t);
-  return c;
 }
 
 std::size_t SimplificationMesh::liveTriangles() const {

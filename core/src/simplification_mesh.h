@@ -84,8 +84,10 @@ class SimplificationMesh {
   void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
   // Drops the dead slots and the deleted vertices and orders the rest by smallest vertex
   // again, so that the stars of the vertices still there stay side by side in memory as
-  // the TIN thins out.
-  const Compaction& compact();  // valid until the next compaction
+  // the TIN thins out: planCompaction() numbers them anew (the result is valid until the
+  // next compaction, and others may use it while) applyCompaction() moves them.
+  const Compaction& planCompaction();
+  void applyCompaction();
 
   // The live triangles, and how many of their links are wrong (a neighbour that does not
   // share the edge or does not link back): for the tests.
