@@ -36,8 +36,9 @@ int main(int argc, char** argv) {
   }
   const tinlod::ProgressRange quiet(tinlod::Feedback{}, 0, 1);
   const tinlod::Tin tin = tinlod::sampleTin(tinlod::readDem(path, 1, quiet), {}, quiet);
+  tinlod::Tin taken = tin;  // the build takes its TIN over, as the command line's does
   const Clock::time_point t0 = Clock::now();
-  const tinlod::Hierarchy h = tinlod::buildHierarchy(tin, {}, options, quiet);
+  const tinlod::Hierarchy h = tinlod::buildHierarchy(std::move(taken), {}, options, quiet);
   const Clock::time_point t1 = Clock::now();
   std::size_t removed = h.levels.front().vertices - h.levels.back().vertices;
   std::printf("DEM %s: %zu vertices at level 0, method %s, delete %g %%, stop %g %%\n", path.c_str(),

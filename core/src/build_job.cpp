@@ -90,15 +90,15 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints);
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readDem(demPath, sample.band, all.sub(0, 0.05));
-  const Tin tin = sampleTin(dem, sample, all.sub(0.05, 0.2));
+  Tin tin = sampleTin(dem, sample, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all);
   // With accuracy outputs the last quarter of the job is theirs.
   const double write = accuracy.wanted() ? 0.6 : 0.75, measure = accuracy.wanted() ? 0.75 : 1;
-  const Hierarchy h = buildHierarchy(tin, std::move(fixed), options, all.sub(0.2, write), keep);
+  const Hierarchy h = buildHierarchy(std::move(tin), std::move(fixed), options, all.sub(0.2, write), keep);
   warnIfStoppedByFixedVertices(h, all);
-  writeOptions.metadata = buildMetadata(demPath, sample, options, tin.crsName);
+  writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
   all.inform("Writing " + std::to_string(h.coarsest() + 1) + " levels: " + std::to_string(h.triangles.size()) +
              " distinct triangles, " + std::to_string(h.groups.size()) + " groups");
   writeHierarchyGpkg(h, outPath, writeOptions, all.sub(write, measure));
@@ -116,7 +116,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   s.levels = h.coarsest();
   s.coarsestError = h.levels.back().maxError;
   s.fileBytes = std::filesystem::file_size(outPath);
-  s.crsName = tin.crsName;
+  s.crsName = h.base.crsName;
   return s;
 }
 

@@ -40,13 +40,13 @@ struct Pick {
 // set is chosen, so each deletion writes its own ranges of the hierarchy's arrays.
 class Simplifier {
  public:
-  Simplifier(const Tin& base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
+  Simplifier(Tin base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
              const ProgressRange& progress)
       : options_(options), progress_(progress), mesh_(base) {
-    h_.base = base;
+    h_.base = std::move(base);
     h_.options = options;
     h_.fixed = std::move(fixed);
-    h_.fixed.resize(base.vertices.size(), 0);
+    h_.fixed.resize(h_.base.vertices.size(), 0);
   }
 
   Hierarchy run(const std::vector<PointXY>& keep) {
@@ -377,10 +377,10 @@ class Simplifier {
 
 }  // namespace
 
-Hierarchy buildHierarchy(const Tin& base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
+Hierarchy buildHierarchy(Tin base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
                          const ProgressRange& progress, const std::vector<PointXY>& keep) {
   options.validate();
-  return Simplifier(base, std::move(fixed), options, progress).run(keep);
+  return Simplifier(std::move(base), std::move(fixed), options, progress).run(keep);
 }
 
 }  // namespace tinlod
