@@ -2,6 +2,7 @@
 #include "tinlod/importance.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
 
 #include <cmath>
 #include <limits>
@@ -17,6 +18,15 @@ K::Point_2 xy(const Point3& p) { return K::Point_2(p.x, p.y); }
 
 bool leftTurn(const Point3& a, const Point3& b, const Point3& c) {
   return CGAL::orientation(xy(a), xy(b), xy(c)) == CGAL::LEFT_TURN;
+}
+
+// CGAL's floating-point kernel, for the importance's ranking only: it decides no part of
+// any TIN, and its orientation costs a third of what the exact kernel's filtered one does.
+using FloatKernel = CGAL::Simple_cartesian<double>;
+
+bool leftTurnInFloat(const Point3& a, const Point3& b, const Point3& c) {
+  return CGAL::orientation(FloatKernel::Point_2(a.x, a.y), FloatKernel::Point_2(b.x, b.y),
+                           FloatKernel::Point_2(c.x, c.y)) == CGAL::LEFT_TURN;
 }
 
 // Power of the centre (the origin of the relative coordinates) with respect to the circle
@@ -80,7 +90,7 @@ struct EarLists {
 // clipping one re-ranks only its two neighbours.
 class EarClipper {
  public:
-  EarClipper(const Star& star, const EarLists& lists) : star_(star), l_(lists) {
+  EarClipper(const Star& star, const EarLists& lists, bool exact) : star_(star), l_(lists), exact_(exact) {
     const int d = static_cast<int>(star.ring.size());
     for (int i = 0; i < d; ++i) {
       const double x = star.ring[i].x - star.centre.x, y = star.ring[i].y - star.centre.y;
@@ -90,17 +100,17 @@ class EarClipper {
     for (int i = 0; i < d; ++i) rank(i);
   }
 
-  // Calls emit(triangle) for each of the d - 2 triangles. exact: confirm each ear with
-  // exact predicates, as the deletion needs; otherwise the floating-point ranking alone,
-  // enough for an importance value.
+  // Calls emit(triangle) for each of the d - 2 triangles. exact: convexity by exact
+  // orientation and each ear confirmed with exact predicates, as the deletion needs;
+  // otherwise floating point throughout, enough for an importance value.
   template <class Emit>
-  void run(bool exact, Emit emit) {
+  void run(Emit emit) {
     int* prev = l_.prev;
     int* next = l_.next;
     int head = 0;
     for (int m = static_cast<int>(star_.ring.size()); m > 3; --m) {
       int ear = bestEar();
-      if (exact && (ear < 0 || !delaunay(ear))) ear = firstDelaunayEar(head, m);
+      if (exact_ && (ear < 0 || !delaunay(ear))) ear = firstDelaunayEar(head, m);
       if (ear < 0) return;  // no convex ear: not a star polygon (cannot happen for a star)
       emit(LocalTriangle{prev[ear], ear, next[ear]});
       next[prev[ear]] = next[ear], prev[next[ear]] = prev[ear];
@@ -118,7 +128,7 @@ class EarClipper {
     const std::vector<Point3>& ring = star_.ring;
     const int p = l_.prev[i], n = l_.next[i];
     constexpr double lowest = -std::numeric_limits<double>::max();
-    if (!leftTurn(ring[p], ring[i], ring[n])) {
+    if (!(exact_ ? leftTurn(ring[p], ring[i], ring[n]) : leftTurnInFloat(ring[p], ring[i], ring[n]))) {
       l_.power[i] = -std::numeric_limits<double>::infinity();
       return;
     }
@@ -159,6 +169,7 @@ class EarClipper {
 
   const Star& star_;
   EarLists l_;
+  bool exact_;
 };
 
 // Runs the ear queue with lists on the stack for stars of up to kStackEars vertices,
@@ -171,14 +182,14 @@ void clipEars(const Star& star, bool exact, Emit emit) {
     int prev[kStackEars], next[kStackEars];
     double power[kStackEars];
     Relative rel[kStackEars];
-    EarClipper(star, {prev, next, power, rel}).run(exact, emit);
+    EarClipper(star, {prev, next, power, rel}, exact).run(emit);
     return;
   }
   thread_local std::vector<int> prev, next;
   thread_local std::vector<double> power;
   thread_local std::vector<Relative> rel;
   prev.resize(d), next.resize(d), power.resize(d), rel.resize(d);
-  EarClipper(star, {prev.data(), next.data(), power.data(), rel.data()}).run(exact, emit);
+  EarClipper(star, {prev.data(), next.data(), power.data(), rel.data()}, exact).run(emit);
 }
 
 }  // namespace

@@ -61,8 +61,9 @@ double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& with
 
 // The measure's importance of the star's centre: degree, volume change, 1 - flatness,
 // or vertical error. Smaller means less important. The volume is measured on the ear
-// queue's floating-point ranking alone; the error on the exact retriangulation, so that
-// it is the error the deletion certifies.
+// queue in floating point alone (ranking, and convexity by CGAL's floating-point kernel:
+// a near-degenerate star can change the value, never a TIN); the error on the exact
+// retriangulation, so that it is the error the deletion certifies.
 double importance(Measure measure, const Star& star, const std::vector<Point3>& samples);
 
 }  // namespace tinlod
