@@ -159,7 +159,8 @@ TEST(Importance, TriangleHoldingIsTheFirstTriangleThatHoldsThePoint) {
       star.ring.push_back({n->point().x(), n->point().y(), 0});
     } while (++n != nd);
     if (onHull) continue;
-    const std::vector<LocalTriangle> fill = retriangulateStar(star);
+    std::vector<LocalTriangle> fill;
+    ASSERT_EQ(retriangulateStar(star, fill), convexRing(star));  // the queue's own finding
     std::vector<Point3> probes{star.centre};
     const std::size_t d = star.ring.size();
     for (std::size_t i = 0; i < d; ++i) {

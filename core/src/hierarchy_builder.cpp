@@ -251,23 +251,23 @@ class Simplifier {
     const Pick& pick = picks[index];
     VertexId* ring = h_.rings.data() + at.rings + pick.ring;
     mesh_.starOf(pick.id, ring, slots_.data() + pick.ring, outer_.data() + pick.ring, star);
-    retriangulateStar(star, fill);
+    const bool convex = retriangulateStar(star, fill);
     if (fill.size() + 2 != star.ring.size())
       throw Error("internal error: deleting a vertex of degree " + std::to_string(star.ring.size()) + " made " +
                   std::to_string(fill.size()) + " triangles");
     std::copy(fill.begin(), fill.end(), fill_.begin() + pick.fill);
-    placeSamples(pick, index, star, fill);
+    placeSamples(pick, index, star, fill, convex);
     mesh_.retire(view(pick, at.rings), fill_.data() + pick.fill);
     record(pick, level, at, ring);
   }
 
   // The vertex becomes a sample of the new triangle that holds it, and the samples
   // under the star move to theirs.
-  void placeSamples(const Pick& pick, std::size_t index, const Star& star, const std::vector<LocalTriangle>& fill) {
+  void placeSamples(const Pick& pick, std::size_t index, const Star& star, const std::vector<LocalTriangle>& fill,
+                    bool convex) {
     double* error = fillError_.data() + pick.fill;
     std::fill(error, error + fill.size(), 0.0);
     const std::int32_t* slots = slots_.data() + pick.ring;
-    const bool convex = convexRing(star);
     auto place = [&](const Point3& p) {
       const int j = triangleHolding(star, fill.data(), fill.size(), p, convex);
       if (j < 0) throw Error("internal error: a sample left its star");

@@ -97,8 +97,13 @@ class EarClipper {
       l_.rel[i] = {x, y, x * x + y * y};
       l_.prev[i] = i == 0 ? d - 1 : i - 1, l_.next[i] = i + 1 == d ? 0 : i + 1;
     }
-    for (int i = 0; i < d; ++i) rank(i);
+    convexRing_ = true;
+    for (int i = 0; i < d; ++i) rank(i), convexRing_ = convexRing_ && convex(i);
   }
+
+  // Whether every ring vertex was convex before any clipping (by the queue's own
+  // orientation test: exact in exact mode).
+  bool convexRing() const { return convexRing_; }
 
   // Calls emit(triangle) for each of the d - 2 triangles. exact: convexity by exact
   // orientation and each ear confirmed with exact predicates, as the deletion needs;
@@ -170,33 +175,37 @@ class EarClipper {
   const Star& star_;
   EarLists l_;
   bool exact_;
+  bool convexRing_;
 };
 
 // Runs the ear queue with lists on the stack for stars of up to kStackEars vertices,
 // which is nearly all: the simplifier clips millions of them.
 template <class Emit>
-void clipEars(const Star& star, bool exact, Emit emit) {
+bool clipEars(const Star& star, bool exact, Emit emit) {
   constexpr std::size_t kStackEars = 32;
   const std::size_t d = star.ring.size();
   if (d <= kStackEars) {
     int prev[kStackEars], next[kStackEars];
     double power[kStackEars];
     Relative rel[kStackEars];
-    EarClipper(star, {prev, next, power, rel}, exact).run(emit);
-    return;
+    EarClipper clipper(star, {prev, next, power, rel}, exact);
+    clipper.run(emit);
+    return clipper.convexRing();
   }
   thread_local std::vector<int> prev, next;
   thread_local std::vector<double> power;
   thread_local std::vector<Relative> rel;
   prev.resize(d), next.resize(d), power.resize(d), rel.resize(d);
-  EarClipper(star, {prev.data(), next.data(), power.data(), rel.data()}, exact).run(emit);
+  EarClipper clipper(star, {prev.data(), next.data(), power.data(), rel.data()}, exact);
+  clipper.run(emit);
+  return clipper.convexRing();
 }
 
 }  // namespace
 
-void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out) {
+bool retriangulateStar(const Star& star, std::vector<LocalTriangle>& out) {
   out.clear();
-  clipEars(star, true, [&](const LocalTriangle& t) { out.push_back(t); });
+  return clipEars(star, true, [&](const LocalTriangle& t) { out.push_back(t); });
 }
 
 std::vector<LocalTriangle> retriangulateStar(const Star& star) {
@@ -281,10 +290,11 @@ double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& 
   return std::fabs(p.z - planeZ(a, b, c, p.x, p.y));
 }
 
+namespace {
+
 double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
-                        const std::vector<Point3>& samples) {
+                        const std::vector<Point3>& samples, bool convex) {
   double worst = 0;
-  const bool convex = convexRing(star);
   auto measure = [&](const Point3& s) {
     const int j = triangleHolding(star, without.data(), without.size(), s, convex);
     if (j >= 0) worst = std::max(worst, verticalDistance(star, without[j], s));
@@ -292,6 +302,13 @@ double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& with
   measure(star.centre);
   for (const Point3& s : samples) measure(s);
   return worst;
+}
+
+}  // namespace
+
+double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
+                        const std::vector<Point3>& samples) {
+  return maxVerticalError(star, without, samples, convexRing(star));
 }
 
 double importance(Measure measure, const Star& star, const std::vector<Point3>& samples) {
@@ -302,8 +319,8 @@ double importance(Measure measure, const Star& star, const std::vector<Point3>& 
     // Exact, as the deletion's: the error is then the one the deletion certifies.
     case Measure::Error: {
       thread_local std::vector<LocalTriangle> exact;
-      retriangulateStar(star, exact);
-      return maxVerticalError(star, exact, samples);
+      const bool convex = retriangulateStar(star, exact);
+      return maxVerticalError(star, exact, samples, convex);
     }
   }
   return 0;

@@ -33,8 +33,9 @@ using LocalTriangle = std::array<int, 3>;  // indices into Star::ring, counter-c
 // strictly inside its circle), so the result is always a Delaunay triangulation of the
 // polygon: CGAL's own removal makes the same one, up to the choice among cocircular
 // points (checked in the tests). The simplifier deletes vertices with it. `out` is the
-// caller's, to spare allocations.
-void retriangulateStar(const Star& star, std::vector<LocalTriangle>& out);
+// caller's, to spare allocations. Returns convexRing(star), which the queue finds on the
+// way.
+bool retriangulateStar(const Star& star, std::vector<LocalTriangle>& out);
 std::vector<LocalTriangle> retriangulateStar(const Star& star);
 
 // |volume under the star - volume under its retriangulation| (cubic metres).
