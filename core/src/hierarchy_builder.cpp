@@ -74,6 +74,11 @@ class Simplifier {
   }
 
  private:
+  // Where a level's records start (or end) in the hierarchy's arrays.
+  struct Ranges {
+    std::size_t group, triangles, links, rings;
+  };
+
   void setUp(const std::vector<PointXY>& keep) {
     const std::size_t nv = h_.base.vertices.size();
     reserveForDeletions();
@@ -83,6 +88,7 @@ class Simplifier {
       ht.lastLevel = kOpenLevel;
       h_.triangles.push_back(ht);
     }
+    used_ = {0, h_.triangles.size(), 0, 0};
     samples_.reset(mesh_.slotCount(), original_ - std::min(original_, stopCount_));
     slotError_.assign(mesh_.slotCount(), 0.0);
     h_.vertexLevel.assign(nv, kOpenLevel);
@@ -186,6 +192,23 @@ class Simplifier {
     if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
     std::vector<Pick> picks;
+    // The pick runs on one core; the other meanwhile writes the memory the hierarchy's
+    // arrays will grow into, as much as the last level's picks suggest.
+    runBoth([&] { pickBestFirst(candidates, limit, level, picks); }, [&] { growHierarchy(expectedGrowth(limit)); });
+    radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, pickScratch_);
+    std::size_t fills = 0, rings = 0;
+    for (Pick& p : picks) p.fill = fills, p.ring = rings, fills += p.degree - 2, rings += p.degree;
+    fill_.resize(fills);
+    fillError_.resize(fills);
+    slots_.resize(rings);
+    outer_.resize(rings);
+    samples_.expect(picks.size());
+    return picks;
+  }
+
+  // Each pick blocks its neighbours (from the ring lines: the picks jump about the TIN).
+  void pickBestFirst(const std::vector<std::pair<double, VertexId>>& candidates, std::size_t limit,
+                     std::int32_t level, std::vector<Pick>& picks) {
     for (const auto& [imp, v] : candidates) {
       if (picks.size() >= limit) break;
       if (stamp_[v] == level) continue;
@@ -198,24 +221,35 @@ class Simplifier {
       }
       picks.push_back({imp, v, static_cast<std::uint32_t>(rings_.degree(v))});
     }
-    radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, pickScratch_);
-    std::size_t fills = 0, rings = 0;
-    for (Pick& p : picks) p.fill = fills, p.ring = rings, fills += p.degree - 2, rings += p.degree;
-    fill_.resize(fills);
-    fillError_.resize(fills);
-    slots_.resize(rings);
-    outer_.resize(rings);
-    samples_.expect(picks.size());
-    return picks;
+  }
+
+  // Where the hierarchy's arrays would end if `picks` vertices were deleted with the
+  // last level's mean degree (a twentieth more, so that it rarely falls short).
+  Ranges expectedGrowth(std::size_t picks) const {
+    const double d = 1.05 * meanDegree_;
+    const auto n = [&](double perPick) { return static_cast<std::size_t>(std::ceil(perPick * double(picks))); };
+    return {used_.group + picks, used_.triangles + n(d - 2), used_.links + n(2 * d - 2), used_.rings + n(d)};
+  }
+
+  // Grows the hierarchy's arrays to at least `to`, within what was reserved (never moved).
+  void growHierarchy(const Ranges& to) {
+    auto grow = [](auto& v, std::size_t n) {
+      if (v.size() < n) v.resize(std::min(n, std::max(v.capacity(), v.size())));
+    };
+    grow(h_.groups, to.group), grow(h_.triangles, to.triangles), grow(h_.links, to.links), grow(h_.rings, to.rings);
   }
 
   void deleteAll(const std::vector<Pick>& picks, std::int32_t level) {
-    const std::size_t triangles = h_.triangles.size(), links = h_.links.size(), rings = h_.rings.size();
-    const std::size_t groups = h_.groups.size(), ringCount = slots_.size();
-    h_.triangles.resize(triangles + fill_.size());
-    h_.links.resize(links + ringCount + fill_.size());
-    h_.rings.resize(rings + ringCount);
-    h_.groups.resize(groups + picks.size());
+    const std::size_t ringCount = slots_.size();
+    const Ranges at = used_;
+    used_ = {at.group + picks.size(), at.triangles + fill_.size(), at.links + ringCount + fill_.size(),
+             at.rings + ringCount};
+    const auto fit = [](auto& v, std::size_t n) {
+      if (v.size() < n) v.resize(n);
+    };
+    fit(h_.groups, used_.group), fit(h_.triangles, used_.triangles), fit(h_.links, used_.links), fit(h_.rings, used_.rings);
+    if (!picks.empty()) meanDegree_ = double(ringCount) / double(picks.size());
+    const std::size_t triangles = at.triangles, links = at.links, rings = at.rings, groups = at.group;
     mesh_.beginRound();
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       Star star;
@@ -225,17 +259,12 @@ class Simplifier {
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       for (int i = begin; i < end; ++i) replace(picks[i], triangles, rings);
     }, [&](double f) { reportProgress(level, 0.5 + f / 2, picks.size()); });
-    for (std::size_t k = rings; k < h_.rings.size(); ++k) stale_[h_.rings[k]] = 1;  // the ring vertices' stars changed
+    for (std::size_t k = rings; k < used_.rings; ++k) stale_[h_.rings[k]] = 1;  // the ring vertices' stars changed
     live_.erase(std::remove_if(live_.begin(), live_.end(), [&](VertexId v) { return h_.vertexLevel[v] != kOpenLevel; }),
                 live_.end());
     triangles_ -= 2 * picks.size();
     compact();
   }
-
-  // Where a level's records start in the hierarchy's arrays.
-  struct Ranges {
-    std::size_t group, triangles, links, rings;
-  };
 
   StarView view(const Pick& pick, std::size_t rings) const {
     return {h_.rings.data() + rings + pick.ring, slots_.data() + pick.ring, outer_.data() + pick.ring,
@@ -346,6 +375,8 @@ class Simplifier {
   }
 
   void finish() {
+    h_.groups.resize(used_.group), h_.triangles.resize(used_.triangles);
+    h_.links.resize(used_.links), h_.rings.resize(used_.rings);
     const std::int32_t top = h_.coarsest();
     for (HierarchyTriangle& t : h_.triangles)
       if (t.lastLevel == kOpenLevel) t.lastLevel = top;
@@ -372,6 +403,8 @@ class Simplifier {
   std::vector<std::int32_t> slots_;          //   and each pick's star slots
   std::vector<std::int32_t> outer_;          //   and the triangles beyond its ring
   std::size_t original_ = 0, stopCount_ = 0, current_ = 0, triangles_ = 0;
+  Ranges used_{};            // how much of the hierarchy's arrays is written; beyond, grown ahead
+  double meanDegree_ = 6.0;  // of the last level's picks (a Delaunay TIN's mean degree is 6)
   double lastFraction_ = 0.1;
 };
 
