@@ -225,9 +225,11 @@ TEST(Hierarchy, RealDemsEveryMeasure) {
 // The same TIN with its triangles listed in another order, each starting at another
 // corner: the simplifier walks stars from their smallest vertex and breaks ties by id, so
 // the same vertices go at the same levels with the same importances, and every level has
-// the same triangles.
+// the same triangles. The sampled TIN is linked from its triangulation's neighbours; the
+// shuffled copy still carries them, no longer fitting, and is linked by the edge search.
 TEST(Hierarchy, ResultDoesNotDependOnTheOrderOfTheTriangles) {
   const Tin tin = sampleTin(test::smallSyntheticDem(), {}, kQuiet);
+  ASSERT_EQ(tin.neighbours.size(), tin.triangles.size());
   Tin shuffled = tin;
   std::reverse(shuffled.triangles.begin(), shuffled.triangles.end());
   for (std::size_t t = 0; t < shuffled.triangles.size(); t += 2)

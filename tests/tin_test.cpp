@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <map>
 #include <set>
 #include <tuple>
 #include <vector>
 
+#include "test_support.h"
+#include "tinlod/sample_job.h"
 #include "tinlod/tin.h"
 
 namespace tinlod {
@@ -26,6 +29,20 @@ Tin rowByRowGrid() {
       tin.triangles.push_back({id(r, c), id(r + 1, c + 1), id(r + 1, c)});
     }
   return tin;
+}
+
+// Each triangle's neighbour across the edge opposite each corner, by brute force.
+std::vector<std::array<std::int32_t, 3>> neighboursOf(const Tin& tin) {
+  std::map<std::pair<VertexId, VertexId>, std::int32_t> byEdge;
+  for (std::size_t t = 0; t < tin.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) byEdge[{tin.triangles[t][k], tin.triangles[t][(k + 1) % 3]}] = std::int32_t(t);
+  std::vector<std::array<std::int32_t, 3>> out(tin.triangles.size());
+  for (std::size_t t = 0; t < tin.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto it = byEdge.find({tin.triangles[t][(k + 2) % 3], tin.triangles[t][(k + 1) % 3]});
+      out[t][k] = it == byEdge.end() ? -1 : it->second;
+    }
+  return out;
 }
 
 using Corner = std::tuple<double, double, double>;
@@ -53,6 +70,7 @@ double medianIdGap(const Tin& tin) {
 
 TEST(Tin, OrderSpatiallyKeepsTheTrianglesAndBringsNeighboursTogether) {
   Tin tin = rowByRowGrid();
+  tin.neighbours = neighboursOf(tin);
   const auto before = geometry(tin);
   const double area = totalArea(tin);
   EXPECT_GE(medianIdGap(tin), 63);
@@ -60,10 +78,22 @@ TEST(Tin, OrderSpatiallyKeepsTheTrianglesAndBringsNeighboursTogether) {
   EXPECT_EQ(geometry(tin), before);  // same triangles, same corners, still counter-clockwise
   EXPECT_DOUBLE_EQ(totalArea(tin), area);
   EXPECT_LE(medianIdGap(tin), 8);
+  EXPECT_EQ(tin.neighbours, neighboursOf(tin));  // the neighbours follow their triangles
   for (std::size_t i = 1; i < tin.triangles.size(); ++i) {
     const Triangle &a = tin.triangles[i - 1], &b = tin.triangles[i];
     ASSERT_LE(*std::min_element(a.begin(), a.end()), *std::min_element(b.begin(), b.end())) << "triangle " << i;
   }
+}
+
+// The sampler keeps its triangulation's neighbours through the nodata cut (a dropped
+// neighbour leaves an outline edge) and the spatial order.
+TEST(Tin, SampledTinKeepsItsTriangulationsNeighbours) {
+  const Tin tin = sampleTin(test::smallSyntheticDem(), {}, ProgressRange(Feedback{}, 0, 1));
+  const auto brute = neighboursOf(tin);
+  EXPECT_EQ(tin.neighbours, brute);
+  std::size_t outline = 0;
+  for (const auto& n : brute) outline += std::count(n.begin(), n.end(), -1);
+  EXPECT_GT(outline, 100u);  // the void's edge and the raster's
 }
 
 TEST(Tin, OrderSpatiallyOfOnePointAndOfNothing) {

@@ -109,6 +109,24 @@ class TriangleFilter {
     return out;
   }
 
+  // The kept triangles' neighbours, renumbered as kept() numbers them; a dropped
+  // neighbour leaves an outline edge.
+  std::vector<std::array<std::int32_t, 3>> keptNeighbours() const {
+    std::vector<std::int32_t> newIndex(keep_.size(), kNoNeighbour);
+    std::int32_t next = 0;
+    for (std::size_t t = 0; t < keep_.size(); ++t)
+      if (keep_[t]) newIndex[t] = next++;
+    std::vector<std::array<std::int32_t, 3>> out;
+    out.reserve(static_cast<std::size_t>(next));
+    for (std::size_t t = 0; t < keep_.size(); ++t) {
+      if (!keep_[t]) continue;
+      std::array<std::int32_t, 3> n = triangulation_.neighbours[t];
+      for (std::int32_t& u : n) u = u == kNoNeighbour ? kNoNeighbour : newIndex[u];
+      out.push_back(n);
+    }
+    return out;
+  }
+
  private:
   using Corners = GridPoint[3];
   const Corners& corners(std::size_t t) {
@@ -131,17 +149,27 @@ class TriangleFilter {
 
 }  // namespace
 
-std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin) {
+namespace {
+
+TriangleFilter filterOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin) {
   TriangleFilter filter(dem, triangulation, tin);
   filter.dropOverNodata();
   filter.peelBoundarySlivers();
-  return filter.kept();
+  return filter;
+}
+
+}  // namespace
+
+std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin) {
+  return filterOnValidData(dem, triangulation, tin).kept();
 }
 
 std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triangulation, Tin& tin,
                                      const ProgressRange& progress) {
   progress.report(0, "Cutting out nodata");
-  tin.triangles = trianglesOnValidData(dem, triangulation, tin);
+  const TriangleFilter filter = filterOnValidData(dem, triangulation, tin);
+  tin.triangles = filter.kept();
+  tin.neighbours = filter.keptNeighbours();
   progress.report(0.9, "Cutting out nodata");
   const std::size_t before = tin.vertices.size();
   return before - dropUnusedVertices(tin).size();

@@ -4,6 +4,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <atomic>
 
 #include "parallel_blocks.h"
 #include "tinlod/error.h"
@@ -59,8 +60,43 @@ SimplificationMesh::SimplificationMesh(const Tin& base) {
                                   {kNoTriangle, kNoTriangle, kNoTriangle},
                                   static_cast<std::int32_t>(t)};
   }
-  link();
+  if (!linkFrom(base.neighbours)) link();
+  indexVertices();
   checkDelaunay();
+}
+
+// The triangulation's own neighbours, when the TIN still has them, spare the search for
+// each edge's twin. Each link must come back across the same edge; otherwise (the
+// triangles were changed since) returns false with no link made. An outline edge is
+// taken as the neighbours say: they come from the sampler's triangulation.
+bool SimplificationMesh::linkFrom(const std::vector<std::array<std::int32_t, 3>>& neighbours) {
+  if (neighbours.size() != triangles_.size()) return false;
+  const Compaction& order = compaction_;
+  const int count = static_cast<int>(triangles_.size());
+  std::atomic<bool> fits{true};
+  forEachBlock(count, [&](int begin, int end) {
+    for (int t = begin; t < end; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t u = neighbours[order.oldOf[t]][k];
+        if (u >= count) fits = false;
+        triangles_[t].n[k] = u < 0 || u >= count ? kNoTriangle : order.newOf[u];
+      }
+  }, {});
+  forEachBlock(count, [&](int begin, int end) {
+    for (int t = begin; t < end && fits; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t u = triangles_[t].n[k];
+        if (u == kNoTriangle) continue;
+        const MeshTriangle& other = triangles_[u];
+        const int j = other.n[0] == t ? 0 : other.n[1] == t ? 1 : other.n[2] == t ? 2 : -1;
+        if (j < 0 || other.v[(j + 1) % 3] != triangles_[t].v[(k + 2) % 3] ||
+            other.v[(j + 2) % 3] != triangles_[t].v[(k + 1) % 3])
+          fits = false;
+      }
+  }, {});
+  if (fits) return true;
+  for (MeshTriangle& t : triangles_) t.n = {kNoTriangle, kNoTriangle, kNoTriangle};
+  return false;
 }
 
 // Each edge a -> b finds its twin b -> a among the half-edges leaving b, listed per
@@ -96,18 +132,29 @@ void SimplificationMesh::link() {
         if (twins > 1 || (twins == 0 && heads(a, b) != 1)) throw Error(kNotSampled);
       }
   }, {});
+}
+
+// Each vertex's first triangle, whether it is open (on an outline edge, or in no
+// triangle), and the check that a closed vertex has one fan of all its triangles: two
+// fans meeting at a vertex would be deleted as one star.
+void SimplificationMesh::indexVertices() {
+  const std::size_t nv = points_.size();
+  std::vector<std::int32_t>& triangles = scratch_;
+  triangles.assign(nv, 0);
   start_.assign(nv, kNoTriangle);
-  open_.assign(nv, 1);
+  open_.assign(nv, 0);
+  for (std::size_t t = 0; t < triangles_.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const MeshTriangle& tri = triangles_[t];
+      ++triangles[tri.v[k]];
+      start_[tri.v[k]] = static_cast<std::int32_t>(t);
+      if (tri.n[k] == kNoTriangle) open_[tri.v[(k + 1) % 3]] = open_[tri.v[(k + 2) % 3]] = 1;
+    }
   for (std::size_t v = 0; v < nv; ++v)
-    if (first[v] < first[v + 1]) start_[v] = out[first[v]].corner / 3, open_[v] = 0;
-  for (const MeshTriangle& t : triangles_)
-    for (int k = 0; k < 3; ++k)
-      if (t.n[k] == kNoTriangle) open_[t.v[(k + 1) % 3]] = open_[t.v[(k + 2) % 3]] = 1;
-  // A closed vertex must have one fan of all its triangles: two fans meeting at a vertex
-  // would be deleted as one star.
+    if (triangles[v] == 0) open_[v] = 1;
   forEachBlock(static_cast<int>(nv), [&](int begin, int end) {
     for (int v = begin; v < end; ++v)
-      if (!open_[v] && degree(static_cast<VertexId>(v)) != first[v + 1] - first[v]) throw Error(kNotSampled);
+      if (!open_[v] && degree(static_cast<VertexId>(v)) != triangles[v]) throw Error(kNotSampled);
   }, {});
 }
 

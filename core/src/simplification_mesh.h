@@ -95,7 +95,9 @@ class SimplificationMesh {
   std::size_t brokenLinks() const;
 
  private:
+  bool linkFrom(const std::vector<std::array<std::int32_t, 3>>& neighbours);
   void link();
+  void indexVertices();
   void checkDelaunay() const;
   template <class Visit>
   void aroundLocal(std::int32_t v, Visit visit) const {

@@ -66,14 +66,23 @@ void orderSpatially(Tin& tin) {
   tin.vertices.swap(vertices);
   for (Triangle& t : tin.triangles)
     for (VertexId& v : t) v = newId[v];
-  // A stable counting sort of the triangles by their smallest vertex.
+  // A stable counting sort of the triangles by their smallest vertex; neighbours follow.
   std::vector<std::size_t> first(n + 1, 0);
   auto smallest = [](const Triangle& t) { return std::min({t[0], t[1], t[2]}); };
   for (const Triangle& t : tin.triangles) ++first[smallest(t) + 1];
   for (std::size_t v = 0; v < n; ++v) first[v + 1] += first[v];
+  std::vector<std::int32_t> position(tin.triangles.size());
   std::vector<Triangle> ordered(tin.triangles.size());
-  for (const Triangle& t : tin.triangles) ordered[first[smallest(t)]++] = t;
+  for (std::size_t t = 0; t < tin.triangles.size(); ++t) {
+    position[t] = static_cast<std::int32_t>(first[smallest(tin.triangles[t])]++);
+    ordered[position[t]] = tin.triangles[t];
+  }
   tin.triangles.swap(ordered);
+  if (tin.neighbours.size() != tin.triangles.size()) return tin.neighbours.clear();
+  std::vector<std::array<std::int32_t, 3>> neighbours(tin.neighbours.size());
+  for (std::size_t t = 0; t < position.size(); ++t)
+    for (int k = 0; k < 3; ++k) neighbours[position[t]][k] = tin.neighbours[t][k] < 0 ? -1 : position[tin.neighbours[t][k]];
+  tin.neighbours.swap(neighbours);
 }
 
 double totalArea(const Tin& tin) {

@@ -26,6 +26,11 @@ using Triangle = std::array<VertexId, 3>;
 struct Tin {
   std::vector<TinVertex> vertices;
   std::vector<Triangle> triangles;
+  // Optional, as the sampler's triangulation found them: for each triangle, the triangle
+  // across the edge opposite each corner, or -1 on the outline. Empty when unknown; code
+  // that changes `triangles` must update or clear it (the simplifier checks it and links
+  // the triangles itself when it does not fit).
+  std::vector<std::array<std::int32_t, 3>> neighbours;
   std::string crsWkt;   // the metric CRS of x and y; empty when the DEM had none
   std::string crsName;  // for messages: "WGS 84 / UTM zone 32N (EPSG:32632)"
 };
