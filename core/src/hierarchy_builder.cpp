@@ -44,6 +44,7 @@ class Simplifier {
              const ProgressRange& progress)
       : options_(options), progress_(progress), mesh_(base) {
     h_.base = std::move(base);
+    h_.base.neighbours = {};  // the mesh has them now
     h_.options = options;
     h_.fixed = std::move(fixed);
     h_.fixed.resize(h_.base.vertices.size(), 0);
