@@ -136,6 +136,21 @@ TEST(Importance, VerticalErrorOfTheCentreAndOfSamples) {
   EXPECT_EQ(importance(Measure::Degree, p, {}), 6.0);
 }
 
+// A triangle's plane, from UTM-sized coordinates, gives the heights of the plane through
+// its corners: z = 7 + 0.2 (x - x0) - 0.35 (y - y0).
+TEST(Importance, TrianglePlaneHeights) {
+  const double x0 = 512345.25, y0 = 5123456.75;
+  auto z = [&](double x, double y) { return 7 + 0.2 * (x - x0) - 0.35 * (y - y0); };
+  Star s;
+  s.ring = {{x0, y0, z(x0, y0)}, {x0 + 90, y0 + 5, z(x0 + 90, y0 + 5)}, {x0 + 20, y0 + 80, z(x0 + 20, y0 + 80)}};
+  const TrianglePlane plane = planeOf(s, {0, 1, 2});
+  for (double dx : {0.0, 13.5, 40.0})
+    for (double dy : {0.0, 7.25, 30.0}) {
+      EXPECT_NEAR(plane.height(x0 + dx, y0 + dy), z(x0 + dx, y0 + dy), 1e-9);
+      EXPECT_NEAR(verticalDistance(s, {0, 1, 2}, {x0 + dx, y0 + dy, z(x0 + dx, y0 + dy) + 2.5}), 2.5, 1e-9);
+    }
+}
+
 // triangleHolding takes the last triangle without a test, and tests only the diagonals
 // of a convex polygon, since the points it is given lie in the star's polygon: it must
 // still name the first triangle that holds each point, corners and shared edges

@@ -298,10 +298,13 @@ class Simplifier {
     double* error = fillError_.data() + pick.fill;
     std::fill(error, error + fill.size(), 0.0);
     const std::int32_t* slots = slots_.data() + pick.ring;
+    thread_local std::vector<TrianglePlane> planes;
+    planes.clear();
+    for (const LocalTriangle& t : fill) planes.push_back(planeOf(star, t));
     auto place = [&](const Point3& p) {
       const int j = triangleHolding(star, fill.data(), fill.size(), p, convex);
       if (j < 0) throw Error("internal error: a sample left its star");
-      error[j] = std::max(error[j], verticalDistance(star, fill[j], p));
+      error[j] = std::max(error[j], std::fabs(p.z - planes[j].height(p.x, p.y)));
       return slots[j];
     };
     samples_.add(index, star.centre, place(star.centre));

@@ -50,14 +50,6 @@ double prismVolume(const Point3& a, const Point3& b, const Point3& c) {
   return 0.5 * area2(a, b, c) * (a.z + b.z + c.z) / 3.0;
 }
 
-// Height of the plane through a, b, c at (x, y).
-double planeZ(const Point3& a, const Point3& b, const Point3& c, double x, double y) {
-  const double d = area2(a, b, c);
-  const double wb = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / d;
-  const double wc = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / d;
-  return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
-}
-
 }  // namespace
 
 std::string measureName(Measure measure) {
@@ -285,9 +277,15 @@ int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t cou
   return count > 0 ? static_cast<int>(count) - 1 : -1;
 }
 
-double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& p) {
+TrianglePlane planeOf(const Star& star, const LocalTriangle& t) {
   const Point3 &a = star.ring[t[0]], &b = star.ring[t[1]], &c = star.ring[t[2]];
-  return std::fabs(p.z - planeZ(a, b, c, p.x, p.y));
+  const double d = area2(a, b, c);
+  return {a.x, a.y, a.z, ((b.z - a.z) * (c.y - a.y) - (c.z - a.z) * (b.y - a.y)) / d,
+          ((c.z - a.z) * (b.x - a.x) - (b.z - a.z) * (c.x - a.x)) / d};
+}
+
+double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& p) {
+  return std::fabs(p.z - planeOf(star, t).height(p.x, p.y));
 }
 
 namespace {
@@ -295,9 +293,12 @@ namespace {
 double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
                         const std::vector<Point3>& samples, bool convex) {
   double worst = 0;
+  thread_local std::vector<TrianglePlane> planes;
+  planes.clear();
+  for (const LocalTriangle& t : without) planes.push_back(planeOf(star, t));
   auto measure = [&](const Point3& s) {
     const int j = triangleHolding(star, without.data(), without.size(), s, convex);
-    if (j >= 0) worst = std::max(worst, verticalDistance(star, without[j], s));
+    if (j >= 0) worst = std::max(worst, std::fabs(s.z - planes[j].height(s.x, s.y)));
   };
   measure(star.centre);
   for (const Point3& s : samples) measure(s);

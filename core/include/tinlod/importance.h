@@ -55,6 +55,15 @@ int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t cou
 // |p.z - the height of triangle t's plane at p|.
 double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& p);
 
+// A triangle's plane as slopes from its first corner: the many samples under a star are
+// measured against a few triangles, so each plane is worked out once.
+// verticalDistance(star, t, p) is |p.z - planeOf(star, t).height(p.x, p.y)|.
+struct TrianglePlane {
+  double x, y, z, dzdx, dzdy;
+  double height(double px, double py) const { return z + dzdx * (px - x) + dzdy * (py - y); }
+};
+TrianglePlane planeOf(const Star& star, const LocalTriangle& t);
+
 // Largest vertical distance from the retriangulated star to the samples (which must
 // lie in the star's polygon) and to the centre itself.
 double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
