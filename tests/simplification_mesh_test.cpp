@@ -2,6 +2,7 @@
 // The simplifier's own triangle arrays: deleting stars in rounds keeps every link.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -54,6 +55,32 @@ void deleteRound(SimplificationMesh& mesh, const std::vector<VertexId>& picks, s
   }
   mesh.planCompaction();
   mesh.applyCompaction();
+}
+
+// Level 0 is linked from the triangulation's neighbours when they fit the triangles, and
+// by the edge search when they are missing or no longer fit; the links are the same.
+TEST(SimplificationMesh, LinksFromTheTriangulationsNeighboursWhenTheyFit) {
+  Tin tin = wheel(7, 5);
+  const Triangulation dt = delaunayTriangles(tin.vertices, kQuiet);
+  tin.neighbours = dt.neighbours;
+  const SimplificationMesh given(tin);
+  EXPECT_TRUE(given.linkedFromNeighbours());
+  EXPECT_EQ(given.brokenLinks(), 0u);
+  Tin rotated = tin;  // each triangle starts at another corner: the neighbours no longer fit
+  for (Triangle& t : rotated.triangles) std::rotate(t.begin(), t.begin() + 1, t.end());
+  const SimplificationMesh searched(rotated);
+  EXPECT_FALSE(searched.linkedFromNeighbours());
+  EXPECT_EQ(searched.brokenLinks(), 0u);
+  tin.neighbours.clear();
+  EXPECT_FALSE(SimplificationMesh(tin).linkedFromNeighbours());
+  std::size_t closed = 0;
+  for (VertexId v = 0; v < tin.vertices.size(); ++v) {  // the same outline and the same stars
+    ASSERT_EQ(given.open(v), searched.open(v)) << v;
+    if (given.open(v)) continue;
+    EXPECT_EQ(given.degree(v), searched.degree(v)) << v;
+    ++closed;
+  }
+  EXPECT_GT(closed, 10u);
 }
 
 TEST(SimplificationMesh, DeletingAHugeStarKeepsEveryLink) {

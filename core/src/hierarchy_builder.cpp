@@ -195,7 +195,10 @@ class Simplifier {
     std::vector<Pick> picks;
     // The pick runs on one core; the other meanwhile writes the memory the hierarchy's
     // arrays will grow into, as much as the last level's picks suggest.
-    runBoth([&] { pickBestFirst(candidates, limit, level, picks); }, [&] { growHierarchy(expectedGrowth(limit)); });
+    // As many picks as the last level made, a tenth more (an independent set rarely holds
+    // more than a quarter of the vertices): never the whole run's reserve at once.
+    const std::size_t expected = std::min(limit, lastPicks_ > 0 ? lastPicks_ + lastPicks_ / 10 : current_ / 4);
+    runBoth([&] { pickBestFirst(candidates, limit, level, picks); }, [&] { growHierarchy(expectedGrowth(expected)); });
     radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, pickScratch_);
     std::size_t fills = 0, rings = 0;
     for (Pick& p : picks) p.fill = fills, p.ring = rings, fills += p.degree - 2, rings += p.degree;
@@ -250,6 +253,7 @@ class Simplifier {
     };
     fit(h_.groups, used_.group), fit(h_.triangles, used_.triangles), fit(h_.links, used_.links), fit(h_.rings, used_.rings);
     if (!picks.empty()) meanDegree_ = double(ringCount) / double(picks.size());
+    lastPicks_ = picks.size();
     const std::size_t triangles = at.triangles, links = at.links, rings = at.rings, groups = at.group;
     mesh_.beginRound();
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
@@ -409,6 +413,7 @@ class Simplifier {
   std::size_t original_ = 0, stopCount_ = 0, current_ = 0, triangles_ = 0;
   Ranges used_{};            // how much of the hierarchy's arrays is written; beyond, grown ahead
   double meanDegree_ = 6.0;  // of the last level's picks (a Delaunay TIN's mean degree is 6)
+  std::size_t lastPicks_ = 0;
   double lastFraction_ = 0.1;
 };
 

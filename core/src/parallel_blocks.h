@@ -13,8 +13,8 @@ namespace tinlod {
 // exception of any thread is rethrown once all have stopped.
 void forEachBlock(int count, const std::function<void(int, int)>& work, const std::function<void(double)>& progress);
 
-// Runs first and second at once, second on a thread of its own; the first exception
-// of either is rethrown once both have ended.
+// Runs first and second at once, second on a thread of its own. Once both have ended,
+// rethrows first's exception if it threw, else second's.
 void runBoth(const std::function<void()>& first, const std::function<void()>& second);
 
 }  // namespace tinlod

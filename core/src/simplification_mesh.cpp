@@ -60,7 +60,8 @@ SimplificationMesh::SimplificationMesh(const Tin& base) {
                                   {kNoTriangle, kNoTriangle, kNoTriangle},
                                   static_cast<std::int32_t>(t)};
   }
-  if (!linkFrom(base.neighbours)) link();
+  linkedFromNeighbours_ = linkFrom(base.neighbours);
+  if (!linkedFromNeighbours_) link();
   indexVertices();
   checkDelaunay();
 }

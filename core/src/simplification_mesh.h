@@ -93,6 +93,7 @@ class SimplificationMesh {
   // share the edge or does not link back): for the tests.
   std::size_t liveTriangles() const;
   std::size_t brokenLinks() const;
+  bool linkedFromNeighbours() const { return linkedFromNeighbours_; }  // or by the edge search
 
  private:
   bool linkFrom(const std::vector<std::array<std::int32_t, 3>>& neighbours);
@@ -127,6 +128,7 @@ class SimplificationMesh {
   std::vector<std::int32_t> successor_;  // by slot retired this round: the new slot holding its ring edge
   std::vector<std::uint32_t> retired_;   // by slot: the round that retired it
   std::uint32_t round_ = 0;
+  bool linkedFromNeighbours_ = false;
   // Compaction's own arrays, kept from level to level.
   Compaction compaction_;
   std::vector<MeshTriangle> spare_;
