@@ -284,10 +284,6 @@ TrianglePlane planeOf(const Star& star, const LocalTriangle& t) {
           ((c.z - a.z) * (b.x - a.x) - (b.z - a.z) * (c.x - a.x)) / d};
 }
 
-double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& p) {
-  return std::fabs(p.z - planeOf(star, t).height(p.x, p.y));
-}
-
 namespace {
 
 double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,

@@ -52,12 +52,8 @@ bool convexRing(const Star& star);
 // (closed), as the samples under a star do; `convex` is convexRing(star), which spares
 // the tests on the ring's edges.
 int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex);
-// |p.z - the height of triangle t's plane at p|.
-double verticalDistance(const Star& star, const LocalTriangle& t, const Point3& p);
-
 // A triangle's plane as slopes from its first corner: the many samples under a star are
 // measured against a few triangles, so each plane is worked out once.
-// verticalDistance(star, t, p) is |p.z - planeOf(star, t).height(p.x, p.y)|.
 struct TrianglePlane {
   double x, y, z, dzdx, dzdy;
   double height(double px, double py) const { return z + dzdx * (px - x) + dzdy * (py - y); }
