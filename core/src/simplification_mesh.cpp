@@ -85,15 +85,8 @@ bool SimplificationMesh::linkFrom(const std::vector<std::array<std::int32_t, 3>>
   }, {});
   forEachBlock(count, [&](int begin, int end) {
     for (int t = begin; t < end && fits; ++t)
-      for (int k = 0; k < 3; ++k) {
-        const std::int32_t u = triangles_[t].n[k];
-        if (u == kNoTriangle) continue;
-        const MeshTriangle& other = triangles_[u];
-        const int j = other.n[0] == t ? 0 : other.n[1] == t ? 1 : other.n[2] == t ? 2 : -1;
-        if (j < 0 || other.v[(j + 1) % 3] != triangles_[t].v[(k + 2) % 3] ||
-            other.v[(j + 2) % 3] != triangles_[t].v[(k + 1) % 3])
-          fits = false;
-      }
+      for (int k = 0; k < 3; ++k)
+        if (triangles_[t].n[k] != kNoTriangle && !linksBack(t, k)) fits = false;
   }, {});
   if (fits) return true;
   for (MeshTriangle& t : triangles_) t.n = {kNoTriangle, kNoTriangle, kNoTriangle};
@@ -281,21 +274,21 @@ std::size_t SimplificationMesh::liveTriangles() const {
       std::count_if(triangles_.begin(), triangles_.end(), [](const MeshTriangle& t) { return t.v[0] >= 0; }));
 }
 
+bool SimplificationMesh::linksBack(std::int32_t t, int k) const {
+  const MeshTriangle& tri = triangles_[t];
+  const MeshTriangle& other = triangles_[tri.n[k]];
+  const std::int32_t a = tri.v[(k + 1) % 3], b = tri.v[(k + 2) % 3];
+  for (int j = 0; j < 3; ++j)
+    if (other.n[j] == t && other.v[(j + 1) % 3] == b && other.v[(j + 2) % 3] == a) return true;
+  return false;
+}
+
 std::size_t SimplificationMesh::brokenLinks() const {
   std::size_t broken = 0;
   for (std::size_t t = 0; t < triangles_.size(); ++t) {
-    const MeshTriangle& tri = triangles_[t];
-    if (tri.v[0] < 0) continue;
-    for (int k = 0; k < 3; ++k) {
-      const std::int32_t u = tri.n[k];
-      if (u == kNoTriangle) continue;
-      const MeshTriangle& other = triangles_[u];
-      const std::int32_t a = tri.v[(k + 1) % 3], b = tri.v[(k + 2) % 3];
-      bool back = false;
-      for (int j = 0; j < 3; ++j)
-        back = back || (other.n[j] == std::int32_t(t) && other.v[(j + 1) % 3] == b && other.v[(j + 2) % 3] == a);
-      broken += !back;
-    }
+    if (triangles_[t].v[0] < 0) continue;
+    for (int k = 0; k < 3; ++k)
+      broken += triangles_[t].n[k] != kNoTriangle && !linksBack(static_cast<std::int32_t>(t), k);
   }
   return broken;
 }
@@ -337,7 +330,7 @@ void SimplificationMesh::retire(const StarView& star, const LocalTriangle* fill)
 // Diagonals pair up by directed edge (p, q) of local ring indices: through a d x d table
 // for usual stars, through sorted keys for a huge one. A ring edge faces the triangle
 // beyond it, or that triangle's successor when its own star is being replaced too (which
-// then links back by itself). No walk runs before compact(), which sets start_ again.
+// then links back by itself). No walk runs before applyCompaction(), which sets start_ again.
 void SimplificationMesh::replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids) {
   const int d = star.degree;
   const bool small = d <= kSmallStar;

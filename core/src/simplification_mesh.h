@@ -76,7 +76,7 @@ class SimplificationMesh {
 
   // Deleting an independent set: beginRound(), then retire() for every star (it only
   // reads the triangles), then replaceStar() for every star, each on any thread, then
-  // compact() before the next walk. `fill` (degree - 2 triangles of local ring indices,
+  // planCompaction() and applyCompaction() before the next walk. `fill` (degree - 2 triangles of local ring indices,
   // from retriangulateStar) triangulates the ring; the new triangles take the first star
   // slots, in fill's order, with `ids` as their hierarchy ids, and the last two slots die.
   void beginRound();
@@ -100,6 +100,8 @@ class SimplificationMesh {
   void link();
   void indexVertices();
   void checkDelaunay() const;
+  // Whether the triangle across edge k of t links back to t across the same edge.
+  bool linksBack(std::int32_t t, int k) const;
   template <class Visit>
   void aroundLocal(std::int32_t v, Visit visit) const {
     aroundFrom(v, start_[v], visit);
