@@ -90,7 +90,7 @@ class Simplifier {
       h_.triangles.push_back(ht);
     }
     used_ = {0, h_.triangles.size(), 0, 0};
-    samples_.reset(mesh_.slotCount(), original_ - std::min(original_, stopCount_));
+    samples_.reset(mesh_.slotCount(), maxDeletions());
     slotError_.assign(mesh_.slotCount(), 0.0);
     h_.vertexLevel.assign(nv, kOpenLevel);
     importance_.assign(nv, 0.0);
@@ -108,9 +108,11 @@ class Simplifier {
   // Every deletion adds to the hierarchy's arrays. Reserved once, for as many deletions
   // as the run may make at a generous mean degree, they are not copied level after level
   // as they grow; reserve that is never written takes address space, not memory.
+  std::size_t maxDeletions() const { return original_ - std::min(original_, stopCount_); }
+
   void reserveForDeletions() {
     constexpr std::size_t kMeanDegree = 7;
-    const std::size_t deletions = original_ - std::min(original_, stopCount_);
+    const std::size_t deletions = maxDeletions();
     h_.triangles.reserve(h_.base.triangles.size() + deletions * (kMeanDegree - 2));
     h_.links.reserve(deletions * (2 * kMeanDegree - 2));
     h_.rings.reserve(deletions * kMeanDegree);
@@ -194,11 +196,12 @@ class Simplifier {
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
     std::vector<Pick> picks;
     // The pick runs on one core; the other meanwhile writes the memory the hierarchy's
-    // arrays will grow into, as much as the last level's picks suggest.
-    // As many picks as the last level made, a tenth more (an independent set rarely holds
-    // more than a quarter of the vertices): never the whole run's reserve at once.
+    // arrays will grow into, for as many picks as the last level made and a tenth more
+    // (an independent set rarely holds more than a quarter of the vertices): never the
+    // whole run's reserve at once.
     const std::size_t expected = std::min(limit, lastPicks_ > 0 ? lastPicks_ + lastPicks_ / 10 : current_ / 4);
-    runBoth([&] { pickBestFirst(candidates, limit, level, picks); }, [&] { growHierarchy(expectedGrowth(expected)); });
+    runBoth([&] { pickBestFirst(candidates, limit, level, picks); },
+            [&] { growHierarchy(expectedGrowth(expected), false); });
     radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, pickScratch_);
     std::size_t fills = 0, rings = 0;
     for (Pick& p : picks) p.fill = fills, p.ring = rings, fills += p.degree - 2, rings += p.degree;
@@ -235,10 +238,11 @@ class Simplifier {
     return {used_.group + picks, used_.triangles + n(d - 2), used_.links + n(2 * d - 2), used_.rings + n(d)};
   }
 
-  // Grows the hierarchy's arrays to at least `to`, within what was reserved (never moved).
-  void growHierarchy(const Ranges& to) {
-    auto grow = [](auto& v, std::size_t n) {
-      if (v.size() < n) v.resize(std::min(n, std::max(v.capacity(), v.size())));
+  // Grows the hierarchy's arrays to at least `to`; unless beyondReserve, only within what
+  // was reserved (so they never move while others read them).
+  void growHierarchy(const Ranges& to, bool beyondReserve) {
+    auto grow = [&](auto& v, std::size_t n) {
+      if (v.size() < n) v.resize(beyondReserve ? n : std::min(n, std::max(v.capacity(), v.size())));
     };
     grow(h_.groups, to.group), grow(h_.triangles, to.triangles), grow(h_.links, to.links), grow(h_.rings, to.rings);
   }
@@ -248,23 +252,19 @@ class Simplifier {
     const Ranges at = used_;
     used_ = {at.group + picks.size(), at.triangles + fill_.size(), at.links + ringCount + fill_.size(),
              at.rings + ringCount};
-    const auto fit = [](auto& v, std::size_t n) {
-      if (v.size() < n) v.resize(n);
-    };
-    fit(h_.groups, used_.group), fit(h_.triangles, used_.triangles), fit(h_.links, used_.links), fit(h_.rings, used_.rings);
+    growHierarchy(used_, true);  // where the last level's picks fell short
     if (!picks.empty()) meanDegree_ = double(ringCount) / double(picks.size());
     lastPicks_ = picks.size();
-    const std::size_t triangles = at.triangles, links = at.links, rings = at.rings, groups = at.group;
     mesh_.beginRound();
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       Star star;
       std::vector<LocalTriangle> fill;
-      for (int i = begin; i < end; ++i) plan(picks, i, level, Ranges{groups + i, triangles, links, rings}, star, fill);
+      for (int i = begin; i < end; ++i) plan(picks, i, level, Ranges{at.group + i, at.triangles, at.links, at.rings}, star, fill);
     }, [&](double f) { reportProgress(level, f / 2, picks.size()); });
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
-      for (int i = begin; i < end; ++i) replace(picks[i], triangles, rings);
+      for (int i = begin; i < end; ++i) replace(picks[i], at.triangles, at.rings);
     }, [&](double f) { reportProgress(level, 0.5 + f / 2, picks.size()); });
-    for (std::size_t k = rings; k < used_.rings; ++k) stale_[h_.rings[k]] = 1;  // the ring vertices' stars changed
+    for (std::size_t k = at.rings; k < used_.rings; ++k) stale_[h_.rings[k]] = 1;  // the ring vertices' stars changed
     live_.erase(std::remove_if(live_.begin(), live_.end(), [&](VertexId v) { return h_.vertexLevel[v] != kOpenLevel; }),
                 live_.end());
     triangles_ -= 2 * picks.size();
