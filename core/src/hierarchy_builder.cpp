@@ -259,7 +259,8 @@ class Simplifier {
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       Star star;
       std::vector<LocalTriangle> fill;
-      for (int i = begin; i < end; ++i) plan(picks, i, level, Ranges{at.group + i, at.triangles, at.links, at.rings}, star, fill);
+      for (int i = begin; i < end; ++i)
+        plan(picks, i, level, Ranges{at.group + i, at.triangles, at.links, at.rings}, star, fill);
     }, [&](double f) { reportProgress(level, f / 2, picks.size()); });
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       for (int i = begin; i < end; ++i) replace(picks[i], at.triangles, at.rings);

@@ -18,26 +18,6 @@ K::Point_2 xy(const Point3& p) { return K::Point_2(p.x, p.y); }
 
 const char* kNotSampled = "the level-0 TIN is not a Delaunay triangulation: it was not made by tinlod sample";
 
-// A counting sort of `count` triangles by the smallest of their vertices (numbered below
-// `vertices`), as smallest(t) gives it, -1 for a triangle to drop: the simplifier visits
-// vertices in order, so the stars it walks one after another lie side by side. Writes
-// into c and first, whose memory is reused level after level.
-template <class Smallest>
-void orderBySmallestVertex(std::size_t count, std::size_t vertices, Smallest smallest, Compaction& c,
-                           std::vector<std::int32_t>& first) {
-  first.assign(vertices + 1, 0);
-  for (std::size_t t = 0; t < count; ++t)
-    if (smallest(t) >= 0) ++first[smallest(t) + 1];
-  for (std::size_t v = 0; v < vertices; ++v) first[v + 1] += first[v];
-  c.oldOf.resize(first.back());
-  c.newOf.assign(count, kNoTriangle);
-  for (std::size_t t = 0; t < count; ++t)
-    if (smallest(t) >= 0) {
-      const std::int32_t slot = first[smallest(t)]++;
-      c.newOf[t] = slot, c.oldOf[slot] = static_cast<std::int32_t>(t);
-    }
-}
-
 }  // namespace
 
 SimplificationMesh::SimplificationMesh(const Tin& base) {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "smallest_vertex_order.h"
 #include "tinlod/importance.h"
 #include "tinlod/tin.h"
 
@@ -19,12 +20,6 @@ namespace tinlod {
 
 constexpr std::int32_t kNoTriangle = -1;
 constexpr int kSmallStar = 64;  // stars of up to this degree are handled in fixed-size scratch
-
-// Slots renumbered: for each new slot its old one, and for each old slot its new one
-// (kNoTriangle when dropped).
-struct Compaction {
-  std::vector<std::int32_t> oldOf, newOf;
-};
 
 struct MeshTriangle {
   std::array<std::int32_t, 3> v;  // the mesh's own vertex numbers, counter-clockwise; v[0] < 0 for a dead slot

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "smallest_vertex_order.h"
+
 namespace tinlod {
 
 double triangleArea(const Tin& tin, const Triangle& t) {
@@ -66,17 +68,16 @@ void orderSpatially(Tin& tin) {
   tin.vertices.swap(vertices);
   for (Triangle& t : tin.triangles)
     for (VertexId& v : t) v = newId[v];
-  // A stable counting sort of the triangles by their smallest vertex; neighbours follow.
-  std::vector<std::size_t> first(n + 1, 0);
-  auto smallest = [](const Triangle& t) { return std::min({t[0], t[1], t[2]}); };
-  for (const Triangle& t : tin.triangles) ++first[smallest(t) + 1];
-  for (std::size_t v = 0; v < n; ++v) first[v + 1] += first[v];
-  std::vector<std::int32_t> position(tin.triangles.size());
+  // The triangles by their smallest vertex; neighbours follow.
+  Compaction bySmallest;
+  std::vector<std::int32_t> first;
+  orderBySmallestVertex(tin.triangles.size(), n, [&](std::size_t t) {
+    const Triangle& tri = tin.triangles[t];
+    return static_cast<std::int32_t>(std::min({tri[0], tri[1], tri[2]}));
+  }, bySmallest, first);
+  const std::vector<std::int32_t>& position = bySmallest.newOf;
   std::vector<Triangle> ordered(tin.triangles.size());
-  for (std::size_t t = 0; t < tin.triangles.size(); ++t) {
-    position[t] = static_cast<std::int32_t>(first[smallest(tin.triangles[t])]++);
-    ordered[position[t]] = tin.triangles[t];
-  }
+  for (std::size_t t = 0; t < tin.triangles.size(); ++t) ordered[position[t]] = tin.triangles[t];
   tin.triangles.swap(ordered);
   if (tin.neighbours.size() != tin.triangles.size()) return tin.neighbours.clear();
   std::vector<std::array<std::int32_t, 3>> neighbours(tin.neighbours.size());
