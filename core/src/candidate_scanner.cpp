@@ -99,7 +99,7 @@ ScanResult CandidateScanner::scanCells(std::array<std::uint32_t, 3> c) const {
     std::swap(x[1], x[2]), std::swap(y[1], y[2]), std::swap(c[1], c[2]);
   }
   const float* z = grid_.z;
-  const Plane plane(x[0], y[0], z[c[0]], x[1], y[1], z[c[1]], x[2], y[2], z[c[2]]);
+  const TrianglePlane plane = TrianglePlane::through(x[0], y[0], z[c[0]], x[1], y[1], z[c[1]], x[2], y[2], z[c[2]]);
   const std::int64_t minX = std::min({x[0], x[1], x[2]}), maxX = std::max({x[0], x[1], x[2]});
   const std::int64_t minY = std::min({y[0], y[1], y[2]}), maxY = std::max({y[0], y[1], y[2]});
   double best = 0;
@@ -118,11 +118,11 @@ ScanResult CandidateScanner::scanCells(std::array<std::uint32_t, 3> c) const {
     }
     if (xl > xr) continue;
     const float* h = z + yy * cols;
-    const double base = plane.at(double(xl), double(yy));
+    const double base = plane.height(double(xl), double(yy));
     double rowBest = 0;
     std::int64_t rowArg = -1;
     for (std::int64_t xx = xl; xx <= xr; ++xx) {
-      const double e = std::fabs(base + plane.gx * double(xx - xl) - h[xx]);
+      const double e = std::fabs(base + plane.dzdx * double(xx - xl) - h[xx]);
       if constexpr (kHoles) {
         if (e != e) {
           missing = true;
@@ -147,10 +147,10 @@ ScanResult CandidateScanner::scanCells(std::array<std::uint32_t, 3> c) const {
   return result;
 }
 
-CandidateScanner::Plane CandidateScanner::planeOf(const std::array<std::uint32_t, 3>& c) const {
+TrianglePlane CandidateScanner::planeOf(const std::array<std::uint32_t, 3>& c) const {
   double x[3], y[3], z[3];
   for (int k = 0; k < 3; ++k) x[k] = col(c[k]), y[k] = row(c[k]), z[k] = height(c[k]);
-  return Plane(x[0], y[0], z[0], x[1], y[1], z[1], x[2], y[2], z[2]);
+  return TrianglePlane::through(x[0], y[0], z[0], x[1], y[1], z[1], x[2], y[2], z[2]);
 }
 
 // The cells around the triangle, one more on each side: a sampled point lies within a
@@ -199,7 +199,7 @@ bool CandidateScanner::footprintHolds(const std::array<std::uint32_t, 3>& c, int
 // Sampled candidates lie within a cell of their cell's centre: the block of cells around
 // the triangle holds them all, and its missing cells are tested at their centres.
 ScanResult CandidateScanner::scanSamples(const std::array<std::uint32_t, 3>& c) const {
-  const Plane plane = planeOf(c);
+  const TrianglePlane plane = planeOf(c);
   const CellBlock b = blockAround(c);
   ScanResult result;
   std::size_t others = 0;
@@ -216,7 +216,7 @@ ScanResult CandidateScanner::scanSamples(const std::array<std::uint32_t, 3>& c) 
       const CandidatePoint& p = grid_.samples[id];
       if (!inside(c, p.col, p.row)) continue;
       ++others;
-      const double e = std::fabs(plane.at(p.col, p.row) - p.z);
+      const double e = std::fabs(plane.height(p.col, p.row) - p.z);
       if (e > result.error) result.error = e, result.candidate = id;
     }
   if (result.overHole) result.error = others > 0 ? kInfinity : 0;
@@ -226,7 +226,7 @@ ScanResult CandidateScanner::scanSamples(const std::array<std::uint32_t, 3>& c) 
 // A triangle over a hole and over data: split it at a candidate on the hole's edge if it
 // has one (the outline the TIN must follow), else at any; the worst first.
 std::uint32_t CandidateScanner::splitCandidate(const std::array<std::uint32_t, 3>& c) const {
-  const Plane plane = planeOf(c);
+  const TrianglePlane plane = planeOf(c);
   const CellBlock b = blockAround(c);
   std::uint32_t best = c[0];
   std::pair<bool, double> bestKey{false, -1};
@@ -246,7 +246,7 @@ std::uint32_t CandidateScanner::splitCandidate(const std::array<std::uint32_t, 3
       }
       if (id == c[0] || id == c[1] || id == c[2] || !inside(c, px, py)) continue;
       // Cells on a hole's edge rank above all others; among each kind, the worst first.
-      const std::pair<bool, double> key{edgeOfHole_[cell] != 0, std::fabs(plane.at(px, py) - pz)};
+      const std::pair<bool, double> key{edgeOfHole_[cell] != 0, std::fabs(plane.height(px, py) - pz)};
       if (key > bestKey) bestKey = key, best = id;
     }
   return best;

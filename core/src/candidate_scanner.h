@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tinlod/greedy_inserter.h"
+#include "tinlod/triangle_plane.h"
 
 namespace tinlod {
 
@@ -33,23 +34,12 @@ class CandidateScanner {
   std::vector<std::uint32_t> hullCandidates() const;
 
  private:
-  // The triangle's plane z = za + gx (x - ax) + gy (y - ay), in cell units.
-  struct Plane {
-    double ax, ay, za, gx, gy;
-    Plane(double ax_, double ay_, double za_, double bx, double by, double zb, double cx, double cy, double zc)
-        : ax(ax_), ay(ay_), za(za_) {
-      const double det = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-      gx = ((zb - za) * (cy - ay) - (zc - za) * (by - ay)) / det;
-      gy = ((zc - za) * (bx - ax) - (zb - za) * (cx - ax)) / det;
-    }
-    double at(double x, double y) const { return za + gx * (x - ax) + gy * (y - ay); }
-  };
   struct CellBlock {
     int r0, r1, c0, c1;  // rows and columns, inclusive
   };
 
   double height(std::uint32_t id) const;
-  Plane planeOf(const std::array<std::uint32_t, 3>& corners) const;
+  TrianglePlane planeOf(const std::array<std::uint32_t, 3>& corners) const;  // in cell units
   CellBlock blockAround(const std::array<std::uint32_t, 3>& corners) const;
   template <bool kHoles>
   ScanResult scanCells(std::array<std::uint32_t, 3> corners) const;

@@ -279,9 +279,7 @@ int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t cou
 
 TrianglePlane planeOf(const Star& star, const LocalTriangle& t) {
   const Point3 &a = star.ring[t[0]], &b = star.ring[t[1]], &c = star.ring[t[2]];
-  const double d = area2(a, b, c);
-  return {a.x, a.y, a.z, ((b.z - a.z) * (c.y - a.y) - (c.z - a.z) * (b.y - a.y)) / d,
-          ((c.z - a.z) * (b.x - a.x) - (b.z - a.z) * (c.x - a.x)) / d};
+  return TrianglePlane::through(a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z);
 }
 
 namespace {

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "tinlod/triangle_plane.h"
+
 namespace tinlod {
 
 struct Point3 {
@@ -52,12 +54,7 @@ bool convexRing(const Star& star);
 // (closed), as the samples under a star do; `convex` is convexRing(star), which spares
 // the tests on the ring's edges.
 int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex);
-// A triangle's plane as slopes from its first corner: the many samples under a star are
-// measured against a few triangles, so each plane is worked out once.
-struct TrianglePlane {
-  double x, y, z, dzdx, dzdy;
-  double height(double px, double py) const { return z + dzdx * (px - x) + dzdy * (py - y); }
-};
+// The plane of triangle t of the star's ring, from its first corner.
 TrianglePlane planeOf(const Star& star, const LocalTriangle& t);
 
 // Largest vertical distance from the retriangulated star to the samples (which must
