@@ -23,9 +23,6 @@ const char* kNotSampled = "the level-0 TIN is not a Delaunay triangulation: it w
 SimplificationMesh::SimplificationMesh(const Tin& base) {
   points_.reserve(base.vertices.size());
   for (const TinVertex& v : base.vertices) points_.push_back({v.x, v.y, v.z});
-  global_.resize(points_.size());
-  localOf_.resize(points_.size());
-  for (std::size_t v = 0; v < points_.size(); ++v) global_[v] = static_cast<VertexId>(v), localOf_[v] = static_cast<std::int32_t>(v);
   for (const Triangle& tri : base.triangles)
     for (VertexId v : tri)
       if (v >= points_.size()) throw Error("internal error: a triangle names a vertex the TIN does not have");
@@ -162,13 +159,12 @@ int SimplificationMesh::degree(VertexId v) const {
 // smallest id.
 template <class Visit>
 void SimplificationMesh::canonicalWalk(VertexId v, Visit visit) const {
-  const std::int32_t local = localOf_[v];
   std::int32_t best = kNoTriangle, bestId = 0;
-  aroundLocal(local, [&](std::int32_t t, int k) {
+  eachAround(v, [&](std::int32_t t, int k) {
     const std::int32_t id = triangles_[t].v[(k + 1) % 3];
     if (best == kNoTriangle || id < bestId) best = t, bestId = id;
   });
-  aroundFrom(local, best, visit);  // the second walk finds every triangle in cache
+  aroundFrom(static_cast<std::int32_t>(v), best, visit);  // the second walk finds every triangle in cache
 }
 
 void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer,
@@ -178,7 +174,7 @@ void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots,
   geometry.ring.clear();
   canonicalWalk(v, [&](std::int32_t t, int k) {
     const MeshTriangle& tri = triangles_[t];
-    ring[i] = global_[tri.v[(k + 1) % 3]];
+    ring[i] = static_cast<VertexId>(tri.v[(k + 1) % 3]);
     geometry.ring.push_back(points_[tri.v[(k + 1) % 3]]);
     slots[i] = t;
     outer[i++] = tri.n[k];
@@ -188,24 +184,23 @@ void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots,
 // One walk into a small buffer, then the points from the smallest ring vertex on: the
 // importance reads millions of stars, and a second walk costs a sixth of it.
 int SimplificationMesh::geometryOf(VertexId v, Star& star, VertexId* ids, int capacity) const {
-  const std::int32_t local = localOf_[v];
   std::int32_t ring[kSmallStar];
   int d = 0;
-  aroundLocal(local, [&](std::int32_t t, int k) {
+  eachAround(v, [&](std::int32_t t, int k) {
     if (d < kSmallStar) ring[d] = triangles_[t].v[(k + 1) % 3];
     ++d;
   });
-  star.centre = points_[local];
+  star.centre = points_[v];
   star.ring.clear();
   if (d > kSmallStar) {
     canonicalWalk(v, [&](std::int32_t t, int k) { star.ring.push_back(points_[triangles_[t].v[(k + 1) % 3]]); });
     return d;
   }
-  const int first = static_cast<int>(std::min_element(ring, ring + d) - ring);  // mesh numbers keep the TIN's order
+  const int first = static_cast<int>(std::min_element(ring, ring + d) - ring);
   star.ring.resize(d);
   for (int i = 0; i < d; ++i) star.ring[i] = points_[ring[(first + i) % d]];
   if (d <= capacity)
-    for (int i = 0; i < d; ++i) ids[i] = global_[ring[(first + i) % d]];
+    for (int i = 0; i < d; ++i) ids[i] = static_cast<VertexId>(ring[(first + i) % d]);
   return d;
 }
 
@@ -217,28 +212,25 @@ void SimplificationMesh::beginRound() {
 }
 
 // Ordered by smallest vertex again, as level 0 was: new triangles left where their stars
-// were drift from the order the vertices are visited in. The vertices are renumbered
-// first, so each triangle is copied once, on every core, into the array the previous
-// compaction left (the arrays only shrink, so no fresh memory is faulted in).
+// were drift from the order the vertices are visited in. Each triangle is copied once,
+// on every core, into the array the previous compaction left (the arrays only shrink,
+// so no fresh memory is faulted in).
 const Compaction& SimplificationMesh::planCompaction() {
-  const std::vector<std::int32_t>& vertexOf = compactVertices();
   Compaction& c = compaction_;
   orderBySmallestVertex(triangles_.size(), points_.size(), [&](std::size_t t) {
     const MeshTriangle& tri = triangles_[t];
-    return tri.v[0] < 0 ? -1 : vertexOf[std::min({tri.v[0], tri.v[1], tri.v[2]})];
+    return tri.v[0] < 0 ? -1 : std::min({tri.v[0], tri.v[1], tri.v[2]});
   }, c, scratch_);
   return c;
 }
 
 void SimplificationMesh::applyCompaction() {
   const Compaction& c = compaction_;
-  const std::vector<std::int32_t>& vertexOf = vertexOf_;
   std::vector<MeshTriangle>& compacted = spare_;
   compacted.resize(c.oldOf.size());
   forEachBlock(static_cast<int>(c.oldOf.size()), [&](int begin, int end) {
     for (int slot = begin; slot < end; ++slot) {
       MeshTriangle tri = triangles_[c.oldOf[slot]];
-      for (std::int32_t& v : tri.v) v = vertexOf[v];
       for (std::int32_t& n : tri.n)
         if (n != kNoTriangle) n = c.newOf[n];
       compacted[slot] = tri;
@@ -271,29 +263,6 @@ std::size_t SimplificationMesh::brokenLinks() const {
       broken += triangles_[t].n[k] != kNoTriangle && !linksBack(static_cast<std::int32_t>(t), k);
   }
   return broken;
-}
-
-// Keeps the vertices some live triangle still has, in their order; returns the new
-// number of each old one (-1 when gone). The triangles are renumbered by the caller.
-const std::vector<std::int32_t>& SimplificationMesh::compactVertices() {
-  std::vector<std::int32_t>& newOf = vertexOf_;
-  newOf.assign(points_.size(), -1);
-  for (const MeshTriangle& t : triangles_)
-    if (t.v[0] >= 0)
-      for (std::int32_t v : t.v) newOf[v] = 0;
-  std::int32_t kept = 0;
-  for (std::size_t v = 0; v < newOf.size(); ++v) {
-    if (newOf[v] < 0) {
-      localOf_[global_[v]] = -1;
-      continue;
-    }
-    newOf[v] = kept;
-    points_[kept] = points_[v], global_[kept] = global_[v];
-    localOf_[global_[kept]] = kept;
-    ++kept;
-  }
-  points_.resize(kept), start_.resize(kept), global_.resize(kept);
-  return newOf;
 }
 
 void SimplificationMesh::retire(const StarView& star, const LocalTriangle* fill) {
@@ -336,7 +305,7 @@ void SimplificationMesh::replaceStar(const StarView& star, const LocalTriangle* 
     tri.id = ids[j];
     for (int e = 0; e < 3; ++e) {
       const int p = fill[j][(e + 1) % 3], q = fill[j][(e + 2) % 3];  // the edge opposite corner e
-      tri.v[e] = localOf_[star.ring[fill[j][e]]];
+      tri.v[e] = static_cast<std::int32_t>(star.ring[fill[j][e]]);
       if (q != (p + 1) % d) {
         tri.n[e] = owner(q, p);
         continue;
@@ -349,7 +318,7 @@ void SimplificationMesh::replaceStar(const StarView& star, const LocalTriangle* 
       tri.n[e] = beyond;
       if (beyond == kNoTriangle) continue;
       MeshTriangle& b = triangles_[beyond];
-      const std::int32_t head = localOf_[star.ring[q]];
+      const std::int32_t head = static_cast<std::int32_t>(star.ring[q]);
       b.n[b.v[1] == head ? 0 : b.v[2] == head ? 1 : 2] = slot;
     }
   }

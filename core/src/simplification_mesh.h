@@ -22,7 +22,7 @@ constexpr std::int32_t kNoTriangle = -1;
 constexpr int kSmallStar = 64;  // stars of up to this degree are handled in fixed-size scratch
 
 struct MeshTriangle {
-  std::array<std::int32_t, 3> v;  // the mesh's own vertex numbers, counter-clockwise; v[0] < 0 for a dead slot
+  std::array<std::int32_t, 3> v;  // TIN vertex ids, counter-clockwise; v[0] < 0 for a dead slot
   std::array<std::int32_t, 3> n;  // n[k]: the triangle across the edge opposite v[k], or kNoTriangle
   std::int32_t id;                // the triangle's id in the hierarchy
 };
@@ -45,11 +45,11 @@ class SimplificationMesh {
   // not locally Delaunay (exact in-circle): such a TIN was not made by tinlod sample.
   explicit SimplificationMesh(const Tin& base);
 
-  // Vertices are named by their TIN ids; inside, the mesh numbers the vertices still in
-  // it densely, in the same order, and renumbers them when it is compacted.
-  const Point3& point(VertexId v) const { return points_[localOf_[v]]; }
+  // Vertices are named by their TIN ids throughout: deleted ones simply drop out of the
+  // triangles. (Numbering the vertices left densely at each level saved no time.)
+  const Point3& point(VertexId v) const { return points_[v]; }
   std::int32_t triangleId(std::int32_t slot) const { return triangles_[slot].id; }
-  VertexId corner(std::int32_t slot, int k) const { return global_[triangles_[slot].v[k]]; }
+  VertexId corner(std::int32_t slot, int k) const { return static_cast<VertexId>(triangles_[slot].v[k]); }
   std::size_t slotCount() const { return triangles_.size(); }
   // True for a vertex on the outline or a hole's edge, or in no triangle: it has no
   // closed star and is never deleted.
@@ -59,7 +59,7 @@ class SimplificationMesh {
   // from wherever the walk starts, where k is the vertex's index in the triangle.
   template <class Visit>
   void eachAround(VertexId v, Visit visit) const {
-    aroundLocal(localOf_[v], visit);
+    aroundFrom(static_cast<std::int32_t>(v), start_[v], visit);
   }
   int degree(VertexId v) const;
   // Writes the star of an interior vertex into arrays of degree(v) entries each, and
@@ -77,10 +77,10 @@ class SimplificationMesh {
   void beginRound();
   void retire(const StarView& star, const LocalTriangle* fill);
   void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
-  // Drops the dead slots and the deleted vertices and orders the rest by smallest vertex
-  // again, so that the stars of the vertices still there stay side by side in memory as
-  // the TIN thins out: planCompaction() numbers them anew (the result is valid until the
-  // next compaction, and others may use it while) applyCompaction() moves them.
+  // Drops the dead slots and orders the rest by smallest vertex again, so that the stars
+  // of the vertices still there stay side by side in memory as the TIN thins out:
+  // planCompaction() numbers them anew (the result is valid until the next compaction,
+  // and others may use it while) applyCompaction() moves them.
   const Compaction& planCompaction();
   void applyCompaction();
 
@@ -97,11 +97,7 @@ class SimplificationMesh {
   void checkDelaunay() const;
   // Whether the triangle across edge k of t links back to t across the same edge.
   bool linksBack(std::int32_t t, int k) const;
-  template <class Visit>
-  void aroundLocal(std::int32_t v, Visit visit) const {
-    aroundFrom(v, start_[v], visit);
-  }
-  // From triangle `first`, which must hold mesh vertex v.
+  // From triangle `first`, which must hold vertex v.
   template <class Visit>
   void aroundFrom(std::int32_t v, std::int32_t first, Visit visit) const {
     std::int32_t t = first;
@@ -114,13 +110,10 @@ class SimplificationMesh {
   }
   template <class Visit>
   void canonicalWalk(VertexId v, Visit visit) const;
-  const std::vector<std::int32_t>& compactVertices();
 
-  std::vector<Point3> points_;           // by mesh vertex
+  std::vector<Point3> points_;           // by TIN id
   std::vector<MeshTriangle> triangles_;
-  std::vector<std::int32_t> start_;      // by mesh vertex: one triangle around it
-  std::vector<VertexId> global_;         // by mesh vertex: its TIN id
-  std::vector<std::int32_t> localOf_;    // by TIN id: its mesh vertex, -1 once gone
+  std::vector<std::int32_t> start_;      // by TIN id: one triangle around it
   std::vector<std::uint8_t> open_;       // by TIN id
   std::vector<std::int32_t> successor_;  // by slot retired this round: the new slot holding its ring edge
   std::vector<std::uint32_t> retired_;   // by slot: the round that retired it
@@ -129,7 +122,7 @@ class SimplificationMesh {
   // Compaction's own arrays, kept from level to level.
   Compaction compaction_;
   std::vector<MeshTriangle> spare_;
-  std::vector<std::int32_t> vertexOf_, scratch_;
+  std::vector<std::int32_t> scratch_;
 };
 
 }  // namespace tinlod
