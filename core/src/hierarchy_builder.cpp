@@ -304,18 +304,24 @@ class Simplifier {
     std::fill(error, error + fill.size(), 0.0);
     const std::int32_t* slots = slots_.data() + pick.ring;
     thread_local std::vector<TrianglePlane> planes;
+    thread_local std::vector<int> onEdge;  // by ring edge k: the new triangle on it
     planes.clear();
-    for (const LocalTriangle& t : fill) planes.push_back(planeOf(star, t));
-    auto place = [&](const Point3& p) {
-      const int j = triangleHolding(star, fill.data(), fill.size(), p, convex);
-      if (j < 0) throw Error("internal error: a sample left its star");
+    onEdge.resize(pick.degree);
+    const int d = static_cast<int>(pick.degree);
+    for (std::size_t j = 0; j < fill.size(); ++j) {
+      planes.push_back(planeOf(star, fill[j]));
+      for (int e = 0; e < 3; ++e)
+        if (fill[j][(e + 1) % 3] == (fill[j][e] + 1) % d) onEdge[fill[j][e]] = static_cast<int>(j);
+    }
+    auto place = [&](const Point3& p, int likely) {
+      const int j = triangleHolding(star, fill.data(), fill.size(), p, convex, likely);
       error[j] = std::max(error[j], std::fabs(p.z - planes[j].height(p.x, p.y)));
       return slots[j];
     };
-    samples_.add(index, star.centre, place(star.centre));
-    for (std::uint32_t k = 0; k < pick.degree; ++k)
+    samples_.add(index, star.centre, place(star.centre, -1));
+    for (int k = 0; k < d; ++k)  // the samples under the star's triangle on ring edge k
       for (std::size_t i = samples_.begin(slots[k]); i < samples_.end(slots[k]); ++i)
-        samples_.moveTo(i, place(samples_.point(i)));
+        samples_.moveTo(i, place(samples_.point(i), onEdge[k]));
   }
 
   // The group of a pick, its accept triangles (the star's) and its reject triangles (the

@@ -262,19 +262,31 @@ bool convexRing(const Star& star) {
 // The polygon holds p, so when it is convex its ring edges need no test, only the
 // diagonals (in a polygon that bends back, p can lie beyond a ring edge's line and
 // still inside); and when every other triangle has refused p, the last one holds it.
-int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex) {
+int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex,
+                    int likely) {
   const int d = static_cast<int>(star.ring.size());
   const K::Point_2 q = xy(p);
-  for (std::size_t j = 0; j + 1 < count; ++j) {
-    bool holds = true;
-    for (int e = 0; e < 3 && holds; ++e) {
+  auto holds = [&](std::size_t j) {
+    for (int e = 0; e < 3; ++e) {
       const int a = tris[j][e], b = tris[j][(e + 1) % 3];
       if (convex && b == (a + 1) % d) continue;
-      holds = CGAL::orientation(xy(star.ring[a]), xy(star.ring[b]), q) != CGAL::RIGHT_TURN;
+      if (CGAL::orientation(xy(star.ring[a]), xy(star.ring[b]), q) == CGAL::RIGHT_TURN) return false;
     }
-    if (holds) return static_cast<int>(j);
+    return true;
+  };
+  if (count == 0) return -1;
+  const bool hinted = likely >= 0 && static_cast<std::size_t>(likely) < count;
+  std::size_t left = count;  // triangles not yet refused
+  if (hinted) {
+    if (holds(likely)) return likely;
+    --left;
   }
-  return count > 0 ? static_cast<int>(count) - 1 : -1;
+  for (std::size_t j = 0; j < count; ++j) {
+    if (hinted && j == static_cast<std::size_t>(likely)) continue;
+    if (left == 1 || holds(j)) return static_cast<int>(j);
+    --left;
+  }
+  return -1;  // not reached: the last one left is taken
 }
 
 TrianglePlane planeOf(const Star& star, const LocalTriangle& t) {

@@ -49,11 +49,14 @@ double normalFlatness(const Star& star);
 
 // Whether the star's ring is a convex polygon (CGAL's exact orientation).
 bool convexRing(const Star& star);
-// The first of `count` triangles, which triangulate the star's polygon, that holds p in
-// x/y (CGAL's exact orientation; on a shared edge, the first). p must lie in the polygon
-// (closed), as the samples under a star do; `convex` is convexRing(star), which spares
-// the tests on the ring's edges.
-int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex);
+// One of `count` triangles, which triangulate the star's polygon, that holds p in x/y
+// (CGAL's exact orientation): triangle `likely` if it does, else the first that does (on
+// a shared edge, the first). p must lie in the polygon (closed), as the samples under a
+// star do; `convex` is convexRing(star), which spares the tests on the ring's edges.
+// A sample under old star triangle k most often lies in the new triangle on ring edge k:
+// tried first, it spares most tests.
+int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex,
+                    int likely = -1);
 // The plane of triangle t of the star's ring, from its first corner.
 TrianglePlane planeOf(const Star& star, const LocalTriangle& t);
 
