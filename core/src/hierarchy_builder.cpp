@@ -157,7 +157,10 @@ class Simplifier {
     forEachBlock(static_cast<int>(stale.size()), [&](int begin, int end) {
       Star star;
       std::vector<Point3> samples;
-      for (int i = begin; i < end; ++i) updateImportance(stale[i], star, samples);
+      for (int i = begin; i < end; ++i) {
+        mesh_.prefetchAhead(i, end, [&](int j) { return stale[j]; });
+        updateImportance(stale[i], star, samples);
+      }
     }, [&](double) { progress_.report(lastFraction_, phase); });
   }
 
@@ -259,8 +262,10 @@ class Simplifier {
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       Star star;
       std::vector<LocalTriangle> fill;
-      for (int i = begin; i < end; ++i)
+      for (int i = begin; i < end; ++i) {
+        mesh_.prefetchAhead(i, end, [&](int j) { return picks[j].id; });
         plan(picks, i, level, Ranges{at.group + i, at.triangles, at.links, at.rings}, star, fill);
+      }
     }, [&](double f) { reportProgress(level, f / 2, picks.size()); });
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       for (int i = begin; i < end; ++i) replace(picks[i], at.triangles, at.rings);

@@ -62,6 +62,18 @@ class SimplificationMesh {
     aroundFrom(static_cast<std::int32_t>(v), start_[v], visit);
   }
   int degree(VertexId v) const;
+  // Star walks wait on memory: a loop over many vertices asks for the entry of the
+  // vertex `far` ahead and for the first triangle and point of the one `near` ahead
+  // (whose entry then is there), 5 % off the whole build on alps_2x2.
+  template <class VertexAt>
+  void prefetchAhead(int i, int end, VertexAt vertexAt) const {
+    constexpr int near = 8, far = 16;
+    if (i + far < end) __builtin_prefetch(&start_[vertexAt(i + far)]);
+    if (i + near < end) {
+      const VertexId v = vertexAt(i + near);
+      __builtin_prefetch(&triangles_[start_[v]]), __builtin_prefetch(&points_[v]);
+    }
+  }
   // Writes the star of an interior vertex into arrays of degree(v) entries each, and
   // its points into `geometry`.
   void starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer, Star& geometry) const;
