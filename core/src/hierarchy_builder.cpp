@@ -188,12 +188,7 @@ class Simplifier {
   // which is the TIN's spatial order: the plan and the mesh are then walked in cache.
   std::vector<Pick> select(std::int32_t level) {
     updateStaleImportances(level);
-    std::vector<std::pair<double, VertexId>>& candidates = candidates_;
-    candidates.clear();
-    candidates.reserve(live_.size());
-    for (VertexId v : live_)
-      if (eligible(v) && wanted(importance_[v])) candidates.emplace_back(importance_[v], v);
-    radixSort(candidates, [](const std::pair<double, VertexId>& c) { return orderedBits(c.first); }, sortScratch_);
+    sortCandidates();
     std::size_t limit = current_ - stopCount_;
     if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
@@ -203,7 +198,7 @@ class Simplifier {
     // (an independent set rarely holds more than a quarter of the vertices): never the
     // whole run's reserve at once.
     const std::size_t expected = std::min(limit, lastPicks_ > 0 ? lastPicks_ + lastPicks_ / 10 : current_ / 4);
-    runBoth([&] { pickBestFirst(candidates, limit, level, picks); },
+    runBoth([&] { pickBestFirst(limit, level, picks); },
             [&] { growHierarchy(expectedGrowth(expected), false); });
     radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, pickScratch_);
     std::size_t fills = 0, rings = 0;
@@ -216,11 +211,31 @@ class Simplifier {
     return picks;
   }
 
-  // Each pick blocks its neighbours (from the ring lines: the picks jump about the TIN).
-  void pickBestFirst(const std::vector<std::pair<double, VertexId>>& candidates, std::size_t limit,
-                     std::int32_t level, std::vector<Pick>& picks) {
-    for (const auto& [imp, v] : candidates) {
-      if (picks.size() >= limit) break;
+  // The candidates of each half of the live list (which is in id order), listed and
+  // sorted on a core of its own.
+  void sortCandidates() {
+    const std::size_t mid = live_.size() / 2;
+    auto half = [&](int h, std::size_t begin, std::size_t end) {
+      std::vector<Candidate>& candidates = candidates_[h];
+      candidates.clear();
+      for (std::size_t i = begin; i < end; ++i) {
+        const VertexId v = live_[i];
+        if (eligible(v) && wanted(importance_[v])) candidates.emplace_back(importance_[v], v);
+      }
+      radixSort(candidates, [](const Candidate& c) { return orderedBits(c.first); }, sortScratch_[h]);
+    };
+    runBoth([&] { half(0, 0, mid); }, [&] { half(1, mid, live_.size()); });
+  }
+
+  // The two halves' candidates merged as they are read, ties going to the first half's
+  // (smaller ids): the order of one stable sort of them all. Each pick blocks its
+  // neighbours (from the ring lines: the picks jump about the TIN).
+  void pickBestFirst(std::size_t limit, std::int32_t level, std::vector<Pick>& picks) {
+    const std::vector<Candidate>&a = candidates_[0], &b = candidates_[1];
+    std::size_t i = 0, j = 0;
+    while (picks.size() < limit && (i < a.size() || j < b.size())) {
+      const bool first = j == b.size() || (i < a.size() && orderedBits(a[i].first) <= orderedBits(b[j].first));
+      const auto [imp, v] = first ? a[i++] : b[j++];
       if (stamp_[v] == level) continue;
       stamp_[v] = level;
       if (rings_.kept(v)) {
@@ -416,7 +431,8 @@ class Simplifier {
   SampleBuckets samples_;                    // the level-0 samples under each slot
   std::vector<double> slotError_;            // by slot: its triangle's error
   std::vector<double> spareError_;           //   and the previous level's array, reused
-  std::vector<std::pair<double, VertexId>> candidates_, sortScratch_;  // the level's, by importance
+  using Candidate = std::pair<double, VertexId>;
+  std::vector<Candidate> candidates_[2], sortScratch_[2];  // the level's, by importance, in two halves
   std::vector<Pick> pickScratch_;
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
   std::vector<double> fillError_;            //   and their errors
