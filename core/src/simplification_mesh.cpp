@@ -29,7 +29,7 @@ SimplificationMesh::SimplificationMesh(const Tin& base) {
   Compaction& order = compaction_;
   orderBySmallestVertex(base.triangles.size(), points_.size(), [&](std::size_t t) {
     return static_cast<std::int32_t>(*std::min_element(base.triangles[t].begin(), base.triangles[t].end()));
-  }, order, scratch_);
+  }, order, tallies_);
   triangles_.resize(base.triangles.size());
   for (std::size_t t = 0; t < base.triangles.size(); ++t) {
     const Triangle& tri = base.triangles[t];
@@ -220,7 +220,7 @@ const Compaction& SimplificationMesh::planCompaction() {
   orderBySmallestVertex(triangles_.size(), points_.size(), [&](std::size_t t) {
     const MeshTriangle& tri = triangles_[t];
     return tri.v[0] < 0 ? -1 : std::min({tri.v[0], tri.v[1], tri.v[2]});
-  }, c, scratch_);
+  }, c, tallies_);
   return c;
 }
 

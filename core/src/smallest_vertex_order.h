@@ -4,8 +4,11 @@
 // stars lie side by side; the sampled TIN and the simplifier's mesh both keep it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
+
+#include "parallel_blocks.h"
 
 namespace tinlod {
 
@@ -15,23 +18,44 @@ struct Compaction {
   std::vector<std::int32_t> oldOf, newOf;
 };
 
+// The counting sort's tallies by vertex, one array for each half of the triangles; the
+// caller keeps them from call to call so that their memory is reused.
+using VertexTallies = std::array<std::vector<std::int32_t>, 2>;
+
 // A stable counting sort of `count` triangles by the smallest of their vertices
 // (numbered below `vertices`), as smallest(t) gives it, -1 for a triangle to drop.
-// Writes into c and first, whose memory the caller may reuse from call to call.
+// Each half of the triangles is counted and placed on a core of its own; among equal
+// keys the first half's go first, so the order is that of one serial stable sort.
+// Writes into c, whose memory the caller may reuse from call to call.
 template <class Smallest>
 void orderBySmallestVertex(std::size_t count, std::size_t vertices, Smallest smallest, Compaction& c,
-                           std::vector<std::int32_t>& first) {
-  first.assign(vertices + 1, 0);
-  for (std::size_t t = 0; t < count; ++t)
-    if (smallest(t) >= 0) ++first[smallest(t) + 1];
-  for (std::size_t v = 0; v < vertices; ++v) first[v + 1] += first[v];
-  c.oldOf.resize(first.back());
-  c.newOf.assign(count, -1);
-  for (std::size_t t = 0; t < count; ++t)
-    if (smallest(t) >= 0) {
-      const std::int32_t slot = first[smallest(t)]++;
-      c.newOf[t] = slot, c.oldOf[slot] = static_cast<std::int32_t>(t);
+                           VertexTallies& tallies) {
+  const std::size_t bounds[3] = {0, count / 2, count};
+  auto tally = [&](int h) {
+    std::vector<std::int32_t>& n = tallies[h];
+    n.assign(vertices, 0);
+    for (std::size_t t = bounds[h]; t < bounds[h + 1]; ++t)
+      if (const std::int32_t v = smallest(t); v >= 0) ++n[v];
+  };
+  runBoth([&] { tally(0); }, [&] { tally(1); });
+  std::int32_t next = 0;  // tallies become where each half's triangles of a vertex start
+  for (std::size_t v = 0; v < vertices; ++v)
+    for (std::vector<std::int32_t>& n : tallies) {
+      const std::int32_t here = n[v];
+      n[v] = next, next += here;
     }
+  c.oldOf.resize(static_cast<std::size_t>(next));
+  c.newOf.resize(count);
+  auto place = [&](int h) {
+    std::vector<std::int32_t>& at = tallies[h];
+    for (std::size_t t = bounds[h]; t < bounds[h + 1]; ++t) {
+      const std::int32_t v = smallest(t);
+      const std::int32_t slot = v < 0 ? -1 : at[v]++;
+      c.newOf[t] = slot;
+      if (slot >= 0) c.oldOf[slot] = static_cast<std::int32_t>(t);
+    }
+  };
+  runBoth([&] { place(0); }, [&] { place(1); });
 }
 
 }  // namespace tinlod

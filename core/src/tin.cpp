@@ -70,11 +70,11 @@ void orderSpatially(Tin& tin) {
     for (VertexId& v : t) v = newId[v];
   // The triangles by their smallest vertex; neighbours follow.
   Compaction bySmallest;
-  std::vector<std::int32_t> first;
+  VertexTallies tallies;
   orderBySmallestVertex(tin.triangles.size(), n, [&](std::size_t t) {
     const Triangle& tri = tin.triangles[t];
     return static_cast<std::int32_t>(std::min({tri[0], tri[1], tri[2]}));
-  }, bySmallest, first);
+  }, bySmallest, tallies);
   const std::vector<std::int32_t>& position = bySmallest.newOf;
   std::vector<Triangle> ordered(tin.triangles.size());
   for (std::size_t t = 0; t < tin.triangles.size(); ++t) ordered[position[t]] = tin.triangles[t];
