@@ -136,12 +136,17 @@ class EarClipper {
 
   // The head is always the smallest index left, so the list from the head runs in index
   // order: a scan of the whole array, clipped ears ranked lowest, picks the same ear
-  // without following the links.
+  // without following the links. Written without a branch in the loop, where the
+  // comparisons' mispredictions cost a quarter of the volume importance's time.
   int bestEar() const {
     const int d = static_cast<int>(star_.ring.size());
     int best = 0;
-    for (int i = 1; i < d; ++i)
-      if (l_.power[i] > l_.power[best]) best = i;
+    double top = l_.power[0];
+    for (int i = 1; i < d; ++i) {
+      const bool higher = l_.power[i] > top;
+      top = higher ? l_.power[i] : top;
+      best = higher ? i : best;
+    }
     return convex(best) ? best : -1;
   }
 
