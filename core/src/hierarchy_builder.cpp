@@ -42,17 +42,20 @@ class Simplifier {
  public:
   Simplifier(Tin base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
              const ProgressRange& progress)
-      : options_(options), progress_(progress), mesh_(base) {
+      : options_(options), progress_(progress) {
     h_.base = std::move(base);
-    h_.base.neighbours = {};  // the mesh has them now
     h_.options = options;
     h_.fixed = std::move(fixed);
     h_.fixed.resize(h_.base.vertices.size(), 0);
+    original_ = h_.base.vertices.size();
+    stopCount_ = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original_));
+    // The other core writes the simplifier's own arrays meanwhile: first touching their
+    // memory (80 MB on alps_2x2) takes a core some hundredths of a second.
+    runBoth([&] { mesh_ = SimplificationMesh(h_.base); }, [&] { allocate(); });
+    h_.base.neighbours = {};  // the mesh has them now
   }
 
   Hierarchy run(const std::vector<PointXY>& keep) {
-    original_ = h_.base.vertices.size();
-    stopCount_ = static_cast<std::size_t>(std::ceil(options_.stopPct / 100.0 * original_));
     setUp(keep);
     h_.levels.push_back({0, original_, h_.base.triangles.size(), 0, 0, 0, 0});
     current_ = original_;
@@ -80,8 +83,9 @@ class Simplifier {
     std::size_t group, triangles, links, rings;
   };
 
-  void setUp(const std::vector<PointXY>& keep) {
-    const std::size_t nv = h_.base.vertices.size();
+  // Reads only the base TIN, so it may run while the mesh is built.
+  void allocate() {
+    const std::size_t nv = h_.base.vertices.size(), slots = h_.base.triangles.size();
     reserveForDeletions();
     for (const Triangle& tri : h_.base.triangles) {
       HierarchyTriangle ht;
@@ -90,13 +94,17 @@ class Simplifier {
       h_.triangles.push_back(ht);
     }
     used_ = {0, h_.triangles.size(), 0, 0};
-    samples_.reset(mesh_.slotCount(), maxDeletions());
-    slotError_.assign(mesh_.slotCount(), 0.0);
+    samples_.reset(slots, maxDeletions());
+    slotError_.assign(slots, 0.0);
     h_.vertexLevel.assign(nv, kOpenLevel);
     importance_.assign(nv, 0.0);
     stamp_.assign(nv, -1);
     stale_.assign(nv, 1);
     rings_.reset(nv);
+  }
+
+  void setUp(const std::vector<PointXY>& keep) {
+    const std::size_t nv = h_.base.vertices.size();
     fixNearest(keep);
     // A vertex on the outline or on a hole's edge would change the TIN's extent.
     for (VertexId v = 0; v < nv; ++v) {

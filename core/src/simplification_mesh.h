@@ -44,13 +44,13 @@ class SimplificationMesh {
   // triangle is not counter-clockwise, an edge has more than two triangles, or an edge is
   // not locally Delaunay (exact in-circle): such a TIN was not made by tinlod sample.
   explicit SimplificationMesh(const Tin& base);
+  SimplificationMesh() = default;  // no triangles
 
   // Vertices are named by their TIN ids throughout: deleted ones simply drop out of the
   // triangles. (Numbering the vertices left densely at each level saved no time.)
   const Point3& point(VertexId v) const { return points_[v]; }
   std::int32_t triangleId(std::int32_t slot) const { return triangles_[slot].id; }
   VertexId corner(std::int32_t slot, int k) const { return static_cast<VertexId>(triangles_[slot].v[k]); }
-  std::size_t slotCount() const { return triangles_.size(); }
   // True for a vertex on the outline or a hole's edge, or in no triangle: it has no
   // closed star and is never deleted.
   bool open(VertexId v) const { return open_[v] != 0; }
