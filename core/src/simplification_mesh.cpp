@@ -30,44 +30,40 @@ SimplificationMesh::SimplificationMesh(const Tin& base) {
   orderBySmallestVertex(base.triangles.size(), points_.size(), [&](std::size_t t) {
     return static_cast<std::int32_t>(*std::min_element(base.triangles[t].begin(), base.triangles[t].end()));
   }, order, tallies_);
-  triangles_.resize(base.triangles.size());
-  for (std::size_t t = 0; t < base.triangles.size(); ++t) {
-    const Triangle& tri = base.triangles[t];
-    triangles_[order.newOf[t]] = {{std::int32_t(tri[0]), std::int32_t(tri[1]), std::int32_t(tri[2])},
-                                  {kNoTriangle, kNoTriangle, kNoTriangle},
-                                  static_cast<std::int32_t>(t)};
+  linkedFromNeighbours_ = fill(base) && checkDelaunay();
+  if (!linkedFromNeighbours_) {
+    for (MeshTriangle& t : triangles_) t.n = {kNoTriangle, kNoTriangle, kNoTriangle};
+    link();
+    if (!checkDelaunay()) throw Error(kNotSampled);
   }
-  linkedFromNeighbours_ = linkFrom(base.neighbours);
-  if (!linkedFromNeighbours_) link();
   indexVertices();
-  checkDelaunay();
 }
 
-// The triangulation's own neighbours, when the TIN still has them, spare the search for
-// each edge's twin. Each link must come back across the same edge; otherwise (the
-// triangles were changed since) returns false with no link made. An outline edge is
-// taken as the neighbours say: they come from the sampler's triangulation.
-bool SimplificationMesh::linkFrom(const std::vector<std::array<std::int32_t, 3>>& neighbours) {
-  if (neighbours.size() != triangles_.size()) return false;
+// The triangles in their new order, on every core; linked as the triangulation's own
+// neighbours say when the TIN still has them (which spares the search for each edge's
+// twin), and then returns true. An outline edge is taken as the neighbours say: they
+// come from the sampler's triangulation.
+bool SimplificationMesh::fill(const Tin& base) {
   const Compaction& order = compaction_;
-  const int count = static_cast<int>(triangles_.size());
-  std::atomic<bool> fits{true};
+  const int count = static_cast<int>(base.triangles.size());
+  const bool given = base.neighbours.size() == base.triangles.size();
+  std::atomic<bool> fits{given};
+  triangles_.resize(base.triangles.size());
   forEachBlock(count, [&](int begin, int end) {
-    for (int t = begin; t < end; ++t)
+    for (int slot = begin; slot < end; ++slot) {
+      const std::int32_t t = order.oldOf[slot];
+      const Triangle& tri = base.triangles[t];
+      MeshTriangle& m = triangles_[slot];
+      m = {{std::int32_t(tri[0]), std::int32_t(tri[1]), std::int32_t(tri[2])}, {kNoTriangle, kNoTriangle, kNoTriangle}, t};
+      if (!given) continue;
       for (int k = 0; k < 3; ++k) {
-        const std::int32_t u = neighbours[order.oldOf[t]][k];
+        const std::int32_t u = base.neighbours[t][k];
         if (u >= count) fits = false;
-        triangles_[t].n[k] = u < 0 || u >= count ? kNoTriangle : order.newOf[u];
+        m.n[k] = u < 0 || u >= count ? kNoTriangle : order.newOf[u];
       }
+    }
   }, {});
-  forEachBlock(count, [&](int begin, int end) {
-    for (int t = begin; t < end && fits; ++t)
-      for (int k = 0; k < 3; ++k)
-        if (triangles_[t].n[k] != kNoTriangle && !linksBack(t, k)) fits = false;
-  }, {});
-  if (fits) return true;
-  for (MeshTriangle& t : triangles_) t.n = {kNoTriangle, kNoTriangle, kNoTriangle};
-  return false;
+  return fits;
 }
 
 // Each edge a -> b finds its twin b -> a among the half-edges leaving b, listed per
@@ -87,7 +83,7 @@ void SimplificationMesh::link() {
   for (int t = 0; t < count; ++t)
     for (int k = 0; k < 3; ++k) out[fill[triangles_[t].v[(k + 1) % 3]]++] = {triangles_[t].v[(k + 2) % 3], t * 3 + k};
   // Two triangles on the same side of an edge overlap: the edge then finds its twin twice
-  // (thrown here), or its twin links back to only one of them (thrown by checkDelaunay),
+  // (thrown here), or its twin links back to only one of them (found by checkDelaunay),
   // or, on the outline, a's list holds the edge twice.
   auto heads = [&](std::int32_t from, std::int32_t to) {
     return std::count_if(out.begin() + first[from], out.begin() + first[from + 1],
@@ -129,24 +125,28 @@ void SimplificationMesh::indexVertices() {
   }, {});
 }
 
-void SimplificationMesh::checkDelaunay() const {
+// Each link first, so that the in-circle test never meets a stale neighbour: returns
+// false when a link does not come back across the same edge (two triangles on one side
+// of it, or neighbours the triangles no longer match).
+bool SimplificationMesh::checkDelaunay() const {
+  std::atomic<bool> linked{true};
   forEachBlock(static_cast<int>(triangles_.size()), [&](int begin, int end) {
-    for (int t = begin; t < end; ++t) {
+    for (int t = begin; t < end && linked; ++t) {
       const MeshTriangle& tri = triangles_[t];
+      int twin[3];
+      for (int k = 0; k < 3; ++k)
+        if (tri.n[k] != kNoTriangle && (twin[k] = twinCorner(t, k)) < 0) return void(linked = false);
       const K::Point_2 a = xy(points_[tri.v[0]]), b = xy(points_[tri.v[1]]), c = xy(points_[tri.v[2]]);
       if (CGAL::orientation(a, b, c) != CGAL::LEFT_TURN) throw Error(kNotSampled);
       for (int k = 0; k < 3; ++k) {
         const std::int32_t u = tri.n[k];
-        if (u == kNoTriangle) continue;
-        const MeshTriangle& other = triangles_[u];
-        const int j = other.n[0] == t ? 0 : other.n[1] == t ? 1 : other.n[2] == t ? 2 : -1;
-        if (j < 0) throw Error(kNotSampled);  // not linked back: two triangles on one side of the edge
-        if (u < t) continue;  // each shared edge's in-circle test once
-        if (CGAL::side_of_oriented_circle(a, b, c, xy(points_[other.v[j]])) == CGAL::ON_POSITIVE_SIDE)
+        if (u == kNoTriangle || u < t) continue;  // each shared edge's in-circle test once
+        if (CGAL::side_of_oriented_circle(a, b, c, xy(points_[triangles_[u].v[twin[k]]])) == CGAL::ON_POSITIVE_SIDE)
           throw Error(kNotSampled);
       }
     }
   }, {});
+  return linked;
 }
 
 int SimplificationMesh::degree(VertexId v) const {
@@ -246,13 +246,13 @@ std::size_t SimplificationMesh::liveTriangles() const {
       std::count_if(triangles_.begin(), triangles_.end(), [](const MeshTriangle& t) { return t.v[0] >= 0; }));
 }
 
-bool SimplificationMesh::linksBack(std::int32_t t, int k) const {
+int SimplificationMesh::twinCorner(std::int32_t t, int k) const {
   const MeshTriangle& tri = triangles_[t];
   const MeshTriangle& other = triangles_[tri.n[k]];
   const std::int32_t a = tri.v[(k + 1) % 3], b = tri.v[(k + 2) % 3];
   for (int j = 0; j < 3; ++j)
-    if (other.n[j] == t && other.v[(j + 1) % 3] == b && other.v[(j + 2) % 3] == a) return true;
-  return false;
+    if (other.n[j] == t && other.v[(j + 1) % 3] == b && other.v[(j + 2) % 3] == a) return j;
+  return -1;
 }
 
 std::size_t SimplificationMesh::brokenLinks() const {
@@ -260,7 +260,7 @@ std::size_t SimplificationMesh::brokenLinks() const {
   for (std::size_t t = 0; t < triangles_.size(); ++t) {
     if (triangles_[t].v[0] < 0) continue;
     for (int k = 0; k < 3; ++k)
-      broken += triangles_[t].n[k] != kNoTriangle && !linksBack(static_cast<std::int32_t>(t), k);
+      broken += triangles_[t].n[k] != kNoTriangle && twinCorner(static_cast<std::int32_t>(t), k) < 0;
   }
   return broken;
 }

@@ -103,12 +103,13 @@ class SimplificationMesh {
   bool linkedFromNeighbours() const { return linkedFromNeighbours_; }  // or by the edge search
 
  private:
-  bool linkFrom(const std::vector<std::array<std::int32_t, 3>>& neighbours);
+  bool fill(const Tin& base);
   void link();
   void indexVertices();
-  void checkDelaunay() const;
-  // Whether the triangle across edge k of t links back to t across the same edge.
-  bool linksBack(std::int32_t t, int k) const;
+  bool checkDelaunay() const;
+  // Where the triangle across edge k of t has t, linked back across the same edge: the
+  // corner opposite that edge there, or -1.
+  int twinCorner(std::int32_t t, int k) const;
   // From triangle `first`, which must hold vertex v.
   template <class Visit>
   void aroundFrom(std::int32_t v, std::int32_t first, Visit visit) const {
