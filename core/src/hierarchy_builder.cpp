@@ -241,7 +241,10 @@ class Simplifier {
   void pickBestFirst(std::size_t limit, std::int32_t level, std::vector<Pick>& picks) {
     const std::vector<Candidate>&a = candidates_[0], &b = candidates_[1];
     std::size_t i = 0, j = 0;
+    constexpr std::size_t kAhead = 16;  // the candidates lie all over the TIN: ask ahead for their lines
     while (picks.size() < limit && (i < a.size() || j < b.size())) {
+      if (i + kAhead < a.size()) __builtin_prefetch(&stamp_[a[i + kAhead].second]), rings_.prefetch(a[i + kAhead].second);
+      if (j + kAhead < b.size()) __builtin_prefetch(&stamp_[b[j + kAhead].second]), rings_.prefetch(b[j + kAhead].second);
       const bool first = j == b.size() || (i < a.size() && orderedBits(a[i].first) <= orderedBits(b[j].first));
       const auto [imp, v] = first ? a[i++] : b[j++];
       if (stamp_[v] == level) continue;

@@ -26,6 +26,7 @@ class VertexRings {
   int degree(VertexId v) const { return rows_[v].degree; }
   bool kept(VertexId v) const { return rows_[v].degree <= kCapacity; }
   const VertexId* ring(VertexId v) const { return rows_[v].ids; }
+  void prefetch(VertexId v) const { __builtin_prefetch(&rows_[v]); }
 
  private:
   struct alignas(64) Row {
