@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
               total, select, remove, total - select - remove, removed / total / 1e6, cpu);
   std::printf("select %s delete (the study found select slower)\n", select > remove ? "slower than" : "faster than");
   const double bare = bareRemoveRate(tin, removed);
-  std::printf("CGAL bare remove() on the same TIN: %.3f M vertices/s; the build takes %.1fx its time (aim: 2x)\n", bare,
+  std::printf("CGAL bare remove() on the same TIN: %.3f M vertices/s; the build takes %.2fx its time (aim: 2x)\n", bare,
               bare / (removed / total / 1e6));
   std::printf("peak memory: %.1f MB\n", peakMegabytes());
   return 0;
