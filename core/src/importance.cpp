@@ -279,7 +279,7 @@ int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t cou
     }
     return true;
   };
-  if (count == 0) return -1;
+  if (count <= 1) return static_cast<int>(count) - 1;  // the only triangle holds p
   const bool hinted = likely >= 0 && static_cast<std::size_t>(likely) < count;
   std::size_t left = count;  // triangles not yet refused
   if (hinted) {
@@ -291,7 +291,7 @@ int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t cou
     if (left == 1 || holds(j)) return static_cast<int>(j);
     --left;
   }
-  return -1;  // not reached: the last one left is taken
+  return -1;  // not reached: with two triangles or more, the last one left is taken
 }
 
 TrianglePlane planeOf(const Star& star, const LocalTriangle& t) {

@@ -41,8 +41,9 @@ SimplificationMesh::SimplificationMesh(const Tin& base) {
 
 // The triangles in their new order, on every core; linked as the triangulation's own
 // neighbours say when the TIN still has them (which spares the search for each edge's
-// twin), and then returns true. An outline edge is taken as the neighbours say: they
-// come from the sampler's triangulation.
+// twin). Returns true when it has them, all in range; checkDelaunay then verifies that
+// each link comes back. An outline edge is taken as the neighbours say: they come from
+// the sampler's triangulation.
 bool SimplificationMesh::fill(const Tin& base) {
   const Compaction& order = compaction_;
   const int count = static_cast<int>(base.triangles.size());

@@ -26,7 +26,7 @@ using VertexTallies = std::array<std::vector<std::int32_t>, 2>;
 // (numbered below `vertices`), as smallest(t) gives it, -1 for a triangle to drop.
 // Each half of the triangles is counted and placed on a core of its own; among equal
 // keys the first half's go first, so the order is that of one serial stable sort.
-// Writes into c, whose memory the caller may reuse from call to call.
+// Writes into c and tallies, whose memory the caller may reuse from call to call.
 template <class Smallest>
 void orderBySmallestVertex(std::size_t count, std::size_t vertices, Smallest smallest, Compaction& c,
                            VertexTallies& tallies) {
