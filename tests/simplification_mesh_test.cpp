@@ -45,7 +45,9 @@ void deleteRound(SimplificationMesh& mesh, const std::vector<VertexId>& picks, s
     Star star;
     mesh.starOf(picks[i], rings[i].data(), slots[i].data(), outer[i].data(), star);
     retriangulateStar(star, fills[i]);
-    mesh.retire({rings[i].data(), slots[i].data(), outer[i].data(), d}, fills[i].data());
+    std::vector<int> onEdge(d);
+    ringEdgeTriangles(fills[i].data(), d, onEdge.data());
+    mesh.retire({rings[i].data(), slots[i].data(), outer[i].data(), d}, onEdge.data());
   }
   for (std::size_t i = 0; i < picks.size(); ++i) {
     std::vector<std::int32_t> ids;

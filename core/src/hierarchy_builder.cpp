@@ -322,35 +322,31 @@ class Simplifier {
       throw Error("internal error: deleting a vertex of degree " + std::to_string(star.ring.size()) + " made " +
                   std::to_string(fill.size()) + " triangles");
     std::copy(fill.begin(), fill.end(), fill_.begin() + pick.fill);
-    placeSamples(pick, index, star, fill, convex);
-    mesh_.retire(view(pick, at.rings), fill_.data() + pick.fill);
+    thread_local std::vector<int> onEdge;  // by ring edge: the new triangle on it
+    onEdge.resize(pick.degree);
+    ringEdgeTriangles(fill.data(), static_cast<int>(pick.degree), onEdge.data());
+    placeSamples(pick, index, star, fill, convex, onEdge.data());
+    mesh_.retire(view(pick, at.rings), onEdge.data());
     record(pick, level, at, ring);
   }
 
   // The vertex becomes a sample of the new triangle that holds it, and the samples
-  // under the star move to theirs.
+  // under the star move to theirs (first tried in onEdge's triangle on their ring edge).
   void placeSamples(const Pick& pick, std::size_t index, const Star& star, const std::vector<LocalTriangle>& fill,
-                    bool convex) {
+                    bool convex, const int* onEdge) {
     double* error = fillError_.data() + pick.fill;
     std::fill(error, error + fill.size(), 0.0);
     const std::int32_t* slots = slots_.data() + pick.ring;
     thread_local std::vector<TrianglePlane> planes;
-    thread_local std::vector<int> onEdge;  // by ring edge k: the new triangle on it
     planes.clear();
-    onEdge.resize(pick.degree);
-    const int d = static_cast<int>(pick.degree);
-    for (std::size_t j = 0; j < fill.size(); ++j) {
-      planes.push_back(planeOf(star, fill[j]));
-      for (int e = 0; e < 3; ++e)
-        if (fill[j][(e + 1) % 3] == (fill[j][e] + 1) % d) onEdge[fill[j][e]] = static_cast<int>(j);
-    }
+    for (const LocalTriangle& t : fill) planes.push_back(planeOf(star, t));
     auto place = [&](const Point3& p, int likely) {
       const int j = triangleHolding(star, fill.data(), fill.size(), p, convex, likely);
       error[j] = std::max(error[j], std::fabs(p.z - planes[j].height(p.x, p.y)));
       return slots[j];
     };
     samples_.add(index, star.centre, place(star.centre, -1));
-    for (int k = 0; k < d; ++k)  // the samples under the star's triangle on ring edge k
+    for (std::uint32_t k = 0; k < pick.degree; ++k)  // the samples under the star's triangle on ring edge k
       for (std::size_t i = samples_.begin(slots[k]); i < samples_.end(slots[k]); ++i)
         samples_.moveTo(i, place(samples_.point(i), onEdge[k]));
   }

@@ -214,6 +214,12 @@ std::vector<LocalTriangle> retriangulateStar(const Star& star) {
   return out;
 }
 
+void ringEdgeTriangles(const LocalTriangle* fill, int d, int* onEdge) {
+  for (int j = 0; j + 2 < d; ++j)
+    for (int e = 0; e < 3; ++e)
+      if (fill[j][(e + 1) % 3] == (fill[j][e] + 1) % d) onEdge[fill[j][e]] = j;
+}
+
 namespace {
 
 // The volume under the star with its centre.

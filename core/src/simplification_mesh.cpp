@@ -266,15 +266,11 @@ std::size_t SimplificationMesh::brokenLinks() const {
   return broken;
 }
 
-void SimplificationMesh::retire(const StarView& star, const LocalTriangle* fill) {
-  const int d = star.degree;
-  for (int j = 0; j + 2 < d; ++j)
-    for (int e = 0; e < 3; ++e) {
-      const int p = fill[j][e], q = fill[j][(e + 1) % 3];
-      if (q != (p + 1) % d) continue;
-      successor_[star.slots[p]] = star.slots[j];
-      retired_[star.slots[p]] = round_;
-    }
+void SimplificationMesh::retire(const StarView& star, const int* onEdge) {
+  for (int k = 0; k < star.degree; ++k) {
+    successor_[star.slots[k]] = star.slots[onEdge[k]];
+    retired_[star.slots[k]] = round_;
+  }
 }
 
 // Diagonals pair up by directed edge (p, q) of local ring indices: through a d x d table

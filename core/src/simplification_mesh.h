@@ -83,11 +83,12 @@ class SimplificationMesh {
 
   // Deleting an independent set: beginRound(), then retire() for every star (it only
   // reads the triangles), then replaceStar() for every star, each on any thread, then
-  // planCompaction() and applyCompaction() before the next walk. `fill` (degree - 2 triangles of local ring indices,
-  // from retriangulateStar) triangulates the ring; the new triangles take the first star
-  // slots, in fill's order, with `ids` as their hierarchy ids, and the last two slots die.
+  // planCompaction() and applyCompaction() before the next walk. `fill` (degree - 2
+  // triangles of local ring indices, from retriangulateStar) triangulates the ring, and
+  // `onEdge` is its ringEdgeTriangles(); the new triangles take the first star slots, in
+  // fill's order, with `ids` as their hierarchy ids, and the last two slots die.
   void beginRound();
-  void retire(const StarView& star, const LocalTriangle* fill);
+  void retire(const StarView& star, const int* onEdge);
   void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
   // Drops the dead slots and orders the rest by smallest vertex again, so that the stars
   // of the vertices still there stay side by side in memory as the TIN thins out:

@@ -39,6 +39,9 @@ using LocalTriangle = std::array<int, 3>;  // indices into Star::ring, counter-c
 // way.
 bool retriangulateStar(const Star& star, std::vector<LocalTriangle>& out);
 std::vector<LocalTriangle> retriangulateStar(const Star& star);
+// For each ring edge k of a star of degree d (ring vertex k to k + 1), the index among
+// `fill` (its d - 2 triangles, as retriangulateStar makes them) of the triangle on it.
+void ringEdgeTriangles(const LocalTriangle* fill, int d, int* onEdge);
 
 // |volume under the star - volume under its retriangulation| (cubic metres).
 double volumeChange(const Star& star, const std::vector<LocalTriangle>& without);
