@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   }
   const tinlod::Dem dem = tinlod::readDem(path, 1, kQuiet);
   const tinlod::Tin tin = tinlod::sampleTin(dem, {}, kQuiet);
-  const tinlod::Hierarchy h = tinlod::buildHierarchy(tin, {}, tinlod::HierarchyOptions(), kQuiet);
+  const tinlod::Hierarchy h = tinlod::buildHierarchy(tin, dem, {}, tinlod::HierarchyOptions(), kQuiet);
   const tinlod::CrsTransform toTin = tinlod::CrsTransform::forDem(dem, "", "", kQuiet);
   tinlod::AccuracyOptions options;
   options.controlSpacing = control;

@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
     if (a == "-method" && i + 1 < argc) options.measure = tinlod::parseMeasure(argv[++i]);
     else if (a == "-delete_pct" && i + 1 < argc) options.deletePct = std::atof(argv[++i]);
     else if (a == "-stop_pct" && i + 1 < argc) options.stopPct = std::atof(argv[++i]);
+    else if (a == "-max_error" && i + 1 < argc) options.maxError = std::atof(argv[++i]);
+    else if (a == "-keep_outline") options.keepOutline = true;
     else path = a;
   }
   if (!std::filesystem::exists(path)) {
@@ -36,22 +38,24 @@ int main(int argc, char** argv) {
     return 1;
   }
   const tinlod::ProgressRange quiet(tinlod::Feedback{}, 0, 1);
-  const tinlod::Tin tin = tinlod::sampleTin(tinlod::readDem(path, 1, quiet), {}, quiet);
+  const tinlod::Dem dem = tinlod::readDem(path, 1, quiet);
+  const tinlod::Tin tin = tinlod::sampleTin(dem, {}, quiet);
   tinlod::Tin taken = tin;  // the build takes its TIN over, as the command line's does
   const double cpu0 = cpuSeconds();
   const Clock::time_point t0 = Clock::now();
-  const tinlod::Hierarchy h = tinlod::buildHierarchy(std::move(taken), {}, options, quiet);
+  const tinlod::Hierarchy h = tinlod::buildHierarchy(std::move(taken), dem, {}, options, quiet);
   const Clock::time_point t1 = Clock::now();
   const double cpu = cpuSeconds() - cpu0;
   std::size_t removed = h.levels.front().vertices - h.levels.back().vertices;
   std::printf("DEM %s: %zu vertices at level 0, method %s, delete %g %%, stop %g %%\n", path.c_str(),
               h.levels[0].vertices, tinlod::measureName(options.measure).c_str(), options.deletePct, options.stopPct);
-  std::printf("%6s %10s %10s %9s %10s %10s %10s\n", "level", "vertices", "triangles", "deleted", "select s", "delete s",
-              "max err m");
+  std::printf("%6s %10s %10s %9s %10s %10s %10s %9s %9s %10s\n", "level", "vertices", "triangles", "deleted", "select s",
+              "delete s", "max err m", "RMSE m", "outline", "cells lost");
   double select = 0, remove = 0;
   for (const tinlod::LevelStats& l : h.levels) {
-    std::printf("%6d %10zu %10zu %9zu %10.3f %10.3f %10.2f\n", l.level, l.vertices, l.triangles, l.deleted,
-                l.selectSeconds, l.deleteSeconds, l.maxError);
+    std::printf("%6d %10zu %10zu %9zu %10.3f %10.3f %10.2f %9.2f %8.1f%% %10lld\n", l.level, l.vertices, l.triangles,
+                l.deleted, l.selectSeconds, l.deleteSeconds, l.maxError, l.rmse, 100.0 * l.outlineVertices / l.vertices,
+                static_cast<long long>(h.levels.front().cells - l.cells));
     select += l.selectSeconds, remove += l.deleteSeconds;
   }
   const double total = seconds(t0, t1);

@@ -109,8 +109,9 @@ TEST(AccuracyJob, HierarchyReaderRestoresEveryLevelsTriangleCount) {
 TEST(AccuracyJob, HierarchyReaderRestoresTheGroupsAndTheirLinks) {
   const Built& b = built();
   const Hierarchy& h = readHierarchy(b.gpkg, ProgressRange(Feedback{}, 0, 1)).hierarchy;
-  const Tin tin = sampleTin(readDem(smallDem(), 1, ProgressRange(Feedback{}, 0, 1)), SampleOptions{}, ProgressRange(Feedback{}, 0, 1));
-  const Hierarchy built = buildHierarchy(tin, {}, HierarchyOptions{}, ProgressRange(Feedback{}, 0, 1));
+  const Dem dem = readDem(smallDem(), 1, ProgressRange(Feedback{}, 0, 1));
+  const Tin tin = sampleTin(dem, SampleOptions{}, ProgressRange(Feedback{}, 0, 1));
+  const Hierarchy built = buildHierarchy(tin, dem, {}, HierarchyOptions{}, ProgressRange(Feedback{}, 0, 1));
   ASSERT_EQ(h.groups.size(), built.groups.size());
   ASSERT_EQ(h.triangles.size(), built.triangles.size());
   auto sorted = [](std::pair<const std::uint32_t*, const std::uint32_t*> r) {

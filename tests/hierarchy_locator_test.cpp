@@ -27,7 +27,7 @@ constexpr double kHeightTolerance = 1e-9;
 
 Hierarchy buildFrom(const Dem& dem, const SampleOptions& so = {}) {
   const Tin tin = sampleTin(dem, so, kQuiet);
-  return buildHierarchy(tin, {}, HierarchyOptions{}, kQuiet);
+  return buildHierarchy(tin, dem, {}, HierarchyOptions{}, kQuiet);
 }
 
 // One level's triangles, flattened for the brute force: corners, heights and box.

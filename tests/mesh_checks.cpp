@@ -4,6 +4,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
@@ -153,6 +154,20 @@ std::size_t delaunayViolations(const Tin& tin) {
       if (v == t[0] || v == t[1] || v == t[2]) return;
       violations += CGAL::side_of_oriented_circle(p, q, r, point(tin, v)) == CGAL::ON_POSITIVE_SIDE;
     });
+  }
+  return violations;
+}
+
+std::size_t localDelaunayViolations(const Tin& tin) {
+  std::map<std::pair<VertexId, VertexId>, VertexId> opposite;  // directed edge -> third corner
+  for (const Triangle& t : tin.triangles)
+    for (int k = 0; k < 3; ++k) opposite[{t[k], t[(k + 1) % 3]}] = t[(k + 2) % 3];
+  std::size_t violations = 0;
+  for (const auto& [edge, c] : opposite) {
+    const auto twin = opposite.find({edge.second, edge.first});
+    if (twin == opposite.end()) continue;
+    violations += CGAL::side_of_oriented_circle(point(tin, edge.first), point(tin, edge.second), point(tin, c),
+                                                point(tin, twin->second)) == CGAL::ON_POSITIVE_SIDE;
   }
   return violations;
 }

@@ -30,6 +30,11 @@ std::size_t clockwiseTriangles(const Tin& tin);
 // circumcircle, by CGAL's exact in-circle predicate: 0 for a Delaunay TIN.
 std::size_t delaunayViolations(const Tin& tin);
 
+// Inner edges (two triangles) whose one triangle's circumcircle holds the other's third
+// corner strictly, by CGAL's exact in-circle predicate: 0 for a Delaunay triangulation
+// constrained by the TIN's outline.
+std::size_t localDelaunayViolations(const Tin& tin);
+
 // Triangles whose closed footprint in the DEM grid (vertices at their cells' centres)
 // holds the centre of a nodata cell, by exact orientation tests.
 std::size_t trianglesOverNodata(const Dem& dem, const Tin& tin);

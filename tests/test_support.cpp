@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -104,6 +105,34 @@ std::string smallSyntheticDemFile() {
     return p;
   }();
   return path;
+}
+
+Dem demUnder(Tin& tin, double cell) {
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const TinVertex& v : tin.vertices) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
+  const int width = static_cast<int>(std::ceil((x1 - x0) / cell)) + 1, height = static_cast<int>(std::ceil((y1 - y0) / cell)) + 1;
+  // Cell (row, col) is centred at (x0 + col cell, y1 - row cell).
+  Dem dem = makeDem(width, height, cell, [](int, int) { return NAN; });
+  dem.geotransform = {x0 - cell / 2, cell, 0, y1 + cell / 2, 0, -cell};
+  for (TinVertex& v : tin.vertices) {
+    const double c = (v.x - x0) / cell, r = (y1 - v.y) / cell;
+    v.col = static_cast<int>(std::lround(c)), v.row = static_cast<int>(std::lround(r));
+    v.dcol = static_cast<float>(c - v.col), v.drow = static_cast<float>(r - v.row);
+  }
+  for (int row = 0; row < height; ++row)
+    for (int col = 0; col < width; ++col) {
+      const double x = x0 + col * cell, y = y1 - row * cell;
+      for (const Triangle& t : tin.triangles) {
+        const TinVertex &a = tin.vertices[t[0]], &b = tin.vertices[t[1]], &c = tin.vertices[t[2]];
+        const double d = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        const double wb = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / d;
+        const double wc = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / d;
+        if (wb < -1e-12 || wc < -1e-12 || wb + wc > 1 + 1e-12) continue;
+        dem.z[static_cast<std::size_t>(row) * width + col] = static_cast<float>(a.z + wb * (b.z - a.z) + wc * (c.z - a.z));
+        break;
+      }
+    }
+  return dem;
 }
 
 }  // namespace tinlod::test

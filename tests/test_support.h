@@ -8,6 +8,7 @@
 #include "tinlod/dem.h"
 #include "tinlod/feedback.h"
 #include "tinlod/synthetic_dem.h"
+#include "tinlod/tin.h"
 
 namespace tinlod::test {
 
@@ -28,6 +29,11 @@ struct RecordingFeedback {
 // An in-memory DEM in UTM zone 32N (EPSG:32632) with north-up cells of `cell` metres;
 // `height(row, col)` gives the height, NaN for nodata.
 Dem makeDem(int width, int height, double cell, const std::function<float(int, int)>& heightAt);
+
+// A DEM of `cell` metres under a hand-made TIN (in a metric CRS), whose heights are the
+// TIN's own at each cell centre (NaN off it), with each vertex placed in its grid (row,
+// col, dcol, drow), as the sampler places the vertices it makes.
+Dem demUnder(Tin& tin, double cell);
 
 // A DEM whose cells are 1/1200 degree in EPSG:4326, upper-left corner at (lon0, lat0).
 Dem makeGeographicDem(int width, int height, double lon0, double lat0);

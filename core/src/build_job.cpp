@@ -51,21 +51,13 @@ std::map<std::string, std::string> buildMetadata(const std::string& demPath, con
           {"TINLOD_FIXED_POINTS", o.fixedPoints.empty() ? "none" : o.fixedPoints}};
 }
 
-// The stop percentage may be out of reach when the outline, the holes' edges and the
-// points to keep are more vertices than that: say so rather than leave the user guessing.
-void warnIfStoppedByFixedVertices(const Hierarchy& h, const ProgressRange& progress) {
+// The stop percentage may be out of reach (fixed vertices, an error bound, an outline that
+// may not move further): say why rather than leave the user guessing.
+void warnIfStoppedEarly(const Hierarchy& h, const ProgressRange& progress) {
+  if (h.stopReason.empty() || h.options.thresholdMode) return;
   const std::size_t target = static_cast<std::size_t>(std::ceil(h.options.stopPct / 100.0 * h.levels.front().vertices));
-  const bool byLevels = h.options.maxLevels > 0 && h.coarsest() == h.options.maxLevels;
-  // A level that would delete under 1 % is not made, so the end may be a little above the
-  // target without anything being wrong: only a clear miss is worth a warning.
-  if (h.levels.back().vertices <= target + target / 5 || byLevels || h.options.thresholdMode ||
-      h.options.measure == Measure::Error)
-    return;
-  const std::size_t fixed = static_cast<std::size_t>(std::count(h.fixed.begin(), h.fixed.end(), 1));
-  progress.warn("stopped at " + std::to_string(h.levels.back().vertices) + " vertices, above the " + formatNumber(h.options.stopPct) +
-                " % asked for (" + std::to_string(target) + "): " + std::to_string(fixed) +
-                " vertices are fixed (the outline of the data and of its holes, points to keep) and too few others "
-                "could go; a larger DEM, a smaller -block or fewer holes reach further");
+  progress.warn("stopped at " + std::to_string(h.levels.back().vertices) + " vertices, above the " +
+                formatNumber(h.options.stopPct) + " % asked for (" + std::to_string(target) + "): " + h.stopReason);
 }
 
 }  // namespace
@@ -96,8 +88,8 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all);
   // With accuracy outputs the last quarter of the job is theirs.
   const double write = accuracy.wanted() ? 0.6 : 0.75, measure = accuracy.wanted() ? 0.75 : 1;
-  const Hierarchy h = buildHierarchy(std::move(tin), std::move(fixed), options, all.sub(0.2, write), keep);
-  warnIfStoppedByFixedVertices(h, all);
+  const Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep);
+  warnIfStoppedEarly(h, all);
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
   all.inform("Writing " + std::to_string(h.coarsest() + 1) + " levels: " + std::to_string(h.triangles.size()) +
              " distinct triangles, " + std::to_string(h.groups.size()) + " groups");

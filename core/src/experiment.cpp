@@ -42,7 +42,7 @@ void runDem(const std::string& path, const ExperimentOptions& options, std::vect
       HierarchyOptions h;
       h.measure = m, h.deletePct = pct, h.stopPct = options.stopPct;
       progress.inform(demName(path) + ": " + measureName(m) + ", delete " + std::to_string(static_cast<int>(pct)) + " %");
-      const Hierarchy hierarchy = buildHierarchy(tin, {}, h, part.sub(0, 0.3));
+      const Hierarchy hierarchy = buildHierarchy(tin, dem, {}, h, part.sub(0, 0.3));
       for (LevelAccuracy& row : measureLevels(evaluator, hierarchy, demName(path), -1, nullptr, part.sub(0.3, 1)))
         rows.push_back(std::move(row));
     }

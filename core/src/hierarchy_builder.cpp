@@ -6,11 +6,13 @@
 #include <cmath>
 #include <limits>
 
+#include "cell_errors.h"
 #include "nearest_vertices.h"
+#include "outline_chain.h"
 #include "parallel_blocks.h"
 #include "radix_sort.h"
-#include "sample_buckets.h"
 #include "simplification_mesh.h"
+#include "text_and_paths.h"
 #include "vertex_rings.h"
 #include "tinlod/error.h"
 
@@ -28,9 +30,12 @@ double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::d
 struct Pick {
   double importance;
   VertexId id;
-  std::uint32_t degree;
-  std::size_t fill = 0;  // its degree - 2 new triangles, in fill_, fillError_ and new triangle ids
+  std::uint32_t degree;  // ring vertices
+  bool open = false;     // on the outline: degree - 1 triangles around it, not degree
+  std::size_t fill = 0;  // its degree - 2 new triangles, in fill_, fillCells_ and new triangle ids
   std::size_t ring = 0;  // its degree ring vertices, slots and outer triangles
+  std::size_t link = 0;  // its accept and reject triangles' ids in the level's links
+  std::uint32_t triangles() const { return open ? degree - 1 : degree; }
 };
 
 // Deletes independent sets of vertices level by level from level 0, recording the
@@ -40,9 +45,9 @@ struct Pick {
 // set is chosen, so each deletion writes its own ranges of the hierarchy's arrays.
 class Simplifier {
  public:
-  Simplifier(Tin base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
+  Simplifier(Tin base, const Dem& dem, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
              const ProgressRange& progress)
-      : options_(options), progress_(progress) {
+      : options_(options), progress_(progress), dem_(dem) {
     h_.base = std::move(base);
     h_.options = options;
     h_.fixed = std::move(fixed);
@@ -56,21 +61,28 @@ class Simplifier {
   }
 
   Hierarchy run(const std::vector<PointXY>& keep) {
-    setUp(keep);
-    h_.levels.push_back({0, original_, h_.base.triangles.size(), 0, 0, 0, 0});
     current_ = original_;
     triangles_ = h_.base.triangles.size();
-    while (current_ > stopCount_ && (options_.maxLevels == 0 || h_.coarsest() < options_.maxLevels)) {
+    setUp(keep);
+    h_.levels.push_back(levelStats(0, 0, 0, 0));
+    while (current_ > stopCount_) {
+      if (options_.maxLevels > 0 && h_.coarsest() >= options_.maxLevels) {
+        h_.stopReason = "-max_levels " + std::to_string(options_.maxLevels) + " reached";
+        break;
+      }
       const std::int32_t level = h_.coarsest() + 1;
       const Clock::time_point t0 = Clock::now();
       std::vector<Pick> picks = select(level);
       const Clock::time_point t1 = Clock::now();
       // A level that deletes almost nothing only adds a layer: the rest is fixed.
-      if (picks.empty() || (!options_.thresholdMode && picks.size() * kMinLevelShare < current_)) break;
+      if (picks.empty() || (!options_.thresholdMode && picks.size() * kMinLevelShare < current_)) {
+        h_.stopReason = whyStopped(picks.size());
+        break;
+      }
       deleteAll(picks, level);
       const Clock::time_point t2 = Clock::now();
       current_ -= picks.size();
-      h_.levels.push_back({level, current_, triangles_, picks.size(), seconds(t0, t1), seconds(t1, t2), levelError()});
+      h_.levels.push_back(levelStats(level, picks.size(), seconds(t0, t1), seconds(t1, t2)));
       reportProgress(level + 1, 0, 0);
     }
     finish();
@@ -94,8 +106,7 @@ class Simplifier {
       h_.triangles.push_back(ht);
     }
     used_ = {0, h_.triangles.size(), 0, 0};
-    samples_.reset(slots, maxDeletions());
-    slotError_.assign(slots, 0.0);
+    slotCells_.assign(slots, TriangleCells{});
     h_.vertexLevel.assign(nv, kOpenLevel);
     importance_.assign(nv, 0.0);
     stamp_.assign(nv, -1);
@@ -106,11 +117,36 @@ class Simplifier {
   void setUp(const std::vector<PointXY>& keep) {
     const std::size_t nv = h_.base.vertices.size();
     fixNearest(keep);
-    // A vertex on the outline or on a hole's edge would change the TIN's extent.
+    cells_ = CellErrors(dem_, h_.base);
+    if (options_.measure == Measure::Error) cells_.bound(options_.maxError);
+    measureLevelZero();
+    outline_ = OutlineChain(mesh_, h_.base, dem_.width, dem_.height);
+    // Outline vertices go only as OutlineChain allows; a raster corner, a vertex where two
+    // parts of the TIN touch, and every outline vertex with -keep_outline stay.
     for (VertexId v = 0; v < nv; ++v) {
-      if (mesh_.open(v)) h_.fixed[v] = 1;
+      if (mesh_.open(v) && (options_.keepOutline || !mesh_.deletableOpen(v) || outline_.rasterCorner(v))) h_.fixed[v] = 1;
       if (!h_.fixed[v]) live_.push_back(v);
+      outlineLeft_ += mesh_.open(v) && mesh_.inTriangle(v);
     }
+    // The outline may move by one cell at level 1 unless told otherwise: a cell's size is
+    // the TIN's area over the cells it covers.
+    double area = 0;
+    for (const Triangle& t : h_.base.triangles) area += triangleArea(h_.base, t);
+    cellSize_ = coveredCells_ > 0 ? std::sqrt(area / double(coveredCells_)) : 0;
+    tolerance_ = std::isnan(options_.outlineTolerance) ? cellSize_ : options_.outlineTolerance;
+  }
+
+  // Every triangle of level 0 against the DEM, on every core.
+  void measureLevelZero() {
+    forEachBlock(static_cast<int>(mesh_.slots()), [&](int begin, int end) {
+      for (int slot = begin; slot < end; ++slot) {
+        const bool outline[3] = {mesh_.across(slot, 0) == kNoTriangle, mesh_.across(slot, 1) == kNoTriangle,
+                                 mesh_.across(slot, 2) == kNoTriangle};
+        slotCells_[slot] = cells_.measure(mesh_.corner(slot, 0), mesh_.corner(slot, 1), mesh_.corner(slot, 2), outline, true);
+        h_.triangles[mesh_.triangleId(slot)].error = slotCells_[slot].maxError;
+      }
+    }, [&](double f) { progress_.report(0.1 * f, "Measuring level 0 against the DEM"); });
+    for (const TriangleCells& c : slotCells_) coveredCells_ += c.cells;
   }
 
   // Every deletion adds to the hierarchy's arrays. Reserved once, for as many deletions
@@ -140,54 +176,96 @@ class Simplifier {
     return options_.measure != Measure::Degree || mesh_.degree(v) <= options_.maxDegree;
   }
 
-  void samplesAround(VertexId v, std::vector<Point3>& samples) const {
-    samples.clear();
-    mesh_.eachAround(v, [&](std::int32_t slot, int) {
-      for (std::size_t i = samples_.begin(slot); i < samples_.end(slot); ++i) samples.push_back(samples_.point(i));
-    });
+  // A thread's scratch for one star's walk.
+  struct StarScratch {
+    Star star;
+    std::vector<VertexId> ring;
+    std::vector<std::int32_t> slots, outer;
+    std::vector<LocalTriangle> fill;
+
+    void walk(const SimplificationMesh& mesh, VertexId v) {
+      const std::size_t d = static_cast<std::size_t>(mesh.degree(v));
+      ring.resize(d), slots.resize(d), outer.resize(d);
+      mesh.starOf(v, ring.data(), slots.data(), outer.data(), star);
+    }
+  };
+
+  // Whether the new triangle's edge opposite corner e is on the outline: a ring edge with
+  // nothing beyond (the new outline edge of an open star included).
+  static void outlineEdges(const LocalTriangle& t, int degree, const std::int32_t* outer, bool (&outline)[3]) {
+    for (int e = 0; e < 3; ++e) {
+      const int p = t[(e + 1) % 3], q = t[(e + 2) % 3];
+      outline[e] = q == (p + 1) % degree && outer[p] == kNoTriangle;
+    }
   }
 
+  TriangleCells measureFill(const VertexId* ring, const std::int32_t* outer, int degree, const LocalTriangle& t) {
+    bool outline[3];
+    outlineEdges(t, degree, outer, outline);
+    return cells_.measure(ring[t[0]], ring[t[1]], ring[t[2]], outline);
+  }
+
+  // The error measure: the largest distance to the DEM at the valid cells under the
+  // star's new triangles; +infinity when a cell would pass its bound.
+  double cellError(StarScratch& s) {
+    if (!retriangulateStar(s.star, s.fill)) return INFINITY;
+    TriangleCells all;
+    const int d = static_cast<int>(s.ring.size());
+    for (const LocalTriangle& t : s.fill) all.add(measureFill(s.ring.data(), s.outer.data(), d, t));
+    return cells_.bounded() && all.excess > 0 ? INFINITY : all.maxError;
+  }
+
+  // How far the outline may move when level `level` is made: the tolerance at level 1,
+  // growing as the spacing of the vertices left does.
+  double outlineTolerance() const { return tolerance_ * std::sqrt(double(original_) / double(std::max<std::size_t>(current_, 1))); }
+
   // Only reads the mesh and writes the vertex's own entry: safe in parallel.
-  void updateImportance(VertexId v, Star& star, std::vector<Point3>& samples) {
-    rings_.setDegree(v, mesh_.geometryOf(v, star, rings_.place(v), VertexRings::kCapacity));
-    if (options_.measure == Measure::Error) samplesAround(v, samples);
-    importance_[v] = importance(options_.measure, star, samples);
+  void updateImportance(VertexId v, StarScratch& s) {
+    rings_.setDegree(v, mesh_.geometryOf(v, s.star, rings_.place(v), VertexRings::kCapacity));
     stale_[v] = 0;
+    const bool open = mesh_.open(v);
+    if (open || options_.measure == Measure::Error) s.walk(mesh_, v);
+    if (open && (!retriangulateStar(s.star, s.fill) ||
+                 !outline_.allows(v, s.star, s.ring.front(), s.ring.back(), outlineTolerance(), 0.5 * cellSize_))) {
+      importance_[v] = INFINITY;
+      return;
+    }
+    importance_[v] = options_.measure == Measure::Error ? cellError(s) : importance(options_.measure, s.star);
   }
 
   // Importances change only around deleted vertices; those are recomputed at the start of
-  // each level, split over the machine's cores (a cancel stops every thread).
+  // each level, split over the machine's cores (a cancel stops every thread). An outline
+  // vertex is measured again at every level, as the outline's tolerance grows.
   void updateStaleImportances(std::int32_t level) {
     std::vector<VertexId> stale;
     for (VertexId v : live_)
-      if (stale_[v] && eligible(v)) stale.push_back(v);
+      if ((stale_[v] || mesh_.open(v)) && eligible(v)) stale.push_back(v);
     const std::string phase = "Selecting level " + std::to_string(level);
     forEachBlock(static_cast<int>(stale.size()), [&](int begin, int end) {
-      Star star;
-      std::vector<Point3> samples;
+      StarScratch scratch;
       for (int i = begin; i < end; ++i) {
         mesh_.prefetchAhead(i, end, [&](int j) { return stale[j]; });
-        updateImportance(stale[i], star, samples);
+        updateImportance(stale[i], scratch);
       }
     }, [&](double) { progress_.report(lastFraction_, phase); });
   }
 
   bool wanted(double importance) const {
-    if (options_.measure == Measure::Error && importance > options_.maxError) return false;
+    if (!(importance < INFINITY)) return false;
     return !options_.thresholdMode || importance < options_.threshold;
   }
 
-  // After each level, so the next walks stars that lie side by side. Samples and errors
-  // follow their triangles to the compacted slots.
+  // After each level, so the next walks stars that lie side by side. The triangles'
+  // figures follow them to the compacted slots.
   void compact() {
     const Compaction& slots = mesh_.planCompaction();
-    runBoth([&] { mesh_.applyCompaction(); }, [&] { samples_.rebuild(slots); });
-    std::vector<double>& errors = spareError_;
-    errors.resize(slots.oldOf.size());
-    forEachBlock(static_cast<int>(errors.size()), [&](int begin, int end) {
-      for (int slot = begin; slot < end; ++slot) errors[slot] = slotError_[slots.oldOf[slot]];
+    mesh_.applyCompaction();
+    std::vector<TriangleCells>& cells = spareCells_;
+    cells.resize(slots.oldOf.size());
+    forEachBlock(static_cast<int>(cells.size()), [&](int begin, int end) {
+      for (int slot = begin; slot < end; ++slot) cells[slot] = slotCells_[slots.oldOf[slot]];
     }, {});
-    slotError_.swap(errors);
+    slotCells_.swap(cells);
   }
 
   // Best first, ties broken by vertex id (the candidates are listed by id and the sort is
@@ -209,13 +287,17 @@ class Simplifier {
     runBoth([&] { pickBestFirst(limit, level, picks); },
             [&] { growHierarchy(expectedGrowth(expected), false); });
     radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, pickScratch_);
-    std::size_t fills = 0, rings = 0;
-    for (Pick& p : picks) p.fill = fills, p.ring = rings, fills += p.degree - 2, rings += p.degree;
+    std::size_t fills = 0, rings = 0, links = 0;
+    for (Pick& p : picks) {
+      p.fill = fills, p.ring = rings, p.link = links;
+      fills += p.degree - 2, rings += p.degree, links += p.triangles() + p.degree - 2;
+    }
     fill_.resize(fills);
-    fillError_.resize(fills);
+    fillCells_.resize(fills);
     slots_.resize(rings);
     outer_.resize(rings);
-    samples_.expect(picks.size());
+    links_ = links;
+    givenUp_.assign(picks.size(), 0);
     return picks;
   }
 
@@ -253,9 +335,11 @@ class Simplifier {
         const VertexId* ring = rings_.ring(v);
         for (int k = 0; k < rings_.degree(v); ++k) stamp_[ring[k]] = level;
       } else {
-        mesh_.eachAround(v, [&](std::int32_t slot, int k) { stamp_[mesh_.corner(slot, (k + 1) % 3)] = level; });
+        mesh_.eachAround(v, [&](std::int32_t slot, int k) {
+          stamp_[mesh_.corner(slot, (k + 1) % 3)] = stamp_[mesh_.corner(slot, (k + 2) % 3)] = level;
+        });
       }
-      picks.push_back({imp, v, static_cast<std::uint32_t>(rings_.degree(v))});
+      picks.push_back({imp, v, static_cast<std::uint32_t>(rings_.degree(v)), mesh_.open(v)});
     }
   }
 
@@ -279,8 +363,7 @@ class Simplifier {
   void deleteAll(const std::vector<Pick>& picks, std::int32_t level) {
     const std::size_t ringCount = slots_.size();
     const Ranges at = used_;
-    used_ = {at.group + picks.size(), at.triangles + fill_.size(), at.links + ringCount + fill_.size(),
-             at.rings + ringCount};
+    used_ = {at.group + picks.size(), at.triangles + fill_.size(), at.links + links_, at.rings + ringCount};
     growHierarchy(used_, true);  // where the last level's picks fell short
     if (!picks.empty()) meanDegree_ = double(ringCount) / double(picks.size());
     lastPicks_ = picks.size();
@@ -290,7 +373,7 @@ class Simplifier {
       std::vector<LocalTriangle> fill;
       for (int i = begin; i < end; ++i) {
         mesh_.prefetchAhead(i, end, [&](int j) { return picks[j].id; });
-        plan(picks, i, level, Ranges{at.group + i, at.triangles, at.links, at.rings}, star, fill);
+        plan(picks[i], i, level, Ranges{at.group + i, at.triangles, at.links, at.rings}, star, fill);
       }
     }, [&](double f) { reportProgress(level, f / 2, picks.size()); });
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
@@ -299,56 +382,44 @@ class Simplifier {
     for (std::size_t k = at.rings; k < used_.rings; ++k) stale_[h_.rings[k]] = 1;  // the ring vertices' stars changed
     live_.erase(std::remove_if(live_.begin(), live_.end(), [&](VertexId v) { return h_.vertexLevel[v] != kOpenLevel; }),
                 live_.end());
-    triangles_ -= 2 * picks.size();
+    for (const Pick& p : picks) {
+      triangles_ -= p.open ? 1 : 2;
+      outlineLeft_ -= p.open;
+    }
+    for (std::int64_t cells : givenUp_) coveredCells_ -= cells;
     compact();
   }
 
   StarView view(const Pick& pick, std::size_t rings) const {
     return {h_.rings.data() + rings + pick.ring, slots_.data() + pick.ring, outer_.data() + pick.ring,
-            static_cast<int>(pick.degree)};
+            static_cast<int>(pick.degree), pick.open};
   }
 
-  // The first pass, for one pick: its star, its retriangulation, the new triangle that
-  // will hold each sample under the star (and the vertex itself), and its group. Reads
-  // the mesh and writes only entries that are the pick's own: its ranges of the level's
-  // arrays and of the hierarchy's, its star's triangles, its samples, its slots' retirement.
-  void plan(const std::vector<Pick>& picks, std::size_t index, std::int32_t level, const Ranges& at, Star& star,
+  // The first pass, for one pick: its star, its retriangulation, how far each new
+  // triangle is from the DEM, and its group. Reads the mesh and writes only entries that
+  // are the pick's own: its ranges of the level's arrays and of the hierarchy's, its
+  // star's triangles, its slots' retirement.
+  void plan(const Pick& pick, std::size_t index, std::int32_t level, const Ranges& at, Star& star,
             std::vector<LocalTriangle>& fill) {
-    const Pick& pick = picks[index];
     VertexId* ring = h_.rings.data() + at.rings + pick.ring;
+    const std::int32_t* outer = outer_.data() + pick.ring;
     mesh_.starOf(pick.id, ring, slots_.data() + pick.ring, outer_.data() + pick.ring, star);
-    const bool convex = retriangulateStar(star, fill);
-    if (fill.size() + 2 != star.ring.size())
+    if (!retriangulateStar(star, fill) || fill.size() + 2 != star.ring.size())
       throw Error("internal error: deleting a vertex of degree " + std::to_string(star.ring.size()) + " made " +
                   std::to_string(fill.size()) + " triangles");
     std::copy(fill.begin(), fill.end(), fill_.begin() + pick.fill);
+    std::int64_t after = 0, before = 0;
+    for (std::size_t j = 0; j < fill.size(); ++j) {
+      fillCells_[pick.fill + j] = measureFill(ring, outer, static_cast<int>(pick.degree), fill[j]);
+      after += fillCells_[pick.fill + j].cells;
+    }
+    for (std::uint32_t k = 0; k < pick.triangles(); ++k) before += slotCells_[slots_[pick.ring + k]].cells;
+    givenUp_[index] = before - after;
     thread_local std::vector<int> onEdge;  // by ring edge: the new triangle on it
     onEdge.resize(pick.degree);
     ringEdgeTriangles(fill.data(), static_cast<int>(pick.degree), onEdge.data());
-    placeSamples(pick, index, star, fill, convex, onEdge.data());
     mesh_.retire(view(pick, at.rings), onEdge.data());
     record(pick, level, at, ring);
-  }
-
-  // The vertex becomes a sample of the new triangle that holds it, and the samples
-  // under the star move to theirs (first tried in onEdge's triangle on their ring edge).
-  void placeSamples(const Pick& pick, std::size_t index, const Star& star, const std::vector<LocalTriangle>& fill,
-                    bool convex, const int* onEdge) {
-    double* error = fillError_.data() + pick.fill;
-    std::fill(error, error + fill.size(), 0.0);
-    const std::int32_t* slots = slots_.data() + pick.ring;
-    thread_local std::vector<TrianglePlane> planes;
-    planes.clear();
-    for (const LocalTriangle& t : fill) planes.push_back(planeOf(star, t));
-    auto place = [&](const Point3& p, int likely) {
-      const int j = triangleHolding(star, fill.data(), fill.size(), p, convex, likely);
-      error[j] = std::max(error[j], std::fabs(p.z - planes[j].height(p.x, p.y)));
-      return slots[j];
-    };
-    samples_.add(index, star.centre, place(star.centre, -1));
-    for (std::uint32_t k = 0; k < pick.degree; ++k)  // the samples under the star's triangle on ring edge k
-      for (std::size_t i = samples_.begin(slots[k]); i < samples_.end(slots[k]); ++i)
-        samples_.moveTo(i, place(samples_.point(i), onEdge[k]));
   }
 
   // The group of a pick, its accept triangles (the star's) and its reject triangles (the
@@ -360,13 +431,13 @@ class Simplifier {
     group.vertex = pick.id;
     group.level = level;
     group.importance = pick.importance;
-    group.acceptBegin = static_cast<std::uint32_t>(at.links + pick.ring + pick.fill);
-    group.acceptEnd = group.acceptBegin + d;
+    group.acceptBegin = static_cast<std::uint32_t>(at.links + pick.link);
+    group.acceptEnd = group.acceptBegin + pick.triangles();
     group.rejectBegin = group.acceptEnd;
     group.rejectEnd = group.rejectBegin + d - 2;
     group.ringBegin = static_cast<std::uint32_t>(at.rings + pick.ring);
     group.ringEnd = group.ringBegin + d;
-    for (std::uint32_t k = 0; k < d; ++k) {
+    for (std::uint32_t k = 0; k < pick.triangles(); ++k) {
       const std::int32_t t = mesh_.triangleId(slots_[pick.ring + k]);
       h_.links[group.acceptBegin + k] = static_cast<std::uint32_t>(t);
       h_.triangles[t].lastLevel = level - 1;
@@ -380,7 +451,7 @@ class Simplifier {
       ht.firstLevel = level;
       ht.lastLevel = kOpenLevel;
       ht.group = g;
-      ht.error = fillError_[pick.fill + j];
+      ht.error = fillCells_[pick.fill + j].maxError;
       h_.links[group.rejectBegin + j] = static_cast<std::uint32_t>(t);
       group.error = std::max(group.error, ht.error);
     }
@@ -398,15 +469,39 @@ class Simplifier {
     if (star.degree - 2 > kSmallStar) many.resize(star.degree - 2), id = many.data();
     for (int j = 0; j + 2 < star.degree; ++j) {
       id[j] = static_cast<std::int32_t>(triangles + pick.fill + j);
-      slotError_[star.slots[j]] = fillError_[pick.fill + j];
+      slotCells_[star.slots[j]] = fillCells_[pick.fill + j];
     }
-    slotError_[star.slots[star.degree - 2]] = slotError_[star.slots[star.degree - 1]] = 0;
+    for (int k = star.degree - 2; k < star.triangles(); ++k) slotCells_[star.slots[k]] = TriangleCells{};
     mesh_.replaceStar(star, fill_.data() + pick.fill, id);
   }
 
-  // The largest error of the current triangles; a replaced triangle's slot holds 0 until
-  // a new triangle takes it.
-  double levelError() const { return slotError_.empty() ? 0.0 : *std::max_element(slotError_.begin(), slotError_.end()); }
+  // The level's figures; after compaction every slot holds a triangle of the level.
+  LevelStats levelStats(std::int32_t level, std::size_t deleted, double select, double remove) const {
+    LevelStats l;
+    l.level = level, l.vertices = current_, l.triangles = triangles_, l.deleted = deleted;
+    l.selectSeconds = select, l.deleteSeconds = remove;
+    double sum = 0;
+    for (const TriangleCells& c : slotCells_) l.maxError = std::max(l.maxError, c.maxError), sum += c.sumSquares;
+    l.cells = coveredCells_;
+    l.rmse = coveredCells_ > 0 ? std::sqrt(sum / double(coveredCells_)) : 0;
+    l.outlineVertices = outlineLeft_;
+    return l;
+  }
+
+  // Why no level could be made: the first reason that applies.
+  std::string whyStopped(std::size_t picked) const {
+    const std::size_t fixed = static_cast<std::size_t>(std::count(h_.fixed.begin(), h_.fixed.end(), 1));
+    std::string why = picked == 0 ? "no vertex left could go" : "the next level would delete only " + std::to_string(picked) +
+                                                                  " vertices, under 1 % of them";
+    if (options_.measure == Measure::Error && std::isfinite(options_.maxError))
+      return why + ": deleting any other would take some DEM cell further than -max_error " +
+             formatNumber(options_.maxError) + " m (or level 0's own distance there) from the surface";
+    if (options_.thresholdMode) return why + ": the others' importance is not below -threshold";
+    if (options_.measure == Measure::Degree) return why + ": the others have a degree above -max_degree " + std::to_string(options_.maxDegree);
+    return why + ": " + std::to_string(fixed) + " vertices are fixed (raster corners, points to keep" +
+           (options_.keepOutline ? ", the outline with -keep_outline" : "") + ") and " + std::to_string(outlineLeft_) +
+           " are on the outline, where they go only while it moves less than -outline_tolerance";
+  }
 
   // `within` of the way through deleting `deleting` vertices to make `level`.
   void reportProgress(std::int32_t level, double within, std::size_t deleting) {
@@ -428,21 +523,28 @@ class Simplifier {
 
   const HierarchyOptions& options_;
   ProgressRange progress_;
+  const Dem& dem_;
   Hierarchy h_;
   SimplificationMesh mesh_;
+  CellErrors cells_;
+  OutlineChain outline_;
+  std::int64_t coveredCells_ = 0;    // valid DEM cells under the current level
+  std::size_t outlineLeft_ = 0;      // outline vertices in the current level
+  double cellSize_ = 0, tolerance_ = 0;  // metres; the outline's tolerance at level 1
   std::vector<VertexId> live_;               // vertices not fixed and not yet deleted
   std::vector<double> importance_;           // by vertex
   std::vector<std::int32_t> stamp_;          // by vertex: the level in which it or a neighbour was picked
   std::vector<std::uint8_t> stale_;          // by vertex: its importance must be recomputed
   VertexRings rings_;                        // by vertex: its neighbours, as last measured
-  SampleBuckets samples_;                    // the level-0 samples under each slot
-  std::vector<double> slotError_;            // by slot: its triangle's error
-  std::vector<double> spareError_;           //   and the previous level's array, reused
+  std::vector<TriangleCells> slotCells_;     // by slot: its triangle against the DEM
+  std::vector<TriangleCells> spareCells_;    //   and the previous level's array, reused
   using Candidate = std::pair<double, VertexId>;
   std::vector<Candidate> candidates_[2], sortScratch_[2];  // the level's, by importance, in two halves
   std::vector<Pick> pickScratch_;
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
-  std::vector<double> fillError_;            //   and their errors
+  std::vector<TriangleCells> fillCells_;     //   and their figures against the DEM
+  std::vector<std::int64_t> givenUp_;        //   and each pick's cells no longer covered
+  std::size_t links_ = 0;                    //   and how many accept and reject links in all
   std::vector<std::int32_t> slots_;          //   and each pick's star slots
   std::vector<std::int32_t> outer_;          //   and the triangles beyond its ring
   std::size_t original_ = 0, stopCount_ = 0, current_ = 0, triangles_ = 0;
@@ -454,10 +556,10 @@ class Simplifier {
 
 }  // namespace
 
-Hierarchy buildHierarchy(Tin base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
+Hierarchy buildHierarchy(Tin base, const Dem& dem, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
                          const ProgressRange& progress, const std::vector<PointXY>& keep) {
   options.validate();
-  return Simplifier(std::move(base), std::move(fixed), options, progress).run(keep);
+  return Simplifier(std::move(base), dem, std::move(fixed), options, progress).run(keep);
 }
 
 }  // namespace tinlod

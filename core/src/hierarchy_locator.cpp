@@ -22,6 +22,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_2;
 
 constexpr std::uint32_t kNone = UINT32_MAX;
+constexpr std::uint32_t kOpenFan = 1u << 31;
 
 // A triangle of the coarsest level with its corners: the start of every search.
 struct TopTriangle {
@@ -76,8 +77,9 @@ std::vector<TopTriangle> topTriangles(const Hierarchy& h, const std::vector<Poin
 // own arrays are far larger than the caches: the search is bound by memory latency).
 // A block is a head {vertex, k, level}, then k ring entries {ring vertex, accept
 // triangle, the block of the group that made that triangle}: entry i and the next
-// (cyclically) span accept triangle i with the head's vertex. Linking blocks directly,
-// not through group ids, spares a dependent cache miss per level.
+// (cyclically) span accept triangle i with the head's vertex. An outline vertex's fan is
+// open: one more entry holds the last ring vertex, and the head's level has kOpenFan set.
+// Linking blocks directly, not through group ids, spares a dependent cache miss per level.
 struct FanEntry {
   Point p;
   std::uint32_t a = 0;  // head: the ring's size; ring entry: the accept triangle
@@ -133,18 +135,26 @@ std::vector<std::uint32_t> ringOrder(const Hierarchy& h, std::size_t g, std::vec
     std::rotate(c.begin(), at, c.end());
     turned.push_back(c);
   }
+  // An outline vertex's fan is open: it starts at the triangle no other one precedes.
+  std::size_t first = 0;
+  for (std::size_t i = 0; i < turned.size(); ++i)
+    if (std::none_of(turned.begin(), turned.end(), [&](const auto& c) { return c[2] == turned[i][1]; })) first = i;
   std::vector<std::uint32_t> order;
-  for (std::size_t i = 0; order.size() < turned.size();) {
+  for (std::size_t i = first; order.size() < turned.size();) {
     order.push_back(static_cast<std::uint32_t>(i));
     const auto next = std::find_if(turned.begin(), turned.end(), [&](const auto& c) { return c[1] == turned[i][2]; });
     if (next == turned.end()) break;
     i = static_cast<std::size_t>(next - turned.begin());
-    if (i == 0) break;
+    if (i == first) break;
   }
-  if (order.size() != turned.size() || turned.empty() || turned[order.back()][2] != turned[0][1])
-    throw Error("the hierarchy is inconsistent: the accept triangles of " + groupName(h, g) + " are not a closed fan");
+  const bool closed = !turned.empty() && turned[order.back()][2] == turned[order.front()][1];
+  const std::size_t rejects = static_cast<std::size_t>(h.groups[g].rejectEnd - h.groups[g].rejectBegin);
+  if (order.size() != turned.size() || turned.empty() || rejects + (closed ? 2 : 1) != turned.size())
+    throw Error("the hierarchy is inconsistent: the accept triangles of " + groupName(h, g) + " are not a fan");
   return order;
 }
+
+bool openFan(const Group& g) { return g.acceptEnd - g.acceptBegin == g.rejectEnd - g.rejectBegin + 1; }
 
 // An accept triangle must be older than the group that replaced it: each step of a
 // search then goes down a level, and a corrupt file cannot send it round in circles.
@@ -159,13 +169,15 @@ void appendFan(const Hierarchy& h, const std::vector<Point>& points, const std::
                std::size_t g, std::vector<FanEntry>& fans, std::vector<std::array<VertexId, 3>>& turned) {
   const std::vector<std::uint32_t> order = ringOrder(h, g, turned);
   const Group& group = h.groups[g];
-  const auto level = static_cast<std::uint32_t>(group.level);
+  const bool open = openFan(group);
+  const auto level = static_cast<std::uint32_t>(group.level) | (open ? kOpenFan : 0);
   fans.push_back({points[group.vertex], static_cast<std::uint32_t>(order.size()), level});
   const std::uint32_t* accept = h.accept(group).first;
   for (std::uint32_t i : order) {
     checkOlder(h, g, accept[i]);
     fans.push_back({points[turned[i][1]], accept[i], fanOf(h, fanStart, accept[i])});
   }
+  if (open) fans.push_back({points[turned[order.back()][2]], kNone, kNone});
 }
 
 // Two passes: where each block begins (in spatial order), then the blocks, whose links
@@ -176,10 +188,11 @@ std::vector<FanEntry> makeFans(const Hierarchy& h, const std::vector<Point>& poi
   fanStart.assign(h.groups.size(), 0);
   std::size_t size = 0;
   for (std::uint32_t g : order) {
-    if (size + 1 + (h.groups[g].acceptEnd - h.groups[g].acceptBegin) >= kNone)
+    const std::size_t block = 2 + (h.groups[g].acceptEnd - h.groups[g].acceptBegin);
+    if (size + block >= kNone)
       throw Error("the hierarchy is too large to locate points in (over 4 billion accept triangles)");
     fanStart[g] = static_cast<std::uint32_t>(size);
-    size += 1 + (h.groups[g].acceptEnd - h.groups[g].acceptBegin);
+    size += block - !openFan(h.groups[g]);
   }
   std::vector<FanEntry> fans;
   fans.reserve(size);
@@ -195,6 +208,8 @@ struct HierarchyLocator::Impl {
   std::vector<TopTriangle> top;
   BoxGrid grid;
   std::vector<FanEntry> fans;  // every group's block
+  std::vector<std::uint32_t> cuts;  // the blocks of outline vertices, whose ground was given up
+  BoxGrid cutGrid;
 
   explicit Impl(const Hierarchy& hierarchy) : h(hierarchy) {
     const std::vector<Point> points = pointsOf(h.base);
@@ -202,6 +217,16 @@ struct HierarchyLocator::Impl {
     fans = makeFans(h, points, fanStart);
     top = topTriangles(h, points, fanStart);
     grid = makeGrid(top);
+    std::vector<Box> boxes;
+    for (std::size_t g = 0; g < h.groups.size(); ++g) {
+      if (!openFan(h.groups[g])) continue;
+      const FanEntry* head = &fans[fanStart[g]];
+      const Point &a = head->p, &b = head[1].p, &c = head[head->a + 1].p;
+      cuts.push_back(fanStart[g]);
+      boxes.push_back({std::min({a.x(), b.x(), c.x()}), std::min({a.y(), b.y(), c.y()}), std::max({a.x(), b.x(), c.x()}),
+                       std::max({a.y(), b.y(), c.y()})});
+    }
+    cutGrid = BoxGrid(boxes);
   }
 
   // The first triangle of p's bucket that holds it, or null (off the TIN, or in a hole).
@@ -214,26 +239,49 @@ struct HierarchyLocator::Impl {
     return nullptr;
   }
 
-  // The accept triangle of a block that holds p, first in ring order: a ring entry. The
-  // test is closed and exact, so the accept triangles cover exactly the points the reject
-  // triangles do.
-  const FanEntry& finer(const FanEntry* head, const Point& p) const {
-    const std::uint32_t k = head->a;
-    for (std::uint32_t i = 1; i <= k; ++i)
-      if (triangleContains(head->p, head[i].p, head[i == k ? 1 : i + 1].p, p)) return head[i];
-    throw Error("internal error: the hierarchy is inconsistent: a point of the reject triangles of the vertex at (" +
-                std::to_string(head->p.x()) + ", " + std::to_string(head->p.y()) +
-                ") is in none of its accept triangles");
+  // Ground the outline gave up: where an outline vertex went, the triangle between it and
+  // its two outline neighbours is covered by its accept triangles and by nothing coarser.
+  // The first of a group coarser than `level` that holds p; null when none.
+  const FanEntry* givenUp(const Point& p, int level) const {
+    const auto [first, last] = cutGrid.at(p.x(), p.y());
+    for (const std::uint32_t* i = first; i != last; ++i) {
+      const FanEntry* head = &fans[cuts[*i]];
+      const std::uint32_t k = head->a;
+      if (levelOf(*head) <= level) continue;
+      if (triangleContains(head->p, head[1].p, head[k + 1].p, p) ||
+          triangleContains(head->p, head[k + 1].p, head[1].p, p))
+        return head;
+    }
+    return nullptr;
   }
 
+  // The accept triangle of a block that holds p, first in ring order: a ring entry; null
+  // when none does (a point an outline vertex's deletion newly covered, at a raster edge).
+  // The test is closed and exact.
+  const FanEntry* finer(const FanEntry* head, const Point& p) const {
+    const std::uint32_t k = head->a;
+    const bool open = (head->b & kOpenFan) != 0;
+    for (std::uint32_t i = 1; i <= k; ++i)
+      if (triangleContains(head->p, head[i].p, head[i == k && !open ? 1 : i + 1].p, p)) return &head[i];
+    if (!open)
+      throw Error("internal error: the hierarchy is inconsistent: a point of the reject triangles of the vertex at (" +
+                  std::to_string(head->p.x()) + ", " + std::to_string(head->p.y()) +
+                  ") is in none of its accept triangles");
+    return nullptr;
+  }
+
+  static int levelOf(const FanEntry& head) { return static_cast<int>(head.b & ~kOpenFan); }
+
   // A triangle newer than `level` was made by deleting its group's vertex; the star that
-  // vertex had one level finer covers the same polygon, so one of its accept triangles
-  // holds p. Each step goes down at least one level.
+  // vertex had one level finer covers the same polygon (or, at the outline, the same and
+  // what it gave up), so one of its accept triangles holds p. Each step goes down at
+  // least one level. kNone when p is not on the TIN at `level`.
   std::uint32_t descend(std::uint32_t t, std::uint32_t fan, const Point& p, int level) const {
-    while (fan != kNone && static_cast<int>(fans[fan].b) > level) {
-      const FanEntry& e = finer(&fans[fan], p);
-      t = e.a;
-      fan = e.b;
+    while (fan != kNone && levelOf(fans[fan]) > level) {
+      const FanEntry* e = finer(&fans[fan], p);
+      if (!e) return kNone;
+      t = e->a;
+      fan = e->b;
     }
     return t;
   }
@@ -266,9 +314,14 @@ LocatedPoint HierarchyLocator::locate(double x, double y, int level) const {
     throw Error("cannot locate a point at level " + std::to_string(level) + ": the hierarchy has levels 0 to " +
                 std::to_string(coarsest));
   const Point p(x, y);
-  const TopTriangle* top = impl_->start(p);
-  if (!top) return {};  // off the TIN or in a hole: the same at every level
-  const std::uint32_t t = impl_->descend(top->id, top->fan, p, level);
+  std::uint32_t t = kNone;
+  if (const TopTriangle* top = impl_->start(p)) {
+    t = impl_->descend(top->id, top->fan, p, level);
+  } else if (const FanEntry* cut = impl_->givenUp(p, level)) {
+    const FanEntry* e = impl_->finer(cut, p);  // on the ground the outline gave up at a coarser level
+    if (e) t = impl_->descend(e->a, e->b, p, level);
+  }
+  if (t == kNone) return {};  // off the TIN or in a hole at that level
   return {static_cast<std::int64_t>(t), impl_->height(t, p)};
 }
 

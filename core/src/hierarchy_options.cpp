@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/hierarchy_options.h"
 
+#include <cmath>
+
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
@@ -18,6 +20,9 @@ void HierarchyOptions::validate() const {
     throw Error("threshold must be more than 0 (got " + formatNumber(threshold) +
                 "); it is in the method's units: cubic metres for volume, metres for error, a degree for degree, "
                 "1 - flatness for normal");
+  if (!std::isnan(outlineTolerance) && !(outlineTolerance >= 0 && std::isfinite(outlineTolerance)))
+    throw Error("outline_tolerance must be 0 or more metres (got " + formatNumber(outlineTolerance) +
+                "); leave it out for one DEM cell, or use -keep_outline to keep every outline vertex");
   if (maxError != INFINITY && measure != Measure::Error)
     throw Error("max_error applies to the error method only: add -method error");
 }

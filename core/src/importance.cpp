@@ -204,8 +204,10 @@ bool clipEars(const Star& star, bool exact, Emit emit) {
 }  // namespace
 
 bool retriangulateStar(const Star& star, std::vector<LocalTriangle>& out) {
+  if (star.open) return retriangulateOpenStar(star, out);
   out.clear();
-  return clipEars(star, true, [&](const LocalTriangle& t) { out.push_back(t); });
+  clipEars(star, true, [&](const LocalTriangle& t) { out.push_back(t); });
+  return true;
 }
 
 std::vector<LocalTriangle> retriangulateStar(const Star& star) {
@@ -222,12 +224,14 @@ void ringEdgeTriangles(const LocalTriangle* fill, int d, int* onEdge) {
 
 namespace {
 
-// The volume under the star with its centre.
+// The volume under the star with its centre; for an open star, less the prism under the
+// vertex and its two outline neighbours (see volumeChange).
 double coneVolume(const Star& star) {
   double with = 0;
   const std::size_t n = star.ring.size();
-  for (std::size_t i = 0; i < n; ++i) with += prismVolume(star.centre, star.ring[i], star.ring[(i + 1) % n]);
-  return with;
+  for (std::size_t i = 0; i + 1 < n; ++i) with += prismVolume(star.centre, star.ring[i], star.ring[i + 1]);
+  if (!star.open) return with + prismVolume(star.centre, star.ring[n - 1], star.ring[0]);
+  return with - prismVolume(star.centre, star.ring[0], star.ring[n - 1]);
 }
 
 // volumeChange on the floating-point ranking, summed as the ears are clipped.
@@ -235,6 +239,12 @@ double volumeChangeRanked(const Star& star) {
   double after = 0;
   clipEars(star, false, [&](const LocalTriangle& t) { after += prismVolume(star.ring[t[0]], star.ring[t[1]], star.ring[t[2]]); });
   return std::fabs(coneVolume(star) - after);
+}
+
+double openVolumeChange(const Star& star) {
+  thread_local std::vector<LocalTriangle> fill;
+  if (!retriangulateOpenStar(star, fill)) return std::numeric_limits<double>::infinity();
+  return volumeChange(star, fill);
 }
 
 }  // namespace
@@ -247,9 +257,10 @@ double volumeChange(const Star& star, const std::vector<LocalTriangle>& without)
 
 double normalFlatness(const Star& star) {
   const std::size_t n = star.ring.size();
+  const std::size_t triangles = star.open ? n - 1 : n;
   std::vector<std::array<double, 3>> normals;
   double mx = 0, my = 0, mz = 0;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < triangles; ++i) {
     const Point3 &p = star.centre, &a = star.ring[i], &b = star.ring[(i + 1) % n];
     const double ux = a.x - p.x, uy = a.y - p.y, uz = a.z - p.z, vx = b.x - p.x, vy = b.y - p.y, vz = b.z - p.z;
     std::array<double, 3> nrm{uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
@@ -273,76 +284,17 @@ bool convexRing(const Star& star) {
   return true;
 }
 
-// The polygon holds p, so when it is convex its ring edges need no test, only the
-// diagonals (in a polygon that bends back, p can lie beyond a ring edge's line and
-// still inside); and when every other triangle has refused p, the last one holds it.
-int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex,
-                    int likely) {
-  const int d = static_cast<int>(star.ring.size());
-  const K::Point_2 q = xy(p);
-  auto holds = [&](std::size_t j) {
-    for (int e = 0; e < 3; ++e) {
-      const int a = tris[j][e], b = tris[j][(e + 1) % 3];
-      if (convex && b == (a + 1) % d) continue;
-      if (CGAL::orientation(xy(star.ring[a]), xy(star.ring[b]), q) == CGAL::RIGHT_TURN) return false;
-    }
-    return true;
-  };
-  if (count <= 1) return static_cast<int>(count) - 1;  // the only triangle holds p
-  const bool hinted = likely >= 0 && static_cast<std::size_t>(likely) < count;
-  std::size_t left = count;  // triangles not yet refused
-  if (hinted) {
-    if (holds(likely)) return likely;
-    --left;
-  }
-  for (std::size_t j = 0; j < count; ++j) {
-    if (hinted && j == static_cast<std::size_t>(likely)) continue;
-    if (left == 1 || holds(j)) return static_cast<int>(j);
-    --left;
-  }
-  return -1;  // not reached: with two triangles or more, the last one left is taken
-}
-
 TrianglePlane planeOf(const Star& star, const LocalTriangle& t) {
   const Point3 &a = star.ring[t[0]], &b = star.ring[t[1]], &c = star.ring[t[2]];
   return TrianglePlane::through(a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z);
 }
 
-namespace {
-
-double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
-                        const std::vector<Point3>& samples, bool convex) {
-  double worst = 0;
-  thread_local std::vector<TrianglePlane> planes;
-  planes.clear();
-  for (const LocalTriangle& t : without) planes.push_back(planeOf(star, t));
-  auto measure = [&](const Point3& s) {
-    const int j = triangleHolding(star, without.data(), without.size(), s, convex);
-    if (j >= 0) worst = std::max(worst, std::fabs(s.z - planes[j].height(s.x, s.y)));
-  };
-  measure(star.centre);
-  for (const Point3& s : samples) measure(s);
-  return worst;
-}
-
-}  // namespace
-
-double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
-                        const std::vector<Point3>& samples) {
-  return maxVerticalError(star, without, samples, convexRing(star));
-}
-
-double importance(Measure measure, const Star& star, const std::vector<Point3>& samples) {
+double importance(Measure measure, const Star& star) {
   switch (measure) {
     case Measure::Degree: return static_cast<double>(star.ring.size());
     case Measure::Normal: return 1.0 - normalFlatness(star);
-    case Measure::Volume: return volumeChangeRanked(star);
-    // Exact, as the deletion's: the error is then the one the deletion certifies.
-    case Measure::Error: {
-      thread_local std::vector<LocalTriangle> exact;
-      const bool convex = retriangulateStar(star, exact);
-      return maxVerticalError(star, exact, samples, convex);
-    }
+    case Measure::Volume: return star.open ? openVolumeChange(star) : volumeChangeRanked(star);
+    case Measure::Error: break;  // the simplifier's, against the DEM
   }
   return 0;
 }

@@ -21,26 +21,58 @@ namespace {
 // Uniform in [0, 1) from the top 53 bits: reproducible on every platform.
 double unitRandom(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
 
+// The jitter moves each point within its cell, in the DEM's grid (so that the simplifier
+// knows where each vertex lies among the cells), by up to `jitter` metres along x and y.
+// Cells on the raster's edge move only along it, and its corners not at all: the edge of a
+// projected DEM is then a straight line at every level, whose vertices can go without
+// changing it.
+struct CellJitter {
+  double colPerMetre, rowPerMetre;  // signed: towards +x and +y of the TIN
+  int lastRow, lastCol;
+
+  std::pair<double, double> operator()(const SampleCell& c, double ux, double uy) const {
+    const double dc = c.col == 0 || c.col == lastCol ? 0 : ux * colPerMetre;
+    const double dr = c.row == 0 || c.row == lastRow ? 0 : uy * rowPerMetre;
+    return {dc, dr};
+  }
+};
+
+CellJitter cellJitter(const Dem& dem, const CrsTransform& transform, double jitter) {
+  const int row = dem.height / 2, col = dem.width / 2;
+  const double across = dem.width > 1 ? transform.groundDistance(dem.centreX(col - (col > 0)), dem.centreY(row),
+                                                                 dem.centreX(col - (col > 0) + 1), dem.centreY(row))
+                                      : 1;
+  const double down = dem.height > 1 ? transform.groundDistance(dem.centreX(col), dem.centreY(row - (row > 0)),
+                                                                dem.centreX(col), dem.centreY(row - (row > 0) + 1))
+                                     : 1;
+  const double gt1 = dem.geotransform[1], gt5 = dem.geotransform[5];
+  // +x of the TIN is +col when the geotransform's x step is positive; +y is -row for a
+  // north-up DEM (negative y step), +row for a bottom-up one.
+  return {jitter / std::max(across, 1e-12) * (gt1 >= 0 ? 1 : -1), jitter / std::max(down, 1e-12) * (gt5 < 0 ? -1 : 1),
+          dem.height - 1, dem.width - 1};
+}
+
 std::vector<TinVertex> toVertices(const Dem& dem, const std::vector<SampleCell>& cells,
                                   const CrsTransform& transform, double jitter, std::uint64_t seed) {
-  std::vector<double> x(cells.size()), y(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    x[i] = dem.centreX(cells[i].col);
-    y[i] = dem.centreY(cells[i].row);
-  }
-  transform.apply(x, y);
+  const CellJitter move = cellJitter(dem, transform, jitter);
   // A stream apart from the sampler's, so that changing the jitter moves no sample.
   std::mt19937_64 rng(seed ^ 0x9E3779B97F4A7C15ULL);
+  std::vector<double> x(cells.size()), y(cells.size());
   std::vector<TinVertex> vertices(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) {
+    const double ux = unitRandom(rng), uy = unitRandom(rng);
+    const auto [dc, dr] = move(cells[i], ux, uy);
     TinVertex& v = vertices[i];
-    v.x = x[i] + unitRandom(rng) * jitter;
-    v.y = y[i] + unitRandom(rng) * jitter;
+    v.dcol = static_cast<float>(dc), v.drow = static_cast<float>(dr);
+    x[i] = dem.geotransform[0] + (cells[i].col + 0.5 + double(v.dcol)) * dem.geotransform[1];
+    y[i] = dem.geotransform[3] + (cells[i].row + 0.5 + double(v.drow)) * dem.geotransform[5];
     v.z = dem.at(cells[i].row, cells[i].col);
     v.row = cells[i].row;
     v.col = cells[i].col;
     v.outline = cells[i].outline;
   }
+  transform.apply(x, y);
+  for (std::size_t i = 0; i < cells.size(); ++i) vertices[i].x = x[i], vertices[i].y = y[i];
   return vertices;
 }
 

@@ -104,25 +104,34 @@ void SimplificationMesh::link() {
 
 // Each vertex's first triangle, whether it is open (on an outline edge, or in no
 // triangle), and the check that a closed vertex has one fan of all its triangles: two
-// fans meeting at a vertex would be deleted as one star.
+// fans meeting at a vertex would be deleted as one star. An open vertex whose triangles
+// make one fan of two or more may be deleted; one where fans meet may not.
 void SimplificationMesh::indexVertices() {
   const std::size_t nv = points_.size();
   std::vector<std::int32_t>& triangles = scratch_;
   triangles.assign(nv, 0);
   start_.assign(nv, kNoTriangle);
-  open_.assign(nv, 0);
+  open_.assign(nv, kClosed);
   for (std::size_t t = 0; t < triangles_.size(); ++t)
     for (int k = 0; k < 3; ++k) {
       const MeshTriangle& tri = triangles_[t];
       ++triangles[tri.v[k]];
       start_[tri.v[k]] = static_cast<std::int32_t>(t);
-      if (tri.n[k] == kNoTriangle) open_[tri.v[(k + 1) % 3]] = open_[tri.v[(k + 2) % 3]] = 1;
+      if (tri.n[k] == kNoTriangle) open_[tri.v[(k + 1) % 3]] = open_[tri.v[(k + 2) % 3]] = kOpen;
     }
   for (std::size_t v = 0; v < nv; ++v)
-    if (triangles[v] == 0) open_[v] = 1;
+    if (triangles[v] == 0) open_[v] = kOpen;
   forEachBlock(static_cast<int>(nv), [&](int begin, int end) {
-    for (int v = begin; v < end; ++v)
-      if (!open_[v] && degree(static_cast<VertexId>(v)) != triangles[v]) throw Error(kNotSampled);
+    for (int v = begin; v < end; ++v) {
+      if (open_[v] == kClosed) {
+        if (degree(static_cast<VertexId>(v)) != triangles[v]) throw Error(kNotSampled);
+        continue;
+      }
+      if (triangles[v] < 2) continue;
+      int fan = 0;
+      aroundOpen(v, [&](std::int32_t, int) { ++fan; });
+      if (fan == triangles[v]) open_[v] = kOneFan;
+    }
   }, {});
 }
 
@@ -151,9 +160,21 @@ bool SimplificationMesh::checkDelaunay() const {
 }
 
 int SimplificationMesh::degree(VertexId v) const {
-  int d = 0;
+  int d = open_[v] ? 1 : 0;
   eachAround(v, [&](std::int32_t, int) { ++d; });
   return d;
+}
+
+VertexId SimplificationMesh::outlineAfter(VertexId v) const {
+  const MeshTriangle& tri = triangles_[firstOpen(static_cast<std::int32_t>(v))];
+  const int k = tri.v[0] == std::int32_t(v) ? 0 : tri.v[1] == std::int32_t(v) ? 1 : 2;
+  return static_cast<VertexId>(tri.v[(k + 1) % 3]);
+}
+
+VertexId SimplificationMesh::outlineBefore(VertexId v) const {
+  VertexId last = 0;
+  aroundOpen(static_cast<std::int32_t>(v), [&](std::int32_t t, int k) { last = static_cast<VertexId>(triangles_[t].v[(k + 2) % 3]); });
+  return last;
 }
 
 // Visits (slot, k) around v starting at the slot whose next ring vertex has the
@@ -173,13 +194,21 @@ void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots,
   int i = 0;
   geometry.centre = point(v);
   geometry.ring.clear();
-  canonicalWalk(v, [&](std::int32_t t, int k) {
+  geometry.open = open_[v] != kClosed;
+  auto visit = [&](std::int32_t t, int k) {
     const MeshTriangle& tri = triangles_[t];
     ring[i] = static_cast<VertexId>(tri.v[(k + 1) % 3]);
     geometry.ring.push_back(points_[tri.v[(k + 1) % 3]]);
     slots[i] = t;
     outer[i++] = tri.n[k];
-  });
+  };
+  if (!geometry.open) return canonicalWalk(v, visit);
+  std::int32_t last = kNoTriangle;
+  aroundOpen(static_cast<std::int32_t>(v), [&](std::int32_t t, int k) { visit(t, k), last = triangles_[t].v[(k + 2) % 3]; });
+  ring[i] = static_cast<VertexId>(last);
+  geometry.ring.push_back(points_[last]);
+  slots[i] = kNoTriangle;
+  outer[i] = kNoTriangle;
 }
 
 // One walk into a small buffer, then the points from the smallest ring vertex on: the
@@ -187,12 +216,26 @@ void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots,
 int SimplificationMesh::geometryOf(VertexId v, Star& star, VertexId* ids, int capacity) const {
   std::int32_t ring[kSmallStar];
   int d = 0;
+  star.centre = points_[v];
+  star.ring.clear();
+  star.open = open_[v] != kClosed;
+  if (star.open) {
+    std::int32_t last = kNoTriangle;
+    aroundOpen(static_cast<std::int32_t>(v), [&](std::int32_t t, int k) {
+      const MeshTriangle& tri = triangles_[t];
+      if (d < capacity) ids[d] = static_cast<VertexId>(tri.v[(k + 1) % 3]);
+      star.ring.push_back(points_[tri.v[(k + 1) % 3]]);
+      last = tri.v[(k + 2) % 3];
+      ++d;
+    });
+    if (d < capacity) ids[d] = static_cast<VertexId>(last);
+    star.ring.push_back(points_[last]);
+    return d + 1;
+  }
   eachAround(v, [&](std::int32_t t, int k) {
     if (d < kSmallStar) ring[d] = triangles_[t].v[(k + 1) % 3];
     ++d;
   });
-  star.centre = points_[v];
-  star.ring.clear();
   if (d > kSmallStar) {
     canonicalWalk(v, [&](std::int32_t t, int k) { star.ring.push_back(points_[triangles_[t].v[(k + 1) % 3]]); });
     return d;
@@ -267,7 +310,7 @@ std::size_t SimplificationMesh::brokenLinks() const {
 }
 
 void SimplificationMesh::retire(const StarView& star, const int* onEdge) {
-  for (int k = 0; k < star.degree; ++k) {
+  for (int k = 0; k < star.triangles(); ++k) {
     successor_[star.slots[k]] = star.slots[onEdge[k]];
     retired_[star.slots[k]] = round_;
   }
@@ -319,7 +362,7 @@ void SimplificationMesh::replaceStar(const StarView& star, const LocalTriangle* 
       b.n[b.v[1] == head ? 0 : b.v[2] == head ? 1 : 2] = slot;
     }
   }
-  for (int k = d - 2; k < d; ++k) triangles_[star.slots[k]].v = {-1, -1, -1};
+  for (int k = d - 2; k < star.triangles(); ++k) triangles_[star.slots[k]].v = {-1, -1, -1};
 }
 
 }  // namespace tinlod

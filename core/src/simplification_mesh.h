@@ -2,8 +2,8 @@
 // Private: the TIN the delete simplification works on, as flat arrays of triangles with
 // their neighbours. CGAL's triangulation is a general structure (infinite faces, handles
 // in a container, a remove() that checks dimensions and degrees, one vertex at a time);
-// the simplifier only ever deletes interior vertices of an independent set, whose stars
-// are disjoint, so here a whole set is deleted in two passes that each run on every core,
+// the simplifier only ever deletes vertices of an independent set, whose stars are
+// disjoint, so here a whole set is deleted in two passes that each run on every core,
 // and the arrays, in the TIN's own order, keep each star walk in cache. Predicates stay
 // CGAL's exact ones.
 #pragma once
@@ -27,15 +27,21 @@ struct MeshTriangle {
   std::int32_t id;                // the triangle's id in the hierarchy
 };
 
-// A vertex's star, `degree` long: ring[k], ring[k + 1] and the vertex make slots[k],
-// counter-clockwise, and outer[k] is the triangle beyond ring edge k (or kNoTriangle).
-// The ring starts at its smallest vertex id, so nothing computed from a star depends on
-// where a walk happened to start.
+// A vertex's star, `degree` ring vertices long: ring[k], ring[k + 1] and the vertex make
+// slots[k], counter-clockwise, and outer[k] is the triangle beyond ring edge k (or
+// kNoTriangle). An interior vertex's ring is closed and starts at its smallest vertex id,
+// so nothing computed from a star depends on where a walk happened to start. An outline
+// vertex's ring is open: it runs from the outline neighbour after the vertex to the one
+// before it (counter-clockwise around the vertex), so it has degree - 1 triangles, and
+// its last ring edge, from the last ring vertex back to the first, is the outline edge
+// that replaces the vertex (slots and outer there are kNoTriangle).
 struct StarView {
   const VertexId* ring;
   const std::int32_t* slots;
   const std::int32_t* outer;
   int degree;
+  bool open = false;
+  int triangles() const { return open ? degree - 1 : degree; }
 };
 
 class SimplificationMesh {
@@ -51,17 +57,33 @@ class SimplificationMesh {
   const Point3& point(VertexId v) const { return points_[v]; }
   std::int32_t triangleId(std::int32_t slot) const { return triangles_[slot].id; }
   VertexId corner(std::int32_t slot, int k) const { return static_cast<VertexId>(triangles_[slot].v[k]); }
+  // The triangle across the edge opposite corner k, or kNoTriangle on the outline.
+  std::int32_t across(std::int32_t slot, int k) const { return triangles_[slot].n[k]; }
+  std::size_t slots() const { return triangles_.size(); }
   // True for a vertex on the outline or a hole's edge, or in no triangle: it has no
-  // closed star and is never deleted.
+  // closed star.
   bool open(VertexId v) const { return open_[v] != 0; }
+  // An open vertex whose triangles make one fan of two or more: its star can be deleted,
+  // the outline then going straight from one of its outline neighbours to the other. A
+  // vertex where two fans meet (two parts of the TIN touching) cannot.
+  bool deletableOpen(VertexId v) const { return open_[v] == kOneFan; }
+  bool inTriangle(VertexId v) const { return start_[v] != kNoTriangle; }
 
-  // Calls visit(slot, k) for each triangle around an interior vertex, counter-clockwise
-  // from wherever the walk starts, where k is the vertex's index in the triangle.
+  // Calls visit(slot, k) for each triangle around a vertex, counter-clockwise, where k is
+  // the vertex's index in the triangle: around an interior vertex from wherever the walk
+  // starts, around an open one from its first triangle after the outline.
   template <class Visit>
   void eachAround(VertexId v, Visit visit) const {
-    aroundFrom(static_cast<std::int32_t>(v), start_[v], visit);
+    if (open_[v]) aroundOpen(static_cast<std::int32_t>(v), visit);
+    else aroundFrom(static_cast<std::int32_t>(v), start_[v], visit);
   }
+  // The number of ring vertices: of triangles around an interior vertex, one more around
+  // an open one.
   int degree(VertexId v) const;
+  // Along the outline with the TIN's data on the left, the vertex before and after v (an
+  // open vertex of one fan).
+  VertexId outlineBefore(VertexId v) const;
+  VertexId outlineAfter(VertexId v) const;
   // Star walks wait on memory: a loop over many vertices asks for the entry of the
   // vertex `far` ahead and for the first triangle and point of the one `near` ahead
   // (whose entry then is there), 5 % off the whole build on alps_2x2.
@@ -74,8 +96,8 @@ class SimplificationMesh {
       __builtin_prefetch(&triangles_[start_[v]]), __builtin_prefetch(&points_[v]);
     }
   }
-  // Writes the star of an interior vertex into arrays of degree(v) entries each, and
-  // its points into `geometry`.
+  // Writes the star of a vertex (interior, or open of one fan) into arrays of degree(v)
+  // entries each, and its points into `geometry`.
   void starOf(VertexId v, VertexId* ring, std::int32_t* slots, std::int32_t* outer, Star& geometry) const;
   // The same ring as points, for importance, and as TIN ids in `ids` when the degree
   // (returned) is at most `capacity`.
@@ -86,7 +108,8 @@ class SimplificationMesh {
   // planCompaction() and applyCompaction() before the next walk. `fill` (degree - 2
   // triangles of local ring indices, from retriangulateStar) triangulates the ring, and
   // `onEdge` is its ringEdgeTriangles(); the new triangles take the first star slots, in
-  // fill's order, with `ids` as their hierarchy ids, and the last two slots die.
+  // fill's order, with `ids` as their hierarchy ids, and the rest of the slots die (two
+  // for an interior vertex, one for an open one).
   void beginRound();
   void retire(const StarView& star, const int* onEdge);
   void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
@@ -124,11 +147,33 @@ class SimplificationMesh {
   }
   template <class Visit>
   void canonicalWalk(VertexId v, Visit visit) const;
+  // From an open vertex's first triangle (the one whose edge to the vertex before it is
+  // on the outline) to its last.
+  std::int32_t firstOpen(std::int32_t v) const {
+    std::int32_t t = start_[v];
+    for (;;) {
+      const MeshTriangle& tri = triangles_[t];
+      const int k = tri.v[0] == v ? 0 : tri.v[1] == v ? 1 : 2;
+      const std::int32_t before = tri.n[(k + 2) % 3];
+      if (before == kNoTriangle) return t;
+      t = before;
+    }
+  }
+  template <class Visit>
+  void aroundOpen(std::int32_t v, Visit visit) const {
+    for (std::int32_t t = firstOpen(v); t != kNoTriangle;) {
+      const MeshTriangle& tri = triangles_[t];
+      const int k = tri.v[0] == v ? 0 : tri.v[1] == v ? 1 : 2;
+      visit(t, k);
+      t = tri.n[(k + 1) % 3];
+    }
+  }
+  enum : std::uint8_t { kClosed = 0, kOpen = 1, kOneFan = 2 };
 
   std::vector<Point3> points_;           // by TIN id
   std::vector<MeshTriangle> triangles_;
   std::vector<std::int32_t> start_;      // by TIN id: one triangle around it
-  std::vector<std::uint8_t> open_;       // by TIN id
+  std::vector<std::uint8_t> open_;       // by TIN id: kClosed, kOpen or kOneFan
   std::vector<std::int32_t> successor_;  // by slot retired this round: the new slot holding its ring edge
   std::vector<std::uint32_t> retired_;   // by slot: the round that retired it
   std::uint32_t round_ = 0;

@@ -21,7 +21,7 @@ struct HierarchyTriangle {
   std::int32_t lastLevel = 0;       // the coarsest level for triangles never replaced
   std::int32_t group = kNoGroup;    // the group whose reject triangle it is (none at level 0)
   std::int32_t replacedBy = kNoGroup;  // the group whose accept triangle it is
-  double error = 0;                 // largest vertical distance to the level-0 samples under it
+  double error = 0;                 // largest vertical distance to the DEM at the valid cell centres under it
 };
 
 // One deleted vertex: its star at the finer level (accept triangles) and the triangles
@@ -30,7 +30,7 @@ struct Group {
   VertexId vertex = 0;
   std::int32_t level = 0;           // the coarser level: the vertex is in levels 0 .. level - 1
   double importance = 0;            // by the measure, when it was selected
-  double error = 0;                 // largest vertical distance of the reject triangles to level 0
+  double error = 0;                 // largest vertical distance of the reject triangles to the DEM
   std::uint32_t acceptBegin = 0, acceptEnd = 0;  // ranges in Hierarchy::links
   std::uint32_t rejectBegin = 0, rejectEnd = 0;
   std::uint32_t ringBegin = 0, ringEnd = 0;      // the star's outline, in Hierarchy::rings
@@ -40,7 +40,11 @@ struct LevelStats {
   std::int32_t level = 0;
   std::size_t vertices = 0, triangles = 0, deleted = 0;
   double selectSeconds = 0, deleteSeconds = 0;
-  double maxError = 0;              // largest vertical distance of the level to the level-0 samples
+  // Against the DEM at every valid cell centre the level covers:
+  double maxError = 0;              // the largest vertical distance
+  double rmse = 0;                  // the root mean square vertical distance
+  std::int64_t cells = 0;           // how many valid cells it covers
+  std::size_t outlineVertices = 0;  // vertices on the outline of the data or of a hole
 };
 
 // Kirkpatrick's hierarchy of TINs: level 0 is the original, each level above has an
@@ -58,6 +62,8 @@ struct Hierarchy {
   // How a file that is one TIN was made ("sample", "insert"); empty for a hierarchy,
   // whose method is options.measure.
   std::string tinMethod;
+  // Why the simplification stopped before the stop percentage (empty when it reached it).
+  std::string stopReason;
 
   std::int32_t coarsest() const { return static_cast<std::int32_t>(levels.size()) - 1; }
   // The triangles (indices into `triangles`) of one level.

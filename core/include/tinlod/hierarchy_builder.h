@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "tinlod/dem.h"
 #include "tinlod/feedback.h"
 #include "tinlod/hierarchy.h"
 
@@ -12,12 +13,15 @@ namespace tinlod {
 
 using PointXY = std::array<double, 2>;
 
-// Simplifies `base` level by level into a hierarchy. Vertices flagged in `fixed`, the
+// Simplifies `base`, sampled from `dem`, level by level into a hierarchy, measuring every
+// level against the DEM at each valid cell centre it covers (TinVertex::row, col, dcol
+// and drow say where each vertex lies in the DEM's grid). Vertices flagged in `fixed`, the
 // vertices nearest to `keep` (points in the TIN's CRS; points off the TIN's data are
-// ignored with a warning), and every vertex on the TIN's outline or on the edge of a
-// hole are never deleted: the extent and the holes are the same at every level. The
+// ignored with a warning) and the raster's corners are never deleted; a vertex on the
+// outline of the data or of a hole goes only while the outline moves by at most the
+// options' tolerance, and never out over nodata (none goes with keepOutline). The
 // hierarchy keeps `base`: pass std::move(tin) when the TIN is not needed afterwards.
-Hierarchy buildHierarchy(Tin base, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
+Hierarchy buildHierarchy(Tin base, const Dem& dem, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
                          const ProgressRange& progress, const std::vector<PointXY>& keep = {});
 
 }  // namespace tinlod

@@ -16,7 +16,11 @@ struct HierarchyOptions {
   int maxLevels = 0;                  // stop after this many levels above level 0; 0: no limit
                                       // (a level that would delete under 1 % is never made)
   int maxDegree = 11;                 // degree measure: only vertices of at most this degree go
-  double maxError = INFINITY;         // error measure: no level's error may exceed this (metres)
+  double maxError = INFINITY;         // error measure: no valid DEM cell may end further than
+                                      //   max(this, level 0's own distance there) from a level (metres)
+  bool keepOutline = false;           // never delete outline vertices (data's outline, holes' edges)
+  double outlineTolerance = NAN;      // metres the outline may move at level 1 (growing with the
+                                      //   levels as the vertex spacing does); NaN: one DEM cell
   bool thresholdMode = false;         // the study's threshold mode: one pass per level, every
   double threshold = 0;               //   independent vertex with importance below `threshold`
   bool fixPeaksPits = false;          // keep strict local maxima and minima of the DEM (3 x 3)

@@ -19,10 +19,13 @@ enum class Measure { Degree, Volume, Normal, Error };
 std::string measureName(Measure measure);
 Measure parseMeasure(const std::string& name);  // throws Error listing the choices
 
-// A vertex and its neighbours in counter-clockwise order: its star in the TIN.
+// A vertex and its neighbours in counter-clockwise order: its star in the TIN. An open
+// star (a vertex on the outline) has a triangle between each ring vertex and the next but
+// none between the last and the first: its deletion joins those two by an outline edge.
 struct Star {
   Point3 centre;
   std::vector<Point3> ring;
+  bool open = false;
 };
 
 using LocalTriangle = std::array<int, 3>;  // indices into Star::ring, counter-clockwise
@@ -35,15 +38,25 @@ using LocalTriangle = std::array<int, 3>;  // indices into Star::ring, counter-c
 // strictly inside its circle), so the result is always a Delaunay triangulation of the
 // polygon: CGAL's own removal makes the same one, up to the choice among cocircular
 // points (checked in the tests). The simplifier deletes vertices with it. `out` is the
-// caller's, to spare allocations. Returns convexRing(star), which the queue finds on the
-// way.
+// caller's, to spare allocations. An open star's polygon (its ring, closed by the edge
+// from the last ring vertex to the first) is filled by retriangulateOpenStar. Returns
+// false, with `out` empty, when an open star's polygon cannot be filled (see there).
 bool retriangulateStar(const Star& star, std::vector<LocalTriangle>& out);
 std::vector<LocalTriangle> retriangulateStar(const Star& star);
+// The constrained Delaunay triangulation of an open star's polygon: ears clipped with
+// CGAL's exact orientation, then edges flipped until each inner edge passes CGAL's exact
+// in-circle test (Lawson). The new outline edge joins the last ring vertex to the first;
+// every other ring vertex must lie strictly on its inner side, so that the polygon is
+// simple, or false is returned and nothing is filled.
+bool retriangulateOpenStar(const Star& star, std::vector<LocalTriangle>& out);
 // For each ring edge k of a star of degree d (ring vertex k to k + 1), the index among
 // `fill` (its d - 2 triangles, as retriangulateStar makes them) of the triangle on it.
 void ringEdgeTriangles(const LocalTriangle* fill, int d, int* onEdge);
 
-// |volume under the star - volume under its retriangulation| (cubic metres).
+// |volume under the star - volume under its retriangulation| (cubic metres). For an open
+// star the ground it gives up (between the old and the new outline edge) counts as the
+// plane through the vertex and its two outline neighbours, so that only the change over
+// the ground both cover is measured.
 double volumeChange(const Star& star, const std::vector<LocalTriangle>& without);
 
 // Mean dot product of the star triangles' unit normals with their normalised mean: 1 on
@@ -52,27 +65,15 @@ double normalFlatness(const Star& star);
 
 // Whether the star's ring is a convex polygon (CGAL's exact orientation).
 bool convexRing(const Star& star);
-// One of `count` triangles, which triangulate the star's polygon, that holds p in x/y
-// (CGAL's exact orientation): triangle `likely` if it does, else the first that does (on
-// a shared edge, the first). p must lie in the polygon (closed), as the samples under a
-// star do; `convex` is convexRing(star), which spares the tests on the ring's edges.
-// A sample under old star triangle k most often lies in the new triangle on ring edge k:
-// tried first, it spares most tests.
-int triangleHolding(const Star& star, const LocalTriangle* tris, std::size_t count, const Point3& p, bool convex,
-                    int likely = -1);
 // The plane of triangle t of the star's ring, from its first corner.
 TrianglePlane planeOf(const Star& star, const LocalTriangle& t);
 
-// Largest vertical distance from the retriangulated star to the samples (which must
-// lie in the star's polygon) and to the centre itself.
-double maxVerticalError(const Star& star, const std::vector<LocalTriangle>& without,
-                        const std::vector<Point3>& samples);
-
-// The measure's importance of the star's centre: degree, volume change, 1 - flatness,
-// or vertical error. Smaller means less important. The volume is measured on the ear
+// The measure's importance of the star's centre: degree (ring vertices), volume change or
+// 1 - flatness; the error measure is the simplifier's, measured against the DEM's cells.
+// Smaller means less important. The volume of an interior star is measured on the ear
 // queue in floating point alone (ranking, and convexity by CGAL's floating-point kernel:
-// a near-degenerate star can change the value, never a TIN); the error on the exact
-// retriangulation, so that it is the error the deletion certifies.
-double importance(Measure measure, const Star& star, const std::vector<Point3>& samples);
+// a near-degenerate star can change the value, never a TIN); an open star's on its exact
+// fill, and +infinity when it cannot be filled.
+double importance(Measure measure, const Star& star);
 
 }  // namespace tinlod

@@ -16,6 +16,11 @@ struct TinVertex {
   double z = 0;
   std::int32_t row = 0;  // source DEM cell
   std::int32_t col = 0;
+  // The jitter in cell units: the vertex lies at (col + dcol, row + drow) in the DEM's
+  // grid, where cell centres are at whole numbers. The simplifier measures each level
+  // against the DEM's cells from there.
+  float dcol = 0;
+  float drow = 0;
   bool outline = false;  // on the edge of the valid area (raster edge or nodata)
 };
 
