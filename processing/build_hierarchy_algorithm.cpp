@@ -39,17 +39,22 @@ QString BuildHierarchyAlgorithm::shortHelpString() const {
              "Methods: degree (Kirkpatrick: vertices of degree at most Maximum degree, lowest first); "
              "volume (change of the volume under the neighbourhood when the vertex goes, smallest first); "
              "normal (how much the vertex's triangles' normals differ, flattest first); error (largest "
-             "vertical distance after deletion to every original sample under the neighbourhood; Maximum "
-             "error stops it). Every level's maximum vertical error against the original TIN is measured, "
-             "whatever the method. Vertices on the outline and on the edges of nodata holes are never "
-             "deleted, nor are points to keep (snapped to the nearest vertex) and, if asked, peaks and pits "
-             "(strict local maxima and minima of the DEM in 3 x 3 cells).\n\n") +
+             "vertical distance after deletion to the DEM at every valid cell centre under the neighbourhood; "
+             "with Maximum error E a vertex goes only while every such cell stays within max(E, level 0's own "
+             "distance there)). Every level's maximum and RMS vertical distance to the DEM at every valid cell "
+             "centre it covers is measured, whatever the method. Vertices on the outline of the data and of "
+             "nodata holes go while the outline moves less than the Outline tolerance (one DEM cell by "
+             "default, growing with the levels as the vertex spacing does), never out over nodata; a raster "
+             "edge stays on its line and the raster's corners stay. Points to keep (snapped to the nearest "
+             "vertex) and, if asked, peaks and pits (strict local maxima and minima of the DEM in 3 x 3 "
+             "cells) are never deleted.\n\n") +
          samplingHelp() +
          QStringLiteral(
              "\n\nOutput: a GeoPackage with layers vertices (with level and fixed), triangles (each "
              "distinct triangle once, with first_level, last_level, group_id, replaced_by and error), "
              "level_0, level_1, ... (one per level, as views), groups (outline of each deleted vertex's "
-             "neighbourhood) and levels (counts, times and maximum error per level). The level layers "
+             "neighbourhood) and levels (counts, times, maximum and RMS error against the DEM, cells covered and "
+             "given up, outline vertices per level). The level layers "
              "are loaded as a group, the coarsest visible.\n\n") +
          QStringLiteral("Optional: an accuracy raster of the coarsest level and a report of every level.\n") +
          accuracyHelp();
@@ -78,6 +83,11 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"),
                                                          QStringLiteral("Threshold mode: delete every independent vertex below this importance"),
                                                          QgsProcessingParameterNumber::Double, QVariant(), true)));
+  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("OUTLINE_TOLERANCE"),
+                                                         QStringLiteral("Outline tolerance at level 1, metres (empty: one DEM cell)"),
+                                                         QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
+  addParameter(advanced(new QgsProcessingParameterBoolean(QStringLiteral("KEEP_OUTLINE"),
+                                                          QStringLiteral("Keep every outline vertex (every level covers level 0's area)"), false)));
   addAccuracyParameters(false);
   addParameter(new QgsProcessingParameterBoolean(QStringLiteral("LOAD_LEVELS"), QStringLiteral("Load the level layers as a group"), true));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Hierarchy GeoPackage"),
@@ -107,6 +117,10 @@ bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Qg
   options_.thresholdMode = threshold.isValid() && !threshold.toString().isEmpty();
   if (options_.thresholdMode) options_.threshold = parameterAsDouble(parameters, QStringLiteral("THRESHOLD"), context);
   options_.fixPeaksPits = parameterAsBoolean(parameters, QStringLiteral("FIX_PEAKS_PITS"), context);
+  const QVariant tolerance = parameters.value(QStringLiteral("OUTLINE_TOLERANCE"));
+  if (tolerance.isValid() && !tolerance.toString().isEmpty())
+    options_.outlineTolerance = parameterAsDouble(parameters, QStringLiteral("OUTLINE_TOLERANCE"), context);
+  options_.keepOutline = parameterAsBoolean(parameters, QStringLiteral("KEEP_OUTLINE"), context);
   loadLevels_ = parameterAsBoolean(parameters, QStringLiteral("LOAD_LEVELS"), context);
   readAccuracyParameters(parameters, context);
   readFixedPoints(parameters, context);

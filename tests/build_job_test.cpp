@@ -65,8 +65,12 @@ TEST(BuildJob, EveryLevelIsALayerWithTheRecordedCounts) {
   }
   // Each distinct triangle is stored once; groups link accept and reject triangles.
   EXPECT_EQ(count(out, "SELECT COUNT(*) FROM groups"), count(out, "SELECT SUM(deleted) FROM levels"));
+  // Two accept triangles more than reject ones for an inner vertex, one for an outline vertex.
   EXPECT_EQ(count(out, "SELECT COUNT(*) FROM groups g WHERE (SELECT COUNT(*) FROM triangles t WHERE t.replaced_by = g.id) "
-                       "!= (SELECT COUNT(*) FROM triangles t WHERE t.group_id = g.id) + 2"), 0);
+                       "- (SELECT COUNT(*) FROM triangles t WHERE t.group_id = g.id) NOT IN (1, 2)"), 0);
+  EXPECT_GT(count(out, "SELECT COUNT(*) FROM groups g WHERE (SELECT COUNT(*) FROM triangles t WHERE t.replaced_by = g.id) "
+                       "= (SELECT COUNT(*) FROM triangles t WHERE t.group_id = g.id) + 1"), 0);
+  EXPECT_EQ(count(out, "SELECT COUNT(*) FROM levels WHERE rmse IS NULL OR cells IS NULL OR outline_vertices IS NULL"), 0);
   EXPECT_EQ(count(out, "SELECT COUNT(*) FROM triangles WHERE group_id IS NULL"), (long long)info.levels[0].triangles);
   EXPECT_EQ(info.metadata.at("method"), "volume");
   EXPECT_EQ(count(out, "SELECT COUNT(*) FROM levels WHERE method = 'volume' AND delete_pct = 20 AND stop_pct = 5"),
@@ -186,8 +190,18 @@ TEST(BuildJob, OptionsThatWouldDoNothingAreRefused) {
 TEST(BuildJob, StoppingAboveTheTargetForFixedVerticesIsSaidAndNoTinyLevelsAreMade) {
   test::RecordingFeedback fb;
   const std::string out = test::tempDir() + "/h.gpkg";
-  runBuildJob(smallDem(), out, {}, {}, false, fb.feedback());  // a small DEM: the outline is over 5 %
+  HierarchyOptions keep;
+  keep.keepOutline = true;  // a small DEM: its outline alone is over 5 %
+  runBuildJob(smallDem(), out, {}, keep, false, fb.feedback());
   EXPECT_TRUE(fb.warned("are fixed")) << (fb.warnings.empty() ? "" : fb.warnings[0]);
+  EXPECT_TRUE(fb.warned("-keep_outline")) << (fb.warnings.empty() ? "" : fb.warnings[0]);
+  // The error method stopped by its bound says so too.
+  test::RecordingFeedback bounded;
+  HierarchyOptions error;
+  error.measure = Measure::Error;
+  error.maxError = 1;
+  runBuildJob(smallDem(), test::tempDir() + "/e.gpkg", {}, error, false, bounded.feedback());
+  EXPECT_TRUE(bounded.warned("-max_error 1 m")) << (bounded.warnings.empty() ? "" : bounded.warnings[0]);
   const HierarchyInfo info = readHierarchyInfo(out);
   for (std::size_t L = 1; L < info.levels.size(); ++L)
     EXPECT_GE(info.levels[L].deleted * 100, info.levels[L - 1].vertices) << "level " << L;

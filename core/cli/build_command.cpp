@@ -14,7 +14,8 @@ namespace {
 
 const char* const kUsage =
     "tinlod build DEM OUT.gpkg [-method degree|volume|normal|error] [-delete_pct p] [-stop_pct s] "
-    "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-fixed POINTS] [-fix_peaks_pits] "
+    "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-outline_tolerance m] [-keep_outline] "
+    "[-fixed POINTS] [-fix_peaks_pits] "
     "[sampling options] [accuracy options] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Samples a DEM into a TIN and simplifies it level by level into a triangulation
@@ -28,23 +29,34 @@ Simplification:
                    degree  its degree; only vertices of degree <= -max_degree go
                    volume  |change of the volume under its neighbourhood| when deleted
                    normal  1 - mean dot product of its triangles' unit normals with their mean
-                   error   largest vertical distance, after its deletion, to every original
-                           sample under its neighbourhood (every level's error is certified)
+                   error   largest vertical distance, after its deletion, to the DEM at every
+                           valid cell centre under its new triangles
   -delete_pct p    at most p % of the current vertices deleted per level (default 20); an
                    independent set rarely holds more than about a quarter of them
   -stop_pct s      stop when s % of the original vertices remain (default 5)
   -max_levels n    stop after n levels above level 0 (default: no limit); a level that
                    would delete under 1 % of its vertices is never made
   -max_degree d    degree method: largest degree deleted (default 11, Kirkpatrick's)
-  -max_error m     error method: no level's vertical error may exceed m metres
+  -max_error m     error method: a vertex goes only if, at every valid cell centre under
+                   its new triangles, the surface stays within max(m, level 0's own
+                   distance there) of the DEM; so every level is, at every valid cell
+                   centre it covers (level 0 is a sample of the DEM and may already be
+                   further than m)
   -threshold t     the study's threshold mode: per level, delete every independent vertex
                    whose importance is below t, instead of -delete_pct; t is in the method's
                    units: cubic metres (volume), metres (error), a degree (degree), or
                    1 - flatness (normal)
   -fixed POINTS    vector file of points whose nearest vertices are never deleted
   -fix_peaks_pits  never delete strict local maxima and minima of the DEM (3 x 3)
-Vertices on the outline of the data and on the edges of nodata holes are never deleted:
-every level covers the same area, with the same holes.
+  -outline_tolerance m
+                   how far the outline of the data and of its holes may move when its
+                   vertices go, in metres at level 1 (default: one DEM cell), growing with
+                   the levels as the spacing of the vertices does (x sqrt(level 0's vertices
+                   / the level's)); the outline never moves out over nodata, and a raster
+                   edge stays on its line (a projected DEM keeps its exact rectangle)
+  -keep_outline    never delete outline vertices: every level covers level 0's area
+Every level is measured against the DEM at every valid cell centre it covers: its largest
+and RMS vertical distance, and the cells its outline gave up (levels table, tinlod info).
 
 Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, -jitter m,
   -seed n
@@ -55,7 +67,7 @@ Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, 
 Output layers: vertices (with level and fixed), triangles (each distinct triangle once, with
 first_level, last_level, group_id, replaced_by, error), level_0, level_1, ... (views: add any
 level to the map), groups (outline of each deleted vertex's neighbourhood), levels (counts,
-times and maximum error per level). `tinlod info OUT.gpkg` describes the file.
+times, maximum and RMS error, cells covered and given up, outline vertices per level). `tinlod info OUT.gpkg` describes the file.
 )";
 
 }  // namespace
@@ -80,6 +92,8 @@ int buildCommand(std::vector<std::string> args) {
   o.threshold = threshold;
   o.fixedPoints = a.text("-fixed", "");
   o.fixPeaksPits = a.flag("-fix_peaks_pits");
+  o.outlineTolerance = a.number("-outline_tolerance", o.outlineTolerance);
+  o.keepOutline = a.flag("-keep_outline");
   const SampleOptions sample = sampleOptions(a);
   const AccuracyOutputs accuracy = accuracyOutputs(a);
   const bool overwrite = a.flag("-overwrite");

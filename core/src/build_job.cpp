@@ -48,6 +48,8 @@ std::map<std::string, std::string> buildMetadata(const std::string& demPath, con
           {"TINLOD_MAX_ERROR", o.maxError == INFINITY ? "none" : formatNumber(o.maxError)},
           {"TINLOD_THRESHOLD", o.thresholdMode ? formatNumber(o.threshold) : "none"},
           {"TINLOD_FIX_PEAKS_PITS", o.fixPeaksPits ? "yes" : "no"},
+          {"TINLOD_OUTLINE", o.keepOutline ? "kept" : std::isnan(o.outlineTolerance) ? "tolerance one cell"
+                                                                                     : "tolerance " + formatNumber(o.outlineTolerance) + " m"},
           {"TINLOD_FIXED_POINTS", o.fixedPoints.empty() ? "none" : o.fixedPoints}};
 }
 

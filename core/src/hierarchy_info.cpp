@@ -30,6 +30,12 @@ void readLevels(GDALDataset& ds, HierarchyInfo& info) {
       l.selectSeconds = f->GetFieldAsDouble("select_seconds");
       l.deleteSeconds = f->GetFieldAsDouble("delete_seconds");
       l.maxError = f->GetFieldAsDouble("max_error");
+      const OGRFeatureDefn* defn = f->GetDefnRef();
+      if (defn->GetFieldIndex("rmse") >= 0) {  // files from before these fields hold none
+        l.rmse = f->GetFieldAsDouble("rmse");
+        l.cells = f->GetFieldAsInteger64("cells");
+        l.outlineVertices = static_cast<std::size_t>(f->GetFieldAsInteger64("outline_vertices"));
+      }
       info.levels.push_back(l);
     }
     return;
@@ -96,7 +102,8 @@ std::string toJson(const HierarchyInfo& info) {
       out << l.maxError;
     else
       out << "null";  // JSON has no infinity
-    out << "}";
+    out << ", \"rmse\": " << l.rmse << ", \"cells\": " << l.cells << ", \"cells_given_up\": "
+        << info.levels.front().cells - l.cells << ", \"outline_vertices\": " << l.outlineVertices << "}";
   }
   out << "\n  ]\n}\n";
   return out.str();
@@ -108,11 +115,13 @@ std::string toText(const HierarchyInfo& info) {
       << info.bytes / 1e6 << " MB\n";
   for (const auto& [k, v] : info.metadata) out << "  " << k << " = " << v << "\n";
   out << std::setw(6) << "level" << std::setw(11) << "vertices" << std::setw(11) << "triangles" << std::setw(10)
-      << "deleted" << std::setw(10) << "select s" << std::setw(10) << "delete s" << std::setw(12) << "max error m" << "\n";
+      << "deleted" << std::setw(10) << "select s" << std::setw(10) << "delete s" << std::setw(12) << "max error m" << std::setw(9) << "RMSE m"
+      << std::setw(10) << "outline" << std::setw(12) << "cells lost" << "\n";
   for (const LevelStats& l : info.levels)
     out << std::setw(6) << l.level << std::setw(11) << l.vertices << std::setw(11) << l.triangles << std::setw(10)
         << l.deleted << std::setprecision(3) << std::setw(10) << l.selectSeconds << std::setw(10) << l.deleteSeconds
-        << std::setprecision(2) << std::setw(12) << l.maxError << "\n";
+        << std::setprecision(2) << std::setw(12) << l.maxError << std::setw(9) << l.rmse << std::setw(10)
+        << l.outlineVertices << std::setw(12) << info.levels.front().cells - l.cells << "\n";
   return out.str();
 }
 

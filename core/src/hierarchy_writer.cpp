@@ -46,6 +46,10 @@ void writeLevels(const Hierarchy& h, OGRLayer& layer) {
     feature.SetField("select_seconds", l.selectSeconds);
     feature.SetField("delete_seconds", l.deleteSeconds);
     feature.SetField("max_error", l.maxError);
+    feature.SetField("rmse", l.rmse);
+    feature.SetField("cells", static_cast<GIntBig>(l.cells));
+    feature.SetField("cells_given_up", static_cast<GIntBig>(h.levels.front().cells - l.cells));
+    feature.SetField("outline_vertices", static_cast<GIntBig>(l.outlineVertices));
     feature.SetField("method", measureName(h.options.measure).c_str());
     feature.SetField("delete_pct", h.options.deletePct);
     feature.SetField("stop_pct", h.options.stopPct);
@@ -85,7 +89,9 @@ void writeHierarchyGpkg(const Hierarchy& h, const std::string& path, const GpkgW
   OGRLayer* levels = out.createLayer("levels", wkbNone, "",
                                      {{"level"}, {"vertices", OFTInteger64}, {"triangles", OFTInteger64},
                                       {"deleted", OFTInteger64}, {"select_seconds", OFTReal},
-                                      {"delete_seconds", OFTReal}, {"max_error", OFTReal}, {"method", OFTString},
+                                      {"delete_seconds", OFTReal}, {"max_error", OFTReal}, {"rmse", OFTReal},
+                                      {"cells", OFTInteger64}, {"cells_given_up", OFTInteger64},
+                                      {"outline_vertices", OFTInteger64}, {"method", OFTString},
                                       {"delete_pct", OFTReal}, {"stop_pct", OFTReal}});
   std::vector<Triangle> corners;
   corners.reserve(h.triangles.size());
