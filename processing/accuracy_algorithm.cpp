@@ -4,6 +4,8 @@
 #include <qgsprocessingoutputs.h>
 #include <qgsprocessingparameters.h>
 
+#include <cmath>
+
 #include "processing_feedback.h"
 
 namespace tinlod::qgis {
@@ -55,10 +57,15 @@ QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessin
       [&] { return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback)); });
   const int level = accuracy_.rasterLevel < 0 ? static_cast<int>(report.rows.size()) - 1 : accuracy_.rasterLevel;
   const LevelAccuracy& row = report.rows[static_cast<std::size_t>(level)];
-  for (const LevelAccuracy& r : report.rows)
-    feedback->pushInfo(QStringLiteral("level %1: %2 vertices, RMSE %3 m, maximum error %4 m, r elevation %5, r mean curvature %6")
-                           .arg(r.level).arg(r.vertices).arg(r.rmse, 0, 'f', 2).arg(r.maxAbsError, 0, 'f', 2)
-                           .arg(correlationOf(r, "elevation"), 0, 'f', 6).arg(correlationOf(r, "mean_curvature"), 0, 'f', 4));
+  for (const LevelAccuracy& r : report.rows) {
+    QString line = QStringLiteral("level %1: %2 vertices, RMSE %3 m, maximum error %4 m, r elevation %5, r mean curvature %6")
+                       .arg(r.level).arg(r.vertices).arg(r.rmse, 0, 'f', 2).arg(r.maxAbsError, 0, 'f', 2)
+                       .arg(correlationOf(r, "elevation"), 0, 'f', 6).arg(correlationOf(r, "mean_curvature"), 0, 'f', 4);
+    if (std::isfinite(r.insertRmse))
+      line += QStringLiteral(", greedy insertion with as many vertices RMSE %1 m (ratio %2)")
+                  .arg(r.insertRmse, 0, 'f', 2).arg(r.insertRatio, 0, 'f', 3);
+    feedback->pushInfo(line);
+  }
   QVariantMap outputs;
   if (!accuracy_.rasterPath.empty()) outputs.insert(QStringLiteral("ACCURACY"), QString::fromStdString(accuracy_.rasterPath));
   if (!accuracy_.reportPath.empty()) outputs.insert(QStringLiteral("REPORT"), QString::fromStdString(accuracy_.reportPath));

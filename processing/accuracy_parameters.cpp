@@ -29,6 +29,8 @@ void DemAlgorithm::addAccuracyParameters(bool createOutputsByDefault) {
   addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("CONTROL_SPACING"),
                                                          QStringLiteral("B-spline control points every n test points"),
                                                          QgsProcessingParameterNumber::Integer, d.controlSpacing, false, 1, 1000)));
+  addParameter(advanced(new QgsProcessingParameterBoolean(
+      QStringLiteral("COMPARE_INSERT"), QStringLiteral("Compare each level with greedy insertion at its size"), false)));
   addParameter(new QgsProcessingParameterRasterDestination(QStringLiteral("ACCURACY"), QStringLiteral("Accuracy raster"),
                                                            QVariant(), true, createOutputsByDefault));
   addParameter(new QgsProcessingParameterFileDestination(
@@ -41,6 +43,7 @@ void DemAlgorithm::readAccuracyParameters(const QVariantMap& parameters, QgsProc
   accuracy_.options.reference = parameterAsEnum(parameters, QStringLiteral("REFERENCE"), context) == 0 ? Reference::Tin : Reference::Dem;
   accuracy_.options.step = parameterAsInt(parameters, QStringLiteral("STEP"), context);
   accuracy_.options.controlSpacing = parameterAsInt(parameters, QStringLiteral("CONTROL_SPACING"), context);
+  accuracy_.compareInsert = parameterAsBoolean(parameters, QStringLiteral("COMPARE_INSERT"), context);
   const QString raster = optionalPath(parameterAsOutputLayer(parameters, QStringLiteral("ACCURACY"), context));
   accuracy_.rasterPath = raster.toStdString();
   if (!raster.isEmpty()) {
@@ -63,7 +66,11 @@ QString DemAlgorithm::accuracyHelp() {
       "Accuracy raster: on the DEM's grid and CRS, band 1 elevation difference (simplified - reference, "
       "m), band 2 mean curvature difference, bands 3 and 4 the reference's and the simplified TIN's mean "
       "curvature (1/m; positive in hollows). Report: every level, as HTML with plots, CSV or JSON, "
-      "following the file's extension.");
+      "following the file's extension.\n\n"
+      "Compare with greedy insertion (advanced, off by default): greedy insertion (Garland and Heckbert) over "
+      "the same sampled points is run to exactly each level's number of vertices and measured the same way; the "
+      "report gains its RMSE and the ratio level RMSE / insert RMSE (1: as good as greedy insertion with as "
+      "many vertices, 2: twice its error). It adds about one insertion and one measurement per level.");
 }
 
 }  // namespace tinlod::qgis

@@ -21,7 +21,7 @@ namespace {
 
 const char* const kCsvHeader =
     "dem,method,delete_pct,stop_pct,level,vertices,triangles,select_s,delete_s,certified_error_m,test_points,"
-    "rmse_m,mean_error_m,max_abs_error_m,max_error_x,max_error_y,morans_i,"
+    "rmse_m,mean_error_m,max_abs_error_m,max_error_x,max_error_y,morans_i,insert_rmse_m,rmse_ratio_to_insert,"
     "elevation_n,elevation_r,elevation_mean_ref,elevation_mean_simplified,elevation_std_ref,elevation_std_simplified,"
     "mean_curvature_n,mean_curvature_r,mean_curvature_mean_ref,mean_curvature_mean_simplified,"
     "mean_curvature_std_ref,mean_curvature_std_simplified";
@@ -387,6 +387,72 @@ TEST(AccuracyReport, ReplacesAnExistingFileAtomically) {
   EXPECT_EQ(old, "old report");
   EXPECT_EQ(readText(path).rfind(std::string(kCsvHeader) + "\n", 0), 0u);
   EXPECT_EQ(dir.names(), std::vector<std::string>{"r.csv"});  // no temporary sibling left
+}
+
+// Levels compared with greedy insertion at their sizes, and the insertion's own rows.
+std::vector<LevelAccuracy> comparedWithInsertion() {
+  std::vector<LevelAccuracy> rows = run("alps.tif", "volume", 3);
+  std::vector<LevelAccuracy> inserted = run("alps.tif", "insert", 3);
+  inserted.erase(inserted.begin());  // insertion has no level 0
+  for (std::size_t k = 0; k < inserted.size(); ++k) {
+    inserted[k].deletePct = NAN;
+    inserted[k].rmse = 0.5 + k;
+    rows[k + 1].insertRmse = inserted[k].rmse;
+    rows[k + 1].insertRatio = rows[k + 1].rmse / inserted[k].rmse;
+  }
+  rows.insert(rows.end(), inserted.begin(), inserted.end());
+  return rows;
+}
+
+TEST(AccuracyReport, CsvHasTheInsertRmseAndRatioWhereKnown) {
+  TempFolder dir;
+  const std::vector<LevelAccuracy> rows = comparedWithInsertion();
+  writeAccuracyReport(report(rows), dir.file("r.csv"));
+  const std::vector<std::string> text = lines(readText(dir.file("r.csv")));
+  ASSERT_EQ(text.size(), rows.size() + 1);
+  const std::vector<std::string> header = csvFields(text[0]);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const std::vector<std::string> row = csvFields(text[k + 1]);
+    ASSERT_EQ(row.size(), header.size());
+    if (std::isnan(rows[k].insertRatio)) {
+      EXPECT_EQ(csvField(header, row, "insert_rmse_m"), "") << k;
+      EXPECT_EQ(csvField(header, row, "rmse_ratio_to_insert"), "") << k;
+      continue;
+    }
+    EXPECT_EQ(std::strtod(csvField(header, row, "insert_rmse_m").c_str(), nullptr), rows[k].insertRmse);
+    EXPECT_EQ(std::strtod(csvField(header, row, "rmse_ratio_to_insert").c_str(), nullptr), rows[k].insertRatio);
+  }
+  // Greedy insertion deletes nothing: its delete percentage is missing, not 0.
+  EXPECT_EQ(csvField(header, csvFields(text.back()), "method"), "insert");
+  EXPECT_EQ(csvField(header, csvFields(text.back()), "delete_pct"), "");
+}
+
+TEST(AccuracyReport, JsonHasTheInsertRmseAndRatioOrNull) {
+  TempFolder dir;
+  writeAccuracyReport(report(comparedWithInsertion()), dir.file("r.json"));
+  const std::string json = readText(dir.file("r.json"));
+  EXPECT_TRUE(JsonChecker(json).valid()) << json;
+  EXPECT_EQ(occurrences(json, "\"rmse_ratio_to_insert\": "), 5u);  // every level of both runs
+  EXPECT_EQ(occurrences(json, "\"insert_rmse_m\": "), 5u);
+  EXPECT_NE(json.find("\"rmse_ratio_to_insert\": 2.2"), std::string::npos) << json;  // level 1: 1.1 / 0.5
+  EXPECT_NE(json.find("\"insert_rmse_m\": 1.5"), std::string::npos);
+  EXPECT_EQ(occurrences(json, "\"rmse_ratio_to_insert\": null"), 3u);  // level 0 and the insertion's rows
+  EXPECT_NE(json.find("\"delete_pct\": null"), std::string::npos);
+}
+
+TEST(AccuracyReport, HtmlShowsTheRatioColumnAndPlotOnlyWhenKnown) {
+  TempFolder dir;
+  writeAccuracyReport(report(comparedWithInsertion()), dir.file("with.html"));
+  const std::string with = readText(dir.file("with.html"));
+  EXPECT_EQ(occurrences(with, ">RMSE / insert</th>"), 2u);  // in both runs' tables
+  EXPECT_EQ(svgElements(with).size(), 5u);
+  EXPECT_NE(with.find("RMSE / insert RMSE"), std::string::npos);
+  EXPECT_NE(with.find("<td>2.20</td>"), std::string::npos);  // level 1's ratio
+  EXPECT_NE(with.find("alps.tif, insert, stop 5 %"), std::string::npos);  // no delete percentage in its name
+  writeAccuracyReport(report(run("alps.tif", "volume", 3)), dir.file("without.html"));
+  const std::string without = readText(dir.file("without.html"));
+  EXPECT_EQ(without.find("RMSE / insert"), std::string::npos);
+  EXPECT_EQ(svgElements(without).size(), 4u);
 }
 
 TEST(AccuracyReport, KnowsItsExtensionsInAnyCase) {

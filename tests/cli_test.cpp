@@ -33,6 +33,24 @@ CliRun tinlod(const std::string& args) {
 
 bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
 
+// A CSV report (no quoted fields) as rows of named fields.
+std::vector<std::map<std::string, std::string>> csvRows(const std::string& text) {
+  std::vector<std::vector<std::string>> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    lines.emplace_back();
+    std::istringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');) lines.back().push_back(field);
+    if (!line.empty() && line.back() == ',') lines.back().emplace_back();
+  }
+  std::vector<std::map<std::string, std::string>> rows;
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    rows.emplace_back();
+    for (std::size_t i = 0; i < lines[0].size() && i < lines[k].size(); ++i) rows.back()[lines[0][i]] = lines[k][i];
+  }
+  return rows;
+}
+
 std::string defaultDem() {
   static const std::string path = [] {
     const std::string p = test::tempDir() + "/default_dem.tif";
@@ -207,8 +225,20 @@ TEST(Cli, BuildWithAccuracyThenAccuracyAgreeAndPrintTheTable) {
   const CliRun again = tinlod("accuracy -report " + dir + "/again.csv " + defaultDem() + " " + dir + "/h.gpkg");
   ASSERT_EQ(again.exitCode, 0) << again.err;
   EXPECT_EQ(test::readFile(dir + "/again.csv"), csv);  // the same measures, read back from the file
+  // With greedy insertion at each level's size: its RMSE and the ratio, in the table and the report.
+  const CliRun compared =
+      tinlod("accuracy -compare_insert -report " + dir + "/compared.csv " + defaultDem() + " " + dir + "/h.gpkg");
+  ASSERT_EQ(compared.exitCode, 0) << compared.err;
+  EXPECT_TRUE(has(compared.out, "/ insert")) << compared.out;
+  const auto rows = csvRows(test::readFile(dir + "/compared.csv"));
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].at("rmse_ratio_to_insert"), "");  // level 0
+  for (std::size_t L = 1; L < rows.size(); ++L) {
+    const double rmse = std::stod(rows[L].at("rmse_m")), insert = std::stod(rows[L].at("insert_rmse_m"));
+    EXPECT_NEAR(std::stod(rows[L].at("rmse_ratio_to_insert")), rmse / insert, 1e-12 * rmse / insert) << "level " << L;
+  }
   const CliRun help = tinlod("accuracy --help");
-  for (const char* option : {"-accuracy", "-level", "-report", "-reference", "-step", "-control", "-of", "-co"})
+  for (const char* option : {"-accuracy", "-level", "-report", "-reference", "-step", "-control", "-compare_insert", "-of", "-co"})
     EXPECT_TRUE(has(help.out, option)) << option;
   EXPECT_TRUE(has(tinlod("build --help").out, "-reference"));
 }
@@ -439,12 +469,24 @@ TEST(Cli, ExperimentWritesOneReportOfEveryRun) {
   EXPECT_TRUE(has(json, "\"method\": \"degree\""));
   EXPECT_FALSE(has(json, "\"method\": \"insert\""));  // not named in -methods
   EXPECT_TRUE(fs::exists(dir + "/e.csv"));
-  // Greedy insertion at the vertex counts of delete 20 % down to 30 %: 80, 64, 51, 41 and 33 %.
-  const CliRun ins = tinlod("experiment -q -methods insert -delete_pcts 20 -stop_pct 30 -report " + dir + "/i.csv " + defaultDem());
+  // Greedy insertion to exactly the vertex count of each level of the volume hierarchy.
+  const CliRun ins =
+      tinlod("experiment -q -methods volume,insert -delete_pcts 20 -stop_pct 30 -report " + dir + "/i.csv " + defaultDem());
   ASSERT_EQ(ins.exitCode, 0) << ins.err;
-  const std::string csv = test::readFile(dir + "/i.csv");
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6) << csv;  // the header and 5 levels
-  EXPECT_TRUE(has(csv, ",insert,")) << csv.substr(0, 400);
+  std::vector<std::string> levelCounts, insertCounts;
+  for (const auto& row : csvRows(test::readFile(dir + "/i.csv"))) {
+    if (row.at("method") == "insert")
+      insertCounts.push_back(row.at("vertices"));
+    else if (row.at("level") != "0")
+      levelCounts.push_back(row.at("vertices"));
+    if (row.at("method") == "volume" && row.at("level") != "0") EXPECT_NE(row.at("rmse_ratio_to_insert"), "");
+  }
+  EXPECT_GE(levelCounts.size(), 4u);
+  EXPECT_EQ(insertCounts, levelCounts);
+  const CliRun alone = tinlod("experiment -q -methods insert -report " + dir + "/a.csv " + defaultDem());
+  EXPECT_EQ(alone.exitCode, 1);
+  EXPECT_TRUE(has(alone.err, "-methods")) << alone.err;
+  EXPECT_TRUE(has(tinlod("experiment --help").out, "RMSE / insert RMSE"));
   const CliRun bad = tinlod("experiment -q -methods volume,greedy -report " + dir + "/b.csv " + defaultDem());
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_TRUE(has(bad.err, "unknown method 'greedy'")) << bad.err;

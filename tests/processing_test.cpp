@@ -14,10 +14,12 @@
 #include <qgsvectorlayer.h>
 
 #include <QFile>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
@@ -324,6 +326,27 @@ TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
   EXPECT_EQ(r.outputs.value("RMSE").toDouble(), 0.0);  // level 0 against itself
   EXPECT_NEAR(r.outputs.value("R_ELEVATION").toDouble(), 1.0, 1e-12);
   EXPECT_TRUE(fs::exists(raster.toStdString()));
+  // COMPARE_INSERT: greedy insertion at each level's size fills the report's ratio column.
+  const QString compared = QString::fromStdString(dir + "/compared.csv");
+  const Result c = runAlgorithm(QStringLiteral("tinlod:accuracy"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                    {"HIERARCHY", hier},
+                                                                    {"STEP", 3},
+                                                                    {"COMPARE_INSERT", true},
+                                                                    {"REPORT", compared}});
+  ASSERT_TRUE(c.ok) << c.error.toStdString();
+  std::istringstream csv(test::readFile(compared.toStdString()));
+  std::string header, level0, level1;
+  std::getline(csv, header), std::getline(csv, level0), std::getline(csv, level1);
+  const auto field = [&](const std::string& line, const std::string& column) {
+    std::vector<std::string> names, values;
+    std::istringstream a(header), b(line + ",");
+    for (std::string f; std::getline(a, f, ',');) names.push_back(f);
+    for (std::string f; std::getline(b, f, ',');) values.push_back(f);
+    const auto at = std::find(names.begin(), names.end(), column);
+    return at == names.end() ? std::string("no such column") : values.at(static_cast<std::size_t>(at - names.begin()));
+  };
+  EXPECT_EQ(field(level0, "rmse_ratio_to_insert"), "");
+  EXPECT_GT(std::stod(field(level1, "rmse_ratio_to_insert")), 0);
   const Result bad = runAlgorithm(QStringLiteral("tinlod:accuracy"), {{"INPUT", QString::fromStdString(defaultDem())},
                                                                       {"HIERARCHY", hier},
                                                                       {"REPORT", QString::fromStdString(dir + "/r.txt")},

@@ -10,7 +10,7 @@ namespace {
 
 const char* const kUsage =
     "tinlod accuracy DEM TIN.gpkg [-accuracy OUT.tif] [-level L] [-report R.html|.csv|.json] [-reference tin|dem] "
-    "[-step n] [-control c] [-of format] [-co NAME=VALUE] [-b band] [-s_srs srs] [-q]";
+    "[-step n] [-control c] [-compare_insert] [-of format] [-co NAME=VALUE] [-b band] [-s_srs srs] [-q]";
 
 const char* const kHelp = R"(Measures how well each level of a TIN hierarchy (or a TIN) made by tinlod represents
 the original: heights and mean curvature of B-spline surfaces fitted to both, compared

@@ -24,8 +24,12 @@ Usage: tinlod experiment DEM [DEM ...] -report R [options]
 
   -report R          R.html (plots of all runs), R.csv or R.json; repeat it for several
   -methods list      comma-separated (default degree,normal,volume,error,insert); insert is
-                     greedy insertion over the same sampled TIN, measured at the vertex
-                     counts of a hierarchy with the first delete percentage
+                     greedy insertion over the same sampled TIN, run to exactly the vertex
+                     count of every level (above 0) of the other methods' hierarchies and
+                     measured the same way; each level then also reports insert's RMSE at
+                     its size and the ratio level RMSE / insert RMSE (1: as good as greedy
+                     insertion with as many vertices, 2: twice its error). insert needs at
+                     least one other method
   -delete_pcts list  comma-separated delete percentages (default 10,20)
   -stop_pct s        stop percentage (default 5)
   -reference r       tin (default, as in the study) or dem

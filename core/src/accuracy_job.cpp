@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "insertion_levels.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_reader.h"
@@ -63,10 +64,21 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
   const AccuracyEvaluator evaluator(dem, h.base, toTin, outputs.options, progress.sub(0, 0.05));
   AccuracyBands bands;
   const bool raster = !outputs.rasterPath.empty();
-  std::vector<LevelAccuracy> rows =
-      measureLevels(evaluator, h, demName(dem.path), outputs.rasterLevel, raster ? &bands : nullptr, progress.sub(0.05, 0.9));
+  const double measured = outputs.compareInsert ? 0.5 : 0.9;
+  std::vector<LevelAccuracy> rows = measureLevels(evaluator, h, demName(dem.path), outputs.rasterLevel,
+                                                  raster ? &bands : nullptr, progress.sub(0.05, measured));
   if (rows.empty() || rows.front().testPoints == 0)
     throw Error("no test point of '" + dem.path + "' lies on the TIN: give the DEM the TIN was made from");
+  if (outputs.compareInsert) {
+    const std::vector<std::size_t> counts = insertionCounts(rows);
+    if (counts.empty())
+      progress.inform("-compare_insert: a single TIN has no level above 0 to compare with greedy insertion");
+    else
+      progress.inform("Greedy insertion over the same samples to the vertex count of each of " +
+                      std::to_string(counts.size()) + " levels");
+    compareWithInsertion(rows, measureInsertionLevels(evaluator, dem, h.base, toTin, counts, h.options.stopPct,
+                                                      progress.sub(measured, 0.9)));
+  }
   std::string crs = "no CRS";
   if (!dem.crsWkt.empty()) {
     OGRSpatialReference srs;

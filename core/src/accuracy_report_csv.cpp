@@ -14,7 +14,7 @@ namespace {
 const char* const kLevelColumns[] = {"dem",         "method",    "delete_pct",   "stop_pct",        "level",
                                      "vertices",    "triangles", "select_s",     "delete_s",        "certified_error_m",
                                      "test_points", "rmse_m",    "mean_error_m", "max_abs_error_m", "max_error_x",
-                                     "max_error_y", "morans_i"};
+                                     "max_error_y", "morans_i",  "insert_rmse_m", "rmse_ratio_to_insert"};
 const char* const kVariableSuffixes[] = {"_n", "_r", "_mean_ref", "_mean_simplified", "_std_ref", "_std_simplified"};
 
 // RFC 4180: a field with a separator, quote or line break is quoted, quotes doubled.
@@ -46,7 +46,9 @@ std::vector<std::string> levelFields(const LevelAccuracy& r) {
           csvNumber(r.maxAbsError),
           csvNumber(r.maxErrorX),
           csvNumber(r.maxErrorY),
-          csvNumber(r.moransI)};
+          csvNumber(r.moransI),
+          csvNumber(r.insertRmse),
+          csvNumber(r.insertRatio)};
 }
 
 // A row without the variable gets empty fields, so every row has every column.

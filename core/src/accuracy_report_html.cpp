@@ -96,7 +96,7 @@ std::string lead(const AccuracyReport& report, const std::vector<ReportRun>& run
          "</p>\n";
 }
 
-std::string about(const AccuracyReport& report) {
+std::string about(const AccuracyReport& report, bool comparedWithInsertion) {
   const std::string spacing = testPointSpacing(report.step);
   std::string out = "<section class=\"card about\">\n<h2>What this shows</h2>\n<p>";
   out += esc("Each level of each simplification run is compared with " + referenceText(report.reference) +
@@ -110,6 +110,11 @@ std::string about(const AccuracyReport& report) {
           "so the plots show log10(1 \u2212 r), which spreads them apart: \u22125 is r = 0.99999, \u22123 is "
           "0.999, \u22122 is 0.99. Lower is better. Moran's I of the elevation error is near 1 when errors "
           "cluster in patches and near 0 when they scatter at random.");
+  if (comparedWithInsertion)
+    out += "</p>\n<p>" +
+           esc("RMSE / insert is a level's RMSE divided by that of greedy insertion (Garland and Heckbert) over "
+               "the same sampled TIN, run to exactly the level's number of vertices and measured at the same test "
+               "points: 1 is as good as greedy insertion at equal size, 2 twice its error.");
   out += "</p>\n<dl class=\"facts\">\n";
   out += fact("Reference", referenceText(report.reference)) + fact("Test points", spacing) +
          fact("B-spline control points", "every " + std::to_string(report.controlSpacing) + " test points");
@@ -132,15 +137,21 @@ std::string headerCell(const std::string& text, const std::string& tooltip, cons
 }
 
 // Two rows: the correlations share one heading, so each column only names its variable.
-std::string tableHead(const std::vector<std::string>& variables) {
+// `withInsert`: the columns of the comparison with greedy insertion at equal size.
+std::string tableHead(const std::vector<std::string>& variables, bool withInsert) {
   const std::string both = " rowspan=\"2\"";
   std::string out = "<thead><tr>" + headerCell("Level", "0 is the original TIN", both) +
                     headerCell("Vertices", "", both) + headerCell("Triangles", "", both) +
-                    headerCell("RMSE (m)", "root mean square elevation error at the test points", both) +
-                    headerCell("Mean error (m)", "level minus reference: positive when the level is too high", both) +
-                    headerCell("Max |error| (m)", "largest absolute elevation error; hover a cell for where", both) +
-                    headerCell("Certified (m)", "the build's own bound on the vertical error against level 0", both) +
-                    headerCell("Moran's\u00a0I", "spatial autocorrelation of the elevation error", both);
+                    headerCell("RMSE (m)", "root mean square elevation error at the test points", both);
+  if (withInsert)
+    out += headerCell("Insert RMSE (m)",
+                      "RMSE of greedy insertion over the same sampled TIN with exactly this level's vertices", both) +
+           headerCell("RMSE / insert", "this level's RMSE over greedy insertion's at the same size: above 1 is worse",
+                      both);
+  out += headerCell("Mean error (m)", "level minus reference: positive when the level is too high", both) +
+         headerCell("Max |error| (m)", "largest absolute elevation error; hover a cell for where", both) +
+         headerCell("Certified (m)", "the build's own bound on the vertical error against level 0", both) +
+         headerCell("Moran's\u00a0I", "spatial autocorrelation of the elevation error", both);
   if (!variables.empty())
     out += "<th colspan=\"" + std::to_string(variables.size()) +
            "\" class=\"group\" title=\"correlation with the reference at the test points\">r with the reference</th>";
@@ -152,11 +163,13 @@ std::string tableHead(const std::vector<std::string>& variables) {
 
 std::string cell(const std::string& text) { return "<td>" + esc(text) + "</td>"; }
 
-std::string tableRow(const LevelAccuracy& l, const std::vector<std::string>& variables) {
+std::string tableRow(const LevelAccuracy& l, const std::vector<std::string>& variables, bool withInsert) {
   const bool base = l.level == 0;
   std::string out = base ? "<tr class=\"base\">" : "<tr>";
   out += cell(std::to_string(l.level)) + cell(groupedCount(l.vertices)) + cell(groupedCount(l.triangles)) +
-         cell(measure(l.rmse)) + cell(measure(l.meanError));
+         cell(measure(l.rmse));
+  if (withInsert) out += cell(measure(l.insertRmse)) + cell(measure(l.insertRatio));
+  out += cell(measure(l.meanError));
   out += "<td title=\"" + esc("at " + fixedNumber(l.maxErrorX, 1) + ", " + fixedNumber(l.maxErrorY, 1)) + "\">" +
          esc(measure(l.maxAbsError)) + "</td>";
   out += cell(measure(l.certifiedError)) + cell(std::isfinite(l.moransI) ? fixedNumber(l.moransI, 3) : kDash);
@@ -178,19 +191,20 @@ std::string testPointText(const ReportRun& run) {
          " test points per level";
 }
 
-std::string runTable(const ReportRun& run, int index, const std::vector<std::string>& variables) {
+std::string runTable(const ReportRun& run, int index, const std::vector<std::string>& variables, bool withInsert) {
   std::string out = "<div class=\"card\">\n<h3><span class=\"swatch\" style=\"background:" + runColour(index) +
                     "\"></span>" + esc(runName(run)) + "</h3>\n";
   out += "<p class=\"sub\">" + esc(testPointText(run)) + "</p>\n<div class=\"scroll\"><table>\n" +
-         tableHead(variables) + "<tbody>\n";
-  for (const LevelAccuracy* l : run.levels) out += tableRow(*l, variables);
+         tableHead(variables, withInsert) + "<tbody>\n";
+  for (const LevelAccuracy* l : run.levels) out += tableRow(*l, variables, withInsert);
   return out + "</tbody></table></div>\n</div>\n";
 }
 
 std::string tables(const AccuracyReport& report, const std::vector<ReportRun>& runs) {
   const std::vector<std::string> variables = variableNames(report.rows);
+  const bool withInsert = knowsInsertRatio(runs);
   std::string out = "<section>\n<h2>Levels</h2>\n";
-  for (std::size_t i = 0; i < runs.size(); ++i) out += runTable(runs[i], static_cast<int>(i), variables);
+  for (std::size_t i = 0; i < runs.size(); ++i) out += runTable(runs[i], static_cast<int>(i), variables, withInsert);
   return out + "</section>\n";
 }
 
@@ -205,7 +219,7 @@ void writeHtmlReport(const AccuracyReport& report, std::ostream& out) {
       << kStyle << "</style>\n</head>\n<body>\n<main>\n"
       << "<header>\n<h1>" << esc(title) << "</h1>\n"
       << lead(report, runs) << "</header>\n"
-      << about(report);
+      << about(report, knowsInsertRatio(runs));
   if (runs.empty())
     out << "<p class=\"card\">The report has no levels: nothing was compared.</p>\n";
   else

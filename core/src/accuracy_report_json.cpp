@@ -85,6 +85,8 @@ void writeLevel(JsonWriter& json, const LevelAccuracy& l) {
   json.number("max_error_x", l.maxErrorX);
   json.number("max_error_y", l.maxErrorY);
   json.number("morans_i", l.moransI);
+  json.number("insert_rmse_m", l.insertRmse);
+  json.number("rmse_ratio_to_insert", l.insertRatio);
   json.beginObject("variables");
   for (const VariableComparison& v : l.variables) writeVariable(json, v);
   json.end('}');

@@ -13,6 +13,9 @@ namespace tinlod {
 
 void ExperimentOptions::validate() const {
   if (methods.empty() && !insert) throw Error("-methods: name at least one method (degree, normal, volume, error, insert)");
+  if (methods.empty())
+    throw Error("-methods: insert runs greedy insertion to the vertex counts of the delete methods' levels: name "
+                "degree, normal, volume or error beside it");
   if (deletePcts.empty()) throw Error("-delete_pcts: name at least one delete percentage, e.g. 10,20");
   HierarchyOptions h;
   h.stopPct = stopPct;
@@ -26,7 +29,8 @@ void ExperimentOptions::validate() const {
 
 namespace {
 
-// One DEM: the reference is made once and serves every run.
+// One DEM: the reference is made once and serves every run. Greedy insertion is run to
+// every level's vertex count, and each level compared with it at its size.
 void runDem(const std::string& path, const ExperimentOptions& options, std::vector<LevelAccuracy>& rows,
             const ProgressRange& progress) {
   const Dem dem = readDem(path, options.sample.band, progress.sub(0, 0.02));
@@ -35,6 +39,7 @@ void runDem(const std::string& path, const ExperimentOptions& options, std::vect
   const AccuracyEvaluator evaluator(dem, tin, toTin, options.accuracy, progress.sub(0.05, 0.1));
   const double runs = double(options.methods.size() * options.deletePcts.size() + (options.insert ? 1 : 0));
   int run = 0;
+  std::vector<LevelAccuracy> levels;
   for (Measure m : options.methods)
     for (double pct : options.deletePcts) {
       const ProgressRange part = progress.sub(0.1 + 0.9 * run / runs, 0.1 + 0.9 * (run + 1) / runs);
@@ -44,16 +49,19 @@ void runDem(const std::string& path, const ExperimentOptions& options, std::vect
       progress.inform(demName(path) + ": " + measureName(m) + ", delete " + std::to_string(static_cast<int>(pct)) + " %");
       const Hierarchy hierarchy = buildHierarchy(tin, dem, {}, h, part.sub(0, 0.3));
       for (LevelAccuracy& row : measureLevels(evaluator, hierarchy, demName(path), -1, nullptr, part.sub(0.3, 1)))
-        rows.push_back(std::move(row));
+        levels.push_back(std::move(row));
     }
+  std::vector<LevelAccuracy> inserted;
   if (options.insert) {
-    const double pct = options.deletePcts.front();
-    progress.inform(demName(path) + ": greedy insertion at the vertex counts of delete " + std::to_string(static_cast<int>(pct)) + " %");
-    const std::vector<std::size_t> counts = levelCounts(tin.vertices.size(), pct, options.stopPct);
-    for (LevelAccuracy& row : measureInsertionLevels(evaluator, dem, tin, toTin, counts, pct, options.stopPct,
-                                                     progress.sub(0.1 + 0.9 * run / runs, 1)))
-      rows.push_back(std::move(row));
+    const std::vector<std::size_t> counts = insertionCounts(levels);
+    progress.inform(demName(path) + ": greedy insertion to the vertex count of every level (" +
+                    std::to_string(counts.size()) + " sizes)");
+    inserted = measureInsertionLevels(evaluator, dem, tin, toTin, counts, options.stopPct,
+                                      progress.sub(0.1 + 0.9 * run / runs, 1));
+    compareWithInsertion(levels, inserted);
   }
+  for (std::vector<LevelAccuracy>* part : {&levels, &inserted})
+    for (LevelAccuracy& row : *part) rows.push_back(std::move(row));
 }
 
 }  // namespace

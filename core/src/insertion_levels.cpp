@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "insertion_levels.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <string>
 
 #include "tinlod/accuracy_job.h"
 #include "tinlod/insert_job.h"
@@ -10,30 +13,36 @@
 
 namespace tinlod {
 
-std::vector<std::size_t> levelCounts(std::size_t original, double deletePct, double stopPct) {
+std::vector<std::size_t> insertionCounts(const std::vector<LevelAccuracy>& levels) {
   std::vector<std::size_t> counts;
-  const double stop = original * stopPct / 100;
-  for (double n = original * (1 - deletePct / 100); n >= stop && n >= 3; n *= 1 - deletePct / 100)
-    counts.push_back(static_cast<std::size_t>(std::llround(n)));
+  for (const LevelAccuracy& row : levels)
+    if (row.level >= 1) counts.push_back(row.vertices);
+  std::sort(counts.begin(), counts.end(), std::greater<>());
+  counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
   return counts;
 }
 
 std::vector<LevelAccuracy> measureInsertionLevels(const AccuracyEvaluator& evaluator, const Dem& dem, const Tin& sampled,
                                                   const CrsTransform& toTin, const std::vector<std::size_t>& counts,
-                                                  double deletePct, double stopPct, const ProgressRange& progress) {
-  GreedyInserter inserter(makeInsertGrid(dem, toTin, &sampled), progress.sub(0, 0.02));
+                                                  double stopPct, const ProgressRange& progress) {
   std::vector<LevelAccuracy> rows(counts.size());
-  // Coarsest first: each count continues the insertion of the one before.
+  if (counts.empty()) return rows;
+  GreedyInserter inserter(makeInsertGrid(dem, toTin, &sampled), progress.sub(0, 0.02));
+  // Smallest count first: each continues the insertion of the one before.
   for (std::size_t k = counts.size(); k-- > 0;) {
     const double done = double(counts.size() - 1 - k) / counts.size();
     const ProgressRange part = progress.sub(0.02 + 0.98 * done, 0.02 + 0.98 * (done + 1.0 / counts.size()));
     const auto start = std::chrono::steady_clock::now();
     inserter.run({0, counts[k], 0}, part.sub(0, 0.3));
+    if (inserter.vertexCount() != counts[k])
+      progress.warn("greedy insertion over the samples of " + demName(dem.path) + " stopped at " +
+                    std::to_string(inserter.vertexCount()) + " vertices, not " + std::to_string(counts[k]) +
+                    ": no comparison at that size");
     LevelAccuracy& row = rows[k];
     row.selectSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     row.dem = demName(dem.path);
     row.method = "insert";
-    row.deletePct = deletePct, row.stopPct = stopPct;
+    row.deletePct = std::nan(""), row.stopPct = stopPct;
     row.level = static_cast<int>(k) + 1;
     row.certifiedError = inserter.maxError();
     Triangulation triangulation = inserter.triangulation();
@@ -45,6 +54,18 @@ std::vector<LevelAccuracy> measureInsertionLevels(const AccuracyEvaluator& evalu
     evaluator.evaluate(triangles, row, nullptr, part.sub(0.3, 1));
   }
   return rows;
+}
+
+void compareWithInsertion(std::vector<LevelAccuracy>& levels, const std::vector<LevelAccuracy>& inserted) {
+  for (LevelAccuracy& row : levels) {
+    if (row.level < 1) continue;
+    const auto same = std::find_if(inserted.begin(), inserted.end(), [&](const LevelAccuracy& i) {
+      return i.dem == row.dem && i.vertices == row.vertices;
+    });
+    if (same == inserted.end()) continue;
+    row.insertRmse = same->rmse;
+    row.insertRatio = row.rmse / same->rmse;
+  }
 }
 
 }  // namespace tinlod

@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Private: greedy insertion as a method of the experiment.
+// Private: greedy insertion at the sizes of a hierarchy's levels, the study's comparator.
 #pragma once
 
 #include <cstddef>
-#include <string>
 #include <vector>
 
 #include "tinlod/accuracy_evaluator.h"
@@ -13,15 +12,22 @@
 
 namespace tinlod {
 
-// The vertex counts of a hierarchy that deletes `deletePct` of the vertices per level from
-// `original` down to `stopPct` of them: the counts greedy insertion is compared at.
-std::vector<std::size_t> levelCounts(std::size_t original, double deletePct, double stopPct);
+// The distinct vertex counts of the levels above level 0 among `levels` (rows of one DEM,
+// of one or several hierarchies), largest first: the sizes greedy insertion is run to.
+std::vector<std::size_t> insertionCounts(const std::vector<LevelAccuracy>& levels);
 
 // Greedy insertion over the vertices of `sampled` (the study's comparator on the same
-// input), measured at each of `counts` as level 1, 2, ... (counts in decreasing order, as
-// levels coarsen). One insertion run serves every count: each is a prefix of the next.
+// input), stopped at each of `counts` (largest first, as insertionCounts gives them) and
+// measured there: one row per count, method "insert", levels 1, 2, ... in that order, no
+// delete percentage (NaN). One insertion run serves every count: each is a prefix of the
+// next. A count greedy insertion cannot reach (the TIN is exact before it) warns and
+// gives a row with the vertices it has.
 std::vector<LevelAccuracy> measureInsertionLevels(const AccuracyEvaluator& evaluator, const Dem& dem, const Tin& sampled,
                                                   const CrsTransform& toTin, const std::vector<std::size_t>& counts,
-                                                  double deletePct, double stopPct, const ProgressRange& progress);
+                                                  double stopPct, const ProgressRange& progress);
+
+// Fills insertRmse and insertRatio (rmse / insertRmse) of every row of `levels` above level 0
+// from the row of `inserted` with its vertex count (rows of the same DEM).
+void compareWithInsertion(std::vector<LevelAccuracy>& levels, const std::vector<LevelAccuracy>& inserted);
 
 }  // namespace tinlod

@@ -32,6 +32,8 @@ constexpr char kElevation[] = "elevation";
 constexpr char kMeanCurvature[] = "mean_curvature";
 
 double rmse(const LevelAccuracy& l) { return l.rmse; }
+double insertRatio(const LevelAccuracy& l) { return l.insertRatio; }
+std::string ratio(double v) { return "RMSE " + significantNumber(v, 3) + " x greedy insertion's"; }
 double maxError(const LevelAccuracy& l) { return l.maxAbsError; }
 // Level 0 is the original TIN: nothing was selected or deleted to make it.
 double selectSeconds(const LevelAccuracy& l) { return l.level >= 1 ? l.selectSeconds : NAN; }
@@ -101,6 +103,18 @@ ReportPlot errorPlot(const std::vector<ReportRun>& runs) {
   return out;
 }
 
+ReportPlot insertRatioPlot(const std::vector<ReportRun>& runs) {
+  ReportPlot out{plotOf(runs, {insertRatio, ratio}, nullptr), {}};
+  out.plot.title = "RMSE over greedy insertion's at the same size";
+  out.plot.note = "lower is better";
+  out.plot.y = {"RMSE / insert RMSE", TickStyle::Plain, AxisKind::Linear, true};
+  out.caption =
+      "Each level's RMSE divided by that of greedy insertion over the same sampled TIN run to exactly the "
+      "level's number of vertices and measured at the same test points: 1 is as good as greedy insertion, "
+      "2 twice its error.";
+  return out;
+}
+
 ReportPlot timePlot(const std::vector<ReportRun>& runs) {
   ReportPlot out =
       pairPlot(runs, {selectSeconds, seconds}, {deleteSeconds, seconds}, "selecting vertices", "deleting them");
@@ -121,14 +135,25 @@ std::string correlationText(double r) {
   return significantNumber(r, digits);
 }
 
+bool knowsInsertRatio(const std::vector<ReportRun>& runs) {
+  for (const ReportRun& run : runs)
+    for (const LevelAccuracy* l : run.levels)
+      if (std::isfinite(l->insertRatio)) return true;
+  return false;
+}
+
 std::vector<ReportPlot> reportPlots(const std::vector<ReportRun>& runs) {
-  return {correlationPlot(runs, logOneMinusR<kElevation>, "Elevation: log10(1 - r) against vertices",
-                          "How closely each level's heights follow the reference's at the test points: "
-                          "\u22125 is r = 0.99999, \u22122 is r = 0.99 (the right axis gives r). Lower is better."),
-          correlationPlot(runs, logOneMinusR<kMeanCurvature>, "Mean curvature: log10(1 - r) against vertices",
-                          "The same for mean curvature from the B-spline surfaces. A second derivative, it "
-                          "shows simplification much earlier than elevation does."),
-          errorPlot(runs), timePlot(runs)};
+  std::vector<ReportPlot> plots{
+      correlationPlot(runs, logOneMinusR<kElevation>, "Elevation: log10(1 - r) against vertices",
+                      "How closely each level's heights follow the reference's at the test points: "
+                      "\u22125 is r = 0.99999, \u22122 is r = 0.99 (the right axis gives r). Lower is better."),
+      correlationPlot(runs, logOneMinusR<kMeanCurvature>, "Mean curvature: log10(1 - r) against vertices",
+                      "The same for mean curvature from the B-spline surfaces. A second derivative, it "
+                      "shows simplification much earlier than elevation does."),
+      errorPlot(runs)};
+  if (knowsInsertRatio(runs)) plots.push_back(insertRatioPlot(runs));
+  plots.push_back(timePlot(runs));
+  return plots;
 }
 
 }  // namespace tinlod

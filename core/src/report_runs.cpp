@@ -9,19 +9,25 @@
 namespace tinlod {
 namespace {
 
+// Exact comparison is right: the percentages are parameters copied, never computed. NaN
+// (greedy insertion has no delete percentage) is the same as NaN.
+bool samePct(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
 bool sameRun(const ReportRun& run, const LevelAccuracy& row) {
-  // Exact comparison is right: the percentages are parameters copied, never computed.
-  return run.dem == row.dem && run.method == row.method && run.deletePct == row.deletePct && run.stopPct == row.stopPct;
+  return run.dem == row.dem && run.method == row.method && samePct(run.deletePct, row.deletePct) &&
+         samePct(run.stopPct, row.stopPct);
 }
 
+// Four parts always, so that runs compare part by part; a missing delete percentage is "".
 std::vector<std::string> nameParts(const ReportRun& run) {
-  return {run.dem, run.method, "delete " + formatNumber(run.deletePct) + " %",
+  return {run.dem, run.method, std::isnan(run.deletePct) ? "" : "delete " + formatNumber(run.deletePct) + " %",
           "stop " + formatNumber(run.stopPct) + " %"};
 }
 
 std::string joined(const std::vector<std::string>& parts) {
   std::string out;
-  for (const std::string& part : parts) out += (out.empty() ? "" : ", ") + part;
+  for (const std::string& part : parts)
+    if (!part.empty()) out += (out.empty() ? "" : ", ") + part;
   return out;
 }
 

@@ -20,6 +20,9 @@ struct AccuracyOutputs {
   RasterWriteOptions raster;
   int rasterLevel = -1;        // the level of the raster; -1: the coarsest
   std::string reportPath;      // empty: no report; .csv, .json or .html
+  // Greedy insertion over the same sampled TIN run to each level's exact vertex count and
+  // measured the same way: fills every level's insertRmse and insertRatio (-compare_insert).
+  bool compareInsert = false;
   bool wanted() const { return !rasterPath.empty() || !reportPath.empty(); }
   // Fails early, before hours of work, on a bad format, extension or level.
   void validate() const;
@@ -33,7 +36,8 @@ std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, con
 AccuracyReport makeReport(const AccuracyEvaluator& evaluator, const std::string& title, const std::string& crsName,
                           std::vector<LevelAccuracy> rows);
 
-// Measures every level of `h` (sampled from `dem`) and writes the raster and report asked for.
+// Measures every level of `h` (sampled from `dem`), compares it with greedy insertion at its
+// size when asked, and writes the raster and report asked for.
 AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTransform& toTin, const AccuracyOutputs& outputs,
                                const ProgressRange& progress);
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -21,7 +22,7 @@ struct VariableComparison {
 struct LevelAccuracy {
   std::string dem;           // file name of the DEM
   std::string method;        // degree, volume, normal, error, insert
-  double deletePct = 0, stopPct = 0;
+  double deletePct = 0, stopPct = 0;  // deletePct NaN for greedy insertion, which deletes nothing
   int level = 0;
   std::size_t vertices = 0, triangles = 0;
   double selectSeconds = 0, deleteSeconds = 0;
@@ -29,6 +30,12 @@ struct LevelAccuracy {
   std::size_t testPoints = 0;
   double rmse = 0, meanError = 0, maxAbsError = 0, maxErrorX = 0, maxErrorY = 0;
   double moransI = 0;        // of the elevation error field
+  // Greedy insertion over the same sampled TIN run to exactly this level's vertex count and
+  // measured at the same test points (tinlod experiment; -compare_insert): its RMSE, and
+  // rmse / insertRmse, above 1 when the level is further from the reference than greedy
+  // insertion at equal size. NaN when not measured (level 0, the insertion's own rows).
+  double insertRmse = std::numeric_limits<double>::quiet_NaN();
+  double insertRatio = std::numeric_limits<double>::quiet_NaN();
   std::vector<VariableComparison> variables;
 };
 

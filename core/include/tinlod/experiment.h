@@ -16,8 +16,9 @@ namespace tinlod {
 // percentage down to the stop percentage, each level's accuracy measured.
 struct ExperimentOptions {
   std::vector<Measure> methods{Measure::Degree, Measure::Normal, Measure::Volume, Measure::Error};
-  // Greedy insertion over the same sampled TIN, measured at the vertex counts of a hierarchy
-  // with the first delete percentage (the study's comparator).
+  // Greedy insertion over the same sampled TIN (the study's comparator), run to exactly the
+  // vertex count of every level above 0 of every hierarchy; each level's RMSE is then
+  // divided by insertion's at its size (LevelAccuracy::insertRatio). Needs a method.
   bool insert = true;
   std::vector<double> deletePcts{10, 20};
   double stopPct = 5;
