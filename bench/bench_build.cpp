@@ -5,6 +5,7 @@
 //   bench_build [DEM] [-method m] [-delete_pct p] [-stop_pct s] [-out OUT.gpkg]
 #include <chrono>
 #include <cstdio>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -62,7 +63,12 @@ int main(int argc, char** argv) {
   std::printf("build: %.3f s in all (%.3f select, %.3f delete, %.3f set-up); %.3f M vertices removed/s; %.3f CPU s\n",
               total, select, remove, total - select - remove, removed / total / 1e6, cpu);
   std::printf("select %s delete (the study found select slower)\n", select > remove ? "slower than" : "faster than");
-  const double bare = bareRemoveRate(tin, removed);
+  // CGAL's removals take inner vertices only: as many as there are, less a tenth (the last
+  // ones left beside a raster edge's straight line of vertices have stars of thousands).
+  std::size_t inner = 0;
+  for (const tinlod::TinVertex& v : tin.vertices) inner += !v.outline;
+  std::fflush(stdout);  // the figures above stand even if the comparison fails
+  const double bare = bareRemoveRate(tin, std::min(removed, inner - inner / 10));
   std::printf("CGAL bare remove() on the same TIN: %.3f M vertices/s; the build takes %.2fx its time (aim: 2x)\n", bare,
               bare / (removed / total / 1e6));
   std::printf("peak memory: %.1f MB\n", peakMegabytes());

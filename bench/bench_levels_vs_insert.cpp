@@ -140,7 +140,7 @@ Row measureRun(const Surface& s, const std::string& name, const HierarchyOptions
   row.original = distanceToDem(s, level0);
   Tin taken = s.tin;  // the copy is not the build's time
   const bench::Clock::time_point t0 = bench::Clock::now();
-  const Hierarchy h = buildHierarchy(std::move(taken), {}, options, kQuiet);
+  const Hierarchy h = buildHierarchy(std::move(taken), s.dem, {}, options, kQuiet);
   row.buildSeconds = bench::seconds(t0, bench::Clock::now());
   row.originalVertices = h.levels.front().vertices;
 

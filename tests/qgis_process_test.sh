@@ -96,8 +96,8 @@ assert 0 < triangles.GetFeatureCount() < level0, (triangles.GetFeatureCount(), l
 print("  %d triangles where level 0 has %d" % (triangles.GetFeatureCount(), level0))
 PY
 
-"$qp" --json run tinlod:locate --INPUT="$hier|layername=vertices" --HIERARCHY="$hier" --LEVEL=3 --OUTPUT="$work/located.gpkg" > "$work/loc.json" 2> "$work/loc.err" || true
-check "qgis_process --json run tinlod:locate gives every vertex an elevation" /usr/bin/python3 - "$work/loc.json" "$work/located.gpkg" <<'PY'
+"$qp" --json run tinlod:locate --INPUT="$hier|layername=vertices" --HIERARCHY="$hier" --LEVEL=0 --OUTPUT="$work/located.gpkg" > "$work/loc.json" 2> "$work/loc.err" || true
+check "qgis_process --json run tinlod:locate gives every vertex an elevation on level 0" /usr/bin/python3 - "$work/loc.json" "$work/located.gpkg" <<'PY'
 import json, sys
 from osgeo import ogr
 outputs = json.load(open(sys.argv[1]))["results"]
