@@ -172,6 +172,23 @@ std::size_t localDelaunayViolations(const Tin& tin) {
   return violations;
 }
 
+std::size_t verticesInsideTriangles(const Tin& tin) {
+  const VertexGrid grid(tin);
+  std::size_t inside = 0;
+  for (const Triangle& t : tin.triangles) {
+    const P2 p = point(tin, t[0]), q = point(tin, t[1]), r = point(tin, t[2]);
+    const double x0 = std::min({p.x(), q.x(), r.x()}), x1 = std::max({p.x(), q.x(), r.x()});
+    const double y0 = std::min({p.y(), q.y(), r.y()}), y1 = std::max({p.y(), q.y(), r.y()});
+    grid.forEachIn(x0, y0, x1, y1, [&](VertexId v) {
+      if (v == t[0] || v == t[1] || v == t[2]) return;
+      const P2 s = point(tin, v);
+      inside += CGAL::orientation(p, q, s) == CGAL::LEFT_TURN && CGAL::orientation(q, r, s) == CGAL::LEFT_TURN &&
+                CGAL::orientation(r, p, s) == CGAL::LEFT_TURN;
+    });
+  }
+  return inside;
+}
+
 std::size_t trianglesOverNodata(const Dem& dem, const Tin& tin) {
   std::size_t n = 0;
   for (const Triangle& t : tin.triangles) {

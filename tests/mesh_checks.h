@@ -35,6 +35,10 @@ std::size_t delaunayViolations(const Tin& tin);
 // constrained by the TIN's outline.
 std::size_t localDelaunayViolations(const Tin& tin);
 
+// (triangle, vertex) pairs where the vertex lies strictly inside the triangle (by CGAL's
+// exact orientation): 0 unless triangles overlap.
+std::size_t verticesInsideTriangles(const Tin& tin);
+
 // Triangles whose closed footprint in the DEM grid (vertices at their cells' centres)
 // holds the centre of a nodata cell, by exact orientation tests.
 std::size_t trianglesOverNodata(const Dem& dem, const Tin& tin);

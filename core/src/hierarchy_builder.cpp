@@ -120,7 +120,7 @@ class Simplifier {
     cells_ = CellErrors(dem_, h_.base);
     if (options_.measure == Measure::Error) cells_.bound(options_.maxError);
     measureLevelZero();
-    outline_ = OutlineChain(mesh_, h_.base, dem_.width, dem_.height);
+    outline_ = OutlineChain(mesh_, h_.base, dem_);
     // Outline vertices go only as OutlineChain allows; a raster corner, a vertex where two
     // parts of the TIN touch, and every outline vertex with -keep_outline stay.
     for (VertexId v = 0; v < nv; ++v) {
@@ -226,7 +226,8 @@ class Simplifier {
     const bool open = mesh_.open(v);
     if (open || options_.measure == Measure::Error) s.walk(mesh_, v);
     if (open && (!retriangulateStar(s.star, s.fill) ||
-                 !outline_.allows(v, s.star, s.ring.front(), s.ring.back(), outlineTolerance(), 0.5 * cellSize_))) {
+                 !outline_.allows(mesh_, v, s.star, s.ring.front(), s.ring.back(), outlineTolerance(), 0.5 * cellSize_,
+                                  [&](VertexId u) { return h_.vertexLevel[u] != kOpenLevel; }))) {
       importance_[v] = INFINITY;
       return;
     }

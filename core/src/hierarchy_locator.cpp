@@ -240,19 +240,24 @@ struct HierarchyLocator::Impl {
   }
 
   // Ground the outline gave up: where an outline vertex went, the triangle between it and
-  // its two outline neighbours is covered by its accept triangles and by nothing coarser.
-  // The first of a group coarser than `level` that holds p; null when none.
-  const FanEntry* givenUp(const Point& p, int level) const {
+  // its two outline neighbours is covered by its accept triangles and by nothing coarser
+  // (unless a later straightening of the outline covered it again). Each such triangle of
+  // a group coarser than `level` that holds p is a start one level finer than its group:
+  // the triangle of `level` the first of them reaches, or kNone.
+  std::uint32_t fromGivenUp(const Point& p, int level) const {
     const auto [first, last] = cutGrid.at(p.x(), p.y());
     for (const std::uint32_t* i = first; i != last; ++i) {
       const FanEntry* head = &fans[cuts[*i]];
       const std::uint32_t k = head->a;
       if (levelOf(*head) <= level) continue;
-      if (triangleContains(head->p, head[1].p, head[k + 1].p, p) ||
-          triangleContains(head->p, head[k + 1].p, head[1].p, p))
-        return head;
+      if (!triangleContains(head->p, head[1].p, head[k + 1].p, p) && !triangleContains(head->p, head[k + 1].p, head[1].p, p))
+        continue;
+      if (const FanEntry* e = finer(head, p)) {
+        const std::uint32_t t = descend(e->a, e->b, p, level);
+        if (t != kNone) return t;
+      }
     }
-    return nullptr;
+    return kNone;
   }
 
   // The accept triangle of a block that holds p, first in ring order: a ring entry; null
@@ -315,12 +320,8 @@ LocatedPoint HierarchyLocator::locate(double x, double y, int level) const {
                 std::to_string(coarsest));
   const Point p(x, y);
   std::uint32_t t = kNone;
-  if (const TopTriangle* top = impl_->start(p)) {
-    t = impl_->descend(top->id, top->fan, p, level);
-  } else if (const FanEntry* cut = impl_->givenUp(p, level)) {
-    const FanEntry* e = impl_->finer(cut, p);  // on the ground the outline gave up at a coarser level
-    if (e) t = impl_->descend(e->a, e->b, p, level);
-  }
+  if (const TopTriangle* top = impl_->start(p)) t = impl_->descend(top->id, top->fan, p, level);
+  if (t == kNone) t = impl_->fromGivenUp(p, level);  // on ground the outline gave up at a coarser level
   if (t == kNone) return {};  // off the TIN or in a hole at that level
   return {static_cast<std::int64_t>(t), impl_->height(t, p)};
 }

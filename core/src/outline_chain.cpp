@@ -3,31 +3,87 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
-#include <algorithm>
 #include <cmath>
 
 namespace tinlod {
+namespace {
 
-OutlineChain::OutlineChain(const SimplificationMesh& mesh, const Tin& tin, int width, int height)
-    : tin_(&tin), width_(width), height_(height), before_(tin.vertices.size()), after_(tin.vertices.size()) {
-  for (VertexId v = 0; v < tin.vertices.size(); ++v)
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// Whether q lies in the closed triangle a, b, c (either orientation; a degenerate one holds
+// nothing), by CGAL's exact orientation.
+bool inClosed(const K::Point_2& a, const K::Point_2& b, const K::Point_2& c, const K::Point_2& q) {
+  const CGAL::Orientation o = CGAL::orientation(a, b, c);
+  if (o == CGAL::COLLINEAR) return false;
+  const CGAL::Orientation opposite = o == CGAL::LEFT_TURN ? CGAL::RIGHT_TURN : CGAL::LEFT_TURN;
+  return CGAL::orientation(a, b, q) != opposite && CGAL::orientation(b, c, q) != opposite &&
+         CGAL::orientation(c, a, q) != opposite;
+}
+
+}  // namespace
+
+OutlineChain::OutlineChain(const SimplificationMesh& mesh, const Tin& tin, const Dem& dem)
+    : tin_(&tin), dem_(&dem), before_(tin.vertices.size()), after_(tin.vertices.size()),
+      vertexAt_(static_cast<std::size_t>(dem.width) * dem.height, -1) {
+  for (VertexId v = 0; v < tin.vertices.size(); ++v) {
     if (mesh.deletableOpen(v)) before_[v] = mesh.outlineBefore(v), after_[v] = mesh.outlineAfter(v);
+    const TinVertex& p = tin.vertices[v];
+    if (p.row >= 0 && p.col >= 0 && p.row < dem.height && p.col < dem.width)
+      vertexAt_[static_cast<std::size_t>(p.row) * dem.width + p.col] = static_cast<std::int32_t>(v);
+  }
 }
 
 bool OutlineChain::rasterCorner(VertexId v) const {
   const TinVertex& p = tin_->vertices[v];
-  return (p.row == 0 || p.row == height_ - 1) && (p.col == 0 || p.col == width_ - 1);
+  return (p.row == 0 || p.row == dem_->height - 1) && (p.col == 0 || p.col == dem_->width - 1);
 }
 
 int OutlineChain::rasterEdge(VertexId v) const {
   const TinVertex& p = tin_->vertices[v];
-  const int edges = (p.row == 0) + (p.row == height_ - 1) + (p.col == 0) + (p.col == width_ - 1);
+  const int last = dem_->height - 1, right = dem_->width - 1;
+  const int edges = (p.row == 0) + (p.row == last) + (p.col == 0) + (p.col == right);
   if (edges != 1) return -1;
-  return p.row == 0 ? 0 : p.row == height_ - 1 ? 1 : p.col == 0 ? 2 : 3;
+  return p.row == 0 ? 0 : p.row == last ? 1 : p.col == 0 ? 2 : 3;
+}
+
+bool OutlineChain::onOneRasterEdge(VertexId v, VertexId after, VertexId before) const {
+  const int edge = rasterEdge(v);
+  if (edge < 0 || rasterEdge(after) != edge || rasterEdge(before) != edge) return false;
+  for (VertexId u = before_[v]; u != before; u = before_[u])
+    if (rasterEdge(u) != edge) return false;
+  for (VertexId u = after_[v]; u != after; u = after_[u])
+    if (rasterEdge(u) != edge) return false;
+  return true;
+}
+
+// Every lattice point of the grid in the closed triangle, with its corners where the
+// jitter put them and at their cells' centres: a missing or off-raster cell there would
+// be covered.
+bool OutlineChain::coversMissingCell(VertexId v, VertexId a, VertexId b) const {
+  const TinVertex* p[3] = {&tin_->vertices[v], &tin_->vertices[a], &tin_->vertices[b]};
+  K::Point_2 jittered[3], centred[3];
+  double r0 = INFINITY, r1 = -INFINITY, c0 = INFINITY, c1 = -INFINITY;
+  for (int k = 0; k < 3; ++k) {
+    const double c = p[k]->col + double(p[k]->dcol), r = p[k]->row + double(p[k]->drow);
+    jittered[k] = K::Point_2(c, r), centred[k] = K::Point_2(p[k]->col, p[k]->row);
+    r0 = std::min({r0, r, double(p[k]->row)}), r1 = std::max({r1, r, double(p[k]->row)});
+    c0 = std::min({c0, c, double(p[k]->col)}), c1 = std::max({c1, c, double(p[k]->col)});
+  }
+  for (int r = static_cast<int>(std::floor(r0)); r <= static_cast<int>(std::ceil(r1)); ++r)
+    for (int c = static_cast<int>(std::floor(c0)); c <= static_cast<int>(std::ceil(c1)); ++c) {
+      if (dem_->valid(r, c)) continue;
+      const K::Point_2 q(c, r);
+      if (inClosed(jittered[0], jittered[1], jittered[2], q) || inClosed(centred[0], centred[1], centred[2], q)) return true;
+    }
+  return false;
+}
+
+bool OutlineChain::inTriangle(VertexId u, VertexId v, VertexId a, VertexId b) const {
+  const auto xy = [&](VertexId w) { return K::Point_2(tin_->vertices[w].x, tin_->vertices[w].y); };
+  return inClosed(xy(v), xy(a), xy(b), xy(u));
 }
 
 int OutlineChain::sideOfNewEdge(const Star& star) {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   const Point3 &from = star.ring.back(), &to = star.ring.front(), &c = star.centre;
   switch (CGAL::orientation(K::Point_2(from.x, from.y), K::Point_2(to.x, to.y), K::Point_2(c.x, c.y))) {
     case CGAL::LEFT_TURN: return 1;

@@ -2,11 +2,14 @@
 // Private: when an outline vertex may go. Deleting it joins its two outline neighbours
 // by a straight edge; the outline vertices of level 0 that edge replaces (the vertex and
 // those deleted between the neighbours before it) must all lie within the tolerance of it,
-// so the outline never moves further than that from the data's own. The new edge may cut
-// into the data (the cells it gives up are counted) but never out over nodata: a vertex
-// whose new edge would pass outside the TIN goes only along one straight raster edge (a
-// DEM in degrees bends it by millimetres in the TIN's metric CRS), where no cell lies
-// beyond.
+// so the outline never moves further than that from the data's own. Where the new edge
+// cuts into the data, the cells it gives up are counted. Where it runs outside the TIN
+// (the vertex bends the outline inwards), the ground it adds must hold no nodata cell
+// centre and no centre off the raster (in the grid, with the vertices where the jitter put
+// them and at their cells' centres alike), no other vertex of the TIN, and the two
+// neighbours must not be joined already; along a raster edge (which a DEM in degrees bends
+// by millimetres in the TIN's metric CRS) it may reach at most half a cell past the edge's
+// line of centres.
 #pragma once
 
 #include <algorithm>
@@ -14,6 +17,7 @@
 #include <vector>
 
 #include "simplification_mesh.h"
+#include "tinlod/dem.h"
 #include "tinlod/tin.h"
 
 namespace tinlod {
@@ -21,20 +25,23 @@ namespace tinlod {
 class OutlineChain {
  public:
   OutlineChain() = default;
-  // Level 0's outline order, for the open vertices of one fan; `width` x `height` is the
-  // DEM's grid, whose edges the vertices' rows and columns are compared with.
-  OutlineChain(const SimplificationMesh& mesh, const Tin& tin, int width, int height);
+  // Level 0's outline order, for the open vertices of one fan; where each vertex lies in
+  // the DEM's grid, whose cells say where nodata is.
+  OutlineChain(const SimplificationMesh& mesh, const Tin& tin, const Dem& dem);
 
   // A corner of the raster: it stays, so a rectangular DEM keeps its rectangle.
   bool rasterCorner(VertexId v) const;
   // Whether open vertex v, whose open star's ring is `star` (its first ring vertex the
   // outline neighbour after it, its last the one before), may go with the outline moved
-  // by at most `tolerance` metres from level 0's; where the new edge would run outside
-  // the TIN (along a raster edge), by at most `outward` metres, so that the TIN stays on
-  // the raster (half a cell beyond the edge's centres).
-  bool allows(VertexId v, const Star& star, VertexId after, VertexId before, double tolerance, double outward) const {
-    if (!oneSide(v, star, after, before)) return false;
-    if (sideOfNewEdge(star) > 0) tolerance = std::min(tolerance, outward);
+  // by at most `tolerance` metres from level 0's (`halfCell` metres past a raster edge).
+  // `gone(u)` says whether vertex u was deleted.
+  template <class Gone>
+  bool allows(const SimplificationMesh& mesh, VertexId v, const Star& star, VertexId after, VertexId before,
+              double tolerance, double halfCell, Gone gone) const {
+    if (sideOfNewEdge(star) > 0) {
+      if (onOneRasterEdge(v, after, before)) tolerance = std::min(tolerance, halfCell);
+      else if (!addsOnlyData(mesh, v, after, before, gone)) return false;
+    }
     bool within = distance(v, after, before) <= tolerance;
     for (VertexId u = before_[v]; within && u != before; u = before_[u]) within = distance(u, after, before) <= tolerance;
     for (VertexId u = after_[v]; within && u != after; u = after_[u]) within = distance(u, after, before) <= tolerance;
@@ -42,16 +49,37 @@ class OutlineChain {
   }
 
  private:
-  bool oneSide(VertexId v, const Star& star, VertexId after, VertexId before) const {
-    const int side = sideOfNewEdge(star);
-    if (side <= 0) return true;  // on or inside the TIN: the new edge cuts into the data or runs along it
-    const int edge = rasterEdge(v);
-    if (edge < 0 || rasterEdge(after) != edge || rasterEdge(before) != edge) return false;
-    for (VertexId u = before_[v]; u != before; u = before_[u])
-      if (rasterEdge(u) != edge) return false;
-    for (VertexId u = after_[v]; u != after; u = after_[u])
-      if (rasterEdge(u) != edge) return false;
-    return true;
+  bool onOneRasterEdge(VertexId v, VertexId after, VertexId before) const;
+  // The ground between the vertex and the new edge: no nodata or off-raster centre, no
+  // other vertex still there, and the neighbours not joined already.
+  template <class Gone>
+  bool addsOnlyData(const SimplificationMesh& mesh, VertexId v, VertexId after, VertexId before, Gone gone) const {
+    if (coversMissingCell(v, after, before)) return false;
+    bool joined = false;
+    mesh.eachAround(after, [&](std::int32_t slot, int) {
+      for (int k = 0; k < 3; ++k) joined = joined || mesh.corner(slot, k) == before;
+    });
+    if (joined) return false;
+    bool empty = true;
+    forVerticesNear(v, after, before, [&](VertexId u) {
+      if (u != v && u != after && u != before && !gone(u) && inTriangle(u, v, after, before)) empty = false;
+    });
+    return empty;
+  }
+  bool coversMissingCell(VertexId v, VertexId a, VertexId b) const;
+  bool inTriangle(VertexId u, VertexId v, VertexId a, VertexId b) const;  // closed, in the TIN's x/y
+  template <class Visit>
+  void forVerticesNear(VertexId v, VertexId a, VertexId b, Visit visit) const {
+    const TinVertex *p[3] = {&tin_->vertices[v], &tin_->vertices[a], &tin_->vertices[b]};
+    const int r0 = std::max(0, std::min({p[0]->row, p[1]->row, p[2]->row}) - 1);
+    const int r1 = std::min(dem_->height - 1, std::max({p[0]->row, p[1]->row, p[2]->row}) + 1);
+    const int c0 = std::max(0, std::min({p[0]->col, p[1]->col, p[2]->col}) - 1);
+    const int c1 = std::min(dem_->width - 1, std::max({p[0]->col, p[1]->col, p[2]->col}) + 1);
+    for (int r = r0; r <= r1; ++r)
+      for (int c = c0; c <= c1; ++c) {
+        const std::int32_t u = vertexAt_[static_cast<std::size_t>(r) * dem_->width + c];
+        if (u >= 0) visit(static_cast<VertexId>(u));
+      }
   }
   // 1 when the star's centre lies inside the polygon its ring closes (the new outline
   // edge would run outside the TIN), 0 on that edge, -1 outside it.
@@ -62,8 +90,9 @@ class OutlineChain {
   double distance(VertexId u, VertexId a, VertexId b) const;
 
   const Tin* tin_ = nullptr;
-  int width_ = 0, height_ = 0;
+  const Dem* dem_ = nullptr;
   std::vector<VertexId> before_, after_;  // by TIN id: level 0's outline neighbours
+  std::vector<std::int32_t> vertexAt_;    // by cell: the vertex sampled there, or -1
 };
 
 }  // namespace tinlod
