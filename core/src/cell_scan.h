@@ -62,10 +62,14 @@ void scanCells(int width, int height, const CellCorner (&p)[3], const bool (&out
   const double colMin = std::min({p[0].c, p[1].c, p[2].c}), colMax = std::max({p[0].c, p[1].c, p[2].c});
   const int r0 = std::max(0, static_cast<int>(std::ceil(rowMin))), r1 = std::min(height - 1, static_cast<int>(std::floor(rowMax)));
   const int c0 = std::max(0, static_cast<int>(std::ceil(colMin))), c1 = std::min(width - 1, static_cast<int>(std::floor(colMax)));
-  const double inverse = 1.0 / std::fabs(area2);
+  // The plane, for heights only: which cells are inside is decided by the edge functions.
+  const double dzdc = ((p[1].z - p[0].z) * (p[2].r - p[0].r) - (p[2].z - p[0].z) * (p[1].r - p[0].r)) / area2;
+  const double dzdr = ((p[2].z - p[0].z) * (p[1].c - p[0].c) - (p[1].z - p[0].z) * (p[2].c - p[0].c)) / area2;
   for (int row = r0; row <= r1; ++row) {
-    // Each edge's function along the row is rowTerm - dr (col - lo.c); the span it allows
-    // is found in floating point with a cell to spare, then every centre is tested exactly.
+    // Each edge's function along the row is rowTerm - dr (col - lo.c), the same operations
+    // in both triangles of the edge, and monotone in col even rounded: the cells inside
+    // make one run. Its ends are found in floating point with a cell to spare, then tested
+    // exactly from each end.
     double rowTerm[3], left = c0, right = c1;
     for (int k = 0; k < 3; ++k) {
       rowTerm[k] = e[k].dc * (row - e[k].lo->r);
@@ -75,16 +79,19 @@ void scanCells(int width, int height, const CellCorner (&p)[3], const bool (&out
       if (slope > 0) left = std::max(left, std::floor(at) - 1);
       else right = std::min(right, std::ceil(at) + 1);
     }
-    for (int col = static_cast<int>(left); col <= static_cast<int>(right); ++col) {
-      double w[3];
-      bool inside = true;
-      for (int k = 0; k < 3 && inside; ++k) {
-        w[k] = e[k].sign * (rowTerm[k] - e[k].dr * (col - e[k].lo->c));
-        inside = w[k] > 0 || (w[k] == 0 && e[k].tieInside);
+    auto inside = [&](int col) {
+      for (int k = 0; k < 3; ++k) {
+        const double w = e[k].sign * (rowTerm[k] - e[k].dr * (col - e[k].lo->c));
+        if (!(w > 0 || (w == 0 && e[k].tieInside))) return false;
       }
-      // From corner 0, so that a flat triangle gives its height exactly.
-      if (inside) visit(row, col, p[0].z + (w[1] * (p[1].z - p[0].z) + w[2] * (p[2].z - p[0].z)) * inverse);
-    }
+      return true;
+    };
+    int first = static_cast<int>(left), last = static_cast<int>(right);
+    while (first <= last && !inside(first)) ++first;
+    while (last >= first && !inside(last)) --last;
+    // From corner 0, so that a flat triangle gives its height exactly.
+    const double rowHeight = p[0].z + dzdr * (row - p[0].r);
+    for (int col = first; col <= last; ++col) visit(row, col, rowHeight + dzdc * (col - p[0].c));
   }
 }
 
