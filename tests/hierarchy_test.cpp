@@ -126,6 +126,8 @@ void expectOutlineWithin(const Hierarchy& h, Tolerance tolerance) {
   }
 }
 
+std::size_t nodataCovered(const Dem& dem, const Hierarchy& h, std::int32_t level);
+
 void expectValidHierarchy(const Dem& dem, const Hierarchy& h) {
   ASSERT_GE(h.levels.size(), 2u);
   const Tin level0 = h.levelTin(0);
@@ -314,9 +316,15 @@ TEST(Hierarchy, RealDemsEveryMeasure) {
       SCOPED_TRACE(std::string(file) + " " + measureName(m));
       HierarchyOptions o;
       o.measure = m;
+      if (m == Measure::Error) o.maxError = 1;  // every cell within max(1 m, level 0's distance)
       const Hierarchy h = buildHierarchy(tin, dem, {}, o, kQuiet);
       expectValidHierarchy(dem, h);
-      if (m == Measure::Error) expectCellFigures(dem, h);
+      if (m == Measure::Error || m == Measure::Volume) expectCellFigures(dem, h);
+      const double cell = std::fabs(dem.geotransform[1]);  // square cells, in the TIN's CRS
+      expectOutlineWithin(h, [&](std::int32_t L) {
+        return cell * std::sqrt(double(h.levels[0].vertices) / double(h.levels[L - 1].vertices)) * (1 + 1e-6);
+      });
+      for (std::int32_t L = 0; L <= h.coarsest(); L += 3) EXPECT_EQ(nodataCovered(dem, h, L), 0u) << "level " << L;
     }
   }
 }
