@@ -29,7 +29,8 @@ Tests (a deleted vertex is restored when any given test accepts it):
   -dropoff D         the study's distance test: a vertex deleted at level L is restored
                      when it is closer than L x D metres to a centre of detail
   -max_error E       the error test: restored while the triangles that replaced it are
-                     more than E metres (vertically) from the original TIN ...
+                     more than E metres (vertically) from the DEM at a valid cell centre
+                     under them (level 0's own triangles are as fine as it gets) ...
   -error_growth G    ... plus G metres per metre of distance to the nearest centre
   -region POLYGONS   every vertex inside the polygons of this vector file is restored:
                      full detail there, coarse outside

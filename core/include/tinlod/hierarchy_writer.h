@@ -13,7 +13,7 @@ namespace tinlod {
 // - vertices (PointZ): id, row, col, outline, level (the highest level holding it), fixed
 // - triangles (PolygonZ): every distinct triangle once: id, v0, v1, v2, first_level,
 //   last_level, group_id (the group that made it; empty at level 0), replaced_by (the
-//   group that replaced it), error (metres, to the level-0 samples under it)
+//   group that replaced it), error (metres, to the DEM at the valid cell centres under it)
 // - level_0, level_1, ...: views of the triangles of each level (stored once, not per level)
 // - groups (PolygonZ): the outline of each deleted vertex's neighbourhood: id, level,
 //   vertex, importance, error; its accept triangles are those with replaced_by = id,
