@@ -95,7 +95,9 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("LEVELS"), QStringLiteral("Levels (level 0 included)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("COARSEST_LEVEL"), QStringLiteral("Number of the coarsest level")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("COARSEST_VERTICES"), QStringLiteral("Vertices of the coarsest level")));
-  addOutput(new QgsProcessingOutputNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error of the coarsest level (metres)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error of the coarsest level against the DEM (metres)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("RMSE"), QStringLiteral("RMSE of the coarsest level against the DEM (metres)")));
+  addOutput(new QgsProcessingOutputNumber(QStringLiteral("CELLS_GIVEN_UP"), QStringLiteral("Valid cells the coarsest level's outline gave up")));
 }
 
 bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
@@ -143,9 +145,11 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   const BuildSummary s = translateErrors(
       [&] { return runBuildJob(demSource_, output.toStdString(), sample_, options_, true, processingFeedback(feedback), accuracy_); });
-  feedback->pushInfo(QStringLiteral("%1 levels (0 to %7): %2 -> %3 vertices (%4 fixed), maximum error of the coarsest level %5 m, %6 MB")
+  feedback->pushInfo(QStringLiteral("%1 levels (0 to %7): %2 -> %3 vertices (%4 fixed); the coarsest level against the DEM: "
+                                    "maximum error %5 m, RMSE %8 m, %9 valid cells given up by its outline; %6 MB")
                          .arg(s.levels + 1).arg(s.originalVertices).arg(s.coarsestVertices).arg(s.fixedVertices)
-                         .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1).arg(s.levels));
+                         .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1).arg(s.levels)
+                         .arg(s.coarsestRmse, 0, 'f', 2).arg(s.cellsGivenUp));
   if (loadLevels_) {
     const QString group = QFileInfo(output).completeBaseName() + QStringLiteral(" levels");
     for (int level = 0; level <= s.levels; ++level)
@@ -158,6 +162,8 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
   outputs.insert(QStringLiteral("COARSEST_LEVEL"), s.levels);
   outputs.insert(QStringLiteral("COARSEST_VERTICES"), static_cast<qlonglong>(s.coarsestVertices));
   outputs.insert(QStringLiteral("MAX_ERROR"), s.coarsestError);
+  outputs.insert(QStringLiteral("RMSE"), s.coarsestRmse);
+  outputs.insert(QStringLiteral("CELLS_GIVEN_UP"), static_cast<qlonglong>(s.cellsGivenUp));
   if (!accuracy_.rasterPath.empty()) outputs.insert(QStringLiteral("ACCURACY"), QString::fromStdString(accuracy_.rasterPath));
   if (!accuracy_.reportPath.empty()) outputs.insert(QStringLiteral("REPORT"), QString::fromStdString(accuracy_.reportPath));
   return outputs;

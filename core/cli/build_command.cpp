@@ -104,8 +104,9 @@ int buildCommand(std::vector<std::string> args) {
   if (!quiet)
     std::cout << "Wrote " << s.levels + 1 << (s.levels ? " levels (0 to " + std::to_string(s.levels) + ", " : " level (")
               << s.originalVertices << " -> " << s.coarsestVertices
-              << " vertices, " << s.fixedVertices << " fixed; maximum error of the coarsest level "
-              << s.coarsestError << " m) in " << s.crsName << " to " << files[1] << " (" << s.fileBytes / 1000000
+              << " vertices, " << s.fixedVertices << " fixed; the coarsest level against the DEM: maximum error "
+              << s.coarsestError << " m, RMSE " << s.coarsestRmse << " m, " << s.cellsGivenUp
+              << " valid cells given up by its outline) in " << s.crsName << " to " << files[1] << " (" << s.fileBytes / 1000000
               << " MB)" << std::endl;
   if (!quiet && !s.accuracy.empty()) printAccuracy(s.accuracy, std::cout);
   return 0;

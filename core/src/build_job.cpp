@@ -109,6 +109,8 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   s.fixedVertices = static_cast<std::size_t>(std::count(h.fixed.begin(), h.fixed.end(), 1));
   s.levels = h.coarsest();
   s.coarsestError = h.levels.back().maxError;
+  s.coarsestRmse = h.levels.back().rmse;
+  s.cellsGivenUp = h.levels.front().cells - h.levels.back().cells;
   s.fileBytes = std::filesystem::file_size(outPath);
   s.crsName = h.base.crsName;
   return s;

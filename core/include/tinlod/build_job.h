@@ -17,7 +17,9 @@ namespace tinlod {
 struct BuildSummary {
   std::size_t originalVertices = 0, coarsestVertices = 0, coarsestTriangles = 0, fixedVertices = 0;
   std::int32_t levels = 0;  // levels above level 0
-  double coarsestError = 0;
+  double coarsestError = 0;      // against the DEM at every valid cell centre it covers
+  double coarsestRmse = 0;
+  std::int64_t cellsGivenUp = 0;  // valid cells level 0 covers and the coarsest level does not
   std::uintmax_t fileBytes = 0;
   std::string crsName;
   std::vector<LevelAccuracy> accuracy;  // per level, when accuracy outputs were asked for
