@@ -30,7 +30,9 @@ inline CellCorner cellCorner(const TinVertex& v, VertexId id) {
 }
 
 // Calls visit(row, col, height) for each cell centre of the raster `width` x `height` in
-// the triangle. Across a shared edge the two triangles take each centre exactly once:
+// the triangle. Across a shared edge the two triangles take each centre exactly once (but
+// a centre that is exactly a vertex where two outline edges meet, such as a raster corner,
+// which both triangles of those edges may take; its distance is 0 there):
 // every edge is evaluated from its smaller id, in the same floating-point operations for
 // both, and a centre exactly on it goes to the side a tiny step (+e, +e^2) would reach
 // (symbolic perturbation). `outline[k]` marks the edge opposite corner k as an outline
