@@ -51,6 +51,9 @@ void expectConforming(const Hierarchy& h, const std::vector<std::uint32_t>& tria
   const double cell = std::sqrt(totalArea(h.base) / double(h.levels[0].cells));
   EXPECT_NEAR(totalArea(tin), totalArea(h.base), cell * base.perimeter);
   EXPECT_EQ(test::clockwiseTriangles(tin), 0u);
+  Tin used = tin;
+  dropUnusedVertices(used);
+  EXPECT_EQ(test::verticesInsideTriangles(used), 0u);  // no triangle over another
 }
 
 std::array<double, 2> middle(const Hierarchy& h) {

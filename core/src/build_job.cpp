@@ -76,7 +76,7 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                          const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
                          const AccuracyOutputs& accuracy) {
-  sample.validate();
+  sample.validateForHierarchy();
   options.validate();
   accuracy.validate();
   GpkgWriteOptions writeOptions{overwrite, {}};

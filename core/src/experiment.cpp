@@ -23,7 +23,7 @@ void ExperimentOptions::validate() const {
     h.deletePct = p;
     h.validate();
   }
-  sample.validate();
+  sample.validateForHierarchy();
   accuracy.validate();
 }
 

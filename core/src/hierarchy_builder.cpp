@@ -205,14 +205,36 @@ class Simplifier {
     return cells_.measure(ring[t[0]], ring[t[1]], ring[t[2]], outline);
   }
 
-  // The error measure: the largest distance to the DEM at the valid cells under the
-  // star's new triangles; +infinity when a cell would pass its bound.
+  // The error measure on the star's fill (s.fill): the largest distance to the DEM at the
+  // valid cells under its new triangles; +infinity when a cell would pass its bound.
   double cellError(StarScratch& s) {
-    if (!retriangulateStar(s.star, s.fill)) return INFINITY;
     TriangleCells all;
     const int d = static_cast<int>(s.ring.size());
     for (const LocalTriangle& t : s.fill) all.add(measureFill(s.ring.data(), s.outer.data(), d, t));
     return cells_.bounded() && all.excess > 0 ? INFINITY : all.maxError;
+  }
+
+  // An open star's fill is the constrained Delaunay triangulation of its polygon; where the
+  // new outline edge runs outside the TIN, the triangle beyond a ring edge can have its
+  // apex in a fill triangle's circle (the old outline hid it). Such a fill would leave the
+  // level no longer Delaunay, so the vertex stays (exact in-circle).
+  bool fillMeetsItsNeighbours(const StarScratch& s) const {
+    const int d = static_cast<int>(s.ring.size());
+    thread_local std::vector<int> onEdge;
+    onEdge.resize(d);
+    ringEdgeTriangles(s.fill.data(), d, onEdge.data());
+    for (int k = 0; k + 1 < d; ++k) {
+      const std::int32_t beyond = s.outer[k];
+      if (beyond == kNoTriangle) continue;
+      VertexId apex = 0;
+      for (int c = 0; c < 3; ++c) {
+        const VertexId w = mesh_.corner(beyond, c);
+        if (w != s.ring[k] && w != s.ring[k + 1]) apex = w;
+      }
+      const LocalTriangle& t = s.fill[onEdge[k]];
+      if (strictlyInCircle(s.star.ring[t[0]], s.star.ring[t[1]], s.star.ring[t[2]], mesh_.point(apex))) return false;
+    }
+    return true;
   }
 
   // How far the outline may move when level `level` is made: the tolerance at level 1,
@@ -224,14 +246,22 @@ class Simplifier {
     rings_.setDegree(v, mesh_.geometryOf(v, s.star, rings_.place(v), VertexRings::kCapacity));
     stale_[v] = 0;
     const bool open = mesh_.open(v);
-    if (open || options_.measure == Measure::Error) s.walk(mesh_, v);
-    if (open && (!retriangulateStar(s.star, s.fill) ||
-                 !outline_.allows(mesh_, v, s.star, s.ring.front(), s.ring.back(), outlineTolerance(), 0.5 * cellSize_,
-                                  [&](VertexId u) { return h_.vertexLevel[u] != kOpenLevel; }))) {
+    if (!open && options_.measure != Measure::Error) {
+      importance_[v] = importance(options_.measure, s.star);
+      return;
+    }
+    // The exact fill, made once: the outline's checks and the error or volume read it.
+    s.walk(mesh_, v);
+    if (!retriangulateStar(s.star, s.fill) ||
+        (open && (!outline_.allows(mesh_, v, s.star, s.ring.front(), s.ring.back(), outlineTolerance(), 0.5 * cellSize_,
+                                   [&](VertexId u) { return h_.vertexLevel[u] != kOpenLevel; }) ||
+                  !fillMeetsItsNeighbours(s)))) {
       importance_[v] = INFINITY;
       return;
     }
-    importance_[v] = options_.measure == Measure::Error ? cellError(s) : importance(options_.measure, s.star);
+    if (options_.measure == Measure::Error) importance_[v] = cellError(s);
+    else if (options_.measure == Measure::Volume) importance_[v] = volumeChange(s.star, s.fill);
+    else importance_[v] = importance(options_.measure, s.star);
   }
 
   // Importances change only around deleted vertices; those are recomputed at the start of

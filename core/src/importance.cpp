@@ -277,6 +277,10 @@ double normalFlatness(const Star& star) {
   return sum / normals.size();
 }
 
+bool strictlyInCircle(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return CGAL::side_of_oriented_circle(xy(a), xy(b), xy(c), xy(d)) == CGAL::ON_POSITIVE_SIDE;
+}
+
 bool convexRing(const Star& star) {
   const std::size_t d = star.ring.size();
   for (std::size_t i = 0; i < d; ++i)

@@ -7,9 +7,9 @@
 // (the vertex bends the outline inwards), the ground it adds must hold no nodata cell
 // centre and no centre off the raster (in the grid, with the vertices where the jitter put
 // them and at their cells' centres alike), no other vertex of the TIN, and the two
-// neighbours must not be joined already; along a raster edge (which a DEM in degrees bends
-// by millimetres in the TIN's metric CRS) it may reach at most half a cell past the edge's
-// line of centres.
+// neighbours must not be joined already (nor be where two parts of the TIN touch); along a
+// raster edge (which a DEM in degrees bends by millimetres in the TIN's metric CRS) it may
+// reach at most half a cell past the edge's line of centres.
 #pragma once
 
 #include <algorithm>
@@ -39,8 +39,8 @@ class OutlineChain {
   bool allows(const SimplificationMesh& mesh, VertexId v, const Star& star, VertexId after, VertexId before,
               double tolerance, double halfCell, Gone gone) const {
     if (sideOfNewEdge(star) > 0) {
+      if (!addsOnlyData(mesh, v, after, before, gone)) return false;
       if (onOneRasterEdge(v, after, before)) tolerance = std::min(tolerance, halfCell);
-      else if (!addsOnlyData(mesh, v, after, before, gone)) return false;
     }
     bool within = distance(v, after, before) <= tolerance;
     for (VertexId u = before_[v]; within && u != before; u = before_[u]) within = distance(u, after, before) <= tolerance;
@@ -55,6 +55,8 @@ class OutlineChain {
   template <class Gone>
   bool addsOnlyData(const SimplificationMesh& mesh, VertexId v, VertexId after, VertexId before, Gone gone) const {
     if (coversMissingCell(v, after, before)) return false;
+    // Where two parts of the TIN touch, a walk sees one fan: such a neighbour is not joined.
+    if (!mesh.deletableOpen(after) || !mesh.deletableOpen(before)) return false;
     bool joined = false;
     mesh.eachAround(after, [&](std::int32_t slot, int) {
       for (int k = 0; k < 3; ++k) joined = joined || mesh.corner(slot, k) == before;

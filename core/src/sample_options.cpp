@@ -18,4 +18,11 @@ void SampleOptions::validate() const {
                 "); the default 0.99 keeps points off common circles");
 }
 
+void SampleOptions::validateForHierarchy() const {
+  validate();
+  if (!(jitter > 0))
+    throw Error("jitter must be more than 0 metres to build a hierarchy (got 0): without it vertices sit on cell "
+                "centres and edges run through them, and no cell could be measured exactly once; use e.g. -jitter 0.01");
+}
+
 }  // namespace tinlod

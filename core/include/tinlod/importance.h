@@ -63,6 +63,10 @@ double volumeChange(const Star& star, const std::vector<LocalTriangle>& without)
 // a plane, less where the star bends.
 double normalFlatness(const Star& star);
 
+// Whether d lies strictly inside the circle through a, b, c (counter-clockwise), by CGAL's
+// exact in-circle predicate.
+bool strictlyInCircle(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+
 // Whether the star's ring is a convex polygon (CGAL's exact orientation).
 bool convexRing(const Star& star);
 // The plane of triangle t of the star's ring, from its first corner.

@@ -18,6 +18,10 @@ struct SampleOptions {
 
   // Throws Error naming the option when a value is out of range.
   void validate() const;
+  // The same, for sampling a TIN that is then simplified into a hierarchy, whose levels
+  // are measured against the DEM's cells: the jitter must move every vertex off its cell's
+  // centre.
+  void validateForHierarchy() const;
 };
 
 }  // namespace tinlod
