@@ -58,8 +58,8 @@ Simplification:
 Every level is measured against the DEM at every valid cell centre it covers: its largest
 and RMS vertical distance, and the cells its outline gave up (levels table, tinlod info).
 
-Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, -jitter m,
-  -seed n
+Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, -jitter m
+  (above 0 for a hierarchy, whose levels are measured at every DEM cell), -seed n
   -overwrite       replace tinlod's layers in an existing GeoPackage; its other layers are kept
   -q               quiet: no progress or information, warnings only
 
