@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
   std::printf("DEM %s: %zu vertices at level 0, method %s, delete %g %%, stop %g %%\n", path.c_str(),
               h.levels[0].vertices, tinlod::measureName(options.measure).c_str(), options.deletePct, options.stopPct);
   std::printf("%6s %10s %10s %9s %10s %10s %10s %9s %9s %10s\n", "level", "vertices", "triangles", "deleted", "select s",
-              "delete s", "max err m", "RMSE m", "outline", "cells lost");
+              "delete s", "max err m", "RMSE m", "outline", "net lost");
   double select = 0, remove = 0;
   for (const tinlod::LevelStats& l : h.levels) {
     std::printf("%6d %10zu %10zu %9zu %10.3f %10.3f %10.2f %9.2f %8.1f%% %10lld\n", l.level, l.vertices, l.triangles,

@@ -116,12 +116,12 @@ std::string toText(const HierarchyInfo& info) {
   for (const auto& [k, v] : info.metadata) out << "  " << k << " = " << v << "\n";
   out << std::setw(6) << "level" << std::setw(11) << "vertices" << std::setw(11) << "triangles" << std::setw(10)
       << "deleted" << std::setw(10) << "select s" << std::setw(10) << "delete s" << std::setw(12) << "max error m" << std::setw(9) << "RMSE m"
-      << std::setw(10) << "outline" << std::setw(12) << "cells lost" << "\n";
+      << std::setw(10) << "outline" << std::setw(14) << "net cells lost" << "\n";
   for (const LevelStats& l : info.levels)
     out << std::setw(6) << l.level << std::setw(11) << l.vertices << std::setw(11) << l.triangles << std::setw(10)
         << l.deleted << std::setprecision(3) << std::setw(10) << l.selectSeconds << std::setw(10) << l.deleteSeconds
         << std::setprecision(2) << std::setw(12) << l.maxError << std::setw(9) << l.rmse << std::setw(10)
-        << l.outlineVertices << std::setw(12) << info.levels.front().cells - l.cells << "\n";
+        << l.outlineVertices << std::setw(14) << info.levels.front().cells - l.cells << "\n";
   return out.str();
 }
 
