@@ -11,6 +11,7 @@
 #include <set>
 
 #include "tinlod/importance.h"
+#include "tinlod/triangle_plane.h"
 
 namespace tinlod {
 namespace {
@@ -145,7 +146,9 @@ TEST(Importance, TrianglePlaneHeights) {
   auto z = [&](double x, double y) { return 7 + 0.2 * (x - x0) - 0.35 * (y - y0); };
   Star s;
   s.ring = {{x0, y0, z(x0, y0)}, {x0 + 90, y0 + 5, z(x0 + 90, y0 + 5)}, {x0 + 20, y0 + 80, z(x0 + 20, y0 + 80)}};
-  const TrianglePlane plane = planeOf(s, {0, 1, 2});
+  const TrianglePlane plane =
+      TrianglePlane::through(s.ring[0].x, s.ring[0].y, s.ring[0].z, s.ring[1].x, s.ring[1].y, s.ring[1].z, s.ring[2].x,
+                             s.ring[2].y, s.ring[2].z);
   for (double dx : {0.0, 13.5, 40.0})
     for (double dy : {0.0, 7.25, 30.0}) EXPECT_NEAR(plane.height(x0 + dx, y0 + dy), z(x0 + dx, y0 + dy), 1e-9);
 }

@@ -15,6 +15,7 @@
 
 #include "tinlod/dem.h"
 #include "tinlod/tin.h"
+#include "tinlod/triangle_plane.h"
 
 namespace tinlod {
 
@@ -65,8 +66,7 @@ void scanCells(int width, int height, const CellCorner (&p)[3], const bool (&out
   const int r0 = std::max(0, static_cast<int>(std::ceil(rowMin))), r1 = std::min(height - 1, static_cast<int>(std::floor(rowMax)));
   const int c0 = std::max(0, static_cast<int>(std::ceil(colMin))), c1 = std::min(width - 1, static_cast<int>(std::floor(colMax)));
   // The plane, for heights only: which cells are inside is decided by the edge functions.
-  const double dzdc = ((p[1].z - p[0].z) * (p[2].r - p[0].r) - (p[2].z - p[0].z) * (p[1].r - p[0].r)) / area2;
-  const double dzdr = ((p[2].z - p[0].z) * (p[1].c - p[0].c) - (p[1].z - p[0].z) * (p[2].c - p[0].c)) / area2;
+  const TrianglePlane plane = TrianglePlane::through(p[0].c, p[0].r, p[0].z, p[1].c, p[1].r, p[1].z, p[2].c, p[2].r, p[2].z);
   for (int row = r0; row <= r1; ++row) {
     // Each edge's function along the row is rowTerm - dr (col - lo.c), the same operations
     // in both triangles of the edge, and monotone in col even rounded: the cells inside
@@ -92,8 +92,7 @@ void scanCells(int width, int height, const CellCorner (&p)[3], const bool (&out
     while (first <= last && !inside(first)) ++first;
     while (last >= first && !inside(last)) --last;
     // From corner 0, so that a flat triangle gives its height exactly.
-    const double rowHeight = p[0].z + dzdr * (row - p[0].r);
-    for (int col = first; col <= last; ++col) visit(row, col, rowHeight + dzdc * (col - p[0].c));
+    for (int col = first; col <= last; ++col) visit(row, col, plane.height(col, row));
   }
 }
 

@@ -130,9 +130,9 @@ class Simplifier {
     }
     // The outline may move by one cell at level 1 unless told otherwise: a cell's size is
     // the TIN's area over the cells it covers.
-    double area = 0;
-    for (const Triangle& t : h_.base.triangles) area += triangleArea(h_.base, t);
-    cellSize_ = coveredCells_ > 0 ? std::sqrt(area / double(coveredCells_)) : 0;
+    std::int64_t covered = 0;
+    for (const TriangleCells& c : slotCells_) covered += c.cells;
+    cellSize_ = covered > 0 ? std::sqrt(totalArea(h_.base) / double(covered)) : 0;
     tolerance_ = std::isnan(options_.outlineTolerance) ? cellSize_ : options_.outlineTolerance;
   }
 
@@ -146,7 +146,6 @@ class Simplifier {
         h_.triangles[mesh_.triangleId(slot)].error = slotCells_[slot].maxError;
       }
     }, [&](double f) { progress_.report(0.1 * f, "Measuring level 0 against the DEM"); });
-    for (const TriangleCells& c : slotCells_) coveredCells_ += c.cells;
   }
 
   // Every deletion adds to the hierarchy's arrays. Reserved once, for as many deletions
@@ -237,7 +236,7 @@ class Simplifier {
     return true;
   }
 
-  // How far the outline may move when level `level` is made: the tolerance at level 1,
+  // How far the outline may move in the level being made: the tolerance at level 1,
   // growing as the spacing of the vertices left does.
   double outlineTolerance() const { return tolerance_ * std::sqrt(double(original_) / double(std::max<std::size_t>(current_, 1))); }
 
@@ -328,7 +327,6 @@ class Simplifier {
     slots_.resize(rings);
     outer_.resize(rings);
     links_ = links;
-    givenUp_.assign(picks.size(), 0);
     return picks;
   }
 
@@ -404,7 +402,7 @@ class Simplifier {
       std::vector<LocalTriangle> fill;
       for (int i = begin; i < end; ++i) {
         mesh_.prefetchAhead(i, end, [&](int j) { return picks[j].id; });
-        plan(picks[i], i, level, Ranges{at.group + i, at.triangles, at.links, at.rings}, star, fill);
+        plan(picks[i], level, Ranges{at.group + i, at.triangles, at.links, at.rings}, star, fill);
       }
     }, [&](double f) { reportProgress(level, f / 2, picks.size()); });
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
@@ -417,7 +415,6 @@ class Simplifier {
       triangles_ -= p.open ? 1 : 2;
       outlineLeft_ -= p.open;
     }
-    for (std::int64_t cells : givenUp_) coveredCells_ -= cells;
     compact();
   }
 
@@ -430,7 +427,7 @@ class Simplifier {
   // triangle is from the DEM, and its group. Reads the mesh and writes only entries that
   // are the pick's own: its ranges of the level's arrays and of the hierarchy's, its
   // star's triangles, its slots' retirement.
-  void plan(const Pick& pick, std::size_t index, std::int32_t level, const Ranges& at, Star& star,
+  void plan(const Pick& pick, std::int32_t level, const Ranges& at, Star& star,
             std::vector<LocalTriangle>& fill) {
     VertexId* ring = h_.rings.data() + at.rings + pick.ring;
     const std::int32_t* outer = outer_.data() + pick.ring;
@@ -439,13 +436,8 @@ class Simplifier {
       throw Error("internal error: deleting a vertex of degree " + std::to_string(star.ring.size()) + " made " +
                   std::to_string(fill.size()) + " triangles");
     std::copy(fill.begin(), fill.end(), fill_.begin() + pick.fill);
-    std::int64_t after = 0, before = 0;
-    for (std::size_t j = 0; j < fill.size(); ++j) {
+    for (std::size_t j = 0; j < fill.size(); ++j)
       fillCells_[pick.fill + j] = measureFill(ring, outer, static_cast<int>(pick.degree), fill[j]);
-      after += fillCells_[pick.fill + j].cells;
-    }
-    for (std::uint32_t k = 0; k < pick.triangles(); ++k) before += slotCells_[slots_[pick.ring + k]].cells;
-    givenUp_[index] = before - after;
     thread_local std::vector<int> onEdge;  // by ring edge: the new triangle on it
     onEdge.resize(pick.degree);
     ringEdgeTriangles(fill.data(), static_cast<int>(pick.degree), onEdge.data());
@@ -512,9 +504,8 @@ class Simplifier {
     l.level = level, l.vertices = current_, l.triangles = triangles_, l.deleted = deleted;
     l.selectSeconds = select, l.deleteSeconds = remove;
     double sum = 0;
-    for (const TriangleCells& c : slotCells_) l.maxError = std::max(l.maxError, c.maxError), sum += c.sumSquares;
-    l.cells = coveredCells_;
-    l.rmse = coveredCells_ > 0 ? std::sqrt(sum / double(coveredCells_)) : 0;
+    for (const TriangleCells& c : slotCells_) l.maxError = std::max(l.maxError, c.maxError), sum += c.sumSquares, l.cells += c.cells;
+    l.rmse = l.cells > 0 ? std::sqrt(sum / double(l.cells)) : 0;
     l.outlineVertices = outlineLeft_;
     return l;
   }
@@ -559,7 +550,6 @@ class Simplifier {
   SimplificationMesh mesh_;
   CellErrors cells_;
   OutlineChain outline_;
-  std::int64_t coveredCells_ = 0;    // valid DEM cells under the current level
   std::size_t outlineLeft_ = 0;      // outline vertices in the current level
   double cellSize_ = 0, tolerance_ = 0;  // metres; the outline's tolerance at level 1
   std::vector<VertexId> live_;               // vertices not fixed and not yet deleted
@@ -574,7 +564,6 @@ class Simplifier {
   std::vector<Pick> pickScratch_;
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
   std::vector<TriangleCells> fillCells_;     //   and their figures against the DEM
-  std::vector<std::int64_t> givenUp_;        //   and each pick's cells no longer covered
   std::size_t links_ = 0;                    //   and how many accept and reject links in all
   std::vector<std::int32_t> slots_;          //   and each pick's star slots
   std::vector<std::int32_t> outer_;          //   and the triangles beyond its ring

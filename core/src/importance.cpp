@@ -92,13 +92,8 @@ class EarClipper {
       l_.rel[i] = {x, y, x * x + y * y};
       l_.prev[i] = i == 0 ? d - 1 : i - 1, l_.next[i] = i + 1 == d ? 0 : i + 1;
     }
-    convexRing_ = true;
-    for (int i = 0; i < d; ++i) rank(i), convexRing_ = convexRing_ && convex(i);
+    for (int i = 0; i < d; ++i) rank(i);
   }
-
-  // Whether every ring vertex was convex before any clipping (by the queue's own
-  // orientation test: exact in exact mode).
-  bool convexRing() const { return convexRing_; }
 
   // Calls emit(triangle) for each of the d - 2 triangles. exact: convexity by exact
   // orientation and each ear confirmed with exact predicates, as the deletion needs;
@@ -175,30 +170,26 @@ class EarClipper {
   const Star& star_;
   EarLists l_;
   bool exact_;
-  bool convexRing_;
 };
 
 // Runs the ear queue with lists on the stack for stars of up to kStackEars vertices,
 // which is nearly all: the simplifier clips millions of them.
 template <class Emit>
-bool clipEars(const Star& star, bool exact, Emit emit) {
+void clipEars(const Star& star, bool exact, Emit emit) {
   constexpr std::size_t kStackEars = 32;
   const std::size_t d = star.ring.size();
   if (d <= kStackEars) {
     int prev[kStackEars], next[kStackEars];
     double power[kStackEars];
     Relative rel[kStackEars];
-    EarClipper clipper(star, {prev, next, power, rel}, exact);
-    clipper.run(emit);
-    return clipper.convexRing();
+    EarClipper(star, {prev, next, power, rel}, exact).run(emit);
+    return;
   }
   thread_local std::vector<int> prev, next;
   thread_local std::vector<double> power;
   thread_local std::vector<Relative> rel;
   prev.resize(d), next.resize(d), power.resize(d), rel.resize(d);
-  EarClipper clipper(star, {prev.data(), next.data(), power.data(), rel.data()}, exact);
-  clipper.run(emit);
-  return clipper.convexRing();
+  EarClipper(star, {prev.data(), next.data(), power.data(), rel.data()}, exact).run(emit);
 }
 
 }  // namespace
@@ -279,18 +270,6 @@ double normalFlatness(const Star& star) {
 
 bool strictlyInCircle(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   return CGAL::side_of_oriented_circle(xy(a), xy(b), xy(c), xy(d)) == CGAL::ON_POSITIVE_SIDE;
-}
-
-bool convexRing(const Star& star) {
-  const std::size_t d = star.ring.size();
-  for (std::size_t i = 0; i < d; ++i)
-    if (!leftTurn(star.ring[(i + d - 1) % d], star.ring[i], star.ring[(i + 1) % d])) return false;
-  return true;
-}
-
-TrianglePlane planeOf(const Star& star, const LocalTriangle& t) {
-  const Point3 &a = star.ring[t[0]], &b = star.ring[t[1]], &c = star.ring[t[2]];
-  return TrianglePlane::through(a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z);
 }
 
 double importance(Measure measure, const Star& star) {

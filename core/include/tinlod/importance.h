@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "tinlod/triangle_plane.h"
 
 namespace tinlod {
 
@@ -66,11 +65,6 @@ double normalFlatness(const Star& star);
 // Whether d lies strictly inside the circle through a, b, c (counter-clockwise), by CGAL's
 // exact in-circle predicate.
 bool strictlyInCircle(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
-
-// Whether the star's ring is a convex polygon (CGAL's exact orientation).
-bool convexRing(const Star& star);
-// The plane of triangle t of the star's ring, from its first corner.
-TrianglePlane planeOf(const Star& star, const LocalTriangle& t);
 
 // The measure's importance of the star's centre: degree (ring vertices), volume change or
 // 1 - flatness; the error measure is the simplifier's, measured against the DEM's cells.
