@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tinlod/importance.h"
+#include "triangle_contains.h"
 
 namespace tinlod {
 namespace {
@@ -18,12 +19,6 @@ K::Point_2 xy(const Point3& p) { return K::Point_2(p.x, p.y); }
 
 CGAL::Orientation orientation(const std::vector<Point3>& r, int a, int b, int c) {
   return CGAL::orientation(xy(r[a]), xy(r[b]), xy(r[c]));
-}
-
-// Whether p lies in the closed triangle a, b, c (counter-clockwise).
-bool inClosedTriangle(const std::vector<Point3>& r, int a, int b, int c, int p) {
-  return orientation(r, a, b, p) != CGAL::RIGHT_TURN && orientation(r, b, c, p) != CGAL::RIGHT_TURN &&
-         orientation(r, c, a, p) != CGAL::RIGHT_TURN;
 }
 
 // Any triangulation of the simple polygon, by clipping ears: a strictly convex corner
@@ -39,7 +34,7 @@ bool clipAnyEars(const std::vector<Point3>& ring, std::vector<LocalTriangle>& ou
       if (orientation(ring, a, b, c) != CGAL::LEFT_TURN) continue;
       bool empty = true;
       for (int p : left)
-        if (p != a && p != b && p != c && inClosedTriangle(ring, a, b, c, p)) empty = false;
+        if (p != a && p != b && p != c && triangleContains(xy(ring[a]), xy(ring[b]), xy(ring[c]), xy(ring[p]))) empty = false;
       if (!empty) continue;
       out.push_back({a, b, c});
       left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));

@@ -5,19 +5,21 @@
 
 #include <cmath>
 
+#include "triangle_contains.h"
+
 namespace tinlod {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
-// Whether q lies in the closed triangle a, b, c (either orientation; a degenerate one holds
-// nothing), by CGAL's exact orientation.
+// Whether q lies in the closed triangle a, b, c of either orientation (the grid's rows run
+// against the TIN's y); a degenerate one holds nothing.
 bool inClosed(const K::Point_2& a, const K::Point_2& b, const K::Point_2& c, const K::Point_2& q) {
-  const CGAL::Orientation o = CGAL::orientation(a, b, c);
-  if (o == CGAL::COLLINEAR) return false;
-  const CGAL::Orientation opposite = o == CGAL::LEFT_TURN ? CGAL::RIGHT_TURN : CGAL::LEFT_TURN;
-  return CGAL::orientation(a, b, q) != opposite && CGAL::orientation(b, c, q) != opposite &&
-         CGAL::orientation(c, a, q) != opposite;
+  switch (CGAL::orientation(a, b, c)) {
+    case CGAL::LEFT_TURN: return triangleContains(a, b, c, q);
+    case CGAL::RIGHT_TURN: return triangleContains(a, c, b, q);
+    default: return false;
+  }
 }
 
 }  // namespace
