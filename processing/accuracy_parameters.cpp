@@ -40,6 +40,7 @@ void DemAlgorithm::addAccuracyParameters(bool createOutputsByDefault) {
 
 void DemAlgorithm::readAccuracyParameters(const QVariantMap& parameters, QgsProcessingContext& context) {
   accuracy_ = AccuracyOutputs();
+  accuracy_.overwrite = true;  // QGIS has asked before replacing a destination; inputs stay refused
   accuracy_.options.reference = parameterAsEnum(parameters, QStringLiteral("REFERENCE"), context) == 0 ? Reference::Tin : Reference::Dem;
   accuracy_.options.step = parameterAsInt(parameters, QStringLiteral("STEP"), context);
   accuracy_.options.controlSpacing = parameterAsInt(parameters, QStringLiteral("CONTROL_SPACING"), context);

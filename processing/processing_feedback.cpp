@@ -1,15 +1,33 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "processing_feedback.h"
 
+#include <qgsapplication.h>
+
 #include <memory>
 
+#include "tinlod/stop_signals.h"
+
 namespace tinlod::qgis {
+
+namespace {
+
+// qgis_process leaves Ctrl-C to Python's handler, which only notes it while C++ runs: the
+// run went on and replaced its outputs. While a tinlod job's feedback lives, the job's own
+// handlers stop it as on the command line. The QGIS desktop has its Cancel button.
+std::shared_ptr<void> stopSignalsWhileRunning() {
+  if (QgsApplication::platform() != QLatin1String("qgis_process")) return nullptr;
+  catchStopSignals();
+  return std::shared_ptr<void>(nullptr, [](void*) { releaseStopSignals(); });
+}
+
+}  // namespace
 
 Feedback processingFeedback(QgsProcessingFeedback* feedback) {
   Feedback out;
   if (!feedback) return out;
   auto lastPhase = std::make_shared<std::string>();
-  out.progress = [feedback, lastPhase](double fraction, const std::string& phase) {
+  out.progress = [feedback, lastPhase, stopGuard = stopSignalsWhileRunning()](double fraction, const std::string& phase) {
+    if (stopRequested()) feedback->cancel();
     if (phase != *lastPhase) {
       feedback->setProgressText(QString::fromStdString(phase));
       *lastPhase = phase;

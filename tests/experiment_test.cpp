@@ -40,7 +40,7 @@ const AccuracyReport& experiment() {
     o.deletePcts = {10, 20};
     o.stopPct = 20;
     o.accuracy.step = 2;
-    return runExperiment({test::smallSyntheticDemFile()}, o, test::tempDir() + "/e.csv", {});
+    return runExperiment({test::smallSyntheticDemFile()}, o, {test::tempDir() + "/e.csv"}, {});
   }();
   return report;
 }

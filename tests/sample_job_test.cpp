@@ -189,14 +189,17 @@ TEST(SampleJob, IdsCountFromOneAndEqualTheFid) {
   GDALClose(ds);
 }
 
-TEST(SampleJob, StaleTemporaryFilesOfDeadRunsAreRemoved) {
+// A run killed outright (SIGKILL, power loss) leaves its staging folder; nobody holds its
+// lock any more, so the next run for the same output removes it.
+TEST(SampleJob, StagingFoldersOfKilledRunsAreRemoved) {
   const std::string dir = test::tempDir();
-  const std::string stale = dir + "/.tin.tmp-999999999.gpkg";  // no such process
-  std::ofstream(stale) << "left by a killed run";
-  std::ofstream(stale + "-journal") << "x";
+  const fs::path stale = dir + "/.tin.gpkg.tinlod-00000000deadbeef";
+  fs::create_directories(stale);
+  std::ofstream(stale / ".lock") << "";
+  std::ofstream(stale / "tin.gpkg") << "left by a killed run";
+  std::ofstream(stale / "tin.gpkg-journal") << "x";
   runSampleJob(defaultDem(), dir + "/tin.gpkg", {}, false, {});
   EXPECT_FALSE(fs::exists(stale));
-  EXPECT_FALSE(fs::exists(stale + "-journal"));
   EXPECT_EQ(filesIn(dir), 1u);
 }
 

@@ -10,7 +10,7 @@ namespace {
 
 const char* const kUsage =
     "tinlod accuracy DEM TIN.gpkg [-accuracy OUT.tif] [-level L] [-report R.html|.csv|.json] [-reference tin|dem] "
-    "[-step n] [-control c] [-compare_insert] [-of format] [-co NAME=VALUE] [-b band] [-s_srs srs] [-q]";
+    "[-step n] [-control c] [-compare_insert] [-of format] [-co NAME=VALUE] [-b band] [-s_srs srs] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Measures how well each level of a TIN hierarchy (or a TIN) made by tinlod represents
 the original: heights and mean curvature of B-spline surfaces fitted to both, compared
@@ -22,6 +22,7 @@ Usage: tinlod accuracy DEM TIN.gpkg [options]
 DEM is the raster the GeoPackage was made from.
   -b band          its band (default: the one the GeoPackage was sampled from)
   -s_srs srs       its CRS, when its file has none (as given to tinlod build)
+  -overwrite       replace existing -accuracy and -report files (never the inputs)
   -q               quiet: no progress or table, warnings only
 
 )";
@@ -34,7 +35,8 @@ int accuracyCommand(std::vector<std::string> args) {
     std::cout << kHelp << kAccuracyHelp;
     return 0;
   }
-  const AccuracyOutputs outputs = accuracyOutputs(a);
+  AccuracyOutputs outputs = accuracyOutputs(a);
+  outputs.overwrite = a.flag("-overwrite");
   const int band = a.integer("-b", 0);
   const std::string sourceSrs = a.text("-s_srs", "");
   const bool quiet = a.flag("-q");

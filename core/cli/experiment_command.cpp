@@ -14,7 +14,7 @@ namespace {
 
 const char* const kUsage =
     "tinlod experiment DEM [DEM ...] -report R.html|.csv|.json [-methods m,m,...] [-delete_pcts p,p,...] "
-    "[-stop_pct s] [-reference tin|dem] [-step n] [-control c] [sampling options] [-q]";
+    "[-stop_pct s] [-reference tin|dem] [-step n] [-control c] [sampling options] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Runs the study's experiment: every DEM is sampled once, simplified by every method
 with every delete percentage down to the stop percentage, and every level's accuracy
@@ -36,6 +36,7 @@ Usage: tinlod experiment DEM [DEM ...] -report R [options]
   -step n            test points every n-th DEM cell (default 1)
   -control c         B-spline control points every c test points (default 3)
   Sampling options as tinlod sample: -b, -s_srs, -t_srs, -block, -jitter, -seed
+  -overwrite         replace existing report files
   -q                 quiet: no progress, warnings only
 )";
 
@@ -86,12 +87,11 @@ int experimentCommand(std::vector<std::string> args) {
   o.accuracy.step = a.integer("-step", o.accuracy.step);
   o.accuracy.controlSpacing = a.integer("-control", o.accuracy.controlSpacing);
   o.sample = sampleOptions(a);
+  o.overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> dems = a.someOperands(kUsage);
   if (reports.empty()) throw Error("-report is required: name the report file, e.g. -report experiment.html");
-  for (const std::string& r : reports) checkAccuracyReportPath(r);
-  const AccuracyReport r = runExperiment(dems, o, reports.front(), terminalFeedback(quiet));
-  for (std::size_t i = 1; i < reports.size(); ++i) writeAccuracyReport(r, reports[i]);
+  const AccuracyReport r = runExperiment(dems, o, reports, terminalFeedback(quiet));
   if (!quiet) std::cout << "Wrote " << r.rows.size() << " levels of " << dems.size() << " DEMs to " << reports.front()
                         << (reports.size() > 1 ? " and " + std::to_string(reports.size() - 1) + " more" : "") << std::endl;
   return 0;

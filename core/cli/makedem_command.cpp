@@ -49,11 +49,9 @@ int makeDemCommand(std::vector<std::string> args) {
   const std::string extension = std::filesystem::path(files[0]).extension().string();
   if (extension != ".tif" && extension != ".tiff" && extension != ".TIF")
     throw Error("output '" + files[0] + "' must be a GeoTIFF file ending in .tif");
-  if (std::filesystem::exists(files[0]) && !overwrite)
-    throw Error("output '" + files[0] + "' exists: add -overwrite to replace it");
   if (o.width < 2 || o.height < 2 || double(o.width) * o.height > 1e8)
     throw Error("-size must be at least 2 x 2 and at most 100 million cells");
-  writeDemGeoTiff(makeSyntheticDem(o), files[0]);
+  writeDemGeoTiff(makeSyntheticDem(o), files[0], overwrite);
   if (!quiet)
     std::cout << "Wrote a synthetic DEM (" << o.width << " x " << o.height << " cells of " << o.cellSize
               << " m) to " << files[0] << std::endl;

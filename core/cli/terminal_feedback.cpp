@@ -3,27 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <csignal>
 #include <iostream>
 #include <memory>
+
+#include "tinlod/stop_signals.h"
 
 namespace tinlod::cli {
 namespace {
 
-volatile std::sig_atomic_t gStopRequested = 0;
 bool gMidLine = false;  // a progress line is open on stderr
-
-void onSignal(int signal) {
-  if (gStopRequested) {  // asked twice: stop now, as the user insists
-    std::signal(signal, SIG_DFL);
-    std::raise(signal);
-  }
-  gStopRequested = 1;
-}
-
-void catchStopSignals() {
-  for (int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, onSignal);
-}
 
 }  // namespace
 void breakProgressLine();
@@ -47,7 +35,7 @@ class TermProgress {
       gMidLine = false;
     }
     std::cerr.flush();
-    return !gStopRequested;
+    return !stopRequested();
   }
   void message(const std::string& prefix, const std::string& text) {
     breakProgressLine();
@@ -72,7 +60,7 @@ Feedback terminalFeedback(bool quiet) {
   Feedback feedback;
   feedback.warning = [term](const std::string& m) { term->message("Warning: ", m); };
   if (quiet) {
-    feedback.progress = [](double, const std::string&) { return !gStopRequested; };
+    feedback.progress = [](double, const std::string&) { return !stopRequested(); };
     return feedback;
   }
   feedback.info = [term](const std::string& m) { term->message("", m); };

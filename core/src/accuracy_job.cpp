@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "dataset_files.h"
 #include "insertion_levels.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
@@ -18,6 +19,13 @@ void AccuracyOutputs::validate() const {
   if (!reportPath.empty()) checkAccuracyReportPath(reportPath);
   if (!rasterPath.empty()) checkRasterFormat(raster);
   if (rasterLevel < -1) throw Error("-level must be a level number (0 the original) or -1 for the coarsest");
+}
+
+AccuracyFiles stageAccuracyFiles(const AccuracyOutputs& outputs, OutputFiles& files) {
+  AccuracyFiles staged;
+  if (!outputs.rasterPath.empty()) staged.raster = &files.add(outputs.rasterPath, "-accuracy");
+  if (!outputs.reportPath.empty()) staged.report = &files.add(outputs.reportPath, "-report");
+  return staged;
 }
 
 std::string demName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
@@ -60,10 +68,10 @@ AccuracyReport makeReport(const AccuracyEvaluator& evaluator, const std::string&
 }
 
 AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTransform& toTin, const AccuracyOutputs& outputs,
-                               const ProgressRange& progress) {
+                               const AccuracyFiles& files, const ProgressRange& progress) {
   const AccuracyEvaluator evaluator(dem, h.base, toTin, outputs.options, progress.sub(0, 0.05));
   AccuracyBands bands;
-  const bool raster = !outputs.rasterPath.empty();
+  const bool raster = files.raster != nullptr;
   const double measured = outputs.compareInsert ? 0.5 : 0.9;
   std::vector<LevelAccuracy> rows = measureLevels(evaluator, h, demName(dem.path), outputs.rasterLevel,
                                                   raster ? &bands : nullptr, progress.sub(0.05, measured));
@@ -85,14 +93,16 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
     if (srs.importFromWkt(dem.crsWkt.c_str()) == OGRERR_NONE && srs.GetName()) crs = srs.GetName();
   }
   AccuracyReport report = makeReport(evaluator, "Accuracy of the TIN hierarchy of " + demName(dem.path), crs, std::move(rows));
-  if (raster) writeAccuracyRaster(bands, evaluator.grid(), outputs.rasterPath, outputs.raster, progress.sub(0.9, 0.98));
-  if (!outputs.reportPath.empty()) writeAccuracyReport(report, outputs.reportPath);
+  if (raster) writeAccuracyRaster(bands, evaluator.grid(), *files.raster, outputs.raster, progress.sub(0.9, 0.98));
+  if (files.report) writeAccuracyReport(report, *files.report);
   return report;
 }
 
 AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hierarchyPath, const AccuracyOutputs& outputs,
                               int band, const std::string& sourceSrs, const Feedback& feedback) {
   outputs.validate();
+  OutputFiles files(outputs.overwrite, datasetFiles({demPath, hierarchyPath}));
+  const AccuracyFiles staged = stageAccuracyFiles(outputs, files);
   const ProgressRange all(feedback, 0, 1);
   const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.15));
   const auto bandItem = stored.info.metadata.find("band");
@@ -106,7 +116,8 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     all.inform("'" + hierarchyPath + "' is a single TIN: measured against the DEM (-reference dem)");
     chosen.options.reference = Reference::Dem;
   }
-  AccuracyReport report = measureAndWrite(dem, stored.hierarchy, toTin, chosen, all.sub(0.2, 1));
+  AccuracyReport report = measureAndWrite(dem, stored.hierarchy, toTin, chosen, staged, all.sub(0.2, 1));
+  files.commit();
   all.finish("Done");
   return report;
 }

@@ -8,7 +8,6 @@
 #include <memory>
 
 #include "gdal_handles.h"
-#include "temporary_output.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -21,6 +20,10 @@ GDALDriver& driverFor(const RasterWriteOptions& options) {
     throw Error("-of: '" + options.format + "' is not a GDAL raster format: use e.g. GTiff (see gdalinfo --formats)");
   if (!driver->GetMetadataItem(GDAL_DCAP_CREATECOPY) && !driver->GetMetadataItem(GDAL_DCAP_CREATE))
     throw Error("-of: GDAL cannot write " + options.format + " files: use e.g. GTiff");
+  // A VRT would point at an in-memory raster gone with the run; MEM writes no file at all.
+  const std::string name = driver->GetDescription();
+  if (name == "VRT" || name == "MEM" || name == "MBTiles" || name == "WMS")
+    throw Error("-of: " + name + " cannot hold the accuracy raster's pixels in a file: use e.g. GTiff");
   return *driver;
 }
 
@@ -72,27 +75,30 @@ int gdalProgress(double fraction, const char*, void* data) {
 
 }  // namespace
 
-void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const std::string& path,
+void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const StagedFile& file,
                          const RasterWriteOptions& options, const ProgressRange& progress) {
   GDALDriver& driver = driverFor(options);
   const DatasetPtr mem = inMemory(bands, grid);
-  TemporaryOutput temporary(path);
   CPLErrorReset();
   CPLStringList co;
   for (const std::string& o : options.creationOptions) co.AddString(o.c_str());
-  DatasetPtr out(driver.CreateCopy(temporary.path().c_str(), mem.get(), FALSE, co.List(), gdalProgress,
+  // GDAL's own messages would name the staging file: kept quiet, then said in the user's terms.
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  DatasetPtr out(driver.CreateCopy(file.staging.c_str(), mem.get(), FALSE, co.List(), gdalProgress,
                                    const_cast<ProgressRange*>(&progress)));
+  CPLPopErrorHandler();
+  const auto failed = [&] {
+    return Error(file.option + ": cannot write the accuracy raster '" + file.path +
+                 "': " + inUserTerms(file, CPLGetLastErrorMsg()));
+  };
   if (!out) {
     progress.report(1, "Writing the accuracy raster");  // a cancel, if that is what stopped GDAL
-    throw Error("cannot write the accuracy raster '" + path + "': " + CPLGetLastErrorMsg());
+    throw failed();
   }
+  CPLPushErrorHandler(CPLQuietErrorHandler);
   out.reset();
-  if (CPLGetLastErrorType() == CE_Failure)
-    throw Error("cannot write the accuracy raster '" + path + "': " + CPLGetLastErrorMsg());
-  const std::string aux = temporary.path().string() + ".aux.xml";
-  temporary.commit();
-  std::error_code ignored;
-  if (std::filesystem::exists(aux)) std::filesystem::rename(aux, temporary.output().string() + ".aux.xml", ignored);
+  CPLPopErrorHandler();
+  if (CPLGetLastErrorType() == CE_Failure) throw failed();
 }
 
 }  // namespace tinlod

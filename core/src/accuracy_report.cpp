@@ -9,7 +9,6 @@
 #include <fstream>
 
 #include "accuracy_report_formats.h"
-#include "temporary_output.h"
 #include "tinlod/error.h"
 
 namespace fs = std::filesystem;
@@ -50,19 +49,16 @@ void checkAccuracyReportPath(const std::string& path) {
 
 void writeAccuracyReport(const AccuracyReport& report, const std::string& path) {
   checkAccuracyReportPath(path);
-  TemporaryOutput::removeStale(path);
-  TemporaryOutput output{fs::path(path)};
-  {
-    std::ofstream out(output.path(), std::ios::binary);
-    writerFor(path)(report, out);
-    out.close();
-    if (!out) throw Error("-report: cannot write '" + path + "' (is the disk full?)");
-  }
-  try {
-    output.commit();
-  } catch (const fs::filesystem_error& e) {
-    throw Error("-report: cannot replace '" + path + "': " + e.code().message());
-  }
+  OutputFiles files(true);
+  writeAccuracyReport(report, files.add(path, "-report"));
+  files.commit();
+}
+
+void writeAccuracyReport(const AccuracyReport& report, const StagedFile& file) {
+  std::ofstream out(file.staging, std::ios::binary);
+  writerFor(file.path)(report, out);
+  out.close();
+  if (!out) throw Error(file.option + ": cannot write '" + file.path + "' (is the disk full?)");
 }
 
 bool isAccuracyReportPath(const std::string& path) { return writerFor(path) != nullptr; }

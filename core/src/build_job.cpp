@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "dataset_files.h"
 #include "text_and_paths.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/hierarchy_builder.h"
@@ -82,6 +83,10 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints);
+  // The hierarchy and the accuracy files go into place together, or none of them.
+  OutputFiles files(overwrite, datasetFiles({demPath, options.fixedPoints}));
+  const StagedFile& out = files.add(outPath, "output", true);
+  const AccuracyFiles accuracyFiles = stageAccuracyFiles(accuracy, files);
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readDem(demPath, sample.band, all.sub(0, 0.05));
   Tin tin = sampleTin(dem, sample, all.sub(0.05, 0.2));
@@ -95,12 +100,13 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
   all.inform("Writing " + std::to_string(h.coarsest() + 1) + " levels: " + std::to_string(h.triangles.size()) +
              " distinct triangles, " + std::to_string(h.groups.size()) + " groups");
-  writeHierarchyGpkg(h, outPath, writeOptions, all.sub(write, measure));
+  writeHierarchyGpkg(h, out, writeOptions, all.sub(write, measure));
   BuildSummary s;
   if (accuracy.wanted()) {
     const CrsTransform toTin = CrsTransform::forDem(dem, sample.sourceSrs, sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
-    s.accuracy = measureAndWrite(dem, h, toTin, accuracy, all.sub(measure, 1)).rows;
+    s.accuracy = measureAndWrite(dem, h, toTin, accuracy, accuracyFiles, all.sub(measure, 1)).rows;
   }
+  files.commit();
   all.finish("Done");
 
   s.originalVertices = h.levels.front().vertices;

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "dataset_files.h"
 #include "tinlod/experiment.h"
 
 #include "insertion_levels.h"
@@ -67,10 +68,15 @@ void runDem(const std::string& path, const ExperimentOptions& options, std::vect
 }  // namespace
 
 AccuracyReport runExperiment(const std::vector<std::string>& dems, const ExperimentOptions& options,
-                             const std::string& reportPath, const Feedback& feedback) {
+                             const std::vector<std::string>& reportPaths, const Feedback& feedback) {
   options.validate();
   if (dems.empty()) throw Error("name at least one DEM");
-  if (!reportPath.empty()) checkAccuracyReportPath(reportPath);
+  OutputFiles files(options.overwrite, datasetFiles(dems));
+  std::vector<const StagedFile*> staged;
+  for (const std::string& path : reportPaths) {
+    checkAccuracyReportPath(path);
+    staged.push_back(&files.add(path, "-report"));
+  }
   const ProgressRange all(feedback, 0, 1);
   std::vector<LevelAccuracy> rows;
   for (std::size_t i = 0; i < dems.size(); ++i)
@@ -82,7 +88,8 @@ AccuracyReport runExperiment(const std::vector<std::string>& dems, const Experim
   report.controlSpacing = options.accuracy.controlSpacing;
   report.generator = std::string("tinlod ") + kVersion + " experiment";
   report.rows = std::move(rows);
-  if (!reportPath.empty()) writeAccuracyReport(report, reportPath);
+  for (const StagedFile* file : staged) writeAccuracyReport(report, *file);
+  files.commit();
   all.finish("Done");
   return report;
 }

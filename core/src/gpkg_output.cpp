@@ -42,14 +42,6 @@ GDALDataset* openOrCreate(const fs::path& tmp, bool fromCopy) {
 
 }  // namespace
 
-// The output path once checked and cleared of temporary files that killed runs left:
-// runs before the temporary sibling is named.
-fs::path GpkgOutput::checkedOutput(const std::string& path, const GpkgWriteOptions& options) {
-  checkOutputPath(path, options);
-  TemporaryOutput::removeStale(path);
-  return fs::path(path);
-}
-
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
   const fs::path out(path);
   if (lower(out.extension().string()) != ".gpkg")
@@ -74,19 +66,14 @@ void writeFeature(OGRLayer& layer, OGRFeature& feature) {
     throw Error(std::string("cannot write to layer '") + layer.GetName() + "': " + CPLGetLastErrorMsg());
 }
 
-GpkgOutput::GpkgOutput(const std::string& path, const GpkgWriteOptions& options,
+GpkgOutput::GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options,
                        std::function<bool(const std::string&)> ours)
-    : path_(path), options_(options), tmp_(checkedOutput(path, options)) {
-  const bool fromCopy = fs::exists(tmp_.output());
-  if (fromCopy) {
-    std::error_code ec;
-    fs::copy_file(tmp_.output(), tmp_.path(), fs::copy_options::overwrite_existing, ec);
-    if (ec) throw Error("cannot copy '" + path + "' to update it: " + ec.message());
-  }
-  ds_ = openOrCreate(tmp_.path(), fromCopy);
+    : file_(file), options_(options) {
+  const bool fromCopy = fs::exists(file_.staging);  // OutputFiles copied the existing output
+  ds_ = openOrCreate(file_.staging, fromCopy);
   if (!ds_)
-    throw Error(fromCopy ? "'" + path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name"
-                         : "cannot create GeoPackage '" + path + "': " + CPLGetLastErrorMsg());
+    throw Error(fromCopy ? "'" + file_.path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name"
+                         : "cannot create GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
   dropOurs(ours);
 }
 
@@ -120,13 +107,13 @@ void GpkgOutput::dropOurs(const std::function<bool(const std::string&)>& ours) {
     CPLPushErrorHandler(CPLQuietErrorHandler);
     GDALClose(ds_);
     CPLPopErrorHandler();
-    ds_ = openOrCreate(tmp_.path(), true);
-    if (!ds_) throw Error("cannot reopen '" + path_ + "' to update it");
+    ds_ = openOrCreate(file_.staging, true);
+    if (!ds_) throw Error("cannot reopen '" + file_.path + "' to update it");
   }
   for (int i = ds_->GetLayerCount() - 1; i >= 0; --i) {
     const std::string name = ds_->GetLayer(i)->GetName();
     if (ours(name)) {
-      if (ds_->DeleteLayer(i) != OGRERR_NONE) throw Error("cannot replace layer '" + name + "' of '" + path_ + "'");
+      if (ds_->DeleteLayer(i) != OGRERR_NONE) throw Error("cannot replace layer '" + name + "' of '" + file_.path + "'");
       dropped = true;
     }
   }
@@ -139,7 +126,7 @@ OGRLayer* GpkgOutput::createLayer(const char* name, OGRwkbGeometryType type, con
   OGRSpatialReference* srsPtr = nullptr;
   if (type != wkbNone && !crsWkt.empty() && srs.importFromWkt(crsWkt.c_str()) == OGRERR_NONE) srsPtr = &srs;
   OGRLayer* layer = ds_->CreateLayer(name, srsPtr, type, nullptr);
-  if (!layer) throw Error(std::string("cannot create layer '") + name + "': " + CPLGetLastErrorMsg());
+  if (!layer) throw Error(std::string("cannot create layer '") + name + "' in '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
   for (const FieldSpec& field : fields) {
     OGRFieldDefn defn(field.name, field.type);
     defn.SetSubType(field.subType);
@@ -152,7 +139,7 @@ void GpkgOutput::execute(const std::string& sql) {
   CPLErrorReset();
   OGRLayer* result = ds_->ExecuteSQL(sql.c_str(), nullptr, nullptr);
   if (result) ds_->ReleaseResultSet(result);
-  if (CPLGetLastErrorType() >= CE_Failure) throw Error("GeoPackage statement failed: " + std::string(CPLGetLastErrorMsg()));
+  if (CPLGetLastErrorType() >= CE_Failure) throw Error("GeoPackage statement on '" + file_.path + "' failed: " + said(CPLGetLastErrorMsg()));
 }
 
 void GpkgOutput::createFeatureView(const std::string& name, const std::string& select, const std::string& baseTable,
@@ -168,8 +155,8 @@ void GpkgOutput::createFeatureView(const std::string& name, const std::string& s
 
 void GpkgOutput::runDeferred() {
   if (deferred_.empty() && !vacuum_) return;
-  ds_ = openOrCreate(tmp_.path(), true);
-  if (!ds_) throw Error("cannot reopen GeoPackage '" + path_ + "' to finish it");
+  ds_ = openOrCreate(file_.staging, true);
+  if (!ds_) throw Error("cannot reopen GeoPackage '" + file_.path + "' to finish it");
   begin();
   for (const std::string& sql : deferred_) execute(sql);
   commit();
@@ -183,7 +170,7 @@ void GpkgOutput::begin() {
 }
 
 void GpkgOutput::commit() {
-  if (ds_->CommitTransaction() != OGRERR_NONE) throw Error("cannot commit to GeoPackage '" + path_ + "'");
+  if (ds_->CommitTransaction() != OGRERR_NONE) throw Error("cannot commit to GeoPackage '" + file_.path + "'");
 }
 
 void GpkgOutput::finish(const ProgressRange& progress) {
@@ -200,12 +187,11 @@ void GpkgOutput::finish(const ProgressRange& progress) {
   GDALClose(ds_);
   ds_ = nullptr;
   if (CPLGetLastErrorType() >= CE_Failure)
-    throw Error("cannot finish GeoPackage '" + path_ + "': " + CPLGetLastErrorMsg());
+    throw Error("cannot finish GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
   runDeferred();
-  // Nothing is committed before the rename: a cancel asked for during the index build
-  // is still honoured here.
+  // Nothing is in place before the job commits its outputs: a cancel asked for during the
+  // index build is still honoured here.
   progress.report(0.99, "Building the spatial index");
-  tmp_.commit();
 }
 
 }  // namespace tinlod

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "temporary_output.h"
 #include "tinlod/feedback.h"
 #include "tinlod/gpkg_writer.h"
+#include "tinlod/output_files.h"
 
 namespace tinlod {
 
@@ -22,12 +22,12 @@ struct FieldSpec {
   OGRFieldSubType subType = OFSTNone;
 };
 
-// Works on a temporary copy of the output (or a new GeoPackage): the job's own layers
-// and views, those for which `ours` is true, are dropped first, the rest is kept.
-// finish() closes it and renames it into place; without finish() nothing changes.
+// Works on the staged copy of the output (or a new GeoPackage): the job's own layers and
+// views, those for which `ours` is true, are dropped first, the rest is kept. finish()
+// closes it; the job's OutputFiles moves it into place.
 class GpkgOutput {
  public:
-  GpkgOutput(const std::string& path, const GpkgWriteOptions& options, std::function<bool(const std::string&)> ours);
+  GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options, std::function<bool(const std::string&)> ours);
   ~GpkgOutput();
   GpkgOutput(const GpkgOutput&) = delete;
   GpkgOutput& operator=(const GpkgOutput&) = delete;
@@ -49,14 +49,13 @@ class GpkgOutput {
   void finish(const ProgressRange& progress);
 
  private:
-  static std::filesystem::path checkedOutput(const std::string& path, const GpkgWriteOptions& options);
   void dropOurs(const std::function<bool(const std::string&)>& ours);
   void runDeferred();
   std::vector<std::string> deferred_;
   bool vacuum_ = false;
-  std::string path_;
+  std::string said(const std::string& gdalMessage) const { return inUserTerms(file_, gdalMessage); }
+  StagedFile file_;
   GpkgWriteOptions options_;
-  TemporaryOutput tmp_;
   GDALDataset* ds_ = nullptr;
 };
 

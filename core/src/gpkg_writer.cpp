@@ -36,7 +36,16 @@ MoreFields extraSetter(const std::vector<ExtraField>& extra, int common) {
 void writeTinGpkg(const Tin& tin, const std::string& path, const GpkgWriteOptions& options,
                   const ProgressRange& progress, const std::vector<ExtraField>& vertexExtra,
                   const std::vector<ExtraField>& triangleExtra) {
-  GpkgOutput out(path, options, isTinlodLayer);
+  checkOutputPath(path, options);
+  OutputFiles files(options.overwrite);
+  writeTinGpkg(tin, files.add(path, "output", true), options, progress, vertexExtra, triangleExtra);
+  files.commit();
+}
+
+void writeTinGpkg(const Tin& tin, const StagedFile& file, const GpkgWriteOptions& options,
+                  const ProgressRange& progress, const std::vector<ExtraField>& vertexExtra,
+                  const std::vector<ExtraField>& triangleExtra) {
+  GpkgOutput out(file, options, isTinlodLayer);
   OGRLayer* vertices = out.createLayer("vertices", wkbPoint25D, tin.crsWkt, withExtra(vertexFields(), vertexExtra));
   OGRLayer* triangles = out.createLayer("triangles", wkbPolygon25D, tin.crsWkt, withExtra(triangleFields(), triangleExtra));
   out.begin();

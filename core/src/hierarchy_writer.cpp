@@ -74,7 +74,15 @@ void createLevelViews(const Hierarchy& h, GpkgOutput& out) {
 
 void writeHierarchyGpkg(const Hierarchy& h, const std::string& path, const GpkgWriteOptions& options,
                         const ProgressRange& progress) {
-  GpkgOutput out(path, options, isTinlodLayer);
+  checkOutputPath(path, options);
+  OutputFiles files(options.overwrite);
+  writeHierarchyGpkg(h, files.add(path, "output", true), options, progress);
+  files.commit();
+}
+
+void writeHierarchyGpkg(const Hierarchy& h, const StagedFile& file, const GpkgWriteOptions& options,
+                        const ProgressRange& progress) {
+  GpkgOutput out(file, options, isTinlodLayer);
   const std::string& crs = h.base.crsWkt;
   std::vector<FieldSpec> vfields = vertexFields();
   vfields.push_back({"level"});

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "dataset_files.h"
 #include "tinlod/insert_job.h"
 
 #include <algorithm>
@@ -196,6 +197,8 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   options.validate();
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  OutputFiles files(overwrite, datasetFiles(demPath));
+  const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readDem(demPath, options.sample.band, all.sub(0, 0.1));
   const InsertedTin result = greedyInsertionTin(dem, options, all.sub(0.1, 0.9));
@@ -210,7 +213,8 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   std::vector<ExtraField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
   extra[0].values.assign(result.insertion.begin(), result.insertion.end());
   extra[1].values = result.errorBefore;
-  writeTinGpkg(result.tin, outPath, writeOptions, all.sub(0.9, 1), extra);
+  writeTinGpkg(result.tin, out, writeOptions, all.sub(0.9, 1), extra);
+  files.commit();
   all.finish("Done");
   return result.summary;
 }

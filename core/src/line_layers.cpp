@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "dataset_files.h"
 #include "tinlod/line_layers.h"
 
 #include <algorithm>
@@ -182,6 +183,8 @@ DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const 
                    const Feedback& feedback) {
   GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "dp_values"}, {"TINLOD_SOURCE", inPath}}};
   checkOutputPath(outPath, writeOptions);
+  OutputFiles files(overwrite, datasetFiles(inPath));
+  const StagedFile& staged = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   const LineSet set = readLines(inPath, all.sub(0, 0.2));
   DpSummary s;
@@ -202,7 +205,7 @@ DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const 
     writeOptions.metadata["TINLOD_THRESHOLD"] = formatNumber(options.threshold);
     writeOptions.metadata["TINLOD_CROSSINGS"] = std::to_string(s.crossings);
   }
-  GpkgOutput out(outPath, writeOptions, isDpLayer);
+  GpkgOutput out(staged, writeOptions, isDpLayer);
   OGRLayer* lines = out.createLayer("lines", wkbLineStringM, set.crsWkt, {{"feature"}});
   OGRLayer* vertices = options.points ? out.createLayer("vertices", wkbPoint, set.crsWkt, {{"line"}, {"vertex"}, {"value", OFTReal}}) : nullptr;
   OGRLayer* simplifiedLayer = options.threshold >= 0 ? out.createLayer("simplified", wkbLineString, set.crsWkt, {{"feature"}}) : nullptr;
@@ -212,6 +215,7 @@ DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const 
   if (simplifiedLayer) writeSimplified(*simplifiedLayer, set, simple);
   out.commit();
   out.finish(all.sub(0.6, 1));
+  files.commit();
   all.finish("Done");
   return s;
 }
@@ -230,11 +234,13 @@ ConcavitySummary runConcavityJob(const std::string& inPath, const std::string& o
   options.validate();
   GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "concavity"}, {"TINLOD_SOURCE", inPath}}};
   checkOutputPath(outPath, writeOptions);
+  OutputFiles files(overwrite, datasetFiles(inPath));
+  const StagedFile& staged = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   const LineSet set = readLines(inPath, all.sub(0, 0.2));
   ConcavitySummary s;
   s.lines = set.lines.size(), s.crsName = set.crsName;
-  GpkgOutput out(outPath, writeOptions, isConcavityLayer);
+  GpkgOutput out(staged, writeOptions, isConcavityLayer);
   OGRLayer* vertices = out.createLayer("vertices", wkbPoint, set.crsWkt, {{"line"}, {"vertex"}, {"secant", OFTReal}, {"disk", OFTReal}});
   OGRLayer* parts = out.createLayer("parts", wkbLineString, set.crsWkt, {{"feature"}, {"class", OFTString}});
   out.begin();
@@ -258,6 +264,7 @@ ConcavitySummary runConcavityJob(const std::string& inPath, const std::string& o
   }
   out.commit();
   out.finish(all.sub(0.7, 1));
+  files.commit();
   all.finish("Done");
   return s;
 }

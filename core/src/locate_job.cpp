@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "dataset_files.h"
 #include "tinlod/locate_job.h"
 
 #include <chrono>
@@ -66,6 +67,8 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   // Its metadata would replace the file's own: a hierarchy would stop being one.
   if (std::filesystem::exists(outPath) && isTinlodFile(outPath))
     throw Error("'" + outPath + "' is a tinlod GeoPackage: write the points to another file");
+  OutputFiles files(overwrite, datasetFiles({hierarchyPath, pointsPath}));
+  const StagedFile& staged = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.4));
   const Hierarchy& h = stored.hierarchy;
@@ -77,7 +80,7 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   const auto transform = transformToTin(source, h.base.crsWkt, "points ('" + pointsPath + "')", all);
   const HierarchyLocator locator(h);
 
-  GpkgOutput out(outPath, writeOptions, [](const std::string& name) { return name == "points"; });
+  GpkgOutput out(staged, writeOptions, [](const std::string& name) { return name == "points"; });
   OGRLayer* layer = createPointsLayer(out, source);
   const int elevation = layer->GetLayerDefn()->GetFieldIndex("elevation");
   const int triangle = layer->GetLayerDefn()->GetFieldIndex("triangle");
@@ -105,6 +108,7 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   }
   out.commit();
   out.finish(all.sub(0.8, 1));
+  files.commit();
   s.seconds = seconds;
   all.finish("Done");
   return s;

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "dataset_files.h"
 #include "tinlod/lod_job.h"
 
 #include <chrono>
@@ -66,6 +67,8 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   checkOptions(options);
   GpkgWriteOptions writeOptions{overwrite, jobMetadata(hierarchyPath, options)};
   checkOutputPath(outPath, writeOptions);
+  OutputFiles files(overwrite, datasetFiles({hierarchyPath, options.centresPath, options.regionPath}));
+  const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.5));
   if (stored.info.kind != "hierarchy")
@@ -93,7 +96,8 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
     ++s.trianglesPerLevel[static_cast<std::size_t>(h.triangles[t].firstLevel)];
   }
   writeOptions.metadata["TINLOD_CRS"] = h.base.crsName;
-  writeTinGpkg(tin, outPath, writeOptions, all.sub(0.6, 1), {{"level", vertexLevel, true}}, triangleFields);
+  writeTinGpkg(tin, out, writeOptions, all.sub(0.6, 1), {{"level", vertexLevel, true}}, triangleFields);
+  files.commit();
   all.finish("Done");
   s.vertices = tin.vertices.size(), s.triangles = tin.triangles.size();
   s.levelZeroTriangles = h.levels.empty() ? 0 : h.levels[0].triangles;

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "dataset_files.h"
 #include "tinlod/sample_job.h"
 
 #include <cmath>
@@ -160,6 +161,8 @@ SampleSummary runSampleJob(const std::string& demPath, const std::string& outPat
   options.validate();
   GpkgWriteOptions writeOptions{overwrite, jobMetadata(demPath, options)};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  OutputFiles files(overwrite, datasetFiles(demPath));
+  const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readDem(demPath, options.band, all.sub(0, 0.1));
   const Tin tin = sampleTin(dem, options, all.sub(0.1, 0.6));
@@ -167,7 +170,8 @@ SampleSummary runSampleJob(const std::string& demPath, const std::string& outPat
   // About 200 bytes a triangle and 150 a vertex in GeoPackage, spatial index included.
   all.inform("Writing " + std::to_string(tin.triangles.size()) + " triangles and " + std::to_string(tin.vertices.size()) +
              " vertices (about " + megabytes(200.0 * tin.triangles.size() + 150.0 * tin.vertices.size()) + ")");
-  writeTinGpkg(tin, outPath, writeOptions, all.sub(0.6, 1));
+  writeTinGpkg(tin, out, writeOptions, all.sub(0.6, 1));
+  files.commit();
   all.finish("Done");
   return summarize(tin, dem.validCount());
 }

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "tinlod/error.h"
+#include "tinlod/output_files.h"
 
 namespace tinlod {
 namespace {
@@ -82,13 +83,17 @@ Dem makeSyntheticDem(const SyntheticDemOptions& o) {
   return dem;
 }
 
-void writeDemGeoTiff(const Dem& dem, const std::string& path) {
+void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite) {
+  OutputFiles files(overwrite);
+  const StagedFile& file = files.add(path, "output");
   GDALAllRegister();
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
   const char* options[] = {"COMPRESS=DEFLATE", "TILED=YES", nullptr};
-  GDALDataset* ds = driver->Create(path.c_str(), dem.width, dem.height, 1, GDT_Float32,
+  CPLPushErrorHandler(CPLQuietErrorHandler);  // GDAL would name the staging file
+  GDALDataset* ds = driver->Create(file.staging.c_str(), dem.width, dem.height, 1, GDT_Float32,
                                    const_cast<char**>(options));
-  if (!ds) throw Error("cannot create '" + path + "': " + CPLGetLastErrorMsg());
+  CPLPopErrorHandler();
+  if (!ds) throw Error("cannot create '" + path + "': " + inUserTerms(file, CPLGetLastErrorMsg()));
   double gt[6];
   for (int i = 0; i < 6; ++i) gt[i] = dem.geotransform[i];
   ds->SetGeoTransform(gt);
@@ -101,9 +106,12 @@ void writeDemGeoTiff(const Dem& dem, const std::string& path) {
   const CPLErr err = band->RasterIO(GF_Write, 0, 0, dem.width, dem.height, values.data(), dem.width,
                                     dem.height, GDT_Float32, 0, 0);
   CPLErrorReset();
+  CPLPushErrorHandler(CPLQuietErrorHandler);
   GDALClose(ds);
+  CPLPopErrorHandler();
   if (err != CE_None || CPLGetLastErrorType() >= CE_Failure)
-    throw Error("cannot write '" + path + "': " + CPLGetLastErrorMsg());
+    throw Error("cannot write '" + path + "': " + inUserTerms(file, CPLGetLastErrorMsg()));
+  files.commit();
 }
 
 }  // namespace tinlod

@@ -9,6 +9,7 @@
 #include "tinlod/accuracy_report.h"
 #include "tinlod/feedback.h"
 #include "tinlod/hierarchy.h"
+#include "tinlod/output_files.h"
 
 namespace tinlod {
 
@@ -23,10 +24,23 @@ struct AccuracyOutputs {
   // Greedy insertion over the same sampled TIN run to each level's exact vertex count and
   // measured the same way: fills every level's insertRmse and insertRatio (-compare_insert).
   bool compareInsert = false;
+  // Replace existing files (runAccuracyJob; tinlod build's own -overwrite covers its
+  // accuracy outputs).
+  bool overwrite = false;
+
   bool wanted() const { return !rasterPath.empty() || !reportPath.empty(); }
   // Fails early, before hours of work, on a bad format, extension or level.
   void validate() const;
 };
+
+// The staged raster and report of a job's OutputFiles; null when not asked for.
+struct AccuracyFiles {
+  const StagedFile* raster = nullptr;
+  const StagedFile* report = nullptr;
+};
+
+// Adds the raster and report `outputs` asks for to `files`: checked now, before the work.
+AccuracyFiles stageAccuracyFiles(const AccuracyOutputs& outputs, OutputFiles& files);
 
 // Every level of `h` measured against the evaluator's reference, one row each; the
 // bands of `rasterLevel` (-1: the coarsest) go to `bands` when it is not null.
@@ -39,7 +53,7 @@ AccuracyReport makeReport(const AccuracyEvaluator& evaluator, const std::string&
 // Measures every level of `h` (sampled from `dem`), compares it with greedy insertion at its
 // size when asked, and writes the raster and report asked for.
 AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTransform& toTin, const AccuracyOutputs& outputs,
-                               const ProgressRange& progress);
+                               const AccuracyFiles& files, const ProgressRange& progress);
 
 // The whole `tinlod accuracy` job: a DEM and the hierarchy (or TIN) GeoPackage made from
 // it. `band` 0 takes the band the file was sampled from; `sourceSrs` names the DEM's CRS

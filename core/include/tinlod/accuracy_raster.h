@@ -6,6 +6,7 @@
 
 #include "tinlod/accuracy_evaluator.h"
 #include "tinlod/feedback.h"
+#include "tinlod/output_files.h"
 #include "tinlod/test_grid.h"
 
 namespace tinlod {
@@ -23,8 +24,8 @@ void checkRasterFormat(const RasterWriteOptions& options);
 
 // Writes the four bands on the test grid with its georeferencing and the DEM's CRS,
 // Float32, band descriptions, nodata and statistics set, so that QGIS shows it at once.
-// Atomic: the file appears complete or not at all; an existing file is replaced.
-void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const std::string& path,
+// Into a file of the job's OutputFiles, with any sidecar files the format has.
+void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const StagedFile& file,
                          const RasterWriteOptions& options, const ProgressRange& progress);
 
 }  // namespace tinlod

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "tinlod/output_files.h"
+
 namespace tinlod {
 
 // One terrain variable compared between the reference and a simplified surface.
@@ -59,6 +61,8 @@ struct AccuracyReport {
 // run), .json, or .html (a self-contained page with SVG plots). Atomic: the file
 // appears complete or not at all. Throws Error for another extension.
 void writeAccuracyReport(const AccuracyReport& report, const std::string& path);
+// The same into a file of a job's OutputFiles, moved into place with the job's other outputs.
+void writeAccuracyReport(const AccuracyReport& report, const StagedFile& file);
 
 // Throws Error, naming -report, for a path writeAccuracyReport could not write: an unknown
 // extension, a missing or read-only folder. For checks before long work.

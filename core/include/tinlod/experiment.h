@@ -24,12 +24,13 @@ struct ExperimentOptions {
   double stopPct = 5;
   SampleOptions sample;
   AccuracyOptions accuracy;
+  bool overwrite = false;  // replace existing reports
   void validate() const;  // throws Error naming the option
 };
 
-// Runs the experiment and writes one combined report (.csv, .json or .html) when
-// `reportPath` is not empty. Nothing but the report is written.
+// Runs the experiment and writes one combined report in each of `reportPaths` (.csv, .json
+// or .html: one run, several formats), all or none of them. Nothing else is written.
 AccuracyReport runExperiment(const std::vector<std::string>& dems, const ExperimentOptions& options,
-                             const std::string& reportPath, const Feedback& feedback);
+                             const std::vector<std::string>& reportPaths, const Feedback& feedback);
 
 }  // namespace tinlod

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tinlod/feedback.h"
+#include "tinlod/output_files.h"
 #include "tinlod/tin.h"
 
 namespace tinlod {
@@ -34,6 +35,10 @@ struct ExtraField {
 // v0, v1, v2 join to vertices.fid: vertex index i is written as id i + 1. Works on a temporary copy and renames it into place at the end, so a
 // failed or cancelled run leaves `path` as it was.
 void writeTinGpkg(const Tin& tin, const std::string& path, const GpkgWriteOptions& options,
+                  const ProgressRange& progress, const std::vector<ExtraField>& vertexExtra = {},
+                  const std::vector<ExtraField>& triangleExtra = {});
+// The same into a file of a job's OutputFiles, moved into place with the job's other outputs.
+void writeTinGpkg(const Tin& tin, const StagedFile& file, const GpkgWriteOptions& options,
                   const ProgressRange& progress, const std::vector<ExtraField>& vertexExtra = {},
                   const std::vector<ExtraField>& triangleExtra = {});
 

@@ -23,5 +23,8 @@ namespace tinlod {
 // Ids count from 1 and equal the fid. Written atomically, as writeTinGpkg.
 void writeHierarchyGpkg(const Hierarchy& hierarchy, const std::string& path, const GpkgWriteOptions& options,
                         const ProgressRange& progress);
+// The same into a file of a job's OutputFiles, moved into place with the job's other outputs.
+void writeHierarchyGpkg(const Hierarchy& hierarchy, const StagedFile& file, const GpkgWriteOptions& options,
+                        const ProgressRange& progress);
 
 }  // namespace tinlod

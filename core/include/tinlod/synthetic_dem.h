@@ -22,6 +22,8 @@ struct SyntheticDemOptions {
 Dem makeSyntheticDem(const SyntheticDemOptions& options);
 
 // Writes any in-memory DEM as a GeoTIFF (Float32, nodata -9999). Throws Error.
-void writeDemGeoTiff(const Dem& dem, const std::string& path);
+// Staged and moved into place at the end, as every output; an existing file is an error
+// unless `overwrite`.
+void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite = true);
 
 }  // namespace tinlod

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tinlod {
+
+class StagingFolder;
+
+// Where a writer puts one output: `staging` while the job runs, a file in a hidden folder
+// beside the output, named as the output is so that sidecar files a driver adds (.aux.xml,
+// ENVI's .hdr) are named right too; `path` is the user's name for it, for messages.
+struct StagedFile {
+  std::string path;
+  std::string option;  // how the user gave it: "output", "-accuracy", "-report"
+  std::filesystem::path target;   // `path`, or the file a symbolic link there points to
+  std::filesystem::path staging;
+  bool existed = false;           // the output existed when the job started
+};
+
+// Every file one job writes. Each is checked when added, before the long work (it is
+// not an input, not named twice, its folder is writable, it does not exist unless
+// `overwrite`), written in its staging folder, and moved into place by commit() only
+// when the whole job has succeeded: all outputs or none. An error, a cancel or a crash
+// before commit() leaves every old file as it was.
+class OutputFiles {
+ public:
+  // `inputs`: every file the job reads (a DEM's sidecars included): none may be replaced.
+  explicit OutputFiles(bool overwrite, std::vector<std::string> inputs = {});
+  ~OutputFiles();
+  OutputFiles(const OutputFiles&) = delete;
+  OutputFiles& operator=(const OutputFiles&) = delete;
+
+  // With `keepContent`, an existing output is copied into the staging folder first, so a
+  // GeoPackage's other layers survive.
+  const StagedFile& add(const std::string& path, const std::string& option, bool keepContent = false);
+  // Moves every staged file (and its sidecars) into place. Without overwrite a file that
+  // appeared meanwhile is not replaced: the error names it and every output moved so far
+  // is taken back, as are replaced ones with overwrite.
+  void commit();
+
+ private:
+  void checkNotInput(const std::filesystem::path& target, const std::string& option, const std::string& path) const;
+  bool overwrite_;
+  std::vector<std::string> inputs_;
+  std::vector<std::unique_ptr<StagingFolder>> folders_;
+  std::vector<std::unique_ptr<StagedFile>> files_;
+};
+
+// Removes every staging folder this process still holds. For a front end that must stop
+// at once (a second Ctrl-C, a cancel the work does not answer in time): waits while a
+// commit is moving files, so outputs are either all in place or none. Returns whether a
+// commit had already put outputs in place.
+bool abandonStagedOutputs();
+
+// `message` (a driver's, say) with the staging file's name replaced by the user's, and
+// the staging folder's by the output's folder (for sidecar files).
+std::string inUserTerms(const StagedFile& file, std::string message);
+
+// Whether `a` and `b` name the same file (hard links, symbolic links, ./ and ../ alike).
+bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b);
+
+}  // namespace tinlod

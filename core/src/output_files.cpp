@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/output_files.h"
+
+#include <fcntl.h>
+#include <stdio.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+
+#include "staging_folder.h"
+#include "tinlod/error.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+std::atomic<bool>& committed() {
+  static auto* done = new std::atomic<bool>(false);  // read by a watchdog thread at exit
+  return *done;
+}
+bool committedOnce() { return committed(); }
+
+fs::path folderOf(const fs::path& p) { return p.parent_path().empty() ? fs::path(".") : p.parent_path(); }
+
+// A symbolic link as output is followed, so its target is what gets replaced.
+fs::path resolved(const fs::path& output) {
+  std::error_code ec;
+  return fs::is_symlink(output, ec) ? fs::weakly_canonical(output, ec) : output;
+}
+
+struct Moved {
+  fs::path target;
+  fs::path backup;  // empty: nothing was there before
+};
+
+// Without overwrite the move must not replace a file that appeared since the job's
+// checks (another run): RENAME_NOREPLACE, or link() where a file system lacks it.
+bool moveWithoutReplacing(const fs::path& from, const fs::path& to) {
+  if (renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) return true;
+  if (errno == EEXIST) return false;
+  if (errno != EINVAL && errno != ENOSYS) throw fs::filesystem_error("cannot move", from, to, std::error_code(errno, std::generic_category()));
+  if (link(from.c_str(), to.c_str()) != 0) {
+    if (errno == EEXIST) return false;
+    throw fs::filesystem_error("cannot move", from, to, std::error_code(errno, std::generic_category()));
+  }
+  unlink(from.c_str());
+  return true;
+}
+
+// The old file stays reachable in the staging folder until the commit is complete, so a
+// later failure can put it back.
+fs::path keepOld(const fs::path& target, const fs::path& backup) {
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(target, ec))) return {};
+  if (link(target.c_str(), backup.c_str()) != 0) fs::rename(target, backup);
+  return backup;
+}
+
+void takeBack(const std::vector<Moved>& moved) {
+  std::error_code ignored;
+  for (auto m = moved.rbegin(); m != moved.rend(); ++m) {
+    if (m->backup.empty()) fs::remove(m->target, ignored);
+    else fs::rename(m->backup, m->target, ignored);
+  }
+}
+
+std::string shown(const StagedFile& file, const fs::path& target) {
+  return target == file.target ? file.path : target.string();
+}
+
+}  // namespace
+
+bool sameFile(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+
+OutputFiles::OutputFiles(bool overwrite, std::vector<std::string> inputs)
+    : overwrite_(overwrite), inputs_(std::move(inputs)) {}
+
+OutputFiles::~OutputFiles() = default;
+
+void OutputFiles::checkNotInput(const fs::path& target, const std::string& option, const std::string& path) const {
+  for (const std::string& input : inputs_)
+    if (!input.empty() && sameFile(target, input))
+      throw Error(option + ": '" + path + "' is " + (target.filename() == fs::path(path).filename() ? "" : "beside it ") +
+                  "an input of this run ('" + input + "'): writing it would destroy the input; choose another name");
+}
+
+const StagedFile& OutputFiles::add(const std::string& path, const std::string& option, bool keepContent) {
+  if (path.empty()) throw Error(option + ": no file named");
+  const fs::path target = resolved(path);
+  std::error_code ec;
+  if (fs::is_directory(target, ec)) throw Error(option + ": '" + path + "' is a folder: name a file");
+  const fs::path dir = folderOf(target);
+  if (!fs::is_directory(dir, ec)) throw Error(option + ": the folder of '" + path + "' does not exist");
+  if (access(dir.c_str(), W_OK) != 0) throw Error(option + ": the folder of '" + path + "' is not writable");
+  checkNotInput(target, option, path);
+  for (const auto& other : files_)
+    if (sameFile(other->target, target))
+      throw Error(option + ": '" + path + "' is also given as " + other->option + ": name two different files");
+  const bool existed = fs::exists(target, ec);
+  if (existed && !overwrite_) throw Error(option + ": '" + path + "' exists: add -overwrite to replace it");
+  StagingFolder::removeStale(target);
+  auto folder = std::make_unique<StagingFolder>(target);
+  auto file = std::make_unique<StagedFile>(StagedFile{path, option, target, folder->path() / target.filename(), existed});
+  if (keepContent && existed) {
+    fs::copy_file(target, file->staging, fs::copy_options::overwrite_existing, ec);
+    if (ec) throw Error(option + ": cannot copy '" + path + "' to update it: " + ec.message());
+  }
+  folders_.push_back(std::move(folder));
+  files_.push_back(std::move(file));
+  return *files_.back();
+}
+
+void OutputFiles::commit() {
+  std::vector<Moved> moved;
+  {
+    std::lock_guard<std::mutex> lock(StagingFolder::commitMutex());
+    try {
+      for (std::size_t i = 0; i < files_.size(); ++i) {
+        const StagedFile& file = *files_[i];
+        for (const fs::path& staged : folders_[i]->stagedFiles()) {
+          const fs::path target = folderOf(file.target) / staged.filename();
+          checkNotInput(target, file.option, shown(file, target));
+          if (fs::is_directory(fs::symlink_status(target)))
+            throw Error(file.option + ": '" + shown(file, target) + "' is now a folder: nothing was written");
+          if (overwrite_) {
+            const fs::path backup = keepOld(target, folders_[i]->backupFor(staged.filename()));
+            fs::rename(staged, target);
+            moved.push_back({target, backup});
+          } else if (moveWithoutReplacing(staged, target)) {
+            moved.push_back({target, {}});
+          } else {
+            throw Error(file.option + ": '" + shown(file, target) +
+                        "' appeared while this run was working (another run?): it is left as it is and nothing was "
+                        "written; add -overwrite to replace it");
+          }
+        }
+      }
+      committed() = true;
+    } catch (const fs::filesystem_error& e) {
+      takeBack(moved);
+      throw Error("cannot move the outputs into place (" + e.code().message() + "): nothing was written");
+    } catch (...) {
+      takeBack(moved);
+      throw;
+    }
+  }
+  folders_.clear();
+}
+
+namespace {
+
+void replaceAll(std::string& text, const std::string& from, const std::string& to) {
+  if (from.empty()) return;
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+std::string inUserTerms(const StagedFile& file, std::string message) {
+  replaceAll(message, file.staging.string(), file.path);
+  replaceAll(message, file.staging.parent_path().string(), folderOf(fs::path(file.path)).string());
+  return message;
+}
+
+bool abandonStagedOutputs() {
+  StagingFolder::removeAllLive();
+  return committedOnce();
+}
+
+}  // namespace tinlod

@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "staging_folder.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <random>
+#include <set>
+#include <string>
+
+#include "tinlod/error.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+const char* const kLock = ".lock";
+const char* const kBackupPrefix = ".old-";
+
+std::string prefixFor(const fs::path& target) { return "." + target.filename().string() + ".tinlod-"; }
+
+fs::path folderOf(const fs::path& target) {
+  return target.parent_path().empty() ? fs::path(".") : target.parent_path();
+}
+
+// Random rather than a PID: PIDs repeat across hosts and namespaces.
+std::string randomName() {
+  std::random_device device;
+  const std::uint64_t bits = (std::uint64_t(device()) << 32) ^ device();
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(bits));
+  return text;
+}
+
+// The folders of this process, for removeAllLive(). Never destroyed: a watchdog thread
+// may use them while the process exits.
+std::mutex& registryMutex() {
+  static auto* m = new std::mutex;
+  return *m;
+}
+std::set<fs::path>& registry() {
+  static auto* s = new std::set<fs::path>;
+  return *s;
+}
+
+void removeQuietly(const fs::path& p) {
+  std::error_code ignored;
+  fs::remove_all(p, ignored);
+}
+
+// A folder without its lock file yet may be one another run has just made.
+bool oldEnoughToBeAbandoned(const fs::path& folder) {
+  std::error_code ec;
+  const auto written = fs::last_write_time(folder, ec);
+  return !ec && fs::file_time_type::clock::now() - written > std::chrono::minutes(1);
+}
+
+void removeIfAbandoned(const fs::path& folder) {
+  const int fd = open((folder / kLock).c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT && oldEnoughToBeAbandoned(folder)) removeQuietly(folder);
+    return;
+  }
+  // Removed while holding the lock, so nobody can take the folder for theirs meanwhile.
+  if (flock(fd, LOCK_EX | LOCK_NB) == 0) removeQuietly(folder);
+  close(fd);
+}
+
+}  // namespace
+
+StagingFolder::StagingFolder(const fs::path& target) {
+  const fs::path dir = folderOf(target);
+  for (int attempt = 0; attempt < 8; ++attempt)
+    if (tryCreate(dir, target)) {
+      std::lock_guard<std::mutex> lock(registryMutex());
+      registry().insert(path_);
+      return;
+    }
+  throw Error("cannot make a temporary folder beside '" + target.string() + "': " + std::strerror(errno));
+}
+
+bool StagingFolder::tryCreate(const fs::path& dir, const fs::path& target) {
+  path_ = dir / (prefixFor(target) + randomName());
+  if (mkdir(path_.c_str(), 0700) != 0) {
+    if (errno == EEXIST) return false;
+    throw Error("cannot make a temporary folder beside '" + target.string() + "': " + std::strerror(errno));
+  }
+  const fs::path lockPath = path_ / kLock;
+  lockFd_ = open(lockPath.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (lockFd_ < 0) return false;  // a cleaner took the new folder for a stale one: try another name
+  struct stat held {}, named {};
+  // The lock must be on the file that is still there: a cleaner may have removed the folder
+  // between mkdir and flock.
+  if (flock(lockFd_, LOCK_EX | LOCK_NB) == 0 && fstat(lockFd_, &held) == 0 && stat(lockPath.c_str(), &named) == 0 &&
+      held.st_ino == named.st_ino && held.st_dev == named.st_dev)
+    return true;
+  close(lockFd_);
+  lockFd_ = -1;
+  return false;
+}
+
+StagingFolder::~StagingFolder() {
+  {
+    std::lock_guard<std::mutex> lock(registryMutex());
+    registry().erase(path_);
+  }
+  removeQuietly(path_);
+  if (lockFd_ >= 0) close(lockFd_);
+}
+
+std::vector<fs::path> StagingFolder::stagedFiles() const {
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(path_)) {
+    const std::string name = e.path().filename().string();
+    if (name != kLock && name.rfind(kBackupPrefix, 0) != 0) files.push_back(e.path());
+  }
+  return files;
+}
+
+fs::path StagingFolder::backupFor(const fs::path& name) const { return path_ / (kBackupPrefix + name.filename().string()); }
+
+void StagingFolder::removeStale(const fs::path& target) {
+  const std::string prefix = prefixFor(target);
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folderOf(target), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || !entry.is_directory(ec)) continue;
+    removeIfAbandoned(entry.path());
+  }
+}
+
+std::mutex& StagingFolder::commitMutex() {
+  static auto* m = new std::mutex;
+  return *m;
+}
+
+void StagingFolder::removeAllLive() {
+  std::lock_guard<std::mutex> commit(commitMutex());
+  std::lock_guard<std::mutex> lock(registryMutex());
+  for (const fs::path& p : registry()) removeQuietly(p);
+  registry().clear();
+}
+
+}  // namespace tinlod

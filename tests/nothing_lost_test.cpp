@@ -1,0 +1,201 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Nothing lost, whatever happens: the jobs and the command line against existing files,
+// their own inputs, a concurrent run, a full disk, and a stop at every phase.
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+#include <sys/mount.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "test_support.h"
+#include "tinlod/build_job.h"
+#include "tinlod/error.h"
+#include "tinlod/synthetic_dem.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+struct CliRun {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+CliRun tinlod(const std::string& args) {
+  const std::string dir = test::tempDir();
+  const std::string cmd = std::string(TINLOD_CLI) + " " + args + " >" + dir + "/out 2>" + dir + "/err";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::readFile(dir + "/out"), test::readFile(dir + "/err")};
+}
+
+bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
+
+// Every file of a folder with its bytes: what "nothing changed" is checked against.
+std::map<std::string, std::string> snapshot(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir)) files[e.path().filename().string()] = test::readFile(e.path().string());
+  return files;
+}
+
+std::string smallDem() {
+  static const std::string path = [] {
+    SyntheticDemOptions o;
+    o.width = 150, o.height = 120, o.cellSize = 25;
+    const std::string p = test::tempDir() + "/dem.tif";
+    writeDemGeoTiff(makeSyntheticDem(o), p);
+    return p;
+  }();
+  return path;
+}
+
+// A folder holding a DEM, a hierarchy built from it and its accuracy files.
+std::string builtFolder() {
+  const std::string dir = test::tempDir();
+  fs::copy_file(smallDem(), dir + "/d.tif");
+  const CliRun build = tinlod("build -q -max_levels 3 -accuracy " + dir + "/acc.tif -report " + dir + "/r.csv " + dir +
+                              "/d.tif " + dir + "/h.gpkg");
+  EXPECT_EQ(build.exitCode, 0) << build.err;
+  return dir;
+}
+
+TEST(NothingLost, AccuracyOutputsNeverReplaceTheInputs) {
+  const std::string dir = builtFolder();
+  const auto before = snapshot(dir);
+  for (const std::string& args : {"accuracy -q " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/d.tif",
+                                  "accuracy -q -overwrite " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/h.gpkg",
+                                  "accuracy -q -overwrite " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/./d.tif",
+                                  "build -q -overwrite -max_levels 2 " + dir + "/d.tif " + dir + "/h2.gpkg -accuracy " + dir + "/d.tif"}) {
+    const CliRun run = tinlod(args);
+    EXPECT_EQ(run.exitCode, 1) << args;
+    EXPECT_TRUE(has(run.err, "is an input of this run")) << run.err;
+  }
+  EXPECT_EQ(snapshot(dir), before);
+}
+
+TEST(NothingLost, AccuracyFilesNeedOverwriteLikeEveryOutput) {
+  const std::string dir = builtFolder();
+  const auto before = snapshot(dir);
+  const CliRun run = tinlod("accuracy -q " + dir + "/d.tif " + dir + "/h.gpkg -report " + dir + "/r.csv");
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_TRUE(has(run.err, "-report: '" + dir + "/r.csv' exists: add -overwrite")) << run.err;
+  EXPECT_EQ(snapshot(dir), before);
+  EXPECT_EQ(tinlod("accuracy -q -overwrite " + dir + "/d.tif " + dir + "/h.gpkg -report " + dir + "/r.csv").exitCode, 0);
+}
+
+// A cancel anywhere, the accuracy stage and the spatial index included, leaves the old
+// hierarchy, raster and report as they were and no staging folder behind.
+TEST(NothingLost, BuildOverwriteCancelledAtAnyPhaseKeepsEveryOldFile) {
+  const std::string dir = builtFolder();
+  const auto before = snapshot(dir);
+  AccuracyOutputs accuracy;
+  accuracy.rasterPath = dir + "/acc.tif", accuracy.reportPath = dir + "/r.csv";
+  HierarchyOptions options;
+  options.maxLevels = 3;
+  for (double at : {0.01, 0.1, 0.3, 0.62, 0.7, 0.74, 0.8, 0.95, 0.995}) {
+    std::set<std::string> phases;
+    Feedback cancelling;
+    cancelling.progress = [&](double f, const std::string& phase) {
+      phases.insert(phase);
+      return f < at;
+    };
+    EXPECT_THROW(runBuildJob(dir + "/d.tif", dir + "/h.gpkg", SampleOptions(), options, true, cancelling, accuracy), Cancelled)
+        << "cancelled at " << at;
+    EXPECT_EQ(snapshot(dir), before) << "cancelled at " << at;
+  }
+}
+
+// Two runs started together for one output without -overwrite: one wins, the other says
+// the file appeared meanwhile; the output is the winner's, whole.
+TEST(NothingLost, TwoRunsForOneOutputDoNotBothSucceed) {
+  const std::string dir = test::tempDir();
+  fs::copy_file(smallDem(), dir + "/d.tif");
+  const std::string run = std::string(TINLOD_CLI) + " sample -q -block 1 " + dir + "/d.tif " + dir + "/t.gpkg";
+  const std::string cmd = "cd " + dir + " && (" + run + " 2>e1 & p1=$!; " + run + " 2>e2 & p2=$!; wait $p1; echo $? > rc1; wait $p2; echo $? > rc2)";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string rc = test::readFile(dir + "/rc1") + test::readFile(dir + "/rc2");
+  EXPECT_TRUE(rc == "0\n1\n" || rc == "1\n0\n") << rc;
+  const std::string err = test::readFile(dir + "/e1") + test::readFile(dir + "/e2");
+  EXPECT_TRUE(has(err, "appeared while this run was working") || has(err, "exists: add -overwrite")) << err;
+  EXPECT_EQ(tinlod("info " + dir + "/t.gpkg").exitCode, 0);
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
+}
+
+TEST(NothingLost, AMultiFileRasterFormatMovesAllItsFiles) {
+  const std::string dir = builtFolder();
+  const CliRun run = tinlod("accuracy -q -of ENVI " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/e.img");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_TRUE(fs::exists(dir + "/e.hdr"));
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
+  GDALAllRegister();
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen((dir + "/e.img").c_str(), GA_ReadOnly));
+  ASSERT_NE(ds, nullptr);
+  EXPECT_EQ(ds->GetRasterCount(), 4);
+  GDALClose(ds);
+  const CliRun vrt = tinlod("accuracy -q -of VRT " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/e.vrt");
+  EXPECT_EQ(vrt.exitCode, 1);
+  EXPECT_TRUE(has(vrt.err, "-of: VRT cannot hold")) << vrt.err;
+}
+
+// A disk that fills up mid-write: the old output is kept, nothing half-written is left.
+TEST(NothingLost, AFullDiskLeavesTheOldOutput) {
+  const std::string dir = test::tempDir() + "/small_disk";
+  fs::create_directories(dir);
+  if (mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=3m") != 0) GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
+  std::ofstream(dir + "/t.gpkg") << "the old output";
+  const CliRun run = tinlod("sample -q -overwrite -block 1 " + smallDem() + " " + dir + "/t.gpkg");
+  const auto left = snapshot(dir);
+  umount(dir.c_str());
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_FALSE(has(run.err, ".tinlod-")) << run.err;  // the user's file is named, not the staging one
+  EXPECT_TRUE(has(run.err, "t.gpkg")) << run.err;
+  EXPECT_EQ(left, (std::map<std::string, std::string>{{"t.gpkg", "the old output"}}));
+}
+
+// Ctrl-C is answered within a second or two whatever the run is doing (reading, sampling,
+// writing features, building the spatial index), and a second Ctrl-C at once; no file is
+// left. The signal is sent once the progress on stderr shows `mark`, then `signals` run.
+void expectPromptStop(const std::string& dem, const std::string& mark, const char* signals) {
+  const std::string dir = test::tempDir();
+  const std::string waitForMark = "until grep -q '" + mark + "' err 2>/dev/null || ! kill -0 $pid 2>/dev/null; do sleep 0.02; done; ";
+  const std::string cmd = "cd " + dir + " && (" + std::string(TINLOD_CLI) + " sample -block 1 " + dem +
+                          " tin.gpkg 2>err & pid=$!; " + waitForMark + signals +
+                          " start=$(date +%s%N); wait $pid; echo $? > rc; echo $(( ($(date +%s%N) - start) / 1000000 )) > ms)";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string rc = test::readFile(dir + "/rc");
+  ASSERT_EQ(rc, "130\n") << "signal at '" << mark << "': " << test::readFile(dir + "/err");
+  EXPECT_LT(std::stoi(test::readFile(dir + "/ms")), 2500) << "signal at '" << mark << "'";
+  EXPECT_TRUE(has(test::readFile(dir + "/err"), "stopped before the end; nothing was written"));
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_TRUE(name == "err" || name == "rc" || name == "ms") << "left behind: " << name;
+  }
+}
+
+std::string mediumDem() {
+  static const std::string path = [] {
+    SyntheticDemOptions o;
+    o.width = 1200, o.height = 1000, o.cellSize = 10;
+    const std::string p = test::tempDir() + "/medium.tif";
+    writeDemGeoTiff(makeSyntheticDem(o), p);
+    return p;
+  }();
+  return path;
+}
+
+// The phases as progress shows them: reading and sampling (0 to 60), writing the features
+// (60 to 88), the spatial index (88 to 99; GDAL builds it while closing the file, where no
+// progress can be reported and a cancel cannot be heard).
+TEST(NothingLost, CtrlCStopsWithinTwoSecondsInEveryPhase) {
+  for (const char* mark : {"0", "20", "Writing", "70", "80"}) expectPromptStop(mediumDem(), mark, "kill -INT $pid;");
+}
+
+TEST(NothingLost, ASecondCtrlCStopsAtOnceAndStillCleansUp) {
+  expectPromptStop(mediumDem(), "Writing", "kill -INT $pid; sleep 0.1; kill -INT $pid;");
+}
+
+}  // namespace
+}  // namespace tinlod

@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// OutputFiles: every output checked up front, staged, and moved into place all together.
+#include "tinlod/output_files.h"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "test_support.h"
+#include "tinlod/error.h"
+
+namespace fs = std::filesystem;
+
+namespace tinlod {
+namespace {
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+std::set<std::string> namesIn(const std::string& dir) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
+}
+
+std::string errorOf(const std::function<void()>& work) {
+  try {
+    work();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
+
+TEST(OutputFiles, NothingAppearsBeforeCommitAndEverythingAfter) {
+  const std::string dir = test::tempDir();
+  OutputFiles files(false);
+  const StagedFile& a = files.add(dir + "/a.csv", "-report");
+  const StagedFile& b = files.add(dir + "/b.tif", "-accuracy");
+  write(a.staging, "report");
+  write(b.staging, "raster");
+  write(b.staging.string() + ".aux.xml", "statistics");  // a sidecar the driver added
+  EXPECT_EQ(a.staging.filename(), "a.csv");
+  EXPECT_EQ(namesIn(dir).count("a.csv") + namesIn(dir).count("b.tif"), 0u);
+  files.commit();
+  EXPECT_EQ(namesIn(dir), (std::set<std::string>{"a.csv", "b.tif", "b.tif.aux.xml"}));
+  EXPECT_EQ(test::readFile(dir + "/b.tif.aux.xml"), "statistics");
+}
+
+TEST(OutputFiles, WithoutCommitNothingChangesAndNoStagingIsLeft) {
+  const std::string dir = test::tempDir();
+  write(dir + "/old.gpkg", "old");
+  {
+    OutputFiles files(true);
+    const StagedFile& f = files.add(dir + "/old.gpkg", "output", true);
+    EXPECT_EQ(test::readFile(f.staging), "old");  // kept content to update
+    write(f.staging, "new");
+  }
+  EXPECT_EQ(namesIn(dir), std::set<std::string>{"old.gpkg"});
+  EXPECT_EQ(test::readFile(dir + "/old.gpkg"), "old");
+}
+
+TEST(OutputFiles, AnInputIsNeverAnOutputEvenWithOverwrite) {
+  const std::string dir = test::tempDir();
+  write(dir + "/dem.tif", "dem");
+  fs::create_hard_link(dir + "/dem.tif", dir + "/alias.tif");
+  OutputFiles files(true, {dir + "/dem.tif"});
+  for (const std::string& name : {dir + "/dem.tif", dir + "/./dem.tif", dir + "/alias.tif"}) {
+    const std::string e = errorOf([&] { files.add(name, "-accuracy"); });
+    EXPECT_TRUE(has(e, "-accuracy: '" + name + "' is an input of this run")) << e;
+  }
+  EXPECT_EQ(test::readFile(dir + "/dem.tif"), "dem");
+}
+
+TEST(OutputFiles, TheSameFileTwiceIsRefused) {
+  const std::string dir = test::tempDir();
+  OutputFiles files(true);
+  files.add(dir + "/r.csv", "-report");
+  const std::string e = errorOf([&] { files.add(dir + "/../" + fs::path(dir).filename().string() + "/r.csv", "-accuracy"); });
+  EXPECT_TRUE(has(e, "is also given as -report")) << e;
+}
+
+TEST(OutputFiles, ChecksTheFolderAndExistingFilesUpFront) {
+  const std::string dir = test::tempDir();
+  write(dir + "/there.csv", "x");
+  fs::create_directories(dir + "/folder.csv");
+  OutputFiles files(false);
+  EXPECT_TRUE(has(errorOf([&] { files.add(dir + "/there.csv", "-report"); }), "exists: add -overwrite"));
+  EXPECT_TRUE(has(errorOf([&] { files.add(dir + "/folder.csv", "-report"); }), "is a folder"));
+  EXPECT_TRUE(has(errorOf([&] { files.add(dir + "/none/r.csv", "-report"); }), "the folder of"));
+}
+
+// Two runs for one output: without -overwrite the later one must not replace the file the
+// earlier one put there meanwhile; it says so and moves nothing, its other outputs included.
+TEST(OutputFiles, AFileThatAppearedMeanwhileIsNotReplacedAndNothingElseMoves) {
+  const std::string dir = test::tempDir();
+  OutputFiles files(false);
+  write(files.add(dir + "/first.csv", "-report").staging, "mine");
+  write(files.add(dir + "/out.gpkg", "output").staging, "mine");
+  write(dir + "/out.gpkg", "the other run's");
+  const std::string e = errorOf([&] { files.commit(); });
+  EXPECT_TRUE(has(e, "output: '" + dir + "/out.gpkg' appeared while this run was working")) << e;
+  EXPECT_EQ(test::readFile(dir + "/out.gpkg"), "the other run's");
+  EXPECT_FALSE(fs::exists(dir + "/first.csv"));  // taken back
+}
+
+TEST(OutputFiles, AFailedCommitPutsBackEveryFileItReplaced) {
+  const std::string dir = test::tempDir();
+  write(dir + "/a.gpkg", "old a");
+  std::string e;
+  {
+    OutputFiles files(true);
+    write(files.add(dir + "/a.gpkg", "output").staging, "new a");
+    write(files.add(dir + "/b.csv", "-report").staging, "new b");
+    fs::create_directories(dir + "/b.csv");  // the second move cannot happen
+    e = errorOf([&] { files.commit(); });
+  }
+  EXPECT_TRUE(has(e, "is now a folder")) << e;
+  EXPECT_EQ(test::readFile(dir + "/a.gpkg"), "old a");
+  EXPECT_TRUE(fs::is_directory(dir + "/b.csv"));
+  EXPECT_EQ(namesIn(dir), (std::set<std::string>{"a.gpkg", "b.csv"}));
+}
+
+TEST(OutputFiles, OverwriteReplacesAndLeavesNoBackups) {
+  const std::string dir = test::tempDir();
+  write(dir + "/a.gpkg", "old");
+  OutputFiles files(true);
+  write(files.add(dir + "/a.gpkg", "output").staging, "new");
+  files.commit();
+  EXPECT_EQ(test::readFile(dir + "/a.gpkg"), "new");
+  EXPECT_EQ(namesIn(dir), std::set<std::string>{"a.gpkg"});
+}
+
+TEST(OutputFiles, ASymbolicLinkIsFollowed) {
+  const std::string dir = test::tempDir();
+  fs::create_directories(dir + "/store");
+  write(dir + "/store/t.gpkg", "old");
+  fs::create_symlink(dir + "/store/t.gpkg", dir + "/link.gpkg");
+  OutputFiles files(true);
+  write(files.add(dir + "/link.gpkg", "output").staging, "new");
+  files.commit();
+  EXPECT_TRUE(fs::is_symlink(dir + "/link.gpkg"));
+  EXPECT_EQ(test::readFile(dir + "/store/t.gpkg"), "new");
+}
+
+// A staging folder is stale when nobody holds its lock, whatever PID or host made it; one
+// held (here by another open file description, as another process would) is left alone.
+TEST(OutputFiles, OnlyStagingFoldersNobodyHoldsAreRemoved) {
+  const std::string dir = test::tempDir();
+  const fs::path dead = dir + "/.out.gpkg.tinlod-0000000000000001", live = dir + "/.out.gpkg.tinlod-0000000000000002";
+  for (const fs::path& p : {dead, live}) {
+    fs::create_directories(p);
+    write(p / ".lock", "");
+    write(p / "out.gpkg", "partial");
+  }
+  const int held = open((live / ".lock").c_str(), O_RDWR);
+  ASSERT_EQ(flock(held, LOCK_EX | LOCK_NB), 0);
+  {
+    OutputFiles files(false);
+    files.add(dir + "/out.gpkg", "output");
+    EXPECT_FALSE(fs::exists(dead));
+    EXPECT_TRUE(fs::exists(live / "out.gpkg"));
+  }
+  close(held);
+  OutputFiles again(false);
+  again.add(dir + "/out.gpkg", "output");
+  EXPECT_FALSE(fs::exists(live));
+}
+
+TEST(OutputFiles, MessagesNameTheUsersFileNotTheStagingOne) {
+  const std::string dir = test::tempDir();
+  OutputFiles files(false);
+  const StagedFile& f = files.add(dir + "/a.tif", "-accuracy");
+  const std::string said = inUserTerms(f, "cannot write " + f.staging.string() + " and " + f.staging.parent_path().string() + "/a.hdr");
+  EXPECT_EQ(said, "cannot write " + dir + "/a.tif and " + dir + "/a.hdr");
+}
+
+TEST(OutputFiles, AbandoningRemovesEveryStagingFolder) {
+  const std::string dir = test::tempDir();
+  OutputFiles files(false);
+  write(files.add(dir + "/a.csv", "-report").staging, "x");
+  abandonStagedOutputs();
+  EXPECT_TRUE(namesIn(dir).empty());
+}
+
+}  // namespace
+}  // namespace tinlod
