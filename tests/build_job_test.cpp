@@ -187,6 +187,17 @@ TEST(BuildJob, OptionsThatWouldDoNothingAreRefused) {
   EXPECT_TRUE(fs::is_empty(dir) || !fs::exists(dir + "/a.gpkg"));
 }
 
+TEST(BuildJob, TheValidRangeIsRecordedAndRefusedWhenEmpty) {
+  const std::string dir = test::tempDir();
+  SampleOptions sample;
+  sample.validHeights = {-100, 5000};
+  runBuildJob(smallDem(), dir + "/h.gpkg", sample, {}, false, {});
+  EXPECT_EQ(readHierarchyInfo(dir + "/h.gpkg").metadata.at("valid_range"), "-100..5000 m");
+  sample.validHeights = {10, -10};
+  EXPECT_THROW(runBuildJob(smallDem(), dir + "/bad.gpkg", sample, {}, false, {}), Error);
+  EXPECT_FALSE(fs::exists(dir + "/bad.gpkg"));
+}
+
 TEST(BuildJob, StoppingAboveTheTargetForFixedVerticesIsSaidAndNoTinyLevelsAreMade) {
   test::RecordingFeedback fb;
   const std::string out = test::tempDir() + "/h.gpkg";
