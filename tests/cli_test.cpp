@@ -508,5 +508,73 @@ TEST(Cli, RealGeographicDemIsTransformedToUtm) {
   EXPECT_TRUE(has(asc.out, "EPSG:32613")) << asc.out;
 }
 
+// The default DEM with fill its file does not declare as nodata in the first row: 1e30 in
+// 7 cells, minus and plus infinity in 3.
+std::string demWithFill(const std::string& path) {
+  fs::copy_file(defaultDem(), path, fs::copy_options::overwrite_existing);
+  GDALAllRegister();
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+  std::vector<float> row(10);
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 10, 1, row.data(), 10, 1, GDT_Float32, 0, 0), CE_None);
+  for (float z : row) EXPECT_TRUE(z > 0 && z < 9000) << z;  // valid ground before
+  for (int c = 0; c < 10; ++c) row[c] = c < 7 ? 1e30f : c == 7 ? -INFINITY : INFINITY;
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 10, 1, row.data(), 10, 1, GDT_Float32, 0, 0), CE_None);
+  return path;
+}
+
+// Whether a word of `text` is a number that is not finite, as the C++ streams print them.
+bool hasNonFinite(const std::string& text) {
+  std::istringstream words(text);
+  for (std::string w; words >> w;)
+    if (w == "inf" || w == "-inf" || w == "nan" || w == "-nan") return true;
+  return false;
+}
+
+TEST(Cli, ImplausibleHeightsAreNodataWithOneWarningThatCountsThem) {
+  const std::string dir = test::tempDir();
+  const std::string dem = demWithFill(dir + "/fill.tif");
+  const CliRun sample = tinlod("sample " + dem + " " + dir + "/t.gpkg");
+  ASSERT_EQ(sample.exitCode, 0) << sample.err;
+  const std::string warning = "Warning: ignored 10 cells of '" + dem +
+                              "' with heights outside -12000..9000 m (treated as nodata); widen with -valid_range";
+  EXPECT_TRUE(has(sample.err, warning)) << sample.err;
+  EXPECT_EQ(sample.err.find("ignored"), sample.err.rfind("ignored")) << sample.err;  // one warning
+  EXPECT_TRUE(has(tinlod("info " + dir + "/t.gpkg").out, "valid_range = -12000..9000 m"));
+  // A build measures its levels against the DEM: finite figures, and the range it was made
+  // with is the one accuracy takes unless told otherwise.
+  const CliRun build = tinlod("build -max_levels 2 -valid_range -500 8000 " + dem + " " + dir + "/h.gpkg");
+  ASSERT_EQ(build.exitCode, 0) << build.err;
+  EXPECT_TRUE(has(build.err, "outside -500..8000 m")) << build.err;
+  EXPECT_FALSE(hasNonFinite(build.out)) << build.out;
+  const CliRun accuracy = tinlod("accuracy -reference dem " + dem + " " + dir + "/h.gpkg");
+  ASSERT_EQ(accuracy.exitCode, 0) << accuracy.err;
+  EXPECT_TRUE(has(accuracy.err, "ignored 10 cells of '" + dem + "' with heights outside -500..8000 m")) << accuracy.err;
+  EXPECT_FALSE(hasNonFinite(accuracy.out)) << accuracy.out;
+  const CliRun narrower = tinlod("accuracy -reference dem -valid_range -400 7000 " + dem + " " + dir + "/h.gpkg");
+  EXPECT_TRUE(has(narrower.err, "outside -400..7000 m")) << narrower.err;
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"sample -valid_range 5 1 ", "ERROR: -valid_range must be two finite heights in metres, the lower first (got 5 1); the default is -12000 9000"},
+           {"sample -valid_range x 5 ", "-valid_range expects a number, got 'x'"},
+           {"insert -valid_range 20000 30000 ", "band 1 has no valid cell: all its 108000 cells are nodata"},
+           {"experiment -valid_range 9 1 -report " + dir + "/e.csv ", "-valid_range must be"}}) {
+    const CliRun bad = tinlod(args + dem + (has(args, "experiment") ? "" : " " + dir + "/bad.gpkg"));
+    EXPECT_EQ(bad.exitCode, 1) << args;
+    EXPECT_TRUE(has(bad.err, message)) << args << ": " << bad.err;
+  }
+  const CliRun one = tinlod("sample " + dem + " " + dir + "/bad.gpkg -valid_range 5");
+  EXPECT_TRUE(has(one.err, "ERROR: -valid_range needs 2 values")) << one.err;
+  EXPECT_FALSE(fs::exists(dir + "/bad.gpkg"));
+  for (const char* command : {"sample", "build", "insert", "accuracy", "experiment"})
+    EXPECT_TRUE(has(tinlod(std::string(command) + " --help").out, "-valid_range")) << command;
+}
+
+TEST(Cli, ComplexBandsAreRefused) {
+  const std::string path = test::tempDir() + "/complex.tif";
+  ASSERT_EQ(std::system(("gdal_translate -q -ot CFloat32 " + defaultDem() + " " + path).c_str()), 0);
+  const CliRun r = tinlod("sample " + path + " " + test::tempDir() + "/t.gpkg");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_TRUE(has(r.err, "ERROR: '" + path + "' band 1 holds complex numbers (CFloat32), not heights")) << r.err;
+}
+
 }  // namespace
 }  // namespace tinlod

@@ -105,6 +105,14 @@ std::uint64_t Arguments::unsignedInteger(const std::string& name, std::uint64_t 
   return parsed;
 }
 
+std::vector<double> Arguments::numbers(const std::string& name, std::size_t count, std::vector<double> fallback) {
+  std::vector<std::string> values;
+  if (!take(name, values, count)) return fallback;
+  std::vector<double> parsed;
+  for (const std::string& v : values) parsed.push_back(parseNumber(name, v));
+  return parsed;
+}
+
 std::vector<std::string> Arguments::someOperands(const std::string& usage) {
   rejectOptions(usage);
   if (args_.empty()) throw Error("expected one or more file names\nUsage: " + usage);

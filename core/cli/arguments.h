@@ -21,6 +21,8 @@ class Arguments {
   // An option with several whole-number values, "-size 360 300"; fallback when absent.
   std::vector<int> integers(const std::string& name, std::size_t count, std::vector<int> fallback);
   double number(const std::string& name, double fallback);
+  // An option with several numbers, "-valid_range -500 9000"; fallback when absent.
+  std::vector<double> numbers(const std::string& name, std::size_t count, std::vector<double> fallback);
   // Every occurrence of an option of `count` numbers: "-center 1 2 -center 3 4".
   std::vector<std::vector<double>> repeatedNumbers(const std::string& name, std::size_t count);
   std::uint64_t unsignedInteger(const std::string& name, std::uint64_t fallback);

@@ -59,7 +59,8 @@ Every level is measured against the DEM at every valid cell centre it covers: it
 and RMS vertical distance, and the cells its outline gave up (levels table, tinlod info).
 
 Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, -jitter m
-  (above 0 for a hierarchy, whose levels are measured at every DEM cell), -seed n
+  (above 0 for a hierarchy, whose levels are measured at every DEM cell), -seed n,
+  -valid_range min max (heights outside it are nodata; default -12000 9000)
   -overwrite       replace tinlod's layers in an existing GeoPackage; its other layers are kept
   -q               quiet: no progress or information, warnings only
 

@@ -35,7 +35,8 @@ Usage: tinlod experiment DEM [DEM ...] -report R [options]
   -reference r       tin (default, as in the study) or dem
   -step n            test points every n-th DEM cell (default 1)
   -control c         B-spline control points every c test points (default 3)
-  Sampling options as tinlod sample: -b, -s_srs, -t_srs, -block, -jitter, -seed
+  Sampling options as tinlod sample: -b, -s_srs, -t_srs, -block, -jitter, -seed,
+                     -valid_range
   -q                 quiet: no progress, warnings only
 )";
 
