@@ -576,5 +576,34 @@ TEST(Cli, ComplexBandsAreRefused) {
   EXPECT_TRUE(has(r.err, "ERROR: '" + path + "' band 1 holds complex numbers (CFloat32), not heights")) << r.err;
 }
 
+TEST(Cli, WholeNumberOptionsRefuseOverflowAndGarbage) {
+  const std::string dir = test::tempDir();
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"-seed 18446744073709551616", "-seed expects a whole number from 0 to 18446744073709551615, got '18446744073709551616'"},
+           {"-seed 99999999999999999999999", "got '99999999999999999999999'"},
+           {"-seed -1", "-seed expects a whole number from 0 to 18446744073709551615, got '-1'"},
+           {"-seed +5", "got '+5'"},
+           {"-seed 1e3", "got '1e3'"},
+           {"-seed 12abc", "got '12abc'"},
+           {"-seed ''", "got ''"},
+           {"-block 2147483648", "-block expects a whole number from -2147483648 to 2147483647, got '2147483648'"},
+           {"-block 12abc", "-block expects a whole number, got '12abc'"},
+           {"-block 1e3", "-block expects a whole number, got '1e3'"},
+           {"-block ''", "-block expects a whole number, got ''"},
+           {"-block ' 3'", "-block expects a whole number, got ' 3'"},
+           {"-b 1.5", "-b expects a whole number, got '1.5'"}}) {
+    const CliRun r = tinlod("sample " + args + " " + defaultDem() + " " + dir + "/t.gpkg");
+    EXPECT_EQ(r.exitCode, 1) << args;
+    EXPECT_TRUE(has(r.err, "ERROR: " + args.substr(0, args.find(' ')) + " expects a whole number")) << args << ": " << r.err;
+    EXPECT_TRUE(has(r.err, message)) << args << ": " << r.err;
+  }
+  const CliRun makedem = tinlod("makedem -seed 18446744073709551616 " + dir + "/d.tif");
+  EXPECT_EQ(makedem.exitCode, 1);
+  EXPECT_TRUE(has(makedem.err, "-seed expects a whole number from 0")) << makedem.err;
+  EXPECT_FALSE(fs::exists(dir + "/t.gpkg"));
+  EXPECT_FALSE(fs::exists(dir + "/d.tif"));
+  EXPECT_EQ(tinlod("sample -q -seed 18446744073709551615 " + defaultDem() + " " + dir + "/t.gpkg").exitCode, 0);
+}
+
 }  // namespace
 }  // namespace tinlod
