@@ -605,5 +605,58 @@ TEST(Cli, WholeNumberOptionsRefuseOverflowAndGarbage) {
   EXPECT_EQ(tinlod("sample -q -seed 18446744073709551615 " + defaultDem() + " " + dir + "/t.gpkg").exitCode, 0);
 }
 
+// A GeoPackage whose one layer, 'features' (UTM zone 32N), holds `geometries` as its features.
+std::string vectorFile(const std::string& path, OGRwkbGeometryType type, const std::vector<OGRGeometry*>& geometries) {
+  GDALAllRegister();
+  GDALDatasetUniquePtr ds(GetGDALDriverManager()->GetDriverByName("GPKG")->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32632);
+  OGRLayer* layer = ds->CreateLayer("features", &utm, type, nullptr);
+  for (OGRGeometry* g : geometries) {
+    OGRFeature f(layer->GetLayerDefn());
+    f.SetGeometryDirectly(g);
+    EXPECT_EQ(layer->CreateFeature(&f), OGRERR_NONE);
+  }
+  return path;
+}
+
+TEST(Cli, LinesDpSkipsVerticesThatAreNotFiniteAndRefusesOtherGeometries) {
+  const std::string dir = test::tempDir();
+  // The hand-worked line of LinesDpWritesValuesAsMAndTheSimplifiedLines with a NaN vertex
+  // in it, and a line left with one vertex.
+  auto* line = new OGRLineString();
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {1, 1}, {NAN, NAN}, {2, 0}, {3, 3}, {4, 0}})
+    line->addPoint(x, y);
+  auto* shortLine = new OGRLineString();
+  shortLine->addPoint(5, 5);
+  shortLine->addPoint(INFINITY, 5);
+  const std::string path = vectorFile(dir + "/nan.gpkg", wkbLineString, {line, shortLine});
+  const CliRun r = tinlod("lines dp " + path + " " + dir + "/dp.gpkg");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "Warning: skipped 2 vertices with coordinates that are not finite numbers (NaN or infinity) in '" +
+                             path + "', and skipped 1 line this left with fewer than 2 vertices"))
+      << r.err;
+  EXPECT_TRUE(has(r.out, "values of 5 vertices of 1 lines")) << r.out;
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/dp.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(ds);
+  OGRFeatureUniquePtr f(ds->GetLayerByName("lines")->GetNextFeature());
+  ASSERT_TRUE(f);
+  const OGRLineString* values = f->GetGeometryRef()->toLineString();
+  ASSERT_EQ(values->getNumPoints(), 5);
+  EXPECT_DOUBLE_EQ(values->getM(1), 1);
+  EXPECT_DOUBLE_EQ(values->getM(2), std::sqrt(2));
+  EXPECT_DOUBLE_EQ(values->getM(3), 3);
+  ds.reset();
+  const std::string points = vectorFile(dir + "/points.gpkg", wkbPoint, {new OGRPoint(1, 2)});
+  const CliRun p = tinlod("lines dp " + points + " " + dir + "/x.gpkg");
+  EXPECT_EQ(p.exitCode, 1);
+  EXPECT_TRUE(has(p.err, "ERROR: INPUT: '" + points + "' holds Point geometries (layer 'features'): a line layer is needed"))
+      << p.err;
+  const std::string polygons = vectorFile(dir + "/polygons.gpkg", wkbMultiPolygon, {});
+  const CliRun c = tinlod("lines concavity -window 5 " + polygons + " " + dir + "/x.gpkg");
+  EXPECT_TRUE(has(c.err, "holds Multi Polygon geometries")) << c.err;
+  EXPECT_FALSE(fs::exists(dir + "/x.gpkg"));
+}
+
 }  // namespace
 }  // namespace tinlod

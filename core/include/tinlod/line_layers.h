@@ -13,7 +13,10 @@ namespace tinlod {
 
 // The lines of the first layer of a vector file, each part of a multi-line its own line,
 // in a metric CRS: the layer's own when it is projected, else the UTM zone of its centre
-// (as for DEMs). `feature` gives each line's feature id.
+// (as for DEMs). `feature` gives each line's feature id. Vertices that are not finite
+// numbers are skipped, and lines they leave with fewer than 2 vertices, with one warning
+// that counts them. Throws Error naming the file and the geometry type for a layer of
+// points or polygons.
 struct LineSet {
   std::vector<Polyline> lines;
   std::vector<long long> feature;
