@@ -18,6 +18,8 @@ bool Arguments::flag(const std::string& name) {
   return true;
 }
 
+bool Arguments::given(const std::string& name) const { return std::find(args_.begin(), args_.end(), name) != args_.end(); }
+
 bool Arguments::take(const std::string& name, std::vector<std::string>& values, std::size_t count) {
   auto it = std::find(args_.begin(), args_.end(), name);
   if (it == args_.end()) return false;

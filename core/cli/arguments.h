@@ -14,6 +14,8 @@ class Arguments {
   explicit Arguments(std::vector<std::string> args) : args_(std::move(args)) {}
 
   bool flag(const std::string& name);
+  // Whether an option is there, without consuming it.
+  bool given(const std::string& name) const;
   std::string text(const std::string& name, const std::string& fallback);
   // Every value of an option that may be given several times (-co A=1 -co B=2).
   std::vector<std::string> repeated(const std::string& name);
