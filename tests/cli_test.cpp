@@ -605,6 +605,24 @@ TEST(Cli, WholeNumberOptionsRefuseOverflowAndGarbage) {
   EXPECT_EQ(tinlod("sample -q -seed 18446744073709551615 " + defaultDem() + " " + dir + "/t.gpkg").exitCode, 0);
 }
 
+TEST(Cli, OptionsOutOfRangeAreRefusedNamingTheOption) {
+  const std::string dir = test::tempDir();
+  const std::string lines = geojson(dir + "/l.geojson", R"({"type": "LineString", "coordinates": [[0, 0], [1, 1], [2, 0]]})");
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"lines dp -threshold -1 " + lines, "-threshold must be 0 or more metres (got -1)"},
+           {"lines concavity -window -5 -window_fraction 0.1 " + lines, "-window and -window_fraction must be more than 0 (got -5)"},
+           {"build -method volume -max_degree 8 " + defaultDem(), "-max_degree applies only to -method degree"},
+           {"build -max_degree 11 " + defaultDem(), "-max_degree applies only to -method degree"},
+           {"insert -max_vertices 1e30 " + defaultDem(), "-max_vertices and -max_triangles take whole numbers from 0 to 2^53"},
+           {"experiment -delete_pcts 10abc -report " + dir + "/e.csv " + defaultDem(), "-delete_pcts: '10abc' is not a number"}}) {
+    const CliRun r = tinlod(args + (has(args, "experiment") ? "" : " " + dir + "/out.gpkg"));
+    EXPECT_EQ(r.exitCode, 1) << args;
+    EXPECT_TRUE(has(r.err, "ERROR: " + message)) << args << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/out.gpkg"));
+  EXPECT_FALSE(fs::exists(dir + "/e.csv"));
+}
+
 // A GeoPackage whose one layer, 'features' (UTM zone 32N), holds `geometries` as its features.
 std::string vectorFile(const std::string& path, OGRwkbGeometryType type, const std::vector<OGRGeometry*>& geometries) {
   GDALAllRegister();

@@ -77,8 +77,11 @@ InsertOptions insertOptions(Arguments& a) {
   o.delaunayOnGrid = delaunay == "grid";
   const double maxError = a.number("-max_error", std::numeric_limits<double>::quiet_NaN());
   const double maxVertices = a.number("-max_vertices", 0), maxTriangles = a.number("-max_triangles", 0);
-  if (maxVertices < 0 || maxVertices != std::floor(maxVertices) || maxTriangles < 0 || maxTriangles != std::floor(maxTriangles))
-    throw Error("-max_vertices and -max_triangles take whole numbers of 0 or more");
+  // Past 2^53 a double holds no odd whole numbers, and past 2^64 the count would not convert.
+  const double most = 9007199254740992.0;
+  if (maxVertices < 0 || maxVertices != std::floor(maxVertices) || maxTriangles < 0 || maxTriangles != std::floor(maxTriangles) ||
+      maxVertices > most || maxTriangles > most)
+    throw Error("-max_vertices and -max_triangles take whole numbers from 0 to 2^53 (9007199254740992)");
   o.maxVertices = static_cast<std::size_t>(maxVertices);
   o.maxTriangles = static_cast<std::size_t>(maxTriangles);
   o.maxError = !std::isnan(maxError) ? maxError : (o.maxVertices || o.maxTriangles) ? 0 : 1;

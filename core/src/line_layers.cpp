@@ -224,8 +224,15 @@ double lengthOf(const Polyline& line) {
 
 }  // namespace
 
+void DpOptions::validate() const {
+  if (!std::isnan(threshold) && !(threshold >= 0 && std::isfinite(threshold)))
+    throw Error("-threshold must be 0 or more metres (got " + formatNumber(threshold) +
+                "): the simplified lines keep the vertices whose value exceeds it");
+}
+
 DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const DpOptions& options, bool overwrite,
                    const Feedback& feedback) {
+  options.validate();
   GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "dp_values"}, {"TINLOD_SOURCE", inPath}}};
   checkOutputPath(outPath, writeOptions);
   const ProgressRange all(feedback, 0, 1);
@@ -265,6 +272,8 @@ DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const 
 void ConcavityOptions::validate() const {
   if (!(window > 0) && !(windowFraction > 0))
     throw Error("give the window: -window d (metres along the line) or -window_fraction f (of each line's length)");
+  if (window < 0 || windowFraction < 0 || !std::isfinite(window))
+    throw Error("-window and -window_fraction must be more than 0 (got " + formatNumber(window < 0 ? window : windowFraction) + ")");
   if (window > 0 && windowFraction > 0) throw Error("give -window or -window_fraction, not both");
   if (windowFraction >= 0.5) throw Error("-window_fraction must be below 0.5: the window reaches both ways");
   if (radius < 0 || !std::isfinite(radius)) throw Error("-radius must be 0 (the window) or more metres");

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,8 @@ LineSet readLines(const std::string& path, const ProgressRange& progress);
 // lines. Written atomically to a GeoPackage.
 struct DpOptions {
   bool points = false;
-  double threshold = -1;  // < 0: no simplified layer
+  double threshold = std::numeric_limits<double>::quiet_NaN();  // metres, 0 or more; NaN: no simplified layer
+  void validate() const;  // throws Error naming the option
 };
 struct DpSummary {
   std::size_t lines = 0, vertices = 0, keptVertices = 0, crossings = 0;
