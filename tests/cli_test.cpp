@@ -676,5 +676,27 @@ TEST(Cli, LinesDpSkipsVerticesThatAreNotFiniteAndRefusesOtherGeometries) {
   EXPECT_FALSE(fs::exists(dir + "/x.gpkg"));
 }
 
+TEST(Cli, LevelMinusOneIsTheCoarsestInLocateAsInAccuracy) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q -max_levels 3 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const std::string points = geojson(dir + "/p.geojson", R"({"type": "Point", "coordinates": [404500, 5203750]})");
+  const CliRun coarsest = tinlod("locate -level -1 " + dir + "/h.gpkg " + points + " " + dir + "/a.gpkg");
+  ASSERT_EQ(coarsest.exitCode, 0) << coarsest.err;
+  EXPECT_TRUE(has(coarsest.out, "Located 1 of 1 points on level 3 ")) << coarsest.out;
+  const CliRun three = tinlod("locate -level 3 " + dir + "/h.gpkg " + points + " " + dir + "/b.gpkg");
+  GDALAllRegister();
+  auto elevation = [](const std::string& path) {
+    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+    OGRFeatureUniquePtr f(ds->GetLayerByName("points")->GetNextFeature());
+    return f->GetFieldAsDouble("elevation");
+  };
+  EXPECT_EQ(elevation(dir + "/a.gpkg"), elevation(dir + "/b.gpkg"));
+  const CliRun below = tinlod("locate -level -2 " + dir + "/h.gpkg " + points + " " + dir + "/c.gpkg");
+  EXPECT_EQ(below.exitCode, 1);
+  const std::string wording = "0 the original, -1 the coarsest";
+  EXPECT_TRUE(has(tinlod("locate --help").out, wording));
+  EXPECT_TRUE(has(tinlod("accuracy --help").out, wording));
+}
+
 }  // namespace
 }  // namespace tinlod
