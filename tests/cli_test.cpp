@@ -698,5 +698,17 @@ TEST(Cli, LevelMinusOneIsTheCoarsestInLocateAsInAccuracy) {
   EXPECT_TRUE(has(tinlod("accuracy --help").out, wording));
 }
 
+TEST(Cli, AMissingLayerOfAnExistingFileIsNamedWithTheFilesLayers) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const std::string region = vectorFile(dir + "/r.gpkg", wkbPolygon, {});
+  const CliRun lod = tinlod("lod -region \"" + region + "|layername=parks\" " + dir + "/h.gpkg " + dir + "/x.gpkg");
+  EXPECT_EQ(lod.exitCode, 1);
+  EXPECT_TRUE(has(lod.err, "ERROR: -region: '" + region + "' has no layer 'parks' (its layers: features)")) << lod.err;
+  const CliRun locate = tinlod("locate " + dir + "/h.gpkg \"" + region + "|layername=wells\" " + dir + "/x.gpkg");
+  EXPECT_TRUE(has(locate.err, "'" + region + "' has no layer 'wells' (its layers: features)")) << locate.err;
+  EXPECT_FALSE(has(lod.err + locate.err, "does not exist"));
+}
+
 }  // namespace
 }  // namespace tinlod
