@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -708,6 +709,30 @@ TEST(Cli, AMissingLayerOfAnExistingFileIsNamedWithTheFilesLayers) {
   const CliRun locate = tinlod("locate " + dir + "/h.gpkg \"" + region + "|layername=wells\" " + dir + "/x.gpkg");
   EXPECT_TRUE(has(locate.err, "'" + region + "' has no layer 'wells' (its layers: features)")) << locate.err;
   EXPECT_FALSE(has(lod.err + locate.err, "does not exist"));
+}
+
+TEST(Cli, InfoKeepsHugeFiguresInTheirColumns) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  ASSERT_EQ(std::system(("ogrinfo -q " + dir + "/h.gpkg -sql \"UPDATE levels SET max_error = 1e30, rmse = 123456789.5, "
+                         "select_seconds = 1e12\" > /dev/null")
+                            .c_str()),
+            0);
+  const CliRun info = tinlod("info " + dir + "/h.gpkg");
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  std::istringstream lines(info.out);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::vector<std::string> row{std::istream_iterator<std::string>(fields), std::istream_iterator<std::string>()};
+    if (row.size() < 2 || row[0].find_first_not_of("0123456789") != std::string::npos) continue;
+    ++rows;
+    ASSERT_EQ(row.size(), 10u) << line;  // no two columns run together
+    EXPECT_EQ(row[4], "1e+12") << line;
+    EXPECT_EQ(row[6], "1e+30") << line;
+    EXPECT_EQ(row[7], "1.23e+08") << line;
+  }
+  EXPECT_EQ(rows, 3) << info.out;
 }
 
 }  // namespace
