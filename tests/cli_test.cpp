@@ -622,6 +622,12 @@ TEST(Cli, OptionsOutOfRangeAreRefusedNamingTheOption) {
   }
   EXPECT_FALSE(fs::exists(dir + "/out.gpkg"));
   EXPECT_FALSE(fs::exists(dir + "/e.csv"));
+  for (const char* cell : {"0", "-5", "1e300"}) {
+    const CliRun r = tinlod("makedem -cell " + std::string(cell) + " " + dir + "/d.tif");
+    EXPECT_EQ(r.exitCode, 1) << cell;
+    EXPECT_TRUE(has(r.err, "ERROR: -cell must be more than 0 and at most 1000 metres")) << cell << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/d.tif"));
 }
 
 // A GeoPackage whose one layer, 'features' (UTM zone 32N), holds `geometries` as its features.
