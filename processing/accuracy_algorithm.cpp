@@ -21,14 +21,16 @@ QString AccuracyAlgorithm::shortHelpString() const {
   return QStringLiteral(
              "Measures how well every level of a TIN hierarchy (or a TIN) written by tinlod represents the "
              "original, and writes an accuracy raster of one level and a report of all levels.\n\n"
-             "DEM: the raster the GeoPackage was made from. Band: empty means the band it was sampled from.\n\n") +
+             "DEM: the raster the GeoPackage was made from. Band: empty means the band it was sampled from. "
+             "Valid heights: cells outside them are nodata; empty means the range the GeoPackage was made with "
+             "(-12000 to 9000 m unless widened).\n\n") +
          accuracyHelp() + QStringLiteral("\n\nLevel: the raster's level; -1 (the default) means the coarsest.");
 }
 
 AccuracyAlgorithm* AccuracyAlgorithm::createInstance() const { return new AccuracyAlgorithm(); }
 
 void AccuracyAlgorithm::initAlgorithm(const QVariantMap&) {
-  addDemParameters();
+  addDemParameters(true);
   addParameter(new QgsProcessingParameterFile(QStringLiteral("HIERARCHY"), QStringLiteral("Hierarchy or TIN GeoPackage"),
                                               QgsProcessingParameterFile::File, QStringLiteral("gpkg")));
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("LEVEL"), QStringLiteral("Level of the raster (-1: the coarsest)"),
@@ -54,7 +56,7 @@ bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProce
 
 QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessingContext&, QgsProcessingFeedback* feedback) {
   const AccuracyReport report = translateErrors(
-      [&] { return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback)); });
+      [&] { return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback), validHeights_); });
   const int level = accuracy_.rasterLevel < 0 ? static_cast<int>(report.rows.size()) - 1 : accuracy_.rasterLevel;
   const LevelAccuracy& row = report.rows[static_cast<std::size_t>(level)];
   for (const LevelAccuracy& r : report.rows) {

@@ -109,6 +109,9 @@ bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Qg
   options_.stopPct = parameterAsDouble(parameters, QStringLiteral("STOP_PCT"), context);
   options_.maxLevels = parameterAsInt(parameters, QStringLiteral("MAX_LEVELS"), context);
   options_.maxDegree = parameterAsInt(parameters, QStringLiteral("MAX_DEGREE"), context);
+  if (options_.maxDegree != HierarchyOptions().maxDegree && options_.measure != Measure::Degree)
+    throw QgsProcessingException(QStringLiteral("MAX_DEGREE applies to the degree method only: set METHOD to degree or "
+                                                "leave MAX_DEGREE at %1").arg(HierarchyOptions().maxDegree));
   const QVariant maxError = parameters.value(QStringLiteral("MAX_ERROR"));
   if (maxError.isValid() && !maxError.toString().isEmpty()) {
     if (options_.measure != Measure::Error)

@@ -4,6 +4,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsrasterlayer.h>
 
+#include <cmath>
 #include <memory>
 
 namespace tinlod::qgis {
@@ -26,12 +27,19 @@ QgsProcessingParameterDefinition* DemAlgorithm::advanced(QgsProcessingParameterD
   return p;
 }
 
-void DemAlgorithm::addDemParameters() {
+void DemAlgorithm::addDemParameters(bool rangeOfTheGeoPackage) {
   addParameter(new QgsProcessingParameterRasterLayer(QStringLiteral("INPUT"), QStringLiteral("DEM")));
   // Optional with a default: qgis_process 3.22 reports a mandatory band as missing
   // even when it has a default value.
   addParameter(new QgsProcessingParameterBand(QStringLiteral("BAND"), QStringLiteral("Band"), SampleOptions().band,
                                               QStringLiteral("INPUT"), true));
+  const HeightRange defaults;
+  const QVariant range = rangeOfTheGeoPackage ? QVariant() : QVariant(QStringLiteral("%1,%2").arg(defaults.min).arg(defaults.max));
+  addParameter(advanced(new QgsProcessingParameterRange(
+      QStringLiteral("VALID_RANGE"),
+      rangeOfTheGeoPackage ? QStringLiteral("Valid heights (metres; empty: the range the GeoPackage was made with)")
+                           : QStringLiteral("Valid heights (metres; others are nodata)"),
+      QgsProcessingParameterNumber::Double, range, true)));
 }
 
 void DemAlgorithm::addDemAndSamplingParameters() {
@@ -73,6 +81,19 @@ void DemAlgorithm::readDemParameters(const QVariantMap& parameters, QgsProcessin
                                      .arg(band).arg(layer->bandCount()));
   demSource_ = layer->source().toStdString();
   sample_.band = band;
+  validHeights_ = validRange(parameters, context);
+  sample_.validHeights = validHeights_.value_or(HeightRange{});
+}
+
+std::optional<HeightRange> DemAlgorithm::validRange(const QVariantMap& parameters, QgsProcessingContext& context) {
+  const QVariant value = parameters.value(QStringLiteral("VALID_RANGE"));
+  if (!value.isValid() || value.toString().isEmpty()) return std::nullopt;
+  const QList<double> range = parameterAsRange(parameters, QStringLiteral("VALID_RANGE"), context);
+  if (range.size() != 2 || !std::isfinite(range[0]) || !std::isfinite(range[1]) || !(range[0] < range[1]))
+    throw QgsProcessingException(QStringLiteral("Invalid range for VALID_RANGE (%1): give the lowest and the highest valid "
+                                                "height in metres, the lower first, e.g. -12000,9000")
+                                     .arg(value.toString()));
+  return HeightRange{range[0], range[1]};
 }
 
 QString DemAlgorithm::samplingHelp() {
@@ -83,7 +104,10 @@ QString DemAlgorithm::samplingHelp() {
       "offset in [0, jitter) metres so that no four points are cocircular; the seed makes runs "
       "reproducible. The points are triangulated with CGAL's exact-predicate Delaunay "
       "triangulation. Nodata cells (declared nodata, NaN, masks) never become vertices, and no "
-      "triangle spans them: holes stay holes.\n\n"
+      "triangle spans them: holes stay holes. Heights outside the valid heights (by default -12000 to "
+      "9000 m, the Earth's range) and infinite ones are nodata too, counted in one warning: fill values a "
+      "file does not declare, such as 1e30 or -32768, never become vertices. A band of complex numbers is "
+      "refused.\n\n"
       "Units: heights are taken as metres and are never resampled. A DEM in a geographic CRS "
       "(most SRTM data) has its points' x and y transformed to the UTM zone of its centre, or to "
       "the target CRS given, which must be projected and in metres. A DEM without a CRS is taken "

@@ -3,6 +3,7 @@
 
 #include <qgsprocessingalgorithm.h>
 
+#include <optional>
 #include <string>
 
 #include "tinlod/accuracy_job.h"
@@ -19,8 +20,10 @@ class DemAlgorithm : public QgsProcessingAlgorithm {
   // Call from prepareAlgorithm: fills demSource_ and sample_, or throws
   // QgsProcessingException naming the parameter.
   void readDemAndSamplingParameters(const QVariantMap& parameters, QgsProcessingContext& context);
-  // INPUT and BAND alone; an empty BAND reads as `emptyBand`.
-  void addDemParameters();
+  // INPUT, BAND and advanced VALID_RANGE; an empty BAND reads as `emptyBand`. Where the
+  // heights are checked against a GeoPackage, VALID_RANGE has no default: empty means the
+  // range the GeoPackage was made with (validHeights_ is then empty).
+  void addDemParameters(bool rangeOfTheGeoPackage = false);
   void readDemParameters(const QVariantMap& parameters, QgsProcessingContext& context, int emptyBand);
 
   // The accuracy parameters (accuracy_parameters.cpp): REFERENCE, STEP, CONTROL_SPACING,
@@ -31,11 +34,14 @@ class DemAlgorithm : public QgsProcessingAlgorithm {
   static QString accuracyHelp();
   // The help text's paragraphs on sampling, holes and units, shared by the algorithms.
   static QString samplingHelp();
+  // VALID_RANGE, or none when it is empty; throws QgsProcessingException for a bad range.
+  std::optional<HeightRange> validRange(const QVariantMap& parameters, QgsProcessingContext& context);
   // Flags a parameter Advanced (shown folded in the dialog) and returns it.
   static QgsProcessingParameterDefinition* advanced(QgsProcessingParameterDefinition* parameter);
 
   std::string demSource_;
   SampleOptions sample_;
+  std::optional<HeightRange> validHeights_;
   AccuracyOutputs accuracy_;
 };
 

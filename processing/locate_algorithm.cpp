@@ -38,8 +38,8 @@ void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
                                                      QList<int>() << QgsProcessing::TypeVectorPoint));
   addParameter(new QgsProcessingParameterFile(QStringLiteral("HIERARCHY"), QStringLiteral("Hierarchy GeoPackage"),
                                               QgsProcessingParameterFile::File, QStringLiteral("gpkg")));
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("LEVEL"), QStringLiteral("Level (0: the original TIN)"),
-                                                QgsProcessingParameterNumber::Integer, 0, false, 0));
+  addParameter(new QgsProcessingParameterNumber(QStringLiteral("LEVEL"), QStringLiteral("Level (0: the original TIN, -1: the coarsest)"),
+                                                QgsProcessingParameterNumber::Integer, 0, false, -1));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Points with elevation"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("POINTS"), QStringLiteral("Points")));

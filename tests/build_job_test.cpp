@@ -187,6 +187,31 @@ TEST(BuildJob, OptionsThatWouldDoNothingAreRefused) {
   EXPECT_TRUE(fs::is_empty(dir) || !fs::exists(dir + "/a.gpkg"));
 }
 
+TEST(BuildJob, ADegreeLimitIsRefusedWithAnotherMethod) {
+  HierarchyOptions o;
+  o.measure = Measure::Volume;
+  o.maxDegree = 8;
+  try {
+    o.validate();
+    FAIL() << "-max_degree 8 with -method volume was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "-max_degree applies only to -method degree (got -max_degree 8 with -method volume)");
+  }
+  o.measure = Measure::Degree;
+  EXPECT_NO_THROW(o.validate());
+}
+
+TEST(BuildJob, TheValidRangeIsRecordedAndRefusedWhenEmpty) {
+  const std::string dir = test::tempDir();
+  SampleOptions sample;
+  sample.validHeights = {-100, 5000};
+  runBuildJob(smallDem(), dir + "/h.gpkg", sample, {}, false, {});
+  EXPECT_EQ(readHierarchyInfo(dir + "/h.gpkg").metadata.at("valid_range"), "-100..5000 m");
+  sample.validHeights = {10, -10};
+  EXPECT_THROW(runBuildJob(smallDem(), dir + "/bad.gpkg", sample, {}, false, {}), Error);
+  EXPECT_FALSE(fs::exists(dir + "/bad.gpkg"));
+}
+
 TEST(BuildJob, StoppingAboveTheTargetForFixedVerticesIsSaidAndNoTinyLevelsAreMade) {
   test::RecordingFeedback fb;
   const std::string out = test::tempDir() + "/h.gpkg";

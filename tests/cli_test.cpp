@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -506,6 +507,238 @@ TEST(Cli, RealGeographicDemIsTransformedToUtm) {
   const CliRun asc = tinlod("sample -s_srs EPSG:4326 " + dir + "/boulder_srtmgl3_144.asc " + test::tempDir() + "/b.gpkg");
   EXPECT_EQ(asc.exitCode, 0) << asc.err;
   EXPECT_TRUE(has(asc.out, "EPSG:32613")) << asc.out;
+}
+
+// The default DEM with fill its file does not declare as nodata in the first row: 1e30 in
+// 7 cells, minus and plus infinity in 3.
+std::string demWithFill(const std::string& path) {
+  fs::copy_file(defaultDem(), path, fs::copy_options::overwrite_existing);
+  GDALAllRegister();
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+  std::vector<float> row(10);
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 10, 1, row.data(), 10, 1, GDT_Float32, 0, 0), CE_None);
+  for (float z : row) EXPECT_TRUE(z > 0 && z < 9000) << z;  // valid ground before
+  for (int c = 0; c < 10; ++c) row[c] = c < 7 ? 1e30f : c == 7 ? -INFINITY : INFINITY;
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 10, 1, row.data(), 10, 1, GDT_Float32, 0, 0), CE_None);
+  return path;
+}
+
+// Whether a word of `text` is a number that is not finite, as the C++ streams print them.
+bool hasNonFinite(const std::string& text) {
+  std::istringstream words(text);
+  for (std::string w; words >> w;)
+    if (w == "inf" || w == "-inf" || w == "nan" || w == "-nan") return true;
+  return false;
+}
+
+TEST(Cli, ImplausibleHeightsAreNodataWithOneWarningThatCountsThem) {
+  const std::string dir = test::tempDir();
+  const std::string dem = demWithFill(dir + "/fill.tif");
+  const CliRun sample = tinlod("sample " + dem + " " + dir + "/t.gpkg");
+  ASSERT_EQ(sample.exitCode, 0) << sample.err;
+  const std::string warning = "Warning: ignored 10 cells of '" + dem +
+                              "' with heights outside -12000..9000 m (treated as nodata); widen with -valid_range";
+  EXPECT_TRUE(has(sample.err, warning)) << sample.err;
+  EXPECT_EQ(sample.err.find("ignored"), sample.err.rfind("ignored")) << sample.err;  // one warning
+  EXPECT_TRUE(has(tinlod("info " + dir + "/t.gpkg").out, "valid_range = -12000..9000 m"));
+  // A build measures its levels against the DEM: finite figures, and the range it was made
+  // with is the one accuracy takes unless told otherwise.
+  const CliRun build = tinlod("build -max_levels 2 -valid_range -500 8000 " + dem + " " + dir + "/h.gpkg");
+  ASSERT_EQ(build.exitCode, 0) << build.err;
+  EXPECT_TRUE(has(build.err, "outside -500..8000 m")) << build.err;
+  EXPECT_FALSE(hasNonFinite(build.out)) << build.out;
+  const CliRun accuracy = tinlod("accuracy -reference dem " + dem + " " + dir + "/h.gpkg");
+  ASSERT_EQ(accuracy.exitCode, 0) << accuracy.err;
+  EXPECT_TRUE(has(accuracy.err, "ignored 10 cells of '" + dem + "' with heights outside -500..8000 m")) << accuracy.err;
+  EXPECT_FALSE(hasNonFinite(accuracy.out)) << accuracy.out;
+  const CliRun narrower = tinlod("accuracy -reference dem -valid_range -400 7000 " + dem + " " + dir + "/h.gpkg");
+  EXPECT_TRUE(has(narrower.err, "outside -400..7000 m")) << narrower.err;
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"sample -valid_range 5 1 ", "ERROR: -valid_range must be two finite heights in metres, the lower first (got 5 1); the default is -12000 9000"},
+           {"sample -valid_range x 5 ", "-valid_range expects a number, got 'x'"},
+           {"insert -valid_range 20000 30000 ", "band 1 has no valid cell: all its 108000 cells are nodata"},
+           {"experiment -valid_range 9 1 -report " + dir + "/e.csv ", "-valid_range must be"}}) {
+    const CliRun bad = tinlod(args + dem + (has(args, "experiment") ? "" : " " + dir + "/bad.gpkg"));
+    EXPECT_EQ(bad.exitCode, 1) << args;
+    EXPECT_TRUE(has(bad.err, message)) << args << ": " << bad.err;
+  }
+  const CliRun one = tinlod("sample " + dem + " " + dir + "/bad.gpkg -valid_range 5");
+  EXPECT_TRUE(has(one.err, "ERROR: -valid_range needs 2 values")) << one.err;
+  EXPECT_FALSE(fs::exists(dir + "/bad.gpkg"));
+  for (const char* command : {"sample", "build", "insert", "accuracy", "experiment"})
+    EXPECT_TRUE(has(tinlod(std::string(command) + " --help").out, "-valid_range")) << command;
+}
+
+TEST(Cli, ComplexBandsAreRefused) {
+  const std::string path = test::tempDir() + "/complex.tif";
+  ASSERT_EQ(std::system(("gdal_translate -q -ot CFloat32 " + defaultDem() + " " + path).c_str()), 0);
+  const CliRun r = tinlod("sample " + path + " " + test::tempDir() + "/t.gpkg");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_TRUE(has(r.err, "ERROR: '" + path + "' band 1 holds complex numbers (CFloat32), not heights")) << r.err;
+}
+
+TEST(Cli, WholeNumberOptionsRefuseOverflowAndGarbage) {
+  const std::string dir = test::tempDir();
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"-seed 18446744073709551616", "-seed expects a whole number from 0 to 18446744073709551615, got '18446744073709551616'"},
+           {"-seed 99999999999999999999999", "got '99999999999999999999999'"},
+           {"-seed -1", "-seed expects a whole number from 0 to 18446744073709551615, got '-1'"},
+           {"-seed +5", "got '+5'"},
+           {"-seed 1e3", "got '1e3'"},
+           {"-seed 12abc", "got '12abc'"},
+           {"-seed ''", "got ''"},
+           {"-block 2147483648", "-block expects a whole number from -2147483648 to 2147483647, got '2147483648'"},
+           {"-block 12abc", "-block expects a whole number, got '12abc'"},
+           {"-block 1e3", "-block expects a whole number, got '1e3'"},
+           {"-block ''", "-block expects a whole number, got ''"},
+           {"-block ' 3'", "-block expects a whole number, got ' 3'"},
+           {"-b 1.5", "-b expects a whole number, got '1.5'"}}) {
+    const CliRun r = tinlod("sample " + args + " " + defaultDem() + " " + dir + "/t.gpkg");
+    EXPECT_EQ(r.exitCode, 1) << args;
+    EXPECT_TRUE(has(r.err, "ERROR: " + args.substr(0, args.find(' ')) + " expects a whole number")) << args << ": " << r.err;
+    EXPECT_TRUE(has(r.err, message)) << args << ": " << r.err;
+  }
+  const CliRun makedem = tinlod("makedem -seed 18446744073709551616 " + dir + "/d.tif");
+  EXPECT_EQ(makedem.exitCode, 1);
+  EXPECT_TRUE(has(makedem.err, "-seed expects a whole number from 0")) << makedem.err;
+  EXPECT_FALSE(fs::exists(dir + "/t.gpkg"));
+  EXPECT_FALSE(fs::exists(dir + "/d.tif"));
+  EXPECT_EQ(tinlod("sample -q -seed 18446744073709551615 " + defaultDem() + " " + dir + "/t.gpkg").exitCode, 0);
+}
+
+TEST(Cli, OptionsOutOfRangeAreRefusedNamingTheOption) {
+  const std::string dir = test::tempDir();
+  const std::string lines = geojson(dir + "/l.geojson", R"({"type": "LineString", "coordinates": [[0, 0], [1, 1], [2, 0]]})");
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"lines dp -threshold -1 " + lines, "-threshold must be 0 or more metres (got -1)"},
+           {"lines concavity -window -5 -window_fraction 0.1 " + lines, "-window and -window_fraction must be more than 0 (got -5)"},
+           {"build -method volume -max_degree 8 " + defaultDem(), "-max_degree applies only to -method degree"},
+           {"build -max_degree 11 " + defaultDem(), "-max_degree applies only to -method degree"},
+           {"insert -max_vertices 1e30 " + defaultDem(), "-max_vertices and -max_triangles take whole numbers from 0 to 2^53"},
+           {"experiment -delete_pcts 10abc -report " + dir + "/e.csv " + defaultDem(), "-delete_pcts: '10abc' is not a number"}}) {
+    const CliRun r = tinlod(args + (has(args, "experiment") ? "" : " " + dir + "/out.gpkg"));
+    EXPECT_EQ(r.exitCode, 1) << args;
+    EXPECT_TRUE(has(r.err, "ERROR: " + message)) << args << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/out.gpkg"));
+  EXPECT_FALSE(fs::exists(dir + "/e.csv"));
+  for (const char* cell : {"0", "-5", "1e300"}) {
+    const CliRun r = tinlod("makedem -cell " + std::string(cell) + " " + dir + "/d.tif");
+    EXPECT_EQ(r.exitCode, 1) << cell;
+    EXPECT_TRUE(has(r.err, "ERROR: -cell must be more than 0 and at most 1000 metres")) << cell << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/d.tif"));
+}
+
+// A GeoPackage whose one layer, 'features' (UTM zone 32N), holds `geometries` as its features.
+std::string vectorFile(const std::string& path, OGRwkbGeometryType type, const std::vector<OGRGeometry*>& geometries) {
+  GDALAllRegister();
+  GDALDatasetUniquePtr ds(GetGDALDriverManager()->GetDriverByName("GPKG")->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32632);
+  OGRLayer* layer = ds->CreateLayer("features", &utm, type, nullptr);
+  for (OGRGeometry* g : geometries) {
+    OGRFeature f(layer->GetLayerDefn());
+    f.SetGeometryDirectly(g);
+    EXPECT_EQ(layer->CreateFeature(&f), OGRERR_NONE);
+  }
+  return path;
+}
+
+TEST(Cli, LinesDpSkipsVerticesThatAreNotFiniteAndRefusesOtherGeometries) {
+  const std::string dir = test::tempDir();
+  // The hand-worked line of LinesDpWritesValuesAsMAndTheSimplifiedLines with a NaN vertex
+  // in it, and a line left with one vertex.
+  auto* line = new OGRLineString();
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {1, 1}, {NAN, NAN}, {2, 0}, {3, 3}, {4, 0}})
+    line->addPoint(x, y);
+  auto* shortLine = new OGRLineString();
+  shortLine->addPoint(5, 5);
+  shortLine->addPoint(INFINITY, 5);
+  const std::string path = vectorFile(dir + "/nan.gpkg", wkbLineString, {line, shortLine});
+  const CliRun r = tinlod("lines dp " + path + " " + dir + "/dp.gpkg");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "Warning: skipped 2 vertices with coordinates that are not finite numbers (NaN or infinity) in '" +
+                             path + "', and skipped 1 line this left with fewer than 2 vertices"))
+      << r.err;
+  EXPECT_TRUE(has(r.out, "values of 5 vertices of 1 lines")) << r.out;
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/dp.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(ds);
+  OGRFeatureUniquePtr f(ds->GetLayerByName("lines")->GetNextFeature());
+  ASSERT_TRUE(f);
+  const OGRLineString* values = f->GetGeometryRef()->toLineString();
+  ASSERT_EQ(values->getNumPoints(), 5);
+  EXPECT_DOUBLE_EQ(values->getM(1), 1);
+  EXPECT_DOUBLE_EQ(values->getM(2), std::sqrt(2));
+  EXPECT_DOUBLE_EQ(values->getM(3), 3);
+  ds.reset();
+  const std::string points = vectorFile(dir + "/points.gpkg", wkbPoint, {new OGRPoint(1, 2)});
+  const CliRun p = tinlod("lines dp " + points + " " + dir + "/x.gpkg");
+  EXPECT_EQ(p.exitCode, 1);
+  EXPECT_TRUE(has(p.err, "ERROR: INPUT: '" + points + "' holds Point geometries (layer 'features'): a line layer is needed"))
+      << p.err;
+  const std::string polygons = vectorFile(dir + "/polygons.gpkg", wkbMultiPolygon, {});
+  const CliRun c = tinlod("lines concavity -window 5 " + polygons + " " + dir + "/x.gpkg");
+  EXPECT_TRUE(has(c.err, "holds Multi Polygon geometries")) << c.err;
+  EXPECT_FALSE(fs::exists(dir + "/x.gpkg"));
+}
+
+TEST(Cli, LevelMinusOneIsTheCoarsestInLocateAsInAccuracy) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q -max_levels 3 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const std::string points = geojson(dir + "/p.geojson", R"({"type": "Point", "coordinates": [404500, 5203750]})");
+  const CliRun coarsest = tinlod("locate -level -1 " + dir + "/h.gpkg " + points + " " + dir + "/a.gpkg");
+  ASSERT_EQ(coarsest.exitCode, 0) << coarsest.err;
+  EXPECT_TRUE(has(coarsest.out, "Located 1 of 1 points on level 3 ")) << coarsest.out;
+  const CliRun three = tinlod("locate -level 3 " + dir + "/h.gpkg " + points + " " + dir + "/b.gpkg");
+  GDALAllRegister();
+  auto elevation = [](const std::string& path) {
+    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+    OGRFeatureUniquePtr f(ds->GetLayerByName("points")->GetNextFeature());
+    return f->GetFieldAsDouble("elevation");
+  };
+  EXPECT_EQ(elevation(dir + "/a.gpkg"), elevation(dir + "/b.gpkg"));
+  const CliRun below = tinlod("locate -level -2 " + dir + "/h.gpkg " + points + " " + dir + "/c.gpkg");
+  EXPECT_EQ(below.exitCode, 1);
+  const std::string wording = "0 the original, -1 the coarsest";
+  EXPECT_TRUE(has(tinlod("locate --help").out, wording));
+  EXPECT_TRUE(has(tinlod("accuracy --help").out, wording));
+}
+
+TEST(Cli, AMissingLayerOfAnExistingFileIsNamedWithTheFilesLayers) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const std::string region = vectorFile(dir + "/r.gpkg", wkbPolygon, {});
+  const CliRun lod = tinlod("lod -region \"" + region + "|layername=parks\" " + dir + "/h.gpkg " + dir + "/x.gpkg");
+  EXPECT_EQ(lod.exitCode, 1);
+  EXPECT_TRUE(has(lod.err, "ERROR: -region: '" + region + "' has no layer 'parks' (its layers: features)")) << lod.err;
+  const CliRun locate = tinlod("locate " + dir + "/h.gpkg \"" + region + "|layername=wells\" " + dir + "/x.gpkg");
+  EXPECT_TRUE(has(locate.err, "'" + region + "' has no layer 'wells' (its layers: features)")) << locate.err;
+  EXPECT_FALSE(has(lod.err + locate.err, "does not exist"));
+}
+
+TEST(Cli, InfoKeepsHugeFiguresInTheirColumns) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  ASSERT_EQ(std::system(("ogrinfo -q " + dir + "/h.gpkg -sql \"UPDATE levels SET max_error = 1e30, rmse = 123456789.5, "
+                         "select_seconds = 1e12\" > /dev/null")
+                            .c_str()),
+            0);
+  const CliRun info = tinlod("info " + dir + "/h.gpkg");
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  std::istringstream lines(info.out);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::vector<std::string> row{std::istream_iterator<std::string>(fields), std::istream_iterator<std::string>()};
+    if (row.size() < 2 || row[0].find_first_not_of("0123456789") != std::string::npos) continue;
+    ++rows;
+    ASSERT_EQ(row.size(), 10u) << line;  // no two columns run together
+    EXPECT_EQ(row[4], "1e+12") << line;
+    EXPECT_EQ(row[6], "1e+30") << line;
+    EXPECT_EQ(row[7], "1.23e+08") << line;
+  }
+  EXPECT_EQ(rows, 3) << info.out;
 }
 
 }  // namespace

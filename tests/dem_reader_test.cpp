@@ -8,6 +8,7 @@
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
+#include "tinlod/height_range.h"
 
 namespace tinlod {
 namespace {
@@ -178,6 +179,86 @@ TEST(DemReader, AsciiGridIsRead) {
   const Dem dem = readDem(dir + "/g.asc", 1, kRange);
   EXPECT_EQ(dem.validCount(), 5u);
   EXPECT_FLOAT_EQ(dem.at(1, 2), 6.0f);
+}
+
+// Undeclared fill: 1e30 (a float's "no value" in some exports), infinity and -32768 (SRTM's
+// void, here without its nodata declaration) would become vertices miles up or down.
+TEST(DemReader, HeightsOutsideTheValidRangeAreNodataWithOneWarning) {
+  RasterSpec s;
+  s.value = [](int r, int c) {
+    if (r == 0) return c < 3 ? 1e30 : -32768.0;
+    if (r == 1 && c < 2) return c == 0 ? double(INFINITY) : -double(INFINITY);
+    return r == 2 && c == 0 ? double(NAN) : 100.0 + c;
+  };
+  const std::string path = writeRaster(s);
+  test::RecordingFeedback fb;
+  const Dem dem = readDem(path, 1, ProgressRange(fb.feedback(), 0, 1));
+  EXPECT_EQ(dem.validCount(), 30u - 8u - 1u);
+  EXPECT_FALSE(dem.valid(0, 0));
+  EXPECT_FALSE(dem.valid(1, 1));
+  ASSERT_EQ(fb.warnings.size(), 1u);
+  EXPECT_EQ(fb.warnings[0], "ignored 8 cells of '" + path +
+                                "' with heights outside -12000..9000 m (treated as nodata); widen with -valid_range");
+}
+
+TEST(DemReader, TheValidRangeCanBeWidenedAndNarrowed) {
+  RasterSpec s;
+  s.value = [](int r, int c) { return r == 0 && c == 0 ? 9500.0 : 100.0 + r + c; };
+  const std::string path = writeRaster(s);
+  test::RecordingFeedback wide;
+  EXPECT_EQ(readDem(path, 1, ProgressRange(wide.feedback(), 0, 1), HeightRange{-500, 10000}).validCount(), 30u);
+  EXPECT_TRUE(wide.warnings.empty());
+  test::RecordingFeedback narrow;
+  EXPECT_EQ(readDem(path, 1, ProgressRange(narrow.feedback(), 0, 1), HeightRange{101, 104}).validCount(), 14u);
+  EXPECT_TRUE(narrow.warned("ignored 16 cells of '" + path + "' with heights outside 101..104 m")) << narrow.warnings[0];
+  try {
+    readDem(path, 1, kRange, HeightRange{5, 5});
+    FAIL() << "an empty range was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "-valid_range must be two finite heights in metres, the lower first (got 5 5); the default is -12000 9000");
+  }
+}
+
+TEST(DemReader, TheRangeAppliesInMetres) {
+  RasterSpec s;
+  s.value = [](int, int c) { return c == 0 ? 29000.0 : 28000.0; };  // feet: 8839 and 8534 m
+  const std::string path = writeRaster(s);
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_Update));
+  ds->GetRasterBand(1)->SetUnitType("ft");
+  GDALClose(ds);
+  EXPECT_EQ(readDem(path, 1, kRange).validCount(), 30u);
+}
+
+TEST(DemReader, ADemWithNoPlausibleHeightIsAnError) {
+  RasterSpec s;
+  s.value = [](int r, int) { return r == 0 ? double(NAN) : 1e30; };
+  expectError(writeRaster(s), 1,
+              "band 1 has no valid cell: all its 30 cells are nodata (declared nodata, NaN, masked, or heights outside "
+              "-12000..9000 m; -valid_range widens that)");
+}
+
+TEST(DemReader, ComplexBandsAreRefused) {
+  for (GDALDataType type : {GDT_CInt16, GDT_CInt32, GDT_CFloat32, GDT_CFloat64}) {
+    RasterSpec s;
+    s.type = type;
+    s.bands = 2;
+    const std::string path = writeRaster(s, "complex.tif");
+    expectError(path, 2,
+                "complex.tif' band 2 holds complex numbers (" + std::string(GDALGetDataTypeName(type)) +
+                    "), not heights: choose a band of heights with -b");
+  }
+}
+
+TEST(HeightRange, RecordedRangeReadsBackAndDefaultsForOldFiles) {
+  const HeightRange r = recordedRange({{"valid_range", HeightRange{-500.25, 1e4}.text()}});
+  EXPECT_EQ(r.min, -500.25);
+  EXPECT_EQ(r.max, 1e4);
+  EXPECT_EQ(HeightRange{}.text(), "-12000..9000 m");
+  EXPECT_EQ(recordedRange({}).min, -12000);
+  EXPECT_EQ(parseHeightRange("3..7.5 m").max, 7.5);
+  for (const char* bad : {"", "3..7", "7..3 m", "a..b m", "3...7 m", "-inf..0 m"})
+    EXPECT_THROW(parseHeightRange(bad), Error) << bad;
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 
 #include <QFile>
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -119,6 +120,35 @@ TEST(Processing, ParametersReachTheCore) {
   EXPECT_EQ(r.outputs.value("TRIANGLES").toLongLong(), (long long)core.triangles.size());
   QgsVectorLayer layer(out + "|layername=triangles", "t", QStringLiteral("ogr"));
   EXPECT_EQ(layer.crs().authid(), QStringLiteral("EPSG:32633"));
+}
+
+TEST(Processing, ValidRangeReachesTheCoreAndABadOneNamesTheParameter) {
+  const ProgressRange quiet(Feedback{}, 0, 1);
+  std::vector<float> heights;
+  for (float z : readDem(defaultDem(), 1, quiet).z)
+    if (!std::isnan(z)) heights.push_back(z);
+  std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+  const double median = std::floor(heights[heights.size() / 2]);  // a whole number: the same as text
+  const QString out = QString::fromStdString(test::tempDir() + "/tin.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                     {"VALID_RANGE", QStringLiteral("-100,%1").arg(median)},
+                                                                     {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  SampleOptions o;
+  o.validHeights = {-100, median};
+  const Tin core = sampleTin(readDem(defaultDem(), 1, quiet, o.validHeights), o, quiet);
+  EXPECT_EQ(r.outputs.value("TRIANGLES").toLongLong(), (long long)core.triangles.size());
+  EXPECT_LT(core.triangles.size(), sampleTin(readDem(defaultDem(), 1, quiet), {}, quiet).triangles.size() * 3 / 4);
+  const Result bad = runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                       {"VALID_RANGE", QStringLiteral("9000,-12000")},
+                                                                       {"OUTPUT", out + "2"}});
+  EXPECT_FALSE(bad.ok);
+  EXPECT_TRUE(bad.error.contains("VALID_RANGE (9000,-12000)")) << bad.error.toStdString();
+  // Accuracy takes the range the GeoPackage was made with unless one is given.
+  const QgsProcessingAlgorithm* accuracy = QgsApplication::processingRegistry()->algorithmById(QStringLiteral("tinlod:accuracy"));
+  ASSERT_NE(accuracy, nullptr);
+  ASSERT_NE(accuracy->parameterDefinition(QStringLiteral("VALID_RANGE")), nullptr);
+  EXPECT_FALSE(accuracy->parameterDefinition(QStringLiteral("VALID_RANGE"))->defaultValue().isValid());
 }
 
 TEST(Processing, BadBandIsAProcessingErrorNamingTheParameter) {
@@ -354,6 +384,26 @@ TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
   EXPECT_FALSE(bad.ok);
   EXPECT_TRUE(bad.error.contains("-report")) << bad.error.toStdString();
   EXPECT_FALSE(fs::exists(dir + "/b.tif"));
+}
+
+// QGIS asks before replacing a destination, but an input is never one: the DEM and the
+// hierarchy stay as they were.
+TEST(Processing, AccuracyNeverReplacesItsInputs) {
+  const std::string dir = test::tempDir();
+  const std::string dem = dir + "/dem.tif";
+  fs::copy_file(defaultDem(), dem);
+  const QString hier = QString::fromStdString(dir + "/hier.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                           {{"INPUT", QString::fromStdString(dem)}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  const std::string demBytes = test::readFile(dem), hierBytes = test::readFile(hier.toStdString());
+  for (const QString& target : {QString::fromStdString(dem), hier}) {
+    const Result r = runAlgorithm(QStringLiteral("tinlod:accuracy"),
+                                  {{"INPUT", QString::fromStdString(dem)}, {"HIERARCHY", hier}, {"ACCURACY", target}});
+    EXPECT_FALSE(r.ok);
+    EXPECT_TRUE(r.error.contains("is an input of this run")) << r.error.toStdString();
+  }
+  EXPECT_EQ(test::readFile(dem), demBytes);
+  EXPECT_EQ(test::readFile(hier.toStdString()), hierBytes);
 }
 
 TEST(Processing, GreedyInsertionMatchesTheCoreAndNamesBadParameters) {

@@ -135,6 +135,28 @@ assert ds.GetLayerByName("vertices").GetFeatureCount() == int(outputs["VERTICES"
 print("  %d parts: %s convex, %s concave" % (parts, outputs["CONVEX"], outputs["CONCAVE"]))
 PY
 
+# An input is never an output, even where QGIS would replace a destination.
+dem_sum=$(md5sum < "$dem")
+"$qp" run tinlod:accuracy --INPUT="$dem" --HIERARCHY="$hier" --ACCURACY="$dem" > "$work/same.out" 2>&1 || true
+check "qgis_process run tinlod:accuracy refuses to write over its DEM" \
+  bash -c '[[ $(md5sum < "$1") == "$2" ]] && grep -q "is an input of this run" "$3"' _ "$dem" "$dem_sum" "$work/same.out"
+
+# Ctrl-C reaches a tinlod algorithm under qgis_process (Python's handler would only note it):
+# the run stops within seconds, and the old output stays as it was.
+cp "$hier" "$work/kept.gpkg"
+kept_sum=$(md5sum < "$work/kept.gpkg")
+"$tinlod_cli" makedem -q -size 1500 1200 -cell 10 "$work/medium.tif"
+"$qp" run tinlod:sampletin --INPUT="$work/medium.tif" --BLOCK=1 --OUTPUT="$work/kept.gpkg" > "$work/int.out" 2>&1 &
+pid=$!
+for _ in $(seq 600); do grep -q "10" "$work/int.out" 2>/dev/null && break; kill -0 $pid 2>/dev/null || break; sleep 0.05; done
+kill -INT $pid
+start=$(date +%s%N)
+wait $pid && int_rc=0 || int_rc=$?
+int_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+echo "  qgis_process stopped ${int_ms} ms after Ctrl-C (exit $int_rc)"
+check "qgis_process stops a tinlod run at Ctrl-C within 2.5 s, the old output kept" \
+  bash -c '(( $1 != 0 && $2 < 2500 )) && [[ $(md5sum < "$3") == "$4" ]] && ! ls -A "$5" | grep -q "^\.kept"' _ "$int_rc" "$int_ms" "$work/kept.gpkg" "$kept_sum" "$work"
+
 "$qp" --json run tinlod:accuracy --INPUT="$dem" --HIERARCHY="$hier" --ACCURACY="$work/acc.tif" --REPORT="$work/acc.json" > "$work/acc.out.json" 2> "$work/acc.err" || true
 check "qgis_process --json run tinlod:accuracy writes the raster and the report" /usr/bin/python3 - "$work/acc.out.json" "$work/acc.tif" "$work/acc.json" <<'PY'
 import json, sys

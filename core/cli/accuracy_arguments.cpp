@@ -11,7 +11,7 @@ const char* const kAccuracyHelp = R"(Accuracy (the study's measure, and more):
   -accuracy OUT.tif  accuracy raster of one level on the DEM's grid: band 1 elevation
                      difference (simplified - reference, m), band 2 mean curvature difference,
                      bands 3 and 4 the reference's and the simplified TIN's mean curvature (1/m)
-  -level L           the raster's level (default: the coarsest)
+  -level L           the raster's level: 0 the original, -1 the coarsest (default -1)
   -report R          every level's statistics: R.csv, R.json or R.html (a page with plots)
   -reference r       tin: the original TIN, as in the study (default); dem: the DEM itself
   -step n            test points at every n-th DEM cell (default 1: every cell)

@@ -3,6 +3,7 @@
 
 #include "accuracy_arguments.h"
 #include "commands.h"
+#include "sample_arguments.h"
 #include "terminal_feedback.h"
 
 namespace tinlod::cli {
@@ -10,7 +11,7 @@ namespace {
 
 const char* const kUsage =
     "tinlod accuracy DEM TIN.gpkg [-accuracy OUT.tif] [-level L] [-report R.html|.csv|.json] [-reference tin|dem] "
-    "[-step n] [-control c] [-compare_insert] [-of format] [-co NAME=VALUE] [-b band] [-s_srs srs] [-overwrite] [-q]";
+    "[-step n] [-control c] [-compare_insert] [-of format] [-co NAME=VALUE] [-b band] [-s_srs srs] [-valid_range min max] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Measures how well each level of a TIN hierarchy (or a TIN) made by tinlod represents
 the original: heights and mean curvature of B-spline surfaces fitted to both, compared
@@ -23,6 +24,9 @@ DEM is the raster the GeoPackage was made from.
   -b band          its band (default: the one the GeoPackage was sampled from)
   -s_srs srs       its CRS, when its file has none (as given to tinlod build)
   -overwrite       replace existing -accuracy and -report files (never the inputs)
+  -valid_range min max
+                   heights outside min..max metres are nodata (default: the range the
+                   GeoPackage was made with, else -12000 9000)
   -q               quiet: no progress or table, warnings only
 
 )";
@@ -39,9 +43,10 @@ int accuracyCommand(std::vector<std::string> args) {
   outputs.overwrite = a.flag("-overwrite");
   const int band = a.integer("-b", 0);
   const std::string sourceSrs = a.text("-s_srs", "");
+  const std::optional<HeightRange> validHeights = validRange(a);
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
-  const AccuracyReport report = runAccuracyJob(files[0], files[1], outputs, band, sourceSrs, terminalFeedback(quiet));
+  const AccuracyReport report = runAccuracyJob(files[0], files[1], outputs, band, sourceSrs, terminalFeedback(quiet), validHeights);
   if (!quiet) {
     std::cout << "Reference: " << (report.reference == "tin" ? "the original TIN (level 0)" : "the DEM") << "\n";
     printAccuracy(report.rows, std::cout);

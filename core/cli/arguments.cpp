@@ -2,6 +2,8 @@
 #include "arguments.h"
 
 #include <algorithm>
+#include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 
@@ -15,6 +17,8 @@ bool Arguments::flag(const std::string& name) {
   args_.erase(it);
   return true;
 }
+
+bool Arguments::given(const std::string& name) const { return std::find(args_.begin(), args_.end(), name) != args_.end(); }
 
 bool Arguments::take(const std::string& name, std::vector<std::string>& values, std::size_t count) {
   auto it = std::find(args_.begin(), args_.end(), name);
@@ -34,12 +38,17 @@ bool Arguments::take(const std::string& name, std::string& value) {
   return true;
 }
 
+// from_chars, unlike strtol, takes no leading space or '+' and reports overflow instead
+// of clamping: "12abc", "1e3", "" and 2^64 are refused, not read as something else.
 int Arguments::parseInteger(const std::string& name, const std::string& value) {
-  char* end = nullptr;
-  const long parsed = std::strtol(value.c_str(), &end, 10);
-  if (value.empty() || *end != '\0' || parsed < INT32_MIN || parsed > INT32_MAX)
+  int parsed = 0;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), parsed);
+  if (error == std::errc::result_out_of_range)
+    throw Error(name + " expects a whole number from " + std::to_string(INT_MIN) + " to " + std::to_string(INT_MAX) +
+                ", got '" + value + "'");
+  if (value.empty() || error != std::errc() || end != value.data() + value.size())
     throw Error(name + " expects a whole number, got '" + value + "'");
-  return static_cast<int>(parsed);
+  return parsed;
 }
 
 std::vector<int> Arguments::integers(const std::string& name, std::size_t count, std::vector<int> fallback) {
@@ -98,10 +107,18 @@ std::vector<std::vector<double>> Arguments::repeatedNumbers(const std::string& n
 std::uint64_t Arguments::unsignedInteger(const std::string& name, std::uint64_t fallback) {
   std::string value;
   if (!take(name, value)) return fallback;
-  char* end = nullptr;
-  const unsigned long long parsed = std::strtoull(value.c_str(), &end, 10);
-  if (value.empty() || value[0] == '-' || *end != '\0')
-    throw Error(name + " expects a whole number of 0 or more, got '" + value + "'");
+  std::uint64_t parsed = 0;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), parsed);
+  if (value.empty() || error != std::errc() || end != value.data() + value.size())
+    throw Error(name + " expects a whole number from 0 to " + std::to_string(UINT64_MAX) + ", got '" + value + "'");
+  return parsed;
+}
+
+std::vector<double> Arguments::numbers(const std::string& name, std::size_t count, std::vector<double> fallback) {
+  std::vector<std::string> values;
+  if (!take(name, values, count)) return fallback;
+  std::vector<double> parsed;
+  for (const std::string& v : values) parsed.push_back(parseNumber(name, v));
   return parsed;
 }
 

@@ -14,6 +14,8 @@ class Arguments {
   explicit Arguments(std::vector<std::string> args) : args_(std::move(args)) {}
 
   bool flag(const std::string& name);
+  // Whether an option is there, without consuming it.
+  bool given(const std::string& name) const;
   std::string text(const std::string& name, const std::string& fallback);
   // Every value of an option that may be given several times (-co A=1 -co B=2).
   std::vector<std::string> repeated(const std::string& name);
@@ -21,6 +23,8 @@ class Arguments {
   // An option with several whole-number values, "-size 360 300"; fallback when absent.
   std::vector<int> integers(const std::string& name, std::size_t count, std::vector<int> fallback);
   double number(const std::string& name, double fallback);
+  // An option with several numbers, "-valid_range -500 9000"; fallback when absent.
+  std::vector<double> numbers(const std::string& name, std::size_t count, std::vector<double> fallback);
   // Every occurrence of an option of `count` numbers: "-center 1 2 -center 3 4".
   std::vector<std::vector<double>> repeatedNumbers(const std::string& name, std::size_t count);
   std::uint64_t unsignedInteger(const std::string& name, std::uint64_t fallback);

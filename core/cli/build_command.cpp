@@ -8,6 +8,7 @@
 #include "sample_arguments.h"
 #include "terminal_feedback.h"
 #include "tinlod/build_job.h"
+#include "tinlod/error.h"
 
 namespace tinlod::cli {
 namespace {
@@ -36,7 +37,8 @@ Simplification:
   -stop_pct s      stop when s % of the original vertices remain (default 5)
   -max_levels n    stop after n levels above level 0 (default: no limit); a level that
                    would delete under 1 % of its vertices is never made
-  -max_degree d    degree method: largest degree deleted (default 11, Kirkpatrick's)
+  -max_degree d    degree method: largest degree deleted (default 11, Kirkpatrick's); refused
+                   with the other methods
   -max_error m     error method: a vertex goes only if, at every valid cell centre under
                    its new triangles, the surface stays within max(m, level 0's own
                    distance there) of the DEM; so every level is, at every valid cell
@@ -59,7 +61,8 @@ Every level is measured against the DEM at every valid cell centre it covers: it
 and RMS vertical distance, and the cells its outline gave up (levels table, tinlod info).
 
 Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, -jitter m
-  (above 0 for a hierarchy, whose levels are measured at every DEM cell), -seed n
+  (above 0 for a hierarchy, whose levels are measured at every DEM cell), -seed n,
+  -valid_range min max (heights outside it are nodata; default -12000 9000)
   -overwrite       replace tinlod's layers in an existing GeoPackage; its other layers are kept
   -q               quiet: no progress or information, warnings only
 
@@ -85,6 +88,8 @@ int buildCommand(std::vector<std::string> args) {
   o.deletePct = a.number("-delete_pct", o.deletePct);
   o.stopPct = a.number("-stop_pct", o.stopPct);
   o.maxLevels = a.integer("-max_levels", o.maxLevels);
+  if (a.given("-max_degree") && o.measure != Measure::Degree)  // even at its default, which validate() cannot tell
+    throw Error("-max_degree applies only to -method degree");
   o.maxDegree = a.integer("-max_degree", o.maxDegree);
   o.maxError = a.number("-max_error", o.maxError);
   const double threshold = a.number("-threshold", NAN);

@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -35,7 +37,8 @@ Usage: tinlod experiment DEM [DEM ...] -report R [options]
   -reference r       tin (default, as in the study) or dem
   -step n            test points every n-th DEM cell (default 1)
   -control c         B-spline control points every c test points (default 3)
-  Sampling options as tinlod sample: -b, -s_srs, -t_srs, -block, -jitter, -seed
+  Sampling options as tinlod sample: -b, -s_srs, -t_srs, -block, -jitter, -seed,
+                     -valid_range
   -overwrite         replace existing report files
   -q                 quiet: no progress, warnings only
 )";
@@ -74,11 +77,10 @@ int experimentCommand(std::vector<std::string> args) {
   if (!pcts.empty()) {
     o.deletePcts.clear();
     for (const std::string& p : splitList(pcts)) {
-      try {
-        o.deletePcts.push_back(std::stod(p));
-      } catch (const std::exception&) {
+      char* end = nullptr;  // all of it a number: stod would read "10abc" as 10
+      o.deletePcts.push_back(std::strtod(p.c_str(), &end));
+      if (*end != '\0' || !std::isfinite(o.deletePcts.back()))
         throw Error("-delete_pcts: '" + p + "' is not a number; write e.g. -delete_pcts 10,20");
-      }
     }
   }
   o.stopPct = a.number("-stop_pct", o.stopPct);

@@ -16,7 +16,7 @@ namespace {
 
 const char* const kUsage =
     "tinlod insert DEM OUT.gpkg [-max_error m] [-max_vertices n] [-max_triangles n] [-candidates cells|samples] [-delaunay ground|grid] "
-    "[-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-overwrite] [-q]";
+    "[-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-valid_range min max] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Greedy insertion (Garland and Heckbert): a TIN from a DEM by inserting, again and
 again, the point of largest vertical error, until every point is within a tolerance.
@@ -50,6 +50,8 @@ Options:
                  do. They differ only where cells are not square on the ground (a
                  geographic DEM away from the equator), by a few % of vertices either way.
   -b band        band holding the heights (default 1)
+  -valid_range min max
+                 heights outside min..max metres are nodata (default -12000 9000)
   -s_srs srs     CRS of the DEM, for a file with none or a wrong one
   -t_srs srs     metric CRS of the TIN (default: the DEM's own if in metres, else UTM)
   -block k, -jitter m, -seed n   sampling of the 'samples' candidates (as 'tinlod sample');
@@ -75,8 +77,11 @@ InsertOptions insertOptions(Arguments& a) {
   o.delaunayOnGrid = delaunay == "grid";
   const double maxError = a.number("-max_error", std::numeric_limits<double>::quiet_NaN());
   const double maxVertices = a.number("-max_vertices", 0), maxTriangles = a.number("-max_triangles", 0);
-  if (maxVertices < 0 || maxVertices != std::floor(maxVertices) || maxTriangles < 0 || maxTriangles != std::floor(maxTriangles))
-    throw Error("-max_vertices and -max_triangles take whole numbers of 0 or more");
+  // Past 2^53 a double holds no odd whole numbers, and past 2^64 the count would not convert.
+  const double most = 9007199254740992.0;
+  if (maxVertices < 0 || maxVertices != std::floor(maxVertices) || maxTriangles < 0 || maxTriangles != std::floor(maxTriangles) ||
+      maxVertices > most || maxTriangles > most)
+    throw Error("-max_vertices and -max_triangles take whole numbers from 0 to 2^53 (9007199254740992)");
   o.maxVertices = static_cast<std::size_t>(maxVertices);
   o.maxTriangles = static_cast<std::size_t>(maxTriangles);
   o.maxError = !std::isnan(maxError) ? maxError : (o.maxVertices || o.maxTriangles) ? 0 : 1;

@@ -30,7 +30,7 @@ value exceeds t (the classic Douglas-Peucker simplification with tolerance t).
                  the source feature id
 
 Options:
-  -threshold t   also write layer 'simplified' (the lines at threshold t metres) and count
+  -threshold t   also write layer 'simplified' (the lines at threshold t metres, t >= 0) and count
                  the pairs of segments of different simplified lines that meet (where
                  simplification makes contours cross; a crossing through a vertex counts
                  once per pair of segments there), stored as TINLOD_CROSSINGS
@@ -96,7 +96,7 @@ int linesCommand(std::vector<std::string> args) {
     return 0;
   }
   DpOptions o;
-  o.threshold = a.number("-threshold", -1);
+  o.threshold = a.number("-threshold", o.threshold);
   o.points = a.flag("-points");
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");

@@ -24,7 +24,8 @@ Usage: tinlod locate HIER.gpkg POINTS OUT.gpkg [options]
                  'triangles' layer); both null for a point outside the TIN or in a hole
 
 Options:
-  -level L       the level whose TIN is interpolated (default 0, the original)
+  -level L       the level whose TIN is interpolated: 0 the original, -1 the coarsest
+                 (default 0)
   -overwrite     replace the 'points' layer of an existing GeoPackage
   -q             quiet: no progress or information, warnings only
 )";

@@ -19,7 +19,7 @@ nodata -9999). Real DEMs are not shipped with tinlod; this one needs no download
 Usage: tinlod makedem OUT.tif [options]
 
   -size w h      cells across and down (default 1200 1000)
-  -cell m        cell size in metres (default 20)
+  -cell m        cell size in metres, more than 0 and at most 1000 (default 20)
   -seed n        terrain seed (default 7)
   -no_void       no nodata hole
   -no_lake       no flat lake
@@ -51,6 +51,9 @@ int makeDemCommand(std::vector<std::string> args) {
     throw Error("output '" + files[0] + "' must be a GeoTIFF file ending in .tif");
   if (o.width < 2 || o.height < 2 || double(o.width) * o.height > 1e8)
     throw Error("-size must be at least 2 x 2 and at most 100 million cells");
+  // Larger cells would take the terrain's tilt past any real height, and huge ones past a double.
+  if (!(o.cellSize > 0 && o.cellSize <= 1000))
+    throw Error("-cell must be more than 0 and at most 1000 metres");
   writeDemGeoTiff(makeSyntheticDem(o), files[0], overwrite);
   if (!quiet)
     std::cout << "Wrote a synthetic DEM (" << o.width << " x " << o.height << " cells of " << o.cellSize

@@ -3,6 +3,12 @@
 
 namespace tinlod::cli {
 
+std::optional<HeightRange> validRange(Arguments& a) {
+  const std::vector<double> range = a.numbers("-valid_range", 2, {});
+  if (range.empty()) return std::nullopt;
+  return HeightRange{range[0], range[1]};
+}
+
 SampleOptions sampleOptions(Arguments& a) {
   SampleOptions options;
   options.band = a.integer("-b", options.band);
@@ -11,6 +17,7 @@ SampleOptions sampleOptions(Arguments& a) {
   options.block = a.integer("-block", options.block);
   options.jitter = a.number("-jitter", options.jitter);
   options.seed = a.unsignedInteger("-seed", options.seed);
+  options.validHeights = validRange(a).value_or(options.validHeights);
   return options;
 }
 

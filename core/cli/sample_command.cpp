@@ -10,7 +10,7 @@
 namespace tinlod::cli {
 namespace {
 
-const char* const kUsage = "tinlod sample DEM OUT.gpkg [-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-overwrite] [-q]";
+const char* const kUsage = "tinlod sample DEM OUT.gpkg [-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-valid_range min max] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Samples a DEM into a Delaunay TIN and writes it to a GeoPackage.
 
@@ -33,12 +33,16 @@ Options:
                  four points are cocircular (default 0.99); must be less than the cell
                  size, and is best well under half of it (e.g. 0.1 for 1 m LiDAR)
   -seed n        random seed; the same seed gives the same TIN (default 1)
+  -valid_range min max
+                 heights outside min..max metres are nodata, counted in one warning
+                 (default -12000 9000, the Earth's range: undeclared fill values such as
+                 1e30, -32768 or infinity never become vertices)
   -overwrite     replace the 'vertices' and 'triangles' layers of an existing GeoPackage;
                  its other layers are kept
   -q             quiet: no progress or information, warnings only
 
-Nodata cells (declared nodata, NaN, masks) never become vertices, and no triangle spans
-them: holes stay holes. Heights are never resampled (band scale and offset are applied,
+Nodata cells (declared nodata, NaN, masks, heights outside -valid_range) never become
+vertices, and no triangle spans them: holes stay holes. A band of complex numbers is refused. Heights are never resampled (band scale and offset are applied,
 heights in feet converted to metres); a geographic DEM only has its points' x and y
 transformed to metres. Ctrl-C stops the run and leaves no file behind.
 )";

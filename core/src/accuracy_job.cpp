@@ -99,7 +99,8 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
 }
 
 AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hierarchyPath, const AccuracyOutputs& outputs,
-                              int band, const std::string& sourceSrs, const Feedback& feedback) {
+                              int band, const std::string& sourceSrs, const Feedback& feedback,
+                              const std::optional<HeightRange>& validHeights) {
   outputs.validate();
   OutputFiles files(outputs.overwrite, datasetFiles({demPath, hierarchyPath}));
   const AccuracyFiles staged = stageAccuracyFiles(outputs, files);
@@ -107,7 +108,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.15));
   const auto bandItem = stored.info.metadata.find("band");
   if (band == 0) band = bandItem == stored.info.metadata.end() ? 1 : std::stoi(bandItem->second);
-  const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2));
+  const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), validHeights ? *validHeights : recordedRange(stored.info.metadata));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
   const CrsTransform toTin = CrsTransform::forDem(dem, sourceSrs, stored.hierarchy.base.crsWkt, quiet);
   AccuracyOutputs chosen = outputs;

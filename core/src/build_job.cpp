@@ -38,6 +38,7 @@ std::map<std::string, std::string> buildMetadata(const std::string& demPath, con
           {"TINLOD_SOURCE", demPath},
           {"TINLOD_CRS", crsName},
           {"TINLOD_BAND", std::to_string(s.band)},
+          {"TINLOD_VALID_RANGE", s.validHeights.text()},
           {"TINLOD_BLOCK", std::to_string(s.block)},
           {"TINLOD_JITTER", formatNumber(s.jitter)},
           {"TINLOD_SEED", std::to_string(s.seed)},
@@ -88,7 +89,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const StagedFile& out = files.add(outPath, "output", true);
   const AccuracyFiles accuracyFiles = stageAccuracyFiles(accuracy, files);
   const ProgressRange all(feedback, 0, 1);
-  const Dem dem = readDem(demPath, sample.band, all.sub(0, 0.05));
+  const Dem dem = readDem(demPath, sample.band, all.sub(0, 0.05), sample.validHeights);
   Tin tin = sampleTin(dem, sample, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
   const std::vector<PointXY> keep =

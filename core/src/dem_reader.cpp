@@ -110,6 +110,21 @@ void toMetres(GDALRasterBand& band, Dem& dem, const ProgressRange& progress) {
   for (float& v : dem.z) v = static_cast<float>(v * a + b);  // NaN stays NaN
 }
 
+// Reading a complex band as Float32 would quietly keep its real part.
+void refuseComplex(GDALRasterBand& band, const Dem& dem) {
+  const GDALDataType type = band.GetRasterDataType();
+  if (GDALDataTypeIsComplex(type))
+    throw Error("'" + dem.path + "' band " + std::to_string(dem.band) + " holds complex numbers (" +
+                GDALGetDataTypeName(type) + "), not heights: choose a band of heights with -b");
+}
+
+void dropImplausibleHeights(Dem& dem, const HeightRange& valid, const ProgressRange& progress) {
+  const std::size_t dropped = dropHeightsOutside(dem.z, valid);
+  if (dropped == 0) return;
+  progress.warn("ignored " + std::to_string(dropped) + (dropped == 1 ? " cell" : " cells") + " of '" + dem.path +
+                "' with heights outside " + valid.text() + " (treated as nodata); widen with -valid_range");
+}
+
 void readHeights(GDALRasterBand& band, Dem& dem, const ProgressRange& progress) {
   dem.z.resize(static_cast<std::size_t>(dem.width) * dem.height);
   const int chunk = std::max(1, (1 << 22) / std::max(1, dem.width));  // about 4 M cells a read
@@ -123,9 +138,21 @@ void readHeights(GDALRasterBand& band, Dem& dem, const ProgressRange& progress) 
   }
 }
 
+void checkValidCells(const Dem& dem, const HeightRange& valid) {
+  const std::size_t count = dem.validCount();
+  const std::string band = "'" + dem.path + "' band " + std::to_string(dem.band);
+  if (count == 0)
+    throw Error(band + " has no valid cell: all its " + std::to_string(dem.z.size()) +
+                " cells are nodata (declared nodata, NaN, masked, or heights outside " + valid.text() +
+                "; -valid_range widens that)");
+  if (count < 3)
+    throw Error(band + " has " + std::to_string(count) + " valid cell(s): a TIN needs at least 3");
+}
+
 }  // namespace
 
-Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progress) {
+Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progress, const HeightRange& valid) {
+  valid.validate();
   DatasetPtr ds = openRaster(path);
   if (bandNumber < 1 || bandNumber > ds->GetRasterCount())
     throw Error("invalid band number " + std::to_string(bandNumber) + ": '" + path + "' has bands 1 to " +
@@ -135,15 +162,14 @@ Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progre
   dem.band = bandNumber;
   dem.width = ds->GetRasterXSize();
   dem.height = ds->GetRasterYSize();
-  readGeoreferencing(*ds, dem, progress);
   GDALRasterBand* band = ds->GetRasterBand(bandNumber);
+  refuseComplex(*band, dem);
+  readGeoreferencing(*ds, dem, progress);
   readHeights(*band, dem, progress);
   applyMask(*band, dem);  // on the stored values, where declared nodata applies
   toMetres(*band, dem, progress);
-  const std::size_t valid = dem.validCount();
-  if (valid < 3)
-    throw Error("'" + path + "' band " + std::to_string(bandNumber) + " has " + std::to_string(valid) +
-                " valid cell(s): a TIN needs at least 3");
+  dropImplausibleHeights(dem, valid, progress);  // in metres, as the range is given
+  checkValidCells(dem, valid);
   return dem;
 }
 

@@ -34,7 +34,7 @@ namespace {
 // every level's vertex count, and each level compared with it at its size.
 void runDem(const std::string& path, const ExperimentOptions& options, std::vector<LevelAccuracy>& rows,
             const ProgressRange& progress) {
-  const Dem dem = readDem(path, options.sample.band, progress.sub(0, 0.02));
+  const Dem dem = readDem(path, options.sample.band, progress.sub(0, 0.02), options.sample.validHeights);
   const Tin tin = sampleTin(dem, options.sample, progress.sub(0.02, 0.05));
   const CrsTransform toTin = CrsTransform::forDem(dem, options.sample.sourceSrs, options.sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
   const AccuracyEvaluator evaluator(dem, tin, toTin, options.accuracy, progress.sub(0.05, 0.1));

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "gdal_handles.h"
 
+#include <ogrsf_frmts.h>
+
 namespace tinlod {
 
 DatasetPtr openReadOnly(const std::string& path, unsigned flags, const char* const* drivers) {
@@ -9,6 +11,12 @@ DatasetPtr openReadOnly(const std::string& path, unsigned flags, const char* con
   DatasetPtr ds(static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), flags | GDAL_OF_READONLY, drivers, nullptr, nullptr)));
   CPLPopErrorHandler();
   return ds;
+}
+
+std::string layerNames(GDALDataset& ds) {
+  std::string names;
+  for (int i = 0; i < ds.GetLayerCount(); ++i) names += (i ? ", " : "") + std::string(ds.GetLayer(i)->GetName());
+  return names.empty() ? "none" : names;
 }
 
 std::string wkt2(const OGRSpatialReference& srs) {

@@ -20,6 +20,10 @@ using DatasetPtr = std::unique_ptr<GDALDataset, GdalCloser>;
 // says what went wrong in the user's terms. Null when GDAL cannot open it.
 DatasetPtr openReadOnly(const std::string& path, unsigned flags, const char* const* drivers = nullptr);
 
+// The names of a dataset's layers, "a, b" ("none" without any), for messages that say
+// which layers a file has when the one asked for is not there.
+std::string layerNames(GDALDataset& ds);
+
 // WKT2 (2019), the form tinlod stores and compares CRSs in.
 std::string wkt2(const OGRSpatialReference& srs);
 

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "gdal_handles.h"
+#include "number_text.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
@@ -117,11 +118,13 @@ std::string toText(const HierarchyInfo& info) {
   out << std::setw(6) << "level" << std::setw(11) << "vertices" << std::setw(11) << "triangles" << std::setw(10)
       << "deleted" << std::setw(10) << "select s" << std::setw(10) << "delete s" << std::setw(12) << "max error m" << std::setw(9) << "RMSE m"
       << std::setw(10) << "outline" << std::setw(14) << "net cells lost" << "\n";
+  // Each number one character narrower than its column: a space always separates them.
   for (const LevelStats& l : info.levels)
     out << std::setw(6) << l.level << std::setw(11) << l.vertices << std::setw(11) << l.triangles << std::setw(10)
-        << l.deleted << std::setprecision(3) << std::setw(10) << l.selectSeconds << std::setw(10) << l.deleteSeconds
-        << std::setprecision(2) << std::setw(12) << l.maxError << std::setw(9) << l.rmse << std::setw(10)
-        << l.outlineVertices << std::setw(14) << info.levels.front().cells - l.cells << "\n";
+        << l.deleted << std::setw(10) << columnNumber(l.selectSeconds, 3, 9) << std::setw(10)
+        << columnNumber(l.deleteSeconds, 3, 9) << std::setw(12) << columnNumber(l.maxError, 2, 11) << std::setw(9)
+        << columnNumber(l.rmse, 2, 8) << std::setw(10) << l.outlineVertices << std::setw(14)
+        << info.levels.front().cells - l.cells << "\n";
   return out.str();
 }
 

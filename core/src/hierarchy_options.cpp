@@ -23,6 +23,11 @@ void HierarchyOptions::validate() const {
   if (!std::isnan(outlineTolerance) && !(outlineTolerance >= 0 && std::isfinite(outlineTolerance)))
     throw Error("outline_tolerance must be 0 or more metres (got " + formatNumber(outlineTolerance) +
                 "); leave it out for one DEM cell, or use -keep_outline to keep every outline vertex");
+  // A degree limit changed for another method would be ignored; the default cannot be told
+  // from one given (the command line checks that), and does no harm.
+  if (maxDegree != HierarchyOptions{}.maxDegree && measure != Measure::Degree)
+    throw Error("-max_degree applies only to -method degree (got -max_degree " + std::to_string(maxDegree) + " with -method " +
+                measureName(measure) + ")");
   if (maxError != INFINITY && measure != Measure::Error)
     throw Error("max_error applies to the error method only: add -method error");
 }

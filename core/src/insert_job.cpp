@@ -177,6 +177,7 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
           {"TINLOD_METHOD", "insert"},
           {"TINLOD_SOURCE", demPath},
           {"TINLOD_BAND", std::to_string(o.sample.band)},
+          {"TINLOD_VALID_RANGE", o.sample.validHeights.text()},
           {"TINLOD_CANDIDATES", candidatesName(o.candidates)},
           {"TINLOD_MAX_ERROR_LIMIT", formatNumber(o.maxError)},
           {"TINLOD_MAX_VERTICES_LIMIT", std::to_string(o.maxVertices)},
@@ -200,7 +201,7 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   OutputFiles files(overwrite, datasetFiles(demPath));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
-  const Dem dem = readDem(demPath, options.sample.band, all.sub(0, 0.1));
+  const Dem dem = readDem(demPath, options.sample.band, all.sub(0, 0.1), options.sample.validHeights);
   const InsertedTin result = greedyInsertionTin(dem, options, all.sub(0.1, 0.9));
   writeOptions.metadata = jobMetadata(demPath, options, result.summary);
   // Not while a count stopped the run before the holes were cut out: no maximum then.

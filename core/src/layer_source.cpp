@@ -39,7 +39,7 @@ OpenLayer openLayer(const std::string& spec, const std::string& what) {
               : source.layerIndex < ds.GetLayerCount() ? ds.GetLayer(source.layerIndex)
                                                         : nullptr;
   if (!out.layer)
-    throw Error(what + ": '" + source.path + "' has no " + (source.layer.empty() ? std::string("layer") : "layer '" + source.layer + "'"));
+    throw Error(what + ": '" + source.path + "' has no " + (source.layer.empty() ? std::string("layer") : "layer '" + source.layer + "'") + " (its layers: " + layerNames(ds) + ")");
   return out;
 }
 

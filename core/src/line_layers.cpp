@@ -22,30 +22,71 @@ namespace {
 // M for an endpoint: GeoPackage readers do not all take infinity.
 constexpr double kEndpointM = 1e300;
 
-void addParts(const OGRGeometry* g, long long fid, LineSet& out) {
+// What reading left out: a NaN or infinite vertex would collapse a line's Douglas-Peucker
+// values (every distance to it is NaN), so it goes, and a line it leaves too short goes too.
+struct LeftOut {
+  std::size_t vertices = 0, lines = 0;
+  std::string otherType;  // a geometry that is no line, as GDAL names it
+};
+
+void addLine(const OGRLineString& l, long long fid, LineSet& out, LeftOut& left) {
+  Polyline line;
+  for (int i = 0; i < l.getNumPoints(); ++i) {
+    if (std::isfinite(l.getX(i)) && std::isfinite(l.getY(i)))
+      line.push_back({l.getX(i), l.getY(i)});
+    else
+      ++left.vertices;
+  }
+  if (line.size() >= 2)
+    out.lines.push_back(std::move(line)), out.feature.push_back(fid);
+  else if (static_cast<int>(line.size()) < l.getNumPoints())
+    ++left.lines;
+}
+
+void addParts(const OGRGeometry* g, long long fid, LineSet& out, LeftOut& left) {
   if (!g) return;
   switch (wkbFlatten(g->getGeometryType())) {
-    case wkbLineString: {
-      const OGRLineString* l = g->toLineString();
-      Polyline line;
-      for (int i = 0; i < l->getNumPoints(); ++i) line.push_back({l->getX(i), l->getY(i)});
-      if (line.size() >= 2) out.lines.push_back(std::move(line)), out.feature.push_back(fid);
+    case wkbLineString:
+      addLine(*g->toLineString(), fid, out, left);
       break;
-    }
     case wkbMultiLineString:
-      for (const OGRLineString* part : *g->toMultiLineString()) addParts(part, fid, out);
+      for (const OGRLineString* part : *g->toMultiLineString()) addParts(part, fid, out, left);
       break;
     case wkbGeometryCollection:
-      for (const OGRGeometry* part : *g->toGeometryCollection()) addParts(part, fid, out);
+      for (const OGRGeometry* part : *g->toGeometryCollection()) addParts(part, fid, out, left);
       break;
     default:
       // Curves (circular strings, compound curves, multicurves) as the lines GDAL makes of them.
       if (OGR_GT_IsCurve(g->getGeometryType()) || OGR_GT_IsSubClassOf(g->getGeometryType(), wkbMultiCurve)) {
         std::unique_ptr<OGRGeometry> linear(g->getLinearGeometry());
-        if (linear && wkbFlatten(linear->getGeometryType()) != wkbFlatten(g->getGeometryType())) addParts(linear.get(), fid, out);
+        if (linear && wkbFlatten(linear->getGeometryType()) != wkbFlatten(g->getGeometryType())) addParts(linear.get(), fid, out, left);
+      } else if (left.otherType.empty()) {
+        left.otherType = OGRGeometryTypeToName(g->getGeometryType());
       }
       break;
   }
+}
+
+// A layer declared as points or polygons would give no line: refused by its type, before
+// its features are read. Layers of mixed or unknown type are judged by what they hold.
+void checkLineLayer(OGRLayer& layer, const std::string& path) {
+  const OGRwkbGeometryType type = layer.GetGeomType();
+  const OGRwkbGeometryType flat = wkbFlatten(type);
+  const bool lines = flat == wkbUnknown || flat == wkbGeometryCollection || OGR_GT_IsCurve(type) ||
+                     OGR_GT_IsSubClassOf(type, wkbMultiCurve);
+  if (lines) return;
+  const std::string holds = flat == wkbNone ? "no geometries" : OGRGeometryTypeToName(type) + std::string(" geometries");
+  throw Error("INPUT: '" + path + "' holds " + holds + " (layer '" + layer.GetName() + "'): a line layer is needed");
+}
+
+void warnLeftOut(const LeftOut& left, const std::string& path, const ProgressRange& progress) {
+  if (left.vertices == 0) return;
+  std::string message = "skipped " + std::to_string(left.vertices) + (left.vertices == 1 ? " vertex" : " vertices") +
+                        " with coordinates that are not finite numbers (NaN or infinity) in '" + path + "'";
+  if (left.lines > 0)
+    message += ", and skipped " + std::to_string(left.lines) + (left.lines == 1 ? " line" : " lines") +
+               " this left with fewer than 2 vertices";
+  progress.warn(message);
 }
 
 // The centre of the lines, in their own CRS; longitudes spanning more than half the globe
@@ -101,9 +142,14 @@ std::unique_ptr<OGRCoordinateTransformation> toMetric(const OGRSpatialReference*
 LineSet readLines(const std::string& path, const ProgressRange& progress) {
   const OpenLayer open = openLayer(path, "INPUT");
   OGRLayer& layer = *open.layer;
+  checkLineLayer(layer, path);
   LineSet out;
-  for (auto& f : layer) addParts(f->GetGeometryRef(), f->GetFID(), out);
-  if (out.lines.empty()) throw Error("INPUT: the layer of '" + path + "' has no lines (a line layer is needed)");
+  LeftOut left;
+  for (auto& f : layer) addParts(f->GetGeometryRef(), f->GetFID(), out, left);
+  warnLeftOut(left, path, progress);
+  if (out.lines.empty())
+    throw Error("INPUT: the layer of '" + path + "' has no lines (a line layer is needed)" +
+                (left.otherType.empty() ? std::string() : ": its features are " + left.otherType));
   const auto transform = toMetric(layer.GetSpatialRef(), out, progress);
   if (transform)
     for (Polyline& line : out.lines)
@@ -179,8 +225,15 @@ double lengthOf(const Polyline& line) {
 
 }  // namespace
 
+void DpOptions::validate() const {
+  if (!std::isnan(threshold) && !(threshold >= 0 && std::isfinite(threshold)))
+    throw Error("-threshold must be 0 or more metres (got " + formatNumber(threshold) +
+                "): the simplified lines keep the vertices whose value exceeds it");
+}
+
 DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const DpOptions& options, bool overwrite,
                    const Feedback& feedback) {
+  options.validate();
   GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "dp_values"}, {"TINLOD_SOURCE", inPath}}};
   checkOutputPath(outPath, writeOptions);
   OutputFiles files(overwrite, datasetFiles(inPath));
@@ -223,6 +276,8 @@ DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const 
 void ConcavityOptions::validate() const {
   if (!(window > 0) && !(windowFraction > 0))
     throw Error("give the window: -window d (metres along the line) or -window_fraction f (of each line's length)");
+  if (window < 0 || windowFraction < 0 || !std::isfinite(window))
+    throw Error("-window and -window_fraction must be more than 0 (got " + formatNumber(window < 0 ? window : windowFraction) + ")");
   if (window > 0 && windowFraction > 0) throw Error("give -window or -window_fraction, not both");
   if (windowFraction >= 0.5) throw Error("-window_fraction must be below 0.5: the window reaches both ways");
   if (radius < 0 || !std::isfinite(radius)) throw Error("-radius must be 0 (the window) or more metres");

@@ -72,6 +72,7 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   const ProgressRange all(feedback, 0, 1);
   const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.4));
   const Hierarchy& h = stored.hierarchy;
+  if (level == -1) level = h.coarsest(), writeOptions.metadata["TINLOD_LEVEL"] = std::to_string(level);  // as accuracy's -level
   if (level < 0 || level > h.coarsest())
     throw Error("-level " + std::to_string(level) + " does not exist: '" + hierarchyPath + "' has levels 0 to " +
                 std::to_string(h.coarsest()));

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "layer_source.h"
 #include "polygon_region.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
@@ -27,7 +28,7 @@ void checkOptions(const LodJobOptions& o) {
     lod.centres.push_back({0, 0});  // stands for the file's points
   }
   if (!o.regionPath.empty()) {
-    if (plainPathMissing(o.regionPath)) throw Error("-region: '" + o.regionPath + "' does not exist");
+    if (plainPathMissing(parseLayerSource(o.regionPath, "-region").path)) throw Error("-region: '" + o.regionPath + "' does not exist");
     lod.meetsRegion = [](const std::array<std::array<double, 2>, 3>&) { return false; };
   }
   lod.validate();

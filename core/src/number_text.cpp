@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "number_text.h"
 
+#include <algorithm>
 #include <charconv>
 
 namespace tinlod {
@@ -28,6 +29,13 @@ std::string significantNumber(double value, int digits) {
   char buffer[kBuffer];
   const std::to_chars_result end = std::to_chars(buffer, buffer + kBuffer, value, std::chars_format::general, digits);
   return std::string(buffer, end.ptr);
+}
+
+std::string columnNumber(double value, int decimals, int width) {
+  const std::size_t fits = static_cast<std::size_t>(std::max(width, 1));
+  std::string text = fixedNumber(value, decimals);
+  for (int digits = static_cast<int>(fits); text.size() > fits && digits >= 1; --digits) text = significantNumber(value, digits);
+  return text;
 }
 
 std::string groupedCount(std::size_t count) {

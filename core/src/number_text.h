@@ -17,6 +17,11 @@ std::string fixedNumber(double value, int decimals);
 // `value` to `digits` significant digits, trailing zeros dropped: 0.0123456 -> "0.0123" for 3.
 std::string significantNumber(double value, int digits);
 
+// `value` for a table column of `width` characters: with `decimals` digits after the point
+// where that fits, else with as many significant digits as fit (1e30 -> "1e+30"), so that a
+// huge value never runs into the next column.
+std::string columnNumber(double value, int decimals, int width);
+
 // 650000 -> "650,000".
 std::string groupedCount(std::size_t count);
 

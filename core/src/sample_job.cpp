@@ -109,6 +109,7 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
           {"TINLOD_KIND", "tin"},
           {"TINLOD_SOURCE", demPath},
           {"TINLOD_BAND", std::to_string(o.band)},
+          {"TINLOD_VALID_RANGE", o.validHeights.text()},
           {"TINLOD_BLOCK", std::to_string(o.block)},
           {"TINLOD_JITTER", formatNumber(o.jitter)},
           {"TINLOD_SEED", std::to_string(o.seed)},
@@ -164,7 +165,7 @@ SampleSummary runSampleJob(const std::string& demPath, const std::string& outPat
   OutputFiles files(overwrite, datasetFiles(demPath));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
-  const Dem dem = readDem(demPath, options.band, all.sub(0, 0.1));
+  const Dem dem = readDem(demPath, options.band, all.sub(0, 0.1), options.validHeights);
   const Tin tin = sampleTin(dem, options, all.sub(0.1, 0.6));
   writeOptions.metadata["TINLOD_CRS"] = tin.crsName;
   // About 200 bytes a triangle and 150 a vertex in GeoPackage, spatial index included.

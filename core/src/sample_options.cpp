@@ -16,6 +16,7 @@ void SampleOptions::validate() const {
   if (!std::isfinite(jitter) || jitter < 0 || jitter > 1000)
     throw Error("jitter must be from 0 to 1000 metres (got " + formatNumber(jitter) +
                 "); the default 0.99 keeps points off common circles");
+  validHeights.validate();
 }
 
 void SampleOptions::validateForHierarchy() const {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include "tinlod/accuracy_raster.h"
 #include "tinlod/accuracy_report.h"
 #include "tinlod/feedback.h"
+#include "tinlod/height_range.h"
 #include "tinlod/hierarchy.h"
 #include "tinlod/output_files.h"
 
@@ -57,9 +59,11 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
 
 // The whole `tinlod accuracy` job: a DEM and the hierarchy (or TIN) GeoPackage made from
 // it. `band` 0 takes the band the file was sampled from; `sourceSrs` names the DEM's CRS
-// when its file has none.
+// when its file has none; no `validHeights` takes the range the file was sampled with, so
+// that the same cells are nodata (the default range for files that record none).
 AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hierarchyPath, const AccuracyOutputs& outputs,
-                              int band, const std::string& sourceSrs, const Feedback& feedback);
+                              int band, const std::string& sourceSrs, const Feedback& feedback,
+                              const std::optional<HeightRange>& validHeights = std::nullopt);
 
 // "dem.tif" from "/data/dem.tif": how reports name a DEM.
 std::string demName(const std::string& path);

@@ -18,6 +18,8 @@ using Polyline = std::vector<LinePoint>;
 // A closed line (first vertex = last) is anchored at its start and at the vertex
 // farthest from it, both infinite, so it keeps at least two sides.
 // Iterative (no recursion depth limit); O(n log n) for most lines, O(n^2) at worst.
+// Every vertex must be finite (readLines skips the others): distances to a NaN are NaN,
+// and the line would collapse.
 std::vector<double> douglasPeuckerValues(const Polyline& line);
 
 // The line simplified at `threshold`: the vertices whose value exceeds it. O(n).

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -13,7 +14,10 @@ namespace tinlod {
 
 // The lines of the first layer of a vector file, each part of a multi-line its own line,
 // in a metric CRS: the layer's own when it is projected, else the UTM zone of its centre
-// (as for DEMs). `feature` gives each line's feature id.
+// (as for DEMs). `feature` gives each line's feature id. Vertices that are not finite
+// numbers are skipped, and lines they leave with fewer than 2 vertices, with one warning
+// that counts them. Throws Error naming the file and the geometry type for a layer of
+// points or polygons.
 struct LineSet {
   std::vector<Polyline> lines;
   std::vector<long long> feature;
@@ -30,7 +34,8 @@ LineSet readLines(const std::string& path, const ProgressRange& progress);
 // lines. Written atomically to a GeoPackage.
 struct DpOptions {
   bool points = false;
-  double threshold = -1;  // < 0: no simplified layer
+  double threshold = std::numeric_limits<double>::quiet_NaN();  // metres, 0 or more; NaN: no simplified layer
+  void validate() const;  // throws Error naming the option
 };
 struct DpSummary {
   std::size_t lines = 0, vertices = 0, keptVertices = 0, crossings = 0;

@@ -18,8 +18,8 @@ struct LocateSummary {
 // attributes, plus 'elevation' (the TIN's height at `level`, linear in the containing
 // triangle) and 'triangle' (the id of that triangle in the hierarchy's 'triangles'
 // layer), both null for a point outside the TIN or in a hole; written as layer 'points'
-// of `outPath` in the points' own CRS. A `level` outside the hierarchy fails before the
-// work.
+// of `outPath` in the points' own CRS. `level` -1 is the coarsest; a level outside the
+// hierarchy fails before the work.
 LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& pointsPath, const std::string& outPath,
                            int level, bool overwrite, const Feedback& feedback);
 

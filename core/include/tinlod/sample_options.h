@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include "tinlod/height_range.h"
+
 namespace tinlod {
 
 // Options of the sampling step, shared by `tinlod sample`, `tinlod build` and the
@@ -15,6 +17,7 @@ struct SampleOptions {
   std::uint64_t seed = 1;     // random seed: the same seed gives the same TIN
   std::string sourceSrs;      // CRS of the DEM when its file has none or a wrong one; empty: the file's
   std::string targetSrs;      // output CRS (any GDAL/PROJ definition); empty: automatic
+  HeightRange validHeights;   // heights outside it are undeclared nodata
 
   // Throws Error naming the option when a value is out of range.
   void validate() const;
