@@ -63,7 +63,8 @@ and RMS vertical distance, and the cells its outline gave up (levels table, tinl
 Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, -jitter m
   (above 0 for a hierarchy, whose levels are measured at every DEM cell), -seed n,
   -valid_range min max (heights outside it are nodata; default -12000 9000)
-  -overwrite       replace tinlod's layers in an existing GeoPackage; its other layers are kept
+  -overwrite       replace existing outputs: tinlod's layers of the GeoPackage (its other
+                   layers are kept), the -accuracy raster, the -report; never an input
   -q               quiet: no progress or information, warnings only
 
 @ACCURACY@
