@@ -20,19 +20,11 @@ namespace fs = std::filesystem;
 namespace tinlod {
 namespace {
 
-struct CliRun {
-  int exitCode = -1;
-  std::string out, err;
-};
+using CliRun = test::CommandRun;
 
-CliRun tinlod(const std::string& args) {
-  const std::string dir = test::tempDir();
-  const std::string cmd = std::string(TINLOD_CLI) + " " + args + " >" + dir + "/out 2>" + dir + "/err";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::readFile(dir + "/out"), test::readFile(dir + "/err")};
-}
+CliRun tinlod(const std::string& args) { return test::runCommand(std::string(TINLOD_CLI) + " " + args); }
 
-bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
+bool has(const std::string& text, const std::string& fragment) { return test::contains(text, fragment); }
 
 // A CSV report (no quoted fields) as rows of named fields.
 std::vector<std::map<std::string, std::string>> csvRows(const std::string& text) {

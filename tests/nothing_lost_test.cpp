@@ -20,19 +20,11 @@ namespace fs = std::filesystem;
 namespace tinlod {
 namespace {
 
-struct CliRun {
-  int exitCode = -1;
-  std::string out, err;
-};
+using CliRun = test::CommandRun;
 
-CliRun tinlod(const std::string& args) {
-  const std::string dir = test::tempDir();
-  const std::string cmd = std::string(TINLOD_CLI) + " " + args + " >" + dir + "/out 2>" + dir + "/err";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::readFile(dir + "/out"), test::readFile(dir + "/err")};
-}
+CliRun tinlod(const std::string& args) { return test::runCommand(std::string(TINLOD_CLI) + " " + args); }
 
-bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
+bool has(const std::string& text, const std::string& fragment) { return test::contains(text, fragment); }
 
 // Every file of a folder with its bytes: what "nothing changed" is checked against.
 std::map<std::string, std::string> snapshot(const std::string& dir) {
@@ -41,14 +33,16 @@ std::map<std::string, std::string> snapshot(const std::string& dir) {
   return files;
 }
 
+std::string demFile(int width, int height, double cell) {
+  SyntheticDemOptions o;
+  o.width = width, o.height = height, o.cellSize = cell;
+  const std::string p = test::tempDir() + "/dem.tif";
+  writeDemGeoTiff(makeSyntheticDem(o), p);
+  return p;
+}
+
 std::string smallDem() {
-  static const std::string path = [] {
-    SyntheticDemOptions o;
-    o.width = 150, o.height = 120, o.cellSize = 25;
-    const std::string p = test::tempDir() + "/dem.tif";
-    writeDemGeoTiff(makeSyntheticDem(o), p);
-    return p;
-  }();
+  static const std::string path = demFile(150, 120, 25);
   return path;
 }
 
@@ -176,13 +170,7 @@ void expectPromptStop(const std::string& dem, const std::string& mark, const cha
 }
 
 std::string mediumDem() {
-  static const std::string path = [] {
-    SyntheticDemOptions o;
-    o.width = 1200, o.height = 1000, o.cellSize = 10;
-    const std::string p = test::tempDir() + "/medium.tif";
-    writeDemGeoTiff(makeSyntheticDem(o), p);
-    return p;
-  }();
+  static const std::string path = demFile(1200, 1000, 10);
   return path;
 }
 

@@ -2,6 +2,7 @@
 #include "test_support.h"
 
 #include <ogr_spatialref.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -97,6 +98,14 @@ Dem smallSyntheticDem() {
   o.cellSize = 25;
   return makeSyntheticDem(o);
 }
+
+CommandRun runCommand(const std::string& command) {
+  const std::string dir = tempDir();
+  const int status = std::system((command + " >" + dir + "/out 2>" + dir + "/err").c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(dir + "/out"), readFile(dir + "/err")};
+}
+
+bool contains(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
 
 std::string smallSyntheticDemFile() {
   static const std::string path = [] {

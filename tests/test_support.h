@@ -40,6 +40,14 @@ Dem makeGeographicDem(int width, int height, double lon0, double lat0);
 
 std::string readFile(const std::string& path);
 
+// A shell command's exit code and what it printed on stdout and stderr.
+struct CommandRun {
+  int exitCode = -1;
+  std::string out, err;
+};
+CommandRun runCommand(const std::string& command);
+bool contains(const std::string& text, const std::string& fragment);
+
 // A small synthetic DEM for quick tests: 360 x 300 cells of 25 m, with its lake and void.
 Dem smallSyntheticDem();
 // The same DEM as a GeoTIFF, written once per test binary.
