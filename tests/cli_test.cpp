@@ -460,7 +460,7 @@ TEST(Cli, LocateWorksOnALodTinAndOnANamedLayerAndRefusesDamage) {
             0);
   const CliRun broken = tinlod("lod -max_error 5 " + dir + "/broken.gpkg " + dir + "/x.gpkg");
   EXPECT_EQ(broken.exitCode, 1);
-  EXPECT_TRUE(has(broken.err, "no groups layer")) << broken.err;
+  EXPECT_TRUE(has(broken.err, "is damaged: it is a hierarchy (TINLOD_KIND) but has no groups table")) << broken.err;
 }
 
 TEST(Cli, ExperimentWritesOneReportOfEveryRun) {
