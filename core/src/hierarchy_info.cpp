@@ -57,7 +57,8 @@ std::vector<LevelStats> readLevelTable(const std::string& path, OGRLayer& layer)
   std::vector<LevelStats> levels;
   for (const auto& [level, l] : byLevel) {
     if (level != static_cast<std::int32_t>(levels.size()))
-      table.damaged("has no row for level " + std::to_string(levels.size()) + " but one for level " + std::to_string(level));
+      table.damaged("has no row for level " + std::to_string(levels.size()) + " but one for level " +
+                    std::to_string(level));
     levels.push_back(l);
   }
   return levels;
@@ -66,9 +67,12 @@ std::vector<LevelStats> readLevelTable(const std::string& path, OGRLayer& layer)
 // A plain TIN is one level; its figures are for display only (the reader counts the rows
 // it reads), so a feature count the file misstates does no harm.
 LevelStats singleLevel(GDALDataset& ds, const HierarchyInfo& info) {
+  auto rows = [&ds](const char* name) {
+    OGRLayer* layer = ds.GetLayerByName(name);
+    return layer ? static_cast<std::size_t>(std::max<GIntBig>(0, layer->GetFeatureCount())) : 0;
+  };
   LevelStats l;
-  if (OGRLayer* v = ds.GetLayerByName("vertices")) l.vertices = static_cast<std::size_t>(std::max<GIntBig>(0, v->GetFeatureCount()));
-  if (OGRLayer* t = ds.GetLayerByName("triangles")) l.triangles = static_cast<std::size_t>(std::max<GIntBig>(0, t->GetFeatureCount()));
+  l.vertices = rows("vertices"), l.triangles = rows("triangles");
   // Greedy insertion records its maximum error over the candidates, as a build records each level's.
   if (const auto e = info.metadata.find("max_error"); e != info.metadata.end()) l.maxError = std::strtod(e->second.c_str(), nullptr);
   return l;

@@ -4,6 +4,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <memory>
@@ -23,12 +24,29 @@ std::string wktOf(OGRLayer& layer) {
   return srs ? wkt2(*srs) : "";
 }
 
+std::string upper(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
 // A number of the file's metadata: the whole text, whatever the C locale (QGIS may set
 // one with a decimal comma); atof would read "5x" as 5 and "nan" as a number.
 bool parsedNumber(const std::string& text, double& value) {
   const char* end = text.data() + text.size();
   const auto [stop, error] = std::from_chars(text.data(), end, value);
   return error == std::errc() && stop == end && std::isfinite(value);
+}
+
+// A percentage of the file's metadata, up to 100 or below it; 0 when the file has none
+// (older files, or "none (threshold mode)" from a build with a threshold).
+double storedPercentage(const HierarchyInfo& info, const char* key, bool hundredAllowed) {
+  const auto item = info.metadata.find(key);
+  if (item == info.metadata.end() || item->second.empty() || item->second.rfind("none", 0) == 0) return 0;
+  double value = 0;
+  if (!parsedNumber(item->second, value) || value < 0 || value > 100 || (value == 100 && !hundredAllowed))
+    throwDamaged(info.path, "its TINLOD_" + upper(key) + " is '" + item->second + "', not a percentage from 0 to " +
+                                (hundredAllowed ? "100" : "less than 100"));
+  return value;
 }
 
 void readOptions(const HierarchyInfo& info, Hierarchy& h) {
@@ -45,13 +63,8 @@ void readOptions(const HierarchyInfo& info, Hierarchy& h) {
       throwDamaged(info.path, "its TINLOD_METHOD is '" + method + "', not a method tinlod knows");
     }
   }
-  // Empty in files that never had them, "none (threshold mode)" when the build had none.
-  const std::string deletePct = item("delete_pct"), stopPct = item("stop_pct");
-  if (!deletePct.empty() && deletePct.rfind("none", 0) != 0 &&
-      !(parsedNumber(deletePct, h.options.deletePct) && h.options.deletePct >= 0 && h.options.deletePct <= 100))
-    throwDamaged(info.path, "its TINLOD_DELETE_PCT is '" + deletePct + "', not a percentage from 0 to 100");
-  if (!stopPct.empty() && !(parsedNumber(stopPct, h.options.stopPct) && h.options.stopPct >= 0 && h.options.stopPct < 100))
-    throwDamaged(info.path, "its TINLOD_STOP_PCT is '" + stopPct + "', not a percentage from 0 to less than 100");
+  h.options.deletePct = storedPercentage(info, "delete_pct", true);
+  h.options.stopPct = storedPercentage(info, "stop_pct", false);
 }
 
 OGRLayer& requiredLayer(GDALDataset& ds, const std::string& path, const char* name, bool hierarchy) {
