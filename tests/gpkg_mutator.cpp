@@ -37,7 +37,8 @@ std::string quotedName(const std::string& name) { return "\"" + name + "\""; }
 }  // namespace
 
 GpkgMutator::GpkgMutator(const std::string& source, std::uint64_t seed) : source_(source), random_(seed) {
-  for (const TableColumns& t : tinlodTables()) rows_[t.table] = sqlInteger(source, "SELECT count(*) FROM " + quotedName(t.table));
+  for (const TableColumns& t : tinlodTables())
+    rows_[t.table] = sqlInteger(source, "SELECT count(*) FROM " + quotedName(t.table));
 }
 
 std::string GpkgMutator::mutatedCopy(std::string& what) {
@@ -67,7 +68,8 @@ std::string GpkgMutator::changeField(const std::string& copy) {
   const std::string column = t.columns[below(static_cast<int>(t.columns.size()))];
   const std::string value = hostileValue(t.table, column);
   // Mostly one row; sometimes many, as a systematic error would.
-  const std::string where = below(5) ? "fid = " + std::to_string(anyRow(t.table)) : "fid % 7 = " + std::to_string(below(7));
+  const std::string where =
+      below(5) ? "fid = " + std::to_string(anyRow(t.table)) : "fid % 7 = " + std::to_string(below(7));
   const std::string statement =
       "UPDATE " + quotedName(t.table) + " SET " + quotedName(column) + " = " + value + " WHERE " + where;
   return statement + sql(copy, statement);
@@ -80,7 +82,8 @@ std::string GpkgMutator::changeGeometry(const std::string& copy) {
   auto any = [&] { return hostile[below(12)]; };
   const std::string geometries[] = {pointBlobLiteral(any(), any(), any(), 32632), "NULL", "X'00'", "X'47500001'",
                                     "substr(geom, 1, " + std::to_string(below(40)) + ")",
-                                    "(SELECT geom FROM triangles WHERE fid = " + std::to_string(anyRow("triangles")) + ")",
+                                    "(SELECT geom FROM triangles WHERE fid = " +
+                                        std::to_string(anyRow("triangles")) + ")",
                                     "randomblob(" + std::to_string(below(64)) + ")"};
   const std::string table = below(4) ? "vertices" : below(2) ? "groups" : "triangles";
   const std::string statement = "UPDATE " + table + " SET geom = " + geometries[below(7)] +
@@ -117,7 +120,8 @@ std::string GpkgMutator::dropSchema(const std::string& copy) {
       statement = "UPDATE gpkg_spatial_ref_sys SET definition = 'not a CRS' WHERE srs_id = 32632";
       break;
     default:
-      statement = below(2) ? "DELETE FROM gpkg_metadata" : "UPDATE gpkg_metadata SET metadata = '<GDALMultiDomainMetadata><Metadata>'";
+      statement = below(2) ? "DELETE FROM gpkg_metadata"
+                           : "UPDATE gpkg_metadata SET metadata = '<GDALMultiDomainMetadata><Metadata>'";
   }
   return statement + sql(copy, statement);
 }
@@ -166,9 +170,12 @@ std::string GpkgMutator::hostileValue(const std::string& table, const std::strin
     case 3: return std::to_string(static_cast<long long>(random_() % static_cast<std::uint64_t>(most + 7)) - 3);
     case 4: return extremes[below(11)];
     case 5: return "'" + hostileText() + "'";
-    case 6: return "(SELECT " + quotedName(column) + " FROM " + table + " WHERE fid = " + std::to_string(anyRow(table)) + ")";
-    case 7: return quotedName(t.columns[below(static_cast<int>(t.columns.size()))]);  // another column of the row
-    default: return quotedName(column) + (below(2) ? " + " : " - ") + std::to_string(1 + below(2));  // off by one or two
+    case 6:  // another row's
+      return "(SELECT " + quotedName(column) + " FROM " + table + " WHERE fid = " + std::to_string(anyRow(table)) + ")";
+    case 7:  // another column of the row
+      return quotedName(t.columns[below(static_cast<int>(t.columns.size()))]);
+    default:  // off by one or two
+      return quotedName(column) + (below(2) ? " + " : " - ") + std::to_string(1 + below(2));
   }
 }
 

@@ -167,7 +167,8 @@ void writeWktLayer(const std::string& path, const std::vector<std::string>& wkts
   OGRwkbGeometryType type = geometries.empty() ? wkbUnknown : geometries.front()->getGeometryType();
   for (const OGRGeometry* g : geometries)
     if (g->getGeometryType() != type) type = wkbUnknown;
-  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+  GDALDataset* ds =
+      GetGDALDriverManager()->GetDriverByName("GPKG")->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
   ASSERT_NE(ds, nullptr) << path;
   OGRLayer* layer = ds->CreateLayer("features", &srs, type, nullptr);
   for (OGRGeometry* g : geometries) {

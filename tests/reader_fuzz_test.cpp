@@ -36,8 +36,8 @@ namespace {
 
 const ProgressRange kQuiet(Feedback{}, 0, 1);
 
-constexpr std::uint64_t kSeed = 16;        // issue 16
-constexpr std::uint64_t kCases = 300;      // some 25 s in a Release build
+constexpr std::uint64_t kSeed = 16;         // issue 16
+constexpr std::uint64_t kCases = 300;       // some 25 s in a Release build
 constexpr std::uint64_t kCaseSeconds = 60;  // a case takes well under a second, under ASan too
 
 std::uint64_t fromEnvironment(const char* name, std::uint64_t fallback) {
@@ -78,7 +78,9 @@ std::vector<Reader> everyReader(const test::SmallHierarchy& s) {
          runLocateJob(gpkg, s.points, out + "/points.gpkg", top, true, {});
        }},
       {"accuracy",
-       [&s](const std::string& gpkg, const std::string&) { runAccuracyJob(s.dem, gpkg, AccuracyOutputs{}, 0, "", {}); }},
+       [&s](const std::string& gpkg, const std::string&) {
+         runAccuracyJob(s.dem, gpkg, AccuracyOutputs{}, 0, "", {});
+       }},
   };
 }
 

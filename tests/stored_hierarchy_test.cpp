@@ -88,7 +88,8 @@ TEST(StoredHierarchy, AFirstLevelBeyondTheLevelsIsRefusedNotUsedAsAnIndex) {
 
 TEST(StoredHierarchy, LevelsOutOfOrderAreRefused) {
   const std::string t = std::to_string(linkedTriangle());
-  const std::string before = test::alteredCopy(hierarchy(), "UPDATE triangles SET last_level = first_level - 1 WHERE fid = " + t);
+  const std::string before =
+      test::alteredCopy(hierarchy(), "UPDATE triangles SET last_level = first_level - 1 WHERE fid = " + t);
   EXPECT_NE(readError(before).find("triangles row " + t + " has first_level"), std::string::npos) << readError(before);
   EXPECT_NE(readError(before).find(": its last level is before its first"), std::string::npos) << readError(before);
   const std::string repeated = test::alteredCopy(hierarchy(), "UPDATE levels SET level = 5 WHERE level = 4");
@@ -100,32 +101,37 @@ TEST(StoredHierarchy, LevelsOutOfOrderAreRefused) {
 TEST(StoredHierarchy, ReplacedByLinksThatWouldMakeACycleAreRefused) {
   // A triangle replaced by the group that made it: lod followed such links for ever.
   const std::string t = std::to_string(linkedTriangle());
-  const std::string cycle = test::alteredCopy(hierarchy(), "UPDATE triangles SET replaced_by = group_id WHERE fid = " + t);
+  const std::string cycle =
+      test::alteredCopy(hierarchy(), "UPDATE triangles SET replaced_by = group_id WHERE fid = " + t);
   const std::string error = lodError(cycle);
   EXPECT_NE(error.find(damage(cycle, "triangles row " + t + " has first_level")), std::string::npos) << error;
   EXPECT_NE(error.find("a broken link, or one that would make a cycle"), std::string::npos) << error;
   // Pointing at a coarser group than the one that replaces it is as broken.
-  const std::string coarser =
-      test::alteredCopy(hierarchy(), "UPDATE triangles SET replaced_by = (SELECT max(id) FROM groups) WHERE fid = " + t);
-  EXPECT_NE(lodError(coarser).find("a broken link, or one that would make a cycle"), std::string::npos) << lodError(coarser);
-  const std::string nowhere = test::alteredCopy(hierarchy(), "UPDATE triangles SET replaced_by = 999999 WHERE fid = " + t);
+  const std::string coarser = test::alteredCopy(
+      hierarchy(), "UPDATE triangles SET replaced_by = (SELECT max(id) FROM groups) WHERE fid = " + t);
+  EXPECT_NE(lodError(coarser).find("a broken link, or one that would make a cycle"), std::string::npos)
+      << lodError(coarser);
+  const std::string nowhere =
+      test::alteredCopy(hierarchy(), "UPDATE triangles SET replaced_by = 999999 WHERE fid = " + t);
   const long long groups = test::sqlInteger(hierarchy(), "SELECT count(*) FROM groups");
   EXPECT_EQ(lodError(nowhere),
-            damage(nowhere, "triangles row " + t + " has replaced_by 999999 but the group ids are 1 to " + std::to_string(groups)));
+            damage(nowhere, "triangles row " + t + " has replaced_by 999999 but the group ids are 1 to " +
+                                std::to_string(groups)));
 }
 
 TEST(StoredHierarchy, AHierarchyWithoutItsLevelsOrGroupsTableIsRefused) {
   // Read as all level 0 before: every triangle of every level at once.
-  const std::string noLevels = test::alteredCopy(
-      hierarchy(), "DROP TABLE levels; DELETE FROM gpkg_contents WHERE table_name = 'levels'");
+  const std::string noLevels =
+      test::alteredCopy(hierarchy(), "DROP TABLE levels; DELETE FROM gpkg_contents WHERE table_name = 'levels'");
   const std::string expected =
       damage(noLevels, "it is a hierarchy (TINLOD_KIND) but has no levels table; build it again with tinlod build");
   EXPECT_EQ(errorOf([&] { readHierarchyInfo(noLevels); }), expected);
   EXPECT_EQ(lodError(noLevels), expected);
-  const std::string noGroups = test::alteredCopy(
-      hierarchy(), "DROP TABLE groups; DELETE FROM gpkg_contents WHERE table_name = 'groups'");
-  EXPECT_EQ(readError(noGroups),
-            damage(noGroups, "it is a hierarchy (TINLOD_KIND) but has no groups table; build it again with tinlod build"));
+  const std::string noGroups =
+      test::alteredCopy(hierarchy(), "DROP TABLE groups; DELETE FROM gpkg_contents WHERE table_name = 'groups'");
+  EXPECT_EQ(
+      readError(noGroups),
+      damage(noGroups, "it is a hierarchy (TINLOD_KIND) but has no groups table; build it again with tinlod build"));
   const std::string noColumn = test::alteredCopy(hierarchy(), "ALTER TABLE groups DROP COLUMN vertex");
   EXPECT_EQ(readError(noColumn), damage(noColumn, "its groups table has no column vertex"));
 }
@@ -134,8 +140,8 @@ TEST(StoredHierarchy, TrianglesWithARepeatedVertexAreRefused) {
   const std::string copy = test::alteredCopy(hierarchy(), "UPDATE triangles SET v1 = v0 WHERE fid = 5");
   const long long v0 = test::sqlInteger(copy, "SELECT v0 FROM triangles WHERE fid = 5");
   const long long v2 = test::sqlInteger(copy, "SELECT v2 FROM triangles WHERE fid = 5");
-  EXPECT_EQ(readError(copy), damage(copy, "triangles row 5 repeats a vertex (v0, v1, v2 = " + std::to_string(v0) + ", " +
-                                              std::to_string(v0) + ", " + std::to_string(v2) + ")"));
+  EXPECT_EQ(readError(copy), damage(copy, "triangles row 5 repeats a vertex (v0, v1, v2 = " + std::to_string(v0) +
+                                              ", " + std::to_string(v0) + ", " + std::to_string(v2) + ")"));
   const std::string missing = test::alteredCopy(hierarchy(), "UPDATE triangles SET v2 = NULL WHERE fid = 6");
   EXPECT_EQ(readError(missing), damage(missing, "triangles row 6 has no v2 (NULL)"));
 }
@@ -144,13 +150,16 @@ TEST(StoredHierarchy, NegativeAndOverflowingCountsAreRefusedOrNotTrusted) {
   const std::string negative = test::alteredCopy(hierarchy(), "UPDATE levels SET vertices = -5 WHERE level = 3");
   EXPECT_EQ(errorOf([&] { readHierarchyInfo(negative); }),
             damage(negative, "levels row 4 has vertices -5 but the counts are 0 to 9223372036854775807"));
-  const std::string cells = test::alteredCopy(hierarchy(), "UPDATE levels SET cells = -9223372036854775808 WHERE level = 0");
-  EXPECT_NE(readError(cells).find("levels row 1 has cells -9223372036854775808"), std::string::npos) << readError(cells);
-  const std::string wrong = test::alteredCopy(hierarchy(), "UPDATE levels SET triangles = triangles + 1 WHERE level = 2");
+  const std::string cells =
+      test::alteredCopy(hierarchy(), "UPDATE levels SET cells = -9223372036854775808 WHERE level = 0");
+  EXPECT_NE(readError(cells).find("levels row 1 has cells -9223372036854775808"), std::string::npos)
+      << readError(cells);
+  const std::string wrong =
+      test::alteredCopy(hierarchy(), "UPDATE levels SET triangles = triangles + 1 WHERE level = 2");
   const long long triangles = test::sqlInteger(hierarchy(), "SELECT triangles FROM levels WHERE level = 2");
-  EXPECT_EQ(readError(wrong), damage(wrong, "level 2 has " + std::to_string(triangles) +
-                                                " triangles in the triangles table but " + std::to_string(triangles + 1) +
-                                                " in the levels table"));
+  EXPECT_EQ(readError(wrong),
+            damage(wrong, "level 2 has " + std::to_string(triangles) + " triangles in the triangles table but " +
+                              std::to_string(triangles + 1) + " in the levels table"));
   // The feature counts GDAL takes from gpkg_ogr_contents size nothing: the file reads as it is.
   for (const char* count : {"9000000000000000000", "-3"}) {
     const std::string lying =
@@ -161,13 +170,13 @@ TEST(StoredHierarchy, NegativeAndOverflowingCountsAreRefusedOrNotTrusted) {
 
 TEST(StoredHierarchy, NonFiniteAndAbsurdCoordinatesAreRefused) {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  for (const auto& [x, y, z, shown] : {std::tuple{nan, 5.2e6, 100.0, "(nan, 5.2e+06, 100)"},
-                                       std::tuple{4e5, 5.2e6, inf, "(400000, 5.2e+06, inf)"},
-                                       std::tuple{1e300, 5.2e6, 100.0, "(1e+300, 5.2e+06, 100)"}}) {
+  for (const auto& [x, y, z, shown] :
+       {std::tuple{nan, 5.2e6, 100.0, "(nan, 5.2e+06, 100)"}, std::tuple{4e5, 5.2e6, inf, "(400000, 5.2e+06, inf)"},
+        std::tuple{1e300, 5.2e6, 100.0, "(1e+300, 5.2e+06, 100)"}}) {
     const std::string copy = test::alteredCopy(
         hierarchy(), "UPDATE vertices SET geom = " + test::pointBlobLiteral(x, y, z, 32632) + " WHERE fid = 5");
     EXPECT_EQ(lodError(copy), damage(copy, std::string("vertices row 5 has a point at ") + shown +
-                                                ": coordinates must be finite, x and y within 1e12"));
+                                               ": coordinates must be finite, x and y within 1e12"));
   }
   const std::string none = test::alteredCopy(hierarchy(), "UPDATE vertices SET geom = NULL WHERE fid = 9");
   EXPECT_EQ(readError(none), damage(none, "vertices row 9 has no point"));
@@ -175,14 +184,16 @@ TEST(StoredHierarchy, NonFiniteAndAbsurdCoordinatesAreRefused) {
 
 TEST(StoredHierarchy, GroupsWithoutTheirTrianglesAndBrokenIdsAreRefused) {
   const std::string noAccept = test::alteredCopy(hierarchy(), "DELETE FROM triangles WHERE replaced_by = 5");
-  EXPECT_EQ(lodError(noAccept), damage(noAccept, "group 5 has no accept triangle (no triangles row has replaced_by 5)"));
+  EXPECT_EQ(lodError(noAccept),
+            damage(noAccept, "group 5 has no accept triangle (no triangles row has replaced_by 5)"));
   const std::string noReject = test::alteredCopy(hierarchy(), "DELETE FROM triangles WHERE group_id = 5");
   EXPECT_EQ(lodError(noReject), damage(noReject, "group 5 has no reject triangle (no triangles row has group_id 5)"));
   const std::string twice = test::alteredCopy(hierarchy(), "UPDATE groups SET id = 4 WHERE fid = 3");
   EXPECT_EQ(readError(twice), damage(twice, "groups rows 3 and 4 both have id 4"));
   const std::string levelZero = test::alteredCopy(hierarchy(), "UPDATE groups SET level = 0 WHERE fid = 3");
-  EXPECT_EQ(readError(levelZero), damage(levelZero, "groups row 3 has level 0 but the levels a vertex can be deleted at are 1 to " +
-                                                        std::to_string(coarsest())));
+  EXPECT_EQ(readError(levelZero),
+            damage(levelZero, "groups row 3 has level 0 but the levels a vertex can be deleted at are 1 to " +
+                                  std::to_string(coarsest())));
   const long long vertices = test::sqlInteger(hierarchy(), "SELECT count(*) FROM vertices");
   const std::string droppedVertex = test::alteredCopy(hierarchy(), "DELETE FROM vertices WHERE fid = 7");
   EXPECT_EQ(readError(droppedVertex),
@@ -234,7 +245,8 @@ TEST(StoredHierarchy, LocateRefusesLinesAndMultipointsItCannotGiveOneElevation) 
                     single = dir + "/single.gpkg";
   test::writeWktLayer(lines, {"LINESTRING (400500 5200500, 401000 5201000)"});
   test::writeWktLayer(several, {"MULTIPOINT ((400500 5200500), (401000 5201000))"});
-  test::writeWktLayer(mixed, {"POINT (400500 5200500)", "POLYGON ((400500 5200500, 401000 5200500, 401000 5201000, 400500 5200500))"});
+  test::writeWktLayer(
+      mixed, {"POINT (400500 5200500)", "POLYGON ((400500 5200500, 401000 5200500, 401000 5201000, 400500 5200500))"});
   test::writeWktLayer(single, {"MULTIPOINT ((400500 5200500))"});
   EXPECT_EQ(locateError(hierarchy(), lines),
             "points: the layer of '" + lines + "' holds Line String features: a point layer is needed");
@@ -250,7 +262,8 @@ TEST(StoredHierarchy, CentresAndPointsToKeepRefuseOtherGeometries) {
   const test::SmallHierarchy& s = test::smallHierarchy();
   const std::string dir = test::tempDir();
   test::writeWktLayer(dir + "/lines.gpkg", {"LINESTRING (400500 5200500, 401000 5201000)"});
-  test::writeWktLayer(dir + "/area.gpkg", {"POLYGON ((400500 5200500, 401000 5200500, 401000 5201000, 400500 5200500))"});
+  test::writeWktLayer(dir + "/area.gpkg",
+                      {"POLYGON ((400500 5200500, 401000 5200500, 401000 5201000, 400500 5200500))"});
   LodJobOptions lod;
   lod.centresPath = dir + "/lines.gpkg";
   lod.lod.dropoff = 100;
@@ -258,8 +271,9 @@ TEST(StoredHierarchy, CentresAndPointsToKeepRefuseOtherGeometries) {
             "-centers: the layer of '" + dir + "/lines.gpkg' holds Line String features: a point layer is needed");
   HierarchyOptions keep;
   keep.fixedPoints = dir + "/area.gpkg";
-  EXPECT_EQ(errorOf([&] { runBuildJob(s.dem, dir + "/h.gpkg", {}, keep, false, {}); }),
-            "-fixed (points to keep): the layer of '" + dir + "/area.gpkg' holds Polygon features: a point layer is needed");
+  EXPECT_EQ(
+      errorOf([&] { runBuildJob(s.dem, dir + "/h.gpkg", {}, keep, false, {}); }),
+      "-fixed (points to keep): the layer of '" + dir + "/area.gpkg' holds Polygon features: a point layer is needed");
   // A multipoint's points are all centres.
   test::writeWktLayer(dir + "/centres.gpkg", {"MULTIPOINT ((400500 5200500), (401000 5201000))"});
   lod.centresPath = dir + "/centres.gpkg";
