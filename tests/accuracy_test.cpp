@@ -62,6 +62,20 @@ TEST(TinRasterizer, PointsOnSharedEdgesAndVerticesAreNeverMissed) {
   for (double v : g.values) EXPECT_FALSE(std::isnan(v));
 }
 
+// Corners far beyond the range of int (a vertex a CRS could not transform, or a crafted
+// file's) fill only the points they cover, and leave the others; the sanitizer build sees
+// that no conversion to int overflows on the way.
+TEST(TinRasterizer, TrianglesFarOffTheGridOrWithNonFiniteCornersDoNoHarm) {
+  const double inf = INFINITY;
+  const std::vector<std::array<double, 2>> pos{{1.5, 1.5}, {7.5, 1.5}, {7.5, 5.5}, {-1e11, -1e11}, {1e11, 3},
+                                               {4, 1e11}, {inf, 2}, {NAN, 3}};
+  const std::vector<double> z(pos.size(), 5.0);
+  // One ordinary triangle, one that covers the whole grid and beyond, one with an infinite
+  // and one with a NaN corner.
+  const Grid g = rasterizeTin(pos, z, {{0, 1, 2}, {3, 4, 5}, {0, 1, 6}, {1, 2, 7}}, 10, 8, kQuiet);
+  for (double v : g.values) EXPECT_NEAR(v, 5.0, 1e-6);
+}
+
 struct Fixture {
   Dem dem = test::smallSyntheticDem();
   Tin tin = sampleTin(dem, {}, kQuiet);

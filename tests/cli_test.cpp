@@ -453,7 +453,22 @@ TEST(Cli, LocateWorksOnALodTinAndOnANamedLayerAndRefusesDamage) {
             0);
   const CliRun broken = tinlod("lod -max_error 5 " + dir + "/broken.gpkg " + dir + "/x.gpkg");
   EXPECT_EQ(broken.exitCode, 1);
-  EXPECT_TRUE(has(broken.err, "no groups layer")) << broken.err;
+  EXPECT_TRUE(has(broken.err, "is damaged: it is a hierarchy (TINLOD_KIND) but has no groups table")) << broken.err;
+}
+
+// A level read from the file indexed lod's counts: out of bounds, with exit 0.
+TEST(Cli, ADamagedHierarchyExitsOneWithTheRowNamed) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("makedem -q -size 60 50 -cell 25 " + dir + "/d.tif").exitCode, 0);
+  ASSERT_EQ(tinlod("build -q " + dir + "/d.tif " + dir + "/h.gpkg").exitCode, 0);
+  ASSERT_EQ(std::system(("ogrinfo -q " + dir + "/h.gpkg -sql \"UPDATE triangles SET first_level = 99 WHERE fid = 12\"" +
+                         " > /dev/null").c_str()),
+            0);
+  const CliRun r = tinlod("lod -max_error 0 " + dir + "/h.gpkg " + dir + "/lod.gpkg");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_TRUE(has(r.err, "ERROR: '" + dir + "/h.gpkg' is damaged: triangles row 12 has first_level 99 but the levels are"))
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/lod.gpkg"));
 }
 
 TEST(Cli, ExperimentWritesOneReportOfEveryRun) {

@@ -49,6 +49,7 @@ Simplification:
                    units: cubic metres (volume), metres (error), a degree (degree), or
                    1 - flatness (normal)
   -fixed POINTS    vector file of points whose nearest vertices are never deleted
+                   (each point of a multipoint too; lines and polygons are refused)
   -fix_peaks_pits  never delete strict local maxima and minima of the DEM (3 x 3)
   -outline_tolerance m
                    how far the outline of the data and of its holes may move when its

@@ -18,7 +18,9 @@ the level asked for) and the height of the containing triangle is interpolated.
 Usage: tinlod locate HIER.gpkg POINTS OUT.gpkg [options]
 
   HIER.gpkg      a hierarchy written by tinlod build (or a TIN of tinlod sample/insert)
-  POINTS         a point layer GDAL reads (its first layer); other CRSs are transformed
+  POINTS         a point layer GDAL reads (its first layer); other CRSs are transformed;
+                 a multipoint of one point counts, lines, polygons and multipoints of
+                 several points are refused (one elevation per feature)
   OUT.gpkg       layer 'points': every feature of POINTS with its attributes, in its own
                  CRS, plus 'elevation' (metres) and 'triangle' (the id in the hierarchy's
                  'triangles' layer); both null for a point outside the TIN or in a hole

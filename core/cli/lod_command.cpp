@@ -37,7 +37,8 @@ Tests (a deleted vertex is restored when any given test accepts it):
 
 Centres of detail (in the hierarchy's CRS; other CRSs of a file are transformed):
   -center X Y        a centre; repeat it for several
-  -centers POINTS    every point of this vector file is a centre
+  -centers POINTS    every point of this vector file is a centre (each point of a
+                     multipoint too; lines and polygons are refused)
 
   -overwrite         replace tinlod's layers of an existing GeoPackage
   -q                 quiet: no progress or information, warnings only

@@ -3,6 +3,7 @@
 
 #include <gdal_priv.h>
 
+#include <charconv>
 #include <filesystem>
 
 #include "dataset_files.h"
@@ -98,6 +99,22 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
   return report;
 }
 
+namespace {
+
+// The band the TIN was sampled from, as the file records it (1 when it does not).
+int sampledBand(const StoredHierarchy& stored) {
+  const auto item = stored.info.metadata.find("band");
+  if (item == stored.info.metadata.end()) return 1;
+  const std::string& text = item->second;
+  int band = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), band);
+  if (error != std::errc() || end != text.data() + text.size() || band < 1)
+    throw Error("'" + stored.info.path + "' is damaged: its TINLOD_BAND is '" + text + "', not a band number; give -b");
+  return band;
+}
+
+}  // namespace
+
 AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hierarchyPath, const AccuracyOutputs& outputs,
                               int band, const std::string& sourceSrs, const Feedback& feedback,
                               const std::optional<HeightRange>& validHeights) {
@@ -106,8 +123,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   const AccuracyFiles staged = stageAccuracyFiles(outputs, files);
   const ProgressRange all(feedback, 0, 1);
   const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.15));
-  const auto bandItem = stored.info.metadata.find("band");
-  if (band == 0) band = bandItem == stored.info.metadata.end() ? 1 : std::stoi(bandItem->second);
+  if (band == 0) band = sampledBand(stored);
   const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), validHeights ? *validHeights : recordedRange(stored.info.metadata));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
   const CrsTransform toTin = CrsTransform::forDem(dem, sourceSrs, stored.hierarchy.base.crsWkt, quiet);

@@ -83,7 +83,8 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   accuracy.validate();
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
-  if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints);
+  const std::string fixedName = "-fixed (points to keep)";
+  if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints, fixedName);
   // The hierarchy and the accuracy files go into place together, or none of them.
   OutputFiles files(overwrite, datasetFiles({demPath, options.fixedPoints}));
   const StagedFile& out = files.add(outPath, "output", true);
@@ -93,7 +94,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   Tin tin = sampleTin(dem, sample, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
   const std::vector<PointXY> keep =
-      options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all);
+      options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
   // With accuracy outputs the last quarter of the job is theirs.
   const double write = accuracy.wanted() ? 0.6 : 0.75, measure = accuracy.wanted() ? 0.75 : 1;
   const Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep);

@@ -4,49 +4,90 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <iomanip>
+#include <map>
 #include <memory>
 #include <sstream>
 
 #include "gdal_handles.h"
 #include "number_text.h"
+#include "stored_table.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
 namespace {
 
-void readLevels(GDALDataset& ds, HierarchyInfo& info) {
-  if (OGRLayer* levels = ds.GetLayerByName("levels")) {
-    for (auto& f : *levels) {
-      LevelStats l;
-      l.level = f->GetFieldAsInteger("level");
-      l.vertices = static_cast<std::size_t>(f->GetFieldAsInteger64("vertices"));
-      l.triangles = static_cast<std::size_t>(f->GetFieldAsInteger64("triangles"));
-      l.deleted = static_cast<std::size_t>(f->GetFieldAsInteger64("deleted"));
-      l.selectSeconds = f->GetFieldAsDouble("select_seconds");
-      l.deleteSeconds = f->GetFieldAsDouble("delete_seconds");
-      l.maxError = f->GetFieldAsDouble("max_error");
-      const OGRFeatureDefn* defn = f->GetDefnRef();
-      if (defn->GetFieldIndex("rmse") >= 0) {  // files from before these fields hold none
-        l.rmse = f->GetFieldAsDouble("rmse");
-        l.cells = f->GetFieldAsInteger64("cells");
-        l.outlineVertices = static_cast<std::size_t>(f->GetFieldAsInteger64("outline_vertices"));
-      }
-      info.levels.push_back(l);
-    }
-    return;
+LevelStats levelRow(const StoredTable& table, const OGRFeature& f) {
+  const StoredRow row(table, f);
+  const int optional[] = {table.optionalColumn("rmse"), table.optionalColumn("cells"),
+                          table.optionalColumn("outline_vertices")};  // files from before these columns lack them
+  auto count = [&](int column) { return row.integer(column, 0, kMaxStoredCount, "counts"); };
+  LevelStats l;
+  l.level = static_cast<std::int32_t>(row.integer(table.column("level"), 0, INT32_MAX - 1, "level numbers"));
+  l.vertices = static_cast<std::size_t>(count(table.column("vertices")));
+  l.triangles = static_cast<std::size_t>(count(table.column("triangles")));
+  l.deleted = static_cast<std::size_t>(count(table.column("deleted")));
+  l.selectSeconds = row.nonNegative(table.column("select_seconds"));
+  l.deleteSeconds = row.nonNegative(table.column("delete_seconds"));
+  l.maxError = row.nonNegative(table.column("max_error"));
+  if (optional[0] >= 0) l.rmse = row.nonNegative(optional[0]);
+  if (optional[1] >= 0) l.cells = count(optional[1]);
+  if (optional[2] >= 0) l.outlineVertices = static_cast<std::size_t>(count(optional[2]));
+  return l;
+}
+
+// A hierarchy's levels are the rows of its levels table, one for each of 0 to n - 1: the
+// readers size their arrays by them and check every triangle's levels against them.
+std::vector<LevelStats> readLevelTable(const std::string& path, OGRLayer& layer) {
+  const StoredTable table(path, layer);
+  std::map<std::int32_t, LevelStats> byLevel;
+  for (auto& f : layer) {
+    const LevelStats l = levelRow(table, *f);
+    if (!byLevel.emplace(l.level, l).second)
+      StoredRow(table, *f).damaged("repeats level " + std::to_string(l.level));
   }
-  LevelStats l;  // a plain TIN: one level
-  if (OGRLayer* v = ds.GetLayerByName("vertices")) l.vertices = static_cast<std::size_t>(v->GetFeatureCount());
-  if (OGRLayer* t = ds.GetLayerByName("triangles")) l.triangles = static_cast<std::size_t>(t->GetFeatureCount());
+  table.checkFullyRead();
+  if (byLevel.empty()) table.damaged("has no rows");
+  std::vector<LevelStats> levels;
+  for (const auto& [level, l] : byLevel) {
+    if (level != static_cast<std::int32_t>(levels.size()))
+      table.damaged("has no row for level " + std::to_string(levels.size()) + " but one for level " +
+                    std::to_string(level));
+    levels.push_back(l);
+  }
+  return levels;
+}
+
+// A plain TIN is one level; its figures are for display only (the reader counts the rows
+// it reads), so a feature count the file misstates does no harm.
+LevelStats singleLevel(GDALDataset& ds, const HierarchyInfo& info) {
+  auto rows = [&ds](const char* name) {
+    OGRLayer* layer = ds.GetLayerByName(name);
+    return layer ? static_cast<std::size_t>(std::max<GIntBig>(0, layer->GetFeatureCount())) : 0;
+  };
+  LevelStats l;
+  l.vertices = rows("vertices"), l.triangles = rows("triangles");
   // Greedy insertion records its maximum error over the candidates, as a build records each level's.
   if (const auto e = info.metadata.find("max_error"); e != info.metadata.end()) l.maxError = std::strtod(e->second.c_str(), nullptr);
-  info.levels.push_back(l);
+  return l;
+}
+
+void readLevels(GDALDataset& ds, HierarchyInfo& info) {
+  if (info.kind != "hierarchy") {
+    info.levels.push_back(singleLevel(ds, info));
+    return;
+  }
+  OGRLayer* levels = ds.GetLayerByName("levels");
+  if (!levels)
+    throwDamaged(info.path, "it is a hierarchy (TINLOD_KIND) but has no levels table; build it again with tinlod build");
+  info.levels = readLevelTable(info.path, *levels);
 }
 
 }  // namespace

@@ -2,13 +2,16 @@
 #include "dataset_files.h"
 #include "tinlod/locate_job.h"
 
+#include <array>
 #include <chrono>
 #include <filesystem>
+#include <vector>
 
 #include "gdal_handles.h"
 #include "gpkg_output.h"
 #include "layer_source.h"
 #include "layer_transform.h"
+#include "point_geometry.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_locator.h"
@@ -27,14 +30,18 @@ bool isTinlodFile(const std::string& path) {
   }
 }
 
-// A point feature's position (a multipoint of one point counts), or false for another
-// geometry, which is copied without values.
-bool pointOf(const OGRFeature& f, double& x, double& y) {
-  const OGRGeometry* g = f.GetGeometryRef();
-  if (g && wkbFlatten(g->getGeometryType()) == wkbMultiPoint && g->toMultiPoint()->getNumGeometries() == 1)
-    g = g->toMultiPoint()->getGeometryRef(0);
-  if (!g || wkbFlatten(g->getGeometryType()) != wkbPoint || g->IsEmpty()) return false;
-  x = g->toPoint()->getX(), y = g->toPoint()->getY();
+// A feature's position, or false when it has no geometry (it is copied without values).
+// Each feature gets one elevation: a multipoint of several points is refused.
+bool pointOf(const OGRFeature& f, const std::string& path, double& x, double& y) {
+  std::vector<std::array<double, 2>> points;
+  appendPoints(f, "points", path, points);
+  if (points.size() > 1)
+    throw Error("points: feature " + std::to_string(f.GetFID()) + " of '" + path + "' is a multipoint of " +
+                std::to_string(points.size()) +
+                " points, and locate gives each feature one elevation: split it into single points first "
+                "(QGIS: Multipart to singleparts)");
+  if (points.empty()) return false;
+  x = points[0][0], y = points[0][1];
   return true;
 }
 
@@ -78,6 +85,7 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
                 std::to_string(h.coarsest()));
   const OpenLayer open = openLayer(pointsPath, "points");
   OGRLayer& source = *open.layer;
+  checkPointLayer(source, "points", open.path);
   const auto transform = transformToTin(source, h.base.crsWkt, "points ('" + pointsPath + "')", all);
   const HierarchyLocator locator(h);
 
@@ -94,7 +102,7 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
     OGRFeature copy(layer->GetLayerDefn());
     copy.SetFrom(f.get(), TRUE);
     double x, y;
-    if (pointOf(*f, x, y) && (!transform || transform->Transform(1, &x, &y))) {
+    if (pointOf(*f, open.path, x, y) && (!transform || transform->Transform(1, &x, &y))) {
       const auto start = std::chrono::steady_clock::now();
       const LocatedPoint p = locator.locate(x, y, level);
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

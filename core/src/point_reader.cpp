@@ -9,28 +9,11 @@
 #include "gdal_handles.h"
 #include "layer_source.h"
 #include "layer_transform.h"
+#include "point_geometry.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
-namespace {
-
-void addPoints(const OGRGeometry* g, std::vector<std::array<double, 2>>& out) {
-  if (!g) return;
-  switch (wkbFlatten(g->getGeometryType())) {
-    case wkbPoint:
-      out.push_back({g->toPoint()->getX(), g->toPoint()->getY()});
-      break;
-    case wkbMultiPoint:
-      for (const OGRPoint* p : *g->toMultiPoint()) out.push_back({p->getX(), p->getY()});
-      break;
-    default:
-      break;
-  }
-}
-
-}  // namespace
-
 void checkPointsExist(const std::string& path, const std::string& what) {
   if (plainPathMissing(parseLayerSource(path, what).path)) throw Error(what + ": '" + path + "' does not exist");
 }
@@ -40,8 +23,9 @@ std::vector<std::array<double, 2>> readPoints(const std::string& path, const std
   const OpenLayer open = openLayer(path, what);
   OGRLayer* layer = open.layer;
   const auto transform = transformToTin(*layer, targetWkt, what + " ('" + path + "')", progress);
+  checkPointLayer(*layer, what, open.path);
   std::vector<std::array<double, 2>> points;
-  for (auto& feature : *layer) addPoints(feature->GetGeometryRef(), points);
+  for (auto& feature : *layer) appendPoints(*feature, what, open.path, points);
   for (auto& p : points)
     if (transform && !transform->Transform(1, &p[0], &p[1]))
       throw Error(what + ": a point of '" + path + "' cannot be transformed to the TIN's CRS");

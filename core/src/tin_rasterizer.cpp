@@ -23,13 +23,18 @@ struct Plane {
 
 double edge(const Pos& p, const Pos& q, double x, double y) { return (q[0] - p[0]) * (y - p[1]) - (q[1] - p[1]) * (x - p[0]); }
 
+// A row or column of a position that may lie far off the grid (a vertex of a damaged
+// file, or one a CRS could not transform): clamped before the conversion, which is
+// undefined beyond the range of int.
+int clampedIndex(double v, int lo, int hi) { return static_cast<int>(std::clamp(v, double(lo), double(hi))); }
+
 // Fills the points of rows [rowBegin, rowEnd) inside one triangle.
 void fillTriangle(const Plane& t, int rowBegin, int rowEnd, Grid& out) {
   const double tol = kEdgeTolerance * std::fabs(t.area);
-  const int r0 = std::max(rowBegin, static_cast<int>(std::ceil(t.top)));
-  const int r1 = std::min(rowEnd - 1, static_cast<int>(std::floor(t.bottom)));
-  const int c0 = std::max(0, static_cast<int>(std::ceil(std::min({t.a[0], t.b[0], t.c[0]}))));
-  const int c1 = std::min(out.cols - 1, static_cast<int>(std::floor(std::max({t.a[0], t.b[0], t.c[0]}))));
+  const int r0 = clampedIndex(std::ceil(t.top), rowBegin, rowEnd);
+  const int r1 = clampedIndex(std::floor(t.bottom), rowBegin - 1, rowEnd - 1);
+  const int c0 = clampedIndex(std::ceil(std::min({t.a[0], t.b[0], t.c[0]})), 0, out.cols);
+  const int c1 = clampedIndex(std::floor(std::max({t.a[0], t.b[0], t.c[0]})), -1, out.cols - 1);
   for (int r = r0; r <= r1; ++r)
     for (int c = c0; c <= c1; ++c) {
       const double wa = edge(t.b, t.c, c, r), wb = edge(t.c, t.a, c, r), wc = edge(t.a, t.b, c, r);
@@ -38,7 +43,7 @@ void fillTriangle(const Plane& t, int rowBegin, int rowEnd, Grid& out) {
     }
 }
 
-int topRow(const Plane& p, int rows) { return std::clamp(static_cast<int>(std::floor(p.top)), 0, rows); }
+int topRow(const Plane& p, int rows) { return clampedIndex(std::floor(p.top), 0, rows); }
 
 // Triangles in order of their top row let each band of rows skip to its own. A counting
 // sort: a million triangles sort in one pass.
@@ -61,14 +66,14 @@ Grid rasterizeTin(const std::vector<Pos>& positions, const std::vector<double>& 
   for (const Triangle& t : triangles) {
     const Pos &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
     const double area = edge(a, b, c[0], c[1]);
-    if (area != 0)
+    if (area != 0 && std::isfinite(area))  // not finite: a corner off any grid
       planes.push_back({a, b, c, z[t[0]], z[t[1]], z[t[2]], area, std::min({a[1], b[1], c[1]}), std::max({a[1], b[1], c[1]})});
   }
   planes = byTopRow(std::move(planes), rows);
   double tallest = 0;
   for (const Plane& p : planes) tallest = std::max(tallest, p.bottom - p.top);
   auto work = [&](int rowBegin, int rowEnd) {
-    const int firstRow = static_cast<int>(std::floor(rowBegin - tallest)) - 1;
+    const int firstRow = clampedIndex(std::floor(rowBegin - tallest) - 1, -1, rows);
     auto first = std::lower_bound(planes.begin(), planes.end(), firstRow,
                                   [rows](const Plane& p, int row) { return topRow(p, rows) < row; });
     for (auto it = first; it != planes.end() && it->top < rowEnd; ++it)
