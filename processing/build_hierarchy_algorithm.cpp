@@ -89,6 +89,13 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(advanced(new QgsProcessingParameterBoolean(QStringLiteral("KEEP_OUTLINE"),
                                                           QStringLiteral("Keep every outline vertex (every level covers level 0's area)"), false)));
   addAccuracyParameters(false);
+  addParameter(advanced(new QgsProcessingParameterString(QStringLiteral("LEVEL_VIEWS"),
+                                                        QStringLiteral("Level views to write (all, or levels such as 0,5,last)"),
+                                                        QStringLiteral("all"))));
+  addParameter(advanced(new QgsProcessingParameterBoolean(QStringLiteral("GROUP_OUTLINES"),
+                                                         QStringLiteral("Write the groups' outline polygons"), true)));
+  addParameter(advanced(new QgsProcessingParameterBoolean(QStringLiteral("VERTEX_INDEX"),
+                                                         QStringLiteral("Spatial index on the vertices layer"), false)));
   addParameter(new QgsProcessingParameterBoolean(QStringLiteral("LOAD_LEVELS"), QStringLiteral("Load the level layers as a group"), true));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Hierarchy GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
@@ -127,6 +134,11 @@ bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Qg
     options_.outlineTolerance = parameterAsDouble(parameters, QStringLiteral("OUTLINE_TOLERANCE"), context);
   options_.keepOutline = parameterAsBoolean(parameters, QStringLiteral("KEEP_OUTLINE"), context);
   loadLevels_ = parameterAsBoolean(parameters, QStringLiteral("LOAD_LEVELS"), context);
+  layers_ = HierarchyLayers();
+  const QString views = parameterAsString(parameters, QStringLiteral("LEVEL_VIEWS"), context).trimmed();
+  translateErrors([&] { layers_.levelViews = parseLevelList(views.isEmpty() ? "all" : views.toStdString(), "LEVEL_VIEWS"); });
+  layers_.groupOutlines = parameterAsBoolean(parameters, QStringLiteral("GROUP_OUTLINES"), context);
+  layers_.vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
   readAccuracyParameters(parameters, context);
   readFixedPoints(parameters, context);
   translateErrors([&] { options_.validate(); });
@@ -147,7 +159,8 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
                                                       QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   const BuildSummary s = translateErrors(
-      [&] { return runBuildJob(demSource_, output.toStdString(), sample_, options_, true, processingFeedback(feedback), accuracy_); });
+      [&] { return runBuildJob(demSource_, output.toStdString(), sample_, options_, true, processingFeedback(feedback), accuracy_,
+                         layers_); });
   feedback->pushInfo(QStringLiteral("%1 levels (0 to %7): %2 -> %3 vertices (%4 fixed); the coarsest level against the DEM: "
                                     "maximum error %5 m, RMSE %8 m, %9 valid cells given up by its outline; %6 MB")
                          .arg(s.levels + 1).arg(s.originalVertices).arg(s.coarsestVertices).arg(s.fixedVertices)
@@ -155,7 +168,7 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
                          .arg(s.coarsestRmse, 0, 'f', 2).arg(s.cellsGivenUp));
   if (loadLevels_) {
     const QString group = QFileInfo(output).completeBaseName() + QStringLiteral(" levels");
-    for (int level = 0; level <= s.levels; ++level)
+    for (const std::int32_t level : s.levelViews)
       loadTinLayerOnCompletion(context, output, QStringLiteral("level_%1").arg(level), QStringLiteral("OUTPUT"), group,
                                level == s.levels, level);
   }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "dem_algorithm.h"
+#include "tinlod/hierarchy_layers.h"
 #include "tinlod/hierarchy_options.h"
 
 namespace tinlod::qgis {
@@ -27,6 +28,7 @@ class BuildHierarchyAlgorithm : public DemAlgorithm {
  private:
   void readFixedPoints(const QVariantMap& parameters, QgsProcessingContext& context);
   HierarchyOptions options_;
+  HierarchyLayers layers_;
   bool loadLevels_ = true;
 };
 

@@ -82,6 +82,35 @@ assert rows[levels].GetField("vertices") == int(outputs["COARSEST_VERTICES"])
 print("  %d levels, %d -> %d vertices" % (levels + 1, rows[0].GetField("vertices"), rows[levels].GetField("vertices")))
 PY
 
+# QGIS reads the bulk-loaded spatial index: a native algorithm with an extent filter takes
+# exactly the triangles that meet the extent, from a level view and from the triangles table.
+/usr/bin/python3 - "$hier" > "$work/extent.txt" <<'PY'
+import sys
+from osgeo import ogr
+ds = ogr.Open(sys.argv[1])
+minx, maxx, miny, maxy = ds.GetLayerByName("triangles").GetExtent()
+w, h = maxx - minx, maxy - miny
+print("%.6f,%.6f,%.6f,%.6f" % (minx + 0.3 * w, minx + 0.45 * w, miny + 0.5 * h, miny + 0.6 * h))
+PY
+for layer in level_3 triangles; do
+  "$qp" run native:extractbyextent --INPUT="$hier|layername=$layer" --EXTENT="$(cat "$work/extent.txt")" --CLIP=false \
+    --OUTPUT="$work/extent_$layer.gpkg" > "$work/extent_$layer.log" 2>&1 || true
+  check "QGIS extracts by extent from $layer through its spatial index" /usr/bin/python3 - "$hier" "$layer" "$work/extent.txt" "$work/extent_$layer.gpkg" <<'PY'
+import sys
+from osgeo import ogr
+hier, name, extent, out = sys.argv[1:]
+x0, x1, y0, y1 = map(float, open(extent).read().split(","))
+box = ogr.CreateGeometryFromWkt("POLYGON((%r %r,%r %r,%r %r,%r %r,%r %r))" % (x0, y0, x1, y0, x1, y1, x0, y1, x0, y0))
+ds = ogr.Open(hier)
+layer = ds.GetLayerByName(name)
+expected = sum(1 for f in layer if f.GetGeometryRef().Intersects(box))
+extracted = ogr.Open(out)  # a layer lives only as long as its dataset
+got = extracted.GetLayer(0).GetFeatureCount()
+assert expected > 0 and got == expected, (got, expected)
+print("  %d of %d triangles" % (got, layer.GetFeatureCount()))
+PY
+done
+
 lod=$work/lod.gpkg
 "$qp" --json run tinlod:extractlod --HIERARCHY="$hier" --MAX_ERROR=20 --OUTPUT="$lod" > "$work/lod.json" 2> "$work/lod.err" || true
 check "qgis_process --json run tinlod:extractlod writes a TIN coarser than level 0" /usr/bin/python3 - "$work/lod.json" "$lod" "$hier" <<'PY'

@@ -16,7 +16,7 @@ namespace {
 const char* const kUsage =
     "tinlod build DEM OUT.gpkg [-method degree|volume|normal|error] [-delete_pct p] [-stop_pct s] "
     "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-outline_tolerance m] [-keep_outline] "
-    "[-fixed POINTS] [-fix_peaks_pits] "
+    "[-fixed POINTS] [-fix_peaks_pits] [-levels all|L,L,...] [-no_group_outlines] [-vertex_index] "
     "[sampling options] [accuracy options] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Samples a DEM into a TIN and simplifies it level by level into a triangulation
@@ -58,6 +58,16 @@ Simplification:
                    / the level's)); the outline never moves out over nodata, and a raster
                    edge stays on its line (a projected DEM keeps its exact rectangle)
   -keep_outline    never delete outline vertices: every level covers level 0's area
+
+What the GeoPackage holds (vertices, triangles, the groups and the levels table are always
+written: lod, locate and accuracy need them):
+  -levels list     the level_N views to write: all (default), or levels separated by commas,
+                   last for the coarsest: -levels 0,5,last
+  -no_group_outlines
+                   write the groups layer as a table without its outline polygons
+                   (about 35 bytes a stored triangle less); the file is still a whole hierarchy
+  -vertex_index    also give the vertices layer a spatial index (7 bytes a stored triangle),
+                   for drawing it zoomed in; nothing in tinlod reads the vertices by place
 Every level is measured against the DEM at every valid cell centre it covers: its largest
 and RMS vertical distance, and the cells its outline gave up (levels table, tinlod info).
 
@@ -71,7 +81,7 @@ Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, 
 @ACCURACY@
 Output layers: vertices (with level and fixed), triangles (each distinct triangle once, with
 first_level, last_level, group_id, replaced_by, error), level_0, level_1, ... (views: add any
-level to the map), groups (outline of each deleted vertex's neighbourhood), levels (counts,
+level to the map), groups (2D outline of each deleted vertex's neighbourhood), levels (counts,
 times, maximum and RMS error, cells covered and given up, outline vertices per level). `tinlod info OUT.gpkg` describes the file.
 )";
 
@@ -103,11 +113,16 @@ int buildCommand(std::vector<std::string> args) {
   o.keepOutline = a.flag("-keep_outline");
   const SampleOptions sample = sampleOptions(a);
   const AccuracyOutputs accuracy = accuracyOutputs(a);
+  HierarchyLayers layers;
+  layers.levelViews = parseLevelList(a.text("-levels", "all"), "-levels");
+  layers.groupOutlines = !a.flag("-no_group_outlines");
+  layers.vertexIndex = a.flag("-vertex_index");
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
 
-  const BuildSummary s = runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet), accuracy);
+  const BuildSummary s =
+      runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet), accuracy, layers);
   if (!quiet)
     std::cout << "Wrote " << s.levels + 1 << (s.levels ? " levels (0 to " + std::to_string(s.levels) + ", " : " level (")
               << s.originalVertices << " -> " << s.coarsestVertices

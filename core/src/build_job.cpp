@@ -77,7 +77,7 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
 
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                          const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
-                         const AccuracyOutputs& accuracy) {
+                         const AccuracyOutputs& accuracy, const HierarchyLayers& layers) {
   sample.validateForHierarchy();
   options.validate();
   accuracy.validate();
@@ -100,9 +100,12 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep);
   warnIfStoppedEarly(h, all);
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
+  writeOptions.metadata["TINLOD_LEVEL_VIEWS"] = levelListText(layers.levelViews);
+  writeOptions.metadata["TINLOD_GROUP_OUTLINES"] = layers.groupOutlines ? "yes" : "no";
+  writeOptions.metadata["TINLOD_VERTEX_INDEX"] = layers.vertexIndex ? "yes" : "no";
   all.inform("Writing " + std::to_string(h.coarsest() + 1) + " levels: " + std::to_string(h.triangles.size()) +
              " distinct triangles, " + std::to_string(h.groups.size()) + " groups");
-  writeHierarchyGpkg(h, out, writeOptions, all.sub(write, measure));
+  writeHierarchyGpkg(h, out, writeOptions, all.sub(write, measure), layers);
   BuildSummary s;
   if (accuracy.wanted()) {
     const CrsTransform toTin = CrsTransform::forDem(dem, sample.sourceSrs, sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
@@ -111,6 +114,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   files.commit();
   all.finish("Done");
 
+  s.levelViews = layers.views(h.coarsest());
   s.originalVertices = h.levels.front().vertices;
   s.coarsestVertices = h.levels.back().vertices;
   s.coarsestTriangles = h.levels.back().triangles;

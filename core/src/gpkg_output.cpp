@@ -7,6 +7,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "gpkg_spatial_index.h"
 #include "tinlod/error.h"
 
 namespace fs = std::filesystem;
@@ -71,10 +72,35 @@ GpkgOutput::GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options,
     : file_(file), options_(options) {
   const bool fromCopy = fs::exists(file_.staging);  // OutputFiles copied the existing output
   ds_ = openOrCreate(file_.staging, fromCopy);
+  created_ = !fromCopy;
   if (!ds_)
     throw Error(fromCopy ? "'" + file_.path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name"
                          : "cannot create GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
+  if (fromCopy && holdsOnly(ours)) {
+    // Replacing a file of ours alone: a new file is faster than dropping its layers and
+    // compacting what they leave, which would rewrite the whole file without a word of progress.
+    GDALClose(ds_);
+    ds_ = nullptr;
+    fs::remove(file_.staging);
+    ds_ = openOrCreate(file_.staging, false);
+    if (!ds_) throw Error("cannot create GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
+    created_ = true;
+    return;
+  }
   dropOurs(ours);
+}
+
+bool GpkgOutput::holdsOnly(const std::function<bool(const std::string&)>& ours) {
+  bool only = true;
+  if (OGRLayer* r = ds_->ExecuteSQL("SELECT table_name FROM gpkg_contents", nullptr, nullptr)) {
+    for (auto& f : *r) only = only && ours(f->GetFieldAsString(0));
+    ds_->ReleaseResultSet(r);
+  } else {
+    return false;
+  }
+  for (char** item = ds_->GetMetadata(); item && *item; ++item)
+    only = only && std::string(*item).rfind("TINLOD_", 0) == 0;
+  return only;
 }
 
 GpkgOutput::~GpkgOutput() {
@@ -121,11 +147,13 @@ void GpkgOutput::dropOurs(const std::function<bool(const std::string&)>& ours) {
 }
 
 OGRLayer* GpkgOutput::createLayer(const char* name, OGRwkbGeometryType type, const std::string& crsWkt,
-                                  const std::vector<FieldSpec>& fields) {
+                                  const std::vector<FieldSpec>& fields, bool bulk) {
   OGRSpatialReference srs;
   OGRSpatialReference* srsPtr = nullptr;
   if (type != wkbNone && !crsWkt.empty() && srs.importFromWkt(crsWkt.c_str()) == OGRERR_NONE) srsPtr = &srs;
-  OGRLayer* layer = ds_->CreateLayer(name, srsPtr, type, nullptr);
+  // The bulk writer names the columns fid and geom itself: GDAL's defaults, made explicit.
+  const char* const bulkOptions[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
+  OGRLayer* layer = ds_->CreateLayer(name, srsPtr, type, bulk ? const_cast<char**>(bulkOptions) : nullptr);
   if (!layer) throw Error(std::string("cannot create layer '") + name + "' in '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
   for (const FieldSpec& field : fields) {
     OGRFieldDefn defn(field.name, field.type);
@@ -153,6 +181,45 @@ void GpkgOutput::createFeatureView(const std::string& name, const std::string& s
           quoted(baseTable));
 }
 
+SqliteDatabase& GpkgOutput::database() {
+  if (db_) return *db_;
+  writeMetadata();
+  closeGdal();
+  db_ = std::make_unique<SqliteDatabase>(file_.staging.string(), file_.path);
+  // 16 KiB pages hold 13 R-tree nodes where 4 KiB ones hold 3 with a tenth left empty, and
+  // waste less at the end of each page of rows: 7 bytes a triangle less than GDAL's 4 KiB.
+  // The new file holds only GDAL's empty tables yet, so rewriting it is immediate; a file
+  // that has the user's other layers keeps its page size.
+  if (created_) {
+    db_->execute("PRAGMA page_size = 16384");
+    db_->execute("VACUUM");
+  }
+  db_->execute("BEGIN");
+  return *db_;
+}
+
+std::int32_t GpkgOutput::srsId(const std::string& table) {
+  SqliteStatement srs = database().prepare("SELECT srs_id FROM gpkg_geometry_columns WHERE lower(table_name) = lower(?)");
+  srs.bindText(1, table);
+  if (!srs.step()) throw Error("layer '" + table + "' of '" + file_.path + "' has no geometry column");
+  const auto id = static_cast<std::int32_t>(srs.integerColumn(0));
+  srs.reset();
+  return id;
+}
+
+void GpkgOutput::indexLater(const std::string& table, std::function<std::vector<RtreeBox>()> boxes) {
+  const int capacity = gpkgRtreeCapacity(database());
+  std::shared_future<std::shared_ptr<const PackedRtree>> previous;
+  if (!indexes_.empty()) previous = indexes_.back().tree;
+  // One packing at a time, in the order asked: the caller's thread writes rows on the
+  // other core, and only one layer's boxes are held at once.
+  auto pack = [previous, boxes = std::move(boxes), capacity]() {
+    if (previous.valid()) previous.wait();
+    return std::shared_ptr<const PackedRtree>(std::make_shared<PackedRtree>(boxes(), capacity));
+  };
+  indexes_.push_back({table, std::async(std::launch::async, std::move(pack)).share()});
+}
+
 void GpkgOutput::runDeferred() {
   if (deferred_.empty() && !vacuum_) return;
   ds_ = openOrCreate(file_.staging, true);
@@ -173,7 +240,7 @@ void GpkgOutput::commit() {
   if (ds_->CommitTransaction() != OGRERR_NONE) throw Error("cannot commit to GeoPackage '" + file_.path + "'");
 }
 
-void GpkgOutput::finish(const ProgressRange& progress) {
+void GpkgOutput::writeMetadata() {
   // The file's own TINLOD_* items are replaced as a set (a sample written over a hierarchy
   // must not keep the hierarchy's); other items are kept.
   CPLStringList metadata;
@@ -181,17 +248,45 @@ void GpkgOutput::finish(const ProgressRange& progress) {
     if (std::string(*item).rfind("TINLOD_", 0) != 0) metadata.AddString(*item);
   for (const auto& [key, value] : options_.metadata) metadata.SetNameValue(key.c_str(), value.c_str());
   ds_->SetMetadata(metadata.List());
-  progress.report(0.7, "Building the spatial index");
+}
+
+void GpkgOutput::closeGdal() {
   // GDAL 3.6's GDALClose returns nothing: a failed final write shows as a CPL error.
   CPLErrorReset();
   GDALClose(ds_);
   ds_ = nullptr;
   if (CPLGetLastErrorType() >= CE_Failure)
     throw Error("cannot finish GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
-  runDeferred();
+}
+
+void GpkgOutput::finishDatabase(const ProgressRange& progress) {
+  double total = 0, done = 0;
+  for (const PendingIndex& index : indexes_) total += double(index.tree.get()->entries()) + 1;
+  for (const PendingIndex& index : indexes_) {
+    const double share = (double(index.tree.get()->entries()) + 1) / total;
+    writeGpkgSpatialIndex(*db_, index.table, *index.tree.get(), progress.sub(0.95 * done, 0.95 * (done + share)));
+    done += share;
+  }
+  indexes_.clear();  // the packed trees' memory goes back before the commit
+  for (const std::string& sql : deferred_) db_->execute(sql);
+  db_->execute("COMMIT");
+  if (vacuum_) db_->execute("VACUUM");  // outside any transaction, as SQLite requires
+  db_.reset();
+}
+
+void GpkgOutput::finish(const ProgressRange& progress) {
+  if (db_) {
+    finishDatabase(progress);
+  } else {
+    writeMetadata();
+    progress.report(0, "Building the spatial index");
+    closeGdal();  // GDAL builds its layers' spatial indexes here
+    runDeferred();
+  }
   // Nothing is in place before the job commits its outputs: a cancel asked for during the
-  // index build is still honoured here.
-  progress.report(0.99, "Building the spatial index");
+  // index build is still honoured here. (The end of the range, 1, is the job's to report
+  // once the file is in place, when a cancel comes too late.)
+  progress.report(0.99, "Finishing the GeoPackage");
 }
 
 }  // namespace tinlod

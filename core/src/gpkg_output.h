@@ -7,9 +7,13 @@
 
 #include <filesystem>
 #include <functional>
+#include <future>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "packed_rtree.h"
+#include "sqlite_database.h"
 #include "tinlod/feedback.h"
 #include "tinlod/gpkg_writer.h"
 #include "tinlod/output_files.h"
@@ -23,8 +27,10 @@ struct FieldSpec {
 };
 
 // Works on the staged copy of the output (or a new GeoPackage): the job's own layers and
-// views, those for which `ours` is true, are dropped first, the rest is kept. finish()
-// closes it; the job's OutputFiles moves it into place.
+// views, those for which `ours` is true, are dropped first, the rest is kept. GDAL makes
+// the layers and writes the small ones; database() then hands the file to SQLite for the
+// big ones, whose rows and spatial indexes are written in bulk. finish() closes it; the
+// job's OutputFiles moves it into place.
 class GpkgOutput {
  public:
   GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options, std::function<bool(const std::string&)> ours);
@@ -32,8 +38,18 @@ class GpkgOutput {
   GpkgOutput(const GpkgOutput&) = delete;
   GpkgOutput& operator=(const GpkgOutput&) = delete;
 
+  // A bulk layer is made empty and without a spatial index: its rows are written through
+  // database() and its index by indexLater().
   OGRLayer* createLayer(const char* name, OGRwkbGeometryType type, const std::string& crsWkt,
-                        const std::vector<FieldSpec>& fields);
+                        const std::vector<FieldSpec>& fields, bool bulk = false);
+  // Ends GDAL's part (metadata written, file closed) on the first call and opens the file
+  // in SQLite, in one transaction that finish() commits.
+  SqliteDatabase& database();
+  // The GeoPackage srs_id of a layer made by createLayer, for its geometry blobs.
+  std::int32_t srsId(const std::string& table);
+  // Packs the R-tree of bulk layer `table` from its features' boxes in the background
+  // (one layer after another, while the caller writes rows); finish() stores it.
+  void indexLater(const std::string& table, std::function<std::vector<RtreeBox>()> boxes);
   void execute(const std::string& sql);
   // Run once the features are written and the file closed. GDAL 3.6 builds R-trees in a
   // background thread with a database attached, and SQL run meanwhile fails with
@@ -45,14 +61,26 @@ class GpkgOutput {
                          const std::string& description);
   void begin();
   void commit();
-  // The last 30 % of `progress`: GDAL builds spatial indexes while closing.
+  // Spatial indexes, deferred statements and the final commit, over `progress`.
   void finish(const ProgressRange& progress);
 
  private:
+  struct PendingIndex {
+    std::string table;
+    std::shared_future<std::shared_ptr<const PackedRtree>> tree;
+  };
   void dropOurs(const std::function<bool(const std::string&)>& ours);
+  // True when every layer and metadata item of the file is the job's own.
+  bool holdsOnly(const std::function<bool(const std::string&)>& ours);
+  void writeMetadata();
+  void closeGdal();
   void runDeferred();
+  void finishDatabase(const ProgressRange& progress);
+  std::vector<PendingIndex> indexes_;
+  std::unique_ptr<SqliteDatabase> db_;
   std::vector<std::string> deferred_;
   bool vacuum_ = false;
+  bool created_ = false;
   std::string said(const std::string& gdalMessage) const { return inUserTerms(file_, gdalMessage); }
   StagedFile file_;
   GpkgWriteOptions options_;

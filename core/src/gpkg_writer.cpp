@@ -17,16 +17,16 @@ std::vector<FieldSpec> withExtra(std::vector<FieldSpec> fields, const std::vecto
 // Sets the extra fields, which follow the `common` ones, of feature i.
 MoreFields extraSetter(const std::vector<ExtraField>& extra, int common) {
   if (extra.empty()) return {};
-  return [&extra, common](OGRFeature& feature, std::size_t i) {
+  return [&extra, common](GpkgFeatureRows& rows, std::size_t i) {
     for (std::size_t k = 0; k < extra.size(); ++k) {
       const double value = extra[k].values[i];
       const int field = common + static_cast<int>(k);
       if (!std::isfinite(value))
-        feature.SetFieldNull(field);
+        rows.setNull(field);
       else if (extra[k].integer)
-        feature.SetField(field, static_cast<int>(value));
+        rows.set(field, static_cast<std::int64_t>(value));
       else
-        feature.SetField(field, value);
+        rows.setReal(field, value);
     }
   };
 }
@@ -46,15 +46,22 @@ void writeTinGpkg(const Tin& tin, const StagedFile& file, const GpkgWriteOptions
                   const ProgressRange& progress, const std::vector<ExtraField>& vertexExtra,
                   const std::vector<ExtraField>& triangleExtra) {
   GpkgOutput out(file, options, isTinlodLayer);
-  OGRLayer* vertices = out.createLayer("vertices", wkbPoint25D, tin.crsWkt, withExtra(vertexFields(), vertexExtra));
-  OGRLayer* triangles = out.createLayer("triangles", wkbPolygon25D, tin.crsWkt, withExtra(triangleFields(), triangleExtra));
-  out.begin();
-  const double share = double(tin.vertices.size()) / (tin.vertices.size() + 2.0 * tin.triangles.size());
-  writeVertices(tin, *vertices, extraSetter(vertexExtra, int(vertexFields().size())), progress.sub(0, 0.7 * share));
-  writeTriangles(tin, tin.triangles, *triangles, extraSetter(triangleExtra, int(triangleFields().size())),
-                 progress.sub(0.7 * share, 0.7));
-  out.commit();
-  out.finish(progress);
+  const std::vector<FieldSpec> vfields = withExtra(vertexFields(), vertexExtra);
+  const std::vector<FieldSpec> tfields = withExtra(triangleFields(), triangleExtra);
+  out.createLayer("vertices", wkbPoint25D, tin.crsWkt, vfields, true);
+  out.createLayer("triangles", wkbPolygon25D, tin.crsWkt, tfields, true);
+  SqliteDatabase& db = out.database();
+  out.indexLater("vertices", [&tin] { return vertexBoxes(tin); });
+  const TriangleAt triangle = [&tin](std::size_t i) -> const Triangle& { return tin.triangles[i]; };
+  out.indexLater("triangles", [&tin, triangle] { return triangleBoxes(tin, tin.triangles.size(), triangle); });
+  const double rows = 0.8, share = double(tin.vertices.size()) / (tin.vertices.size() + 2.0 * tin.triangles.size());
+  GpkgFeatureRows vertexRows(db, "vertices", fieldNames(vfields));
+  writeVertices(tin, vertexRows, out.srsId("vertices"), extraSetter(vertexExtra, int(vertexFields().size())),
+                progress.sub(0, rows * share));
+  GpkgFeatureRows triangleRows(db, "triangles", fieldNames(tfields));
+  writeTriangles(tin, tin.triangles.size(), triangle, triangleRows, out.srsId("triangles"),
+                 extraSetter(triangleExtra, int(triangleFields().size())), progress.sub(rows * share, rows));
+  out.finish(progress.sub(rows, 1));
 }
 
 }  // namespace tinlod

@@ -9,43 +9,64 @@ std::vector<FieldSpec> vertexFields() {
 
 std::vector<FieldSpec> triangleFields() { return {{"id"}, {"v0"}, {"v1"}, {"v2"}}; }
 
-void writeVertices(const Tin& tin, OGRLayer& layer, const MoreFields& more, const ProgressRange& progress) {
-  OGRFeature feature(layer.GetLayerDefn());
-  for (std::size_t i = 0; i < tin.vertices.size(); ++i) {
-    const TinVertex& v = tin.vertices[i];
-    feature.SetFID(static_cast<GIntBig>(i) + 1);
-    feature.SetField(0, static_cast<int>(i) + 1);
-    feature.SetField(1, v.row);
-    feature.SetField(2, v.col);
-    feature.SetField(3, v.outline ? 1 : 0);
-    if (more) more(feature, i);
-    feature.SetGeometryDirectly(new OGRPoint(v.x, v.y, v.z));
-    writeFeature(layer, feature);
-    if ((i & 0x3FFF) == 0) progress.report(double(i) / tin.vertices.size(), "Writing vertices");
-  }
+std::vector<std::string> fieldNames(const std::vector<FieldSpec>& fields) {
+  std::vector<std::string> names;
+  for (const FieldSpec& f : fields) names.emplace_back(f.name);
+  return names;
 }
 
-void writeTriangles(const Tin& tin, const std::vector<Triangle>& triangles, OGRLayer& layer, const MoreFields& more,
-                    const ProgressRange& progress) {
-  OGRFeature feature(layer.GetLayerDefn());
-  for (std::size_t i = 0; i < triangles.size(); ++i) {
-    const Triangle& t = triangles[i];
-    auto* ring = new OGRLinearRing();
-    ring->setNumPoints(4);
-    for (int k = 0; k < 4; ++k) {
-      const TinVertex& v = tin.vertices[t[k % 3]];
-      ring->setPoint(k, v.x, v.y, v.z);
-    }
-    auto* polygon = new OGRPolygon();
-    polygon->addRingDirectly(ring);
-    feature.SetFID(static_cast<GIntBig>(i) + 1);
-    feature.SetField(0, static_cast<int>(i) + 1);
-    for (int k = 0; k < 3; ++k) feature.SetField(k + 1, static_cast<int>(t[k]) + 1);
-    if (more) more(feature, i);
-    feature.SetGeometryDirectly(polygon);
-    writeFeature(layer, feature);
-    if ((i & 0x3FFF) == 0) progress.report(double(i) / triangles.size(), "Writing triangles");
+void writeVertices(const Tin& tin, GpkgFeatureRows& rows, std::int32_t srsId, const MoreFields& more,
+                   const ProgressRange& progress) {
+  GpkgGeometryBlob point(srsId);
+  for (std::size_t i = 0; i < tin.vertices.size(); ++i) {
+    const TinVertex& v = tin.vertices[i];
+    rows.set(0, static_cast<std::int64_t>(i) + 1);
+    rows.set(1, v.row);
+    rows.set(2, v.col);
+    rows.set(3, v.outline ? 1 : 0);
+    if (more) more(rows, i);
+    point.pointZ(v.x, v.y, v.z);
+    rows.insert(static_cast<std::int64_t>(i) + 1, point);
+    if ((i & 0x3FFF) == 0) progress.report(double(i) / tin.vertices.size(), "Writing vertices");
   }
+  rows.finish();
+}
+
+void writeTriangles(const Tin& tin, std::size_t count, const TriangleAt& triangle, GpkgFeatureRows& rows,
+                    std::int32_t srsId, const MoreFields& more, const ProgressRange& progress) {
+  GpkgGeometryBlob polygon(srsId);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Triangle& t = triangle(i);
+    rows.set(0, static_cast<std::int64_t>(i) + 1);
+    for (int k = 0; k < 3; ++k) rows.set(k + 1, static_cast<std::int64_t>(t[k]) + 1);
+    if (more) more(rows, i);
+    polygon.polygon(3, [&](std::size_t k, double& x, double& y, double& z) {
+      const TinVertex& v = tin.vertices[t[k]];
+      x = v.x, y = v.y, z = v.z;
+    }, true);
+    rows.insert(static_cast<std::int64_t>(i) + 1, polygon);
+    if ((i & 0x3FFF) == 0) progress.report(double(i) / count, "Writing triangles");
+  }
+  rows.finish();
+}
+
+std::vector<RtreeBox> vertexBoxes(const Tin& tin) {
+  std::vector<RtreeBox> boxes;
+  boxes.reserve(tin.vertices.size());
+  for (const TinVertex& v : tin.vertices) boxes.push_back(outwardBox({v.x, v.x, v.y, v.y}));
+  return boxes;
+}
+
+std::vector<RtreeBox> triangleBoxes(const Tin& tin, std::size_t count, const TriangleAt& triangle) {
+  std::vector<RtreeBox> boxes;
+  boxes.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Triangle& t = triangle(i);
+    Envelope e = Envelope::empty();
+    for (int k = 0; k < 3; ++k) e.extend(tin.vertices[t[k]].x, tin.vertices[t[k]].y);
+    boxes.push_back(outwardBox(e));
+  }
+  return boxes;
 }
 
 }  // namespace tinlod

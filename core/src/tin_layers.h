@@ -3,9 +3,12 @@
 #pragma once
 
 #include <functional>
+#include <string>
 #include <vector>
 
+#include "gpkg_feature_rows.h"
 #include "gpkg_output.h"
+#include "packed_rtree.h"
 #include "tinlod/tin.h"
 
 namespace tinlod {
@@ -14,12 +17,21 @@ namespace tinlod {
 std::vector<FieldSpec> vertexFields();
 // id, v0, v1, v2 (vertex ids).
 std::vector<FieldSpec> triangleFields();
+std::vector<std::string> fieldNames(const std::vector<FieldSpec>& fields);
 
 // `more` sets a layer's further fields of the i-th feature, after the common ones.
-using MoreFields = std::function<void(OGRFeature&, std::size_t)>;
+using MoreFields = std::function<void(GpkgFeatureRows&, std::size_t)>;
 
-void writeVertices(const Tin& tin, OGRLayer& layer, const MoreFields& more, const ProgressRange& progress);
-void writeTriangles(const Tin& tin, const std::vector<Triangle>& triangles, OGRLayer& layer, const MoreFields& more,
-                    const ProgressRange& progress);
+void writeVertices(const Tin& tin, GpkgFeatureRows& rows, std::int32_t srsId, const MoreFields& more,
+                   const ProgressRange& progress);
+// Corners of triangle i: the hierarchy's triangles are written without a copy of them.
+using TriangleAt = std::function<const Triangle&(std::size_t)>;
+
+void writeTriangles(const Tin& tin, std::size_t count, const TriangleAt& triangle, GpkgFeatureRows& rows,
+                    std::int32_t srsId, const MoreFields& more, const ProgressRange& progress);
+
+// The boxes of the layers' spatial indexes, in fid order.
+std::vector<RtreeBox> vertexBoxes(const Tin& tin);
+std::vector<RtreeBox> triangleBoxes(const Tin& tin, std::size_t count, const TriangleAt& triangle);
 
 }  // namespace tinlod

@@ -9,6 +9,7 @@
 #include "tinlod/dem.h"
 #include "tinlod/feedback.h"
 #include "tinlod/hierarchy.h"
+#include "tinlod/hierarchy_layers.h"
 #include "tinlod/point_reader.h"
 #include "tinlod/sample_options.h"
 
@@ -23,6 +24,7 @@ struct BuildSummary {
   std::uintmax_t fileBytes = 0;
   std::string crsName;
   std::vector<LevelAccuracy> accuracy;  // per level, when accuracy outputs were asked for
+  std::vector<std::int32_t> levelViews;  // the levels written as level_N views
 };
 
 // Strict local maxima and minima of the DEM (3 x 3 window, valid neighbours) among the
@@ -33,6 +35,7 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin);
 // measure its accuracy when `accuracy` asks for a raster or a report.
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                          const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
-                         const AccuracyOutputs& accuracy = AccuracyOutputs());
+                         const AccuracyOutputs& accuracy = AccuracyOutputs(),
+                         const HierarchyLayers& layers = HierarchyLayers());
 
 }  // namespace tinlod

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "gpkg_feature_rows.h"
+
+#include <utility>
+
+namespace tinlod {
+namespace {
+
+std::string q(const std::string& name) { return "\"" + name + "\""; }
+
+std::string insertSql(const std::string& table, const std::vector<std::string>& fields, bool hasGeometry) {
+  std::string columns = hasGeometry ? "\"fid\", \"geom\"" : "\"fid\"", values = hasGeometry ? "?1, ?2" : "?1";
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    columns += ", " + q(fields[k]);
+    values += ", ?" + std::to_string(k + 3);  // ?2 stays the geometry's number, bound or not
+  }
+  return "INSERT INTO " + q(table) + " (" + columns + ") VALUES (" + values + ")";
+}
+
+// GDAL's triggers count features one UPDATE per row; they are set aside while the rows
+// go in and made again, with the count written once, at the end.
+std::string countTrigger(const std::string& table, bool insert) {
+  return "CREATE TRIGGER " + q(std::string("trigger_") + (insert ? "insert" : "delete") + "_feature_count_" + table) +
+         (insert ? " AFTER INSERT" : " AFTER DELETE") + " ON " + q(table) +
+         " BEGIN UPDATE gpkg_ogr_contents SET feature_count = feature_count " + (insert ? "+" : "-") +
+         " 1 WHERE lower(table_name) = lower('" + table + "'); END";
+}
+
+}  // namespace
+
+GpkgFeatureRows::GpkgFeatureRows(SqliteDatabase& db, std::string table, const std::vector<std::string>& fields,
+                                 bool hasGeometry)
+    : db_(db), table_(std::move(table)), insert_(db.prepare(insertSql(table_, fields, hasGeometry))) {
+  db_.execute("DROP TRIGGER IF EXISTS " + q("trigger_insert_feature_count_" + table_));
+  db_.execute("DROP TRIGGER IF EXISTS " + q("trigger_delete_feature_count_" + table_));
+}
+
+void GpkgFeatureRows::insert(std::int64_t fid, const GpkgGeometryBlob& geometry) {
+  insert_.bind(1, fid);
+  insert_.bindBlob(2, geometry.data(), geometry.size());
+  insert_.step();
+  ++count_;
+  extent_.extend(geometry.envelope());
+}
+
+void GpkgFeatureRows::insert(std::int64_t fid) {
+  insert_.bind(1, fid);
+  insert_.step();
+  ++count_;
+}
+
+void GpkgFeatureRows::finish() {
+  SqliteStatement count = db_.prepare("UPDATE gpkg_ogr_contents SET feature_count = ? WHERE lower(table_name) = lower(?)");
+  count.bind(1, count_);
+  count.bindText(2, table_);
+  count.step();
+  db_.execute(countTrigger(table_, true));
+  db_.execute(countTrigger(table_, false));
+  if (extent_.isEmpty()) return;
+  SqliteStatement extent = db_.prepare(
+      "UPDATE gpkg_contents SET min_x = ?, min_y = ?, max_x = ?, max_y = ?, "
+      "last_change = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE lower(table_name) = lower(?)");
+  extent.bindReal(1, extent_.minX);
+  extent.bindReal(2, extent_.minY);
+  extent.bindReal(3, extent_.maxX);
+  extent.bindReal(4, extent_.maxY);
+  extent.bindText(5, table_);
+  extent.step();
+}
+
+}  // namespace tinlod

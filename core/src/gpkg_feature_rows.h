@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: the rows of one GeoPackage feature table (made by GDAL, empty) written
+// through one prepared statement, in the caller's transaction.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gpkg_geometry_blob.h"
+#include "sqlite_database.h"
+
+namespace tinlod {
+
+class GpkgFeatureRows {
+ public:
+  // `fields` are the table's attribute columns in the order set() numbers them; a table
+  // without geometry (an attributes table) takes its rows by insert(fid).
+  GpkgFeatureRows(SqliteDatabase& db, std::string table, const std::vector<std::string>& fields,
+                  bool hasGeometry = true);
+
+  void set(int field, std::int64_t value) { insert_.bind(field + 3, value); }
+  // NaN and infinity are written as null, as the OGR path did.
+  void setReal(int field, double value) {
+    if (std::isfinite(value)) insert_.bindReal(field + 3, value);
+    else insert_.bindNull(field + 3);
+  }
+  void setNull(int field) { insert_.bindNull(field + 3); }
+  void insert(std::int64_t fid, const GpkgGeometryBlob& geometry);
+  void insert(std::int64_t fid);
+  // The feature count and extent GDAL and QGIS read from the GeoPackage's tables.
+  void finish();
+  const std::string& table() const { return table_; }
+
+ private:
+  SqliteDatabase& db_;
+  std::string table_;
+  SqliteStatement insert_;
+  std::int64_t count_ = 0;
+  Envelope extent_ = Envelope::empty();
+};
+
+}  // namespace tinlod

@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: a GeoPackage's spatial index (the gpkg_rtree_index extension) bulk-loaded
+// from a packed R-tree, with the triggers the extension requires.
+#pragma once
+
+#include <string>
+
+#include "packed_rtree.h"
+#include "sqlite_database.h"
+#include "tinlod/feedback.h"
+
+namespace tinlod {
+
+// Creates rtree_<table>_geom and fills its node, parent and rowid tables from `tree`,
+// whose entries are the table's fids 1..n.
+void writeGpkgSpatialIndex(SqliteDatabase& db, const std::string& table, const PackedRtree& tree,
+                           const ProgressRange& progress);
+
+// The node capacity SQLite will give a new rtree in this database.
+int gpkgRtreeCapacity(SqliteDatabase& db);
+
+}  // namespace tinlod

@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "packed_rtree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+
+namespace tinlod {
+namespace {
+
+// SQLite's own constants (ext/rtree/rtree.c): a nudge of one float ulp's worth.
+constexpr double kTowards = 1.0 - 1.0 / 8388608.0;
+constexpr double kAway = 1.0 + 1.0 / 8388608.0;
+constexpr int kMaxCells = 51;  // RTREE_MAXCELLS
+constexpr int kCellBytes = 8 + 4 * 4;
+
+float down(double d) {
+  float f = static_cast<float>(d);
+  if (f > d) f = static_cast<float>(d * (d < 0 ? kAway : kTowards));
+  return f;
+}
+
+float up(double d) {
+  float f = static_cast<float>(d);
+  if (f < d) f = static_cast<float>(d * (d < 0 ? kTowards : kAway));
+  return f;
+}
+
+void putBigEndian(unsigned char* at, std::uint64_t value, int bytes) {
+  for (int k = bytes - 1; k >= 0; --k, value >>= 8) at[k] = static_cast<unsigned char>(value & 0xFF);
+}
+
+void putFloat(unsigned char* at, float value) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, 4);
+  putBigEndian(at, bits, 4);
+}
+
+// Sort-tile-recursive: sorted by x into vertical slices of whole nodes, each slice
+// sorted by y and cut into nodes. Returns the items in node order.
+std::vector<std::uint32_t> strOrder(const std::vector<RtreeBox>& boxes, std::size_t capacity) {
+  const std::size_t n = boxes.size();
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  // Centres doubled (min + max) are computed in the comparisons, not stored: the boxes
+  // of a big layer are already the packing's largest use of memory. Ties are broken by
+  // index so the tree is the same on every machine.
+  auto byX = [&](std::uint32_t a, std::uint32_t b) {
+    const float ca = boxes[a].minX + boxes[a].maxX, cb = boxes[b].minX + boxes[b].maxX;
+    return ca < cb || (ca == cb && a < b);
+  };
+  auto byY = [&](std::uint32_t a, std::uint32_t b) {
+    const float ca = boxes[a].minY + boxes[a].maxY, cb = boxes[b].minY + boxes[b].maxY;
+    return ca < cb || (ca == cb && a < b);
+  };
+  std::sort(order.begin(), order.end(), byX);
+  const std::size_t nodes = (n + capacity - 1) / capacity;
+  const auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(nodes))));
+  const std::size_t sliceItems = slices * capacity;
+  for (std::size_t begin = 0; begin < n; begin += sliceItems) {
+    const std::size_t end = std::min(n, begin + sliceItems);
+    std::sort(order.begin() + begin, order.begin() + end, byY);
+  }
+  return order;
+}
+
+}  // namespace
+
+void RtreeBox::extend(const RtreeBox& o) {
+  minX = std::min(minX, o.minX), maxX = std::max(maxX, o.maxX);
+  minY = std::min(minY, o.minY), maxY = std::max(maxY, o.maxY);
+}
+
+RtreeBox outwardBox(const Envelope& e) { return {down(e.minX), up(e.maxX), down(e.minY), up(e.maxY)}; }
+
+int rtreeNodeCapacity(int pageSize) {
+  const int nodeBytes = std::min(pageSize - 64, 4 + kCellBytes * kMaxCells);
+  return (nodeBytes - 4) / kCellBytes;
+}
+
+PackedRtree::PackedRtree(std::vector<RtreeBox> boxes, int nodeCapacity)
+    : entryBoxes_(std::move(boxes)), capacity_(nodeCapacity) {
+  const auto m = static_cast<std::size_t>(capacity_);
+  do {
+    const std::vector<RtreeBox>& below = levels_.empty() ? entryBoxes_ : levels_.back().boxes;
+    Level level;
+    level.children = strOrder(below, m);
+    level.boxes.reserve((below.size() + m - 1) / m);
+    for (std::size_t k = 0; k < below.size(); k += m) {
+      RtreeBox box = below[level.children[k]];
+      for (std::size_t c = k + 1; c < std::min(below.size(), k + m); ++c) box.extend(below[level.children[c]]);
+      level.boxes.push_back(box);
+    }
+    levels_.push_back(std::move(level));
+  } while (levels_.back().boxes.size() > 1);
+  std::size_t number = 1;
+  for (std::size_t l = levels_.size(); l-- > 0;) {
+    levels_[l].firstNode = number;
+    number += levels_[l].boxes.size();
+  }
+}
+
+std::size_t PackedRtree::nodes() const { return levels_.front().firstNode + levels_.front().boxes.size() - 1; }
+
+const std::vector<RtreeBox>& PackedRtree::childBoxes(std::size_t level) const {
+  return level == 0 ? entryBoxes_ : levels_[level - 1].boxes;
+}
+
+void PackedRtree::nodeBlob(std::size_t node, std::size_t nodeBytes, std::vector<unsigned char>& out) const {
+  out.assign(nodeBytes, 0);
+  std::size_t l = 0;
+  while (node < levels_[l].firstNode) ++l;  // levels_ are numbered from the top down
+  const Level& level = levels_[l];
+  const std::size_t j = node - level.firstNode;
+  const std::size_t m = static_cast<std::size_t>(capacity_);
+  const std::size_t begin = j * m, end = std::min(level.children.size(), begin + m);
+  if (node == 1) putBigEndian(out.data(), static_cast<std::uint64_t>(depth()), 2);
+  putBigEndian(out.data() + 2, end - begin, 2);
+  const std::vector<RtreeBox>& boxes = childBoxes(l);
+  unsigned char* cell = out.data() + 4;
+  for (std::size_t k = begin; k < end; ++k, cell += kCellBytes) {
+    const std::uint32_t child = level.children[k];
+    // A leaf cell holds the feature's id; an inner cell, the child node's number.
+    const std::uint64_t id = l == 0 ? child + 1u : levels_[l - 1].firstNode + child;
+    putBigEndian(cell, id, 8);
+    const RtreeBox& b = boxes[child];
+    putFloat(cell + 8, b.minX), putFloat(cell + 12, b.maxX), putFloat(cell + 16, b.minY), putFloat(cell + 20, b.maxY);
+  }
+}
+
+std::vector<std::uint32_t> PackedRtree::parents() const {
+  std::vector<std::uint32_t> parent(nodes() + 1, 0);
+  const std::size_t m = static_cast<std::size_t>(capacity_);
+  for (std::size_t l = 1; l < levels_.size(); ++l) {
+    const Level& level = levels_[l];
+    for (std::size_t k = 0; k < level.children.size(); ++k)
+      parent[levels_[l - 1].firstNode + level.children[k]] = static_cast<std::uint32_t>(level.firstNode + k / m);
+  }
+  return parent;
+}
+
+std::vector<std::uint32_t> PackedRtree::leaves() const {
+  std::vector<std::uint32_t> leaf(entries());
+  const Level& level = levels_.front();
+  const std::size_t m = static_cast<std::size_t>(capacity_);
+  for (std::size_t k = 0; k < level.children.size(); ++k)
+    leaf[level.children[k]] = static_cast<std::uint32_t>(level.firstNode + k / m);
+  return leaf;
+}
+
+}  // namespace tinlod
