@@ -8,13 +8,11 @@ namespace {
 
 std::string q(const std::string& name) { return "\"" + name + "\""; }
 
-std::string insertSql(const std::string& table, const std::vector<std::string>& fields, bool hasGeometry) {
-  std::string columns = hasGeometry ? "\"fid\", \"geom\"" : "\"fid\"", values = hasGeometry ? "?1, ?2" : "?1";
-  for (std::size_t k = 0; k < fields.size(); ++k) {
-    columns += ", " + q(fields[k]);
-    values += ", ?" + std::to_string(k + 3);  // ?2 stays the geometry's number, bound or not
-  }
-  return "INSERT INTO " + q(table) + " (" + columns + ") VALUES (" + values + ")";
+std::vector<std::string> columnsOf(const std::vector<std::string>& fields, bool hasGeometry) {
+  std::vector<std::string> columns{"fid"};
+  if (hasGeometry) columns.emplace_back("geom");
+  columns.insert(columns.end(), fields.begin(), fields.end());
+  return columns;
 }
 
 // GDAL's triggers count features one UPDATE per row; they are set aside while the rows
@@ -30,26 +28,27 @@ std::string countTrigger(const std::string& table, bool insert) {
 
 GpkgFeatureRows::GpkgFeatureRows(SqliteDatabase& db, std::string table, const std::vector<std::string>& fields,
                                  bool hasGeometry)
-    : db_(db), table_(std::move(table)), insert_(db.prepare(insertSql(table_, fields, hasGeometry))) {
+    : db_(db), table_(std::move(table)), first_(hasGeometry ? 2 : 1), rows_(db, table_, columnsOf(fields, hasGeometry)) {
   db_.execute("DROP TRIGGER IF EXISTS " + q("trigger_insert_feature_count_" + table_));
   db_.execute("DROP TRIGGER IF EXISTS " + q("trigger_delete_feature_count_" + table_));
 }
 
 void GpkgFeatureRows::insert(std::int64_t fid, const GpkgGeometryBlob& geometry) {
-  insert_.bind(1, fid);
-  insert_.bindBlob(2, geometry.data(), geometry.size());
-  insert_.step();
+  rows_.set(0, fid);
+  rows_.setBlob(1, geometry.data(), geometry.size());
+  rows_.endRow();
   ++count_;
   extent_.extend(geometry.envelope());
 }
 
 void GpkgFeatureRows::insert(std::int64_t fid) {
-  insert_.bind(1, fid);
-  insert_.step();
+  rows_.set(0, fid);
+  rows_.endRow();
   ++count_;
 }
 
 void GpkgFeatureRows::finish() {
+  rows_.flush();
   SqliteStatement count = db_.prepare("UPDATE gpkg_ogr_contents SET feature_count = ? WHERE lower(table_name) = lower(?)");
   count.bind(1, count_);
   count.bindText(2, table_);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gpkg_geometry_blob.h"
+#include "sqlite_batch_insert.h"
 #include "sqlite_database.h"
 
 namespace tinlod {
@@ -19,13 +20,13 @@ class GpkgFeatureRows {
   GpkgFeatureRows(SqliteDatabase& db, std::string table, const std::vector<std::string>& fields,
                   bool hasGeometry = true);
 
-  void set(int field, std::int64_t value) { insert_.bind(field + 3, value); }
+  void set(int field, std::int64_t value) { rows_.set(field + first_, value); }
   // NaN and infinity are written as null, as the OGR path did.
   void setReal(int field, double value) {
-    if (std::isfinite(value)) insert_.bindReal(field + 3, value);
-    else insert_.bindNull(field + 3);
+    if (std::isfinite(value)) rows_.setReal(field + first_, value);
+    else rows_.setNull(field + first_);
   }
-  void setNull(int field) { insert_.bindNull(field + 3); }
+  void setNull(int field) { rows_.setNull(field + first_); }
   void insert(std::int64_t fid, const GpkgGeometryBlob& geometry);
   void insert(std::int64_t fid);
   // The feature count and extent GDAL and QGIS read from the GeoPackage's tables.
@@ -35,7 +36,8 @@ class GpkgFeatureRows {
  private:
   SqliteDatabase& db_;
   std::string table_;
-  SqliteStatement insert_;
+  int first_;  // the column of field 0: after fid, and geom when there is one
+  SqliteBatchInsert rows_;
   std::int64_t count_ = 0;
   Envelope extent_ = Envelope::empty();
 };

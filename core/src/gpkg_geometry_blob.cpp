@@ -28,9 +28,10 @@ void Envelope::extend(const Envelope& other) {
 // Every number is written little-endian, which the header's flags and the WKB byte-order
 // byte both declare; the writer only runs on little-endian machines (checked below).
 void GpkgGeometryBlob::put(const void* bytes, std::size_t size) {
-  const std::size_t at = bytes_.size();
-  bytes_.resize(at + size);
-  std::memcpy(bytes_.data() + at, bytes, size);
+  // Grown, never shrunk: after the first features a row costs no allocation or zeroing.
+  if (size_ + size > bytes_.size()) bytes_.resize(2 * (size_ + size));
+  std::memcpy(bytes_.data() + size_, bytes, size);
+  size_ += size;
 }
 
 void GpkgGeometryBlob::put32(std::uint32_t value) { put(&value, 4); }
@@ -46,7 +47,7 @@ void GpkgGeometryBlob::putPoint(double x, double y, double z, bool hasZ) {
 
 void GpkgGeometryBlob::begin(std::uint32_t isoType) {
   static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the GeoPackage blobs are written little-endian");
-  bytes_.clear();
+  size_ = 0;
   // "GP", version 0, flags: little-endian, no envelope, not empty, standard binary.
   const unsigned char header[4] = {'G', 'P', 0, 0x01};
   put(header, 4);

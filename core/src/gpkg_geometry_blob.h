@@ -40,7 +40,7 @@ class GpkgGeometryBlob {
   }
 
   const unsigned char* data() const { return bytes_.data(); }
-  std::size_t size() const { return bytes_.size(); }
+  std::size_t size() const { return size_; }
   const Envelope& envelope() const { return envelope_; }
 
  private:
@@ -51,6 +51,7 @@ class GpkgGeometryBlob {
   void putPoint(double x, double y, double z, bool hasZ);
   std::int32_t srsId_;
   std::vector<unsigned char> bytes_;
+  std::size_t size_ = 0;
   Envelope envelope_ = Envelope::empty();
 };
 

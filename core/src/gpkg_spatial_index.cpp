@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "gpkg_spatial_index.h"
 
+#include "sqlite_batch_insert.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -67,13 +68,14 @@ void writeNodes(SqliteDatabase& db, const std::string& rtree, const PackedRtree&
 void writeRowids(SqliteDatabase& db, const std::string& rtree, const PackedRtree& tree,
                  const ProgressRange& progress) {
   const std::vector<std::uint32_t> leaf = tree.leaves();
-  SqliteStatement row = db.prepare("INSERT INTO " + q(rtree + "_rowid") + " (rowid, nodeno) VALUES (?, ?)");
+  SqliteBatchInsert rows(db, rtree + "_rowid", {"rowid", "nodeno"}, 256);
   for (std::size_t i = 0; i < leaf.size(); ++i) {
-    row.bind(1, static_cast<std::int64_t>(i) + 1);
-    row.bind(2, leaf[i]);
-    row.step();
+    rows.set(0, static_cast<std::int64_t>(i) + 1);
+    rows.set(1, leaf[i]);
+    rows.endRow();
     if ((i & 0x3FFF) == 0) progress.report(double(i) / leaf.size(), "Writing the spatial index");
   }
+  rows.flush();
 }
 
 }  // namespace

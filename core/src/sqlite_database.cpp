@@ -8,7 +8,8 @@
 namespace tinlod {
 
 SqliteDatabase::SqliteDatabase(const std::string& path, std::string userName) : userName_(std::move(userName)) {
-  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
+  // One thread uses the connection: SQLite's own locking of it would only cost time.
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr) != SQLITE_OK) {
     const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
