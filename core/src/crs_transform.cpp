@@ -86,18 +86,33 @@ double scaleError(const std::string& wkt, double lon, double lat) {
   return error;
 }
 
+// A UTM zone stretches distances by under 0.3 % within 500 km of its central meridian:
+// far below the 1 % worth a warning, so PROJ's scale factors, which cost a PROJ
+// database context and a search for operations of their own, are not needed.
+bool nearUtmMeridian(const OGRSpatialReference& dst, const Dem& dem, const CrsTransform& toTin) {
+  if (dst.GetUTMZone() == 0) return false;
+  std::vector<double> x{dem.geotransform[0] + 0.5 * dem.width * dem.geotransform[1]};
+  std::vector<double> y{dem.geotransform[3] + 0.5 * dem.height * dem.geotransform[5]};
+  try {
+    toTin.apply(x, y);
+  } catch (const Error&) {
+    return false;
+  }
+  return std::fabs(x[0] - 500000.0) <= 500000.0;
+}
+
 // Metres in a CRS that stretches distances are not metres on the ground: slopes, areas
 // and volumes come out wrong by the same factor.
 void warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpatialReference& dst,
-                    const std::string& dstWkt, const ProgressRange& progress) {
-  if (!dst.IsProjected()) return;
+                    const CrsTransform& toTin, const ProgressRange& progress) {
+  if (!dst.IsProjected() || nearUtmMeridian(dst, dem, toTin)) return;
   double lon = 0, lat = 0;
   try {
     centreLonLat(dem, src, lon, lat);
   } catch (const Error&) {
     return;
   }
-  const double error = scaleError(dstWkt, lon, lat);
+  const double error = scaleError(toTin.targetWkt(), lon, lat);
   if (error <= 0.01) return;
   const int percent = static_cast<int>(std::lround(error * 100));
   progress.warn(describe(dst) + " stretches distances by " + std::to_string(percent) +
@@ -163,14 +178,15 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
   dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   impl->wkt = wkt2(dst);
   impl->name = describe(dst);
-  warnAboutScale(dem, src, dst, impl->wkt, progress);
   if (!src.IsSame(&dst)) {
     impl->transform.reset(OGRCreateCoordinateTransformation(&src, &dst));
     if (!impl->transform)
       throw Error("no transformation from " + describe(src) + " to " + impl->name + ": " +
                   CPLGetLastErrorMsg());
   }
-  return CrsTransform(std::move(impl));
+  CrsTransform out(std::move(impl));
+  warnAboutScale(dem, src, dst, out, progress);
+  return out;
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <map>
 #include <utility>
 
+#include "radix_sort.h"
 #include "text_and_paths.h"
 #include "tinlod/accuracy_statistics.h"
 #include "tinlod/dem_reader.h"
@@ -57,7 +58,8 @@ void markOutline(Tin& tin) {
       const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
       edges.push_back(std::uint64_t(a) << 32 | b);
     }
-  std::sort(edges.begin(), edges.end());
+  std::vector<std::uint64_t> scratch;
+  radixSort(edges, [](std::uint64_t e) { return e; }, scratch);  // 3 edges a triangle: std::sort took 0.2 s a million
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
     while (j < edges.size() && edges[j] == edges[i]) ++j;
@@ -129,6 +131,7 @@ InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, con
   const std::vector<InsertedVertex>& inserted = inserter.inserted();
   Tin all;
   std::vector<double> x, y;
+  all.vertices.reserve(inserted.size());
   for (const InsertedVertex& iv : inserted) {
     const std::uint32_t c = iv.candidate;
     if (!cells) {

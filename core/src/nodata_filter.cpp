@@ -16,8 +16,10 @@ class MissingCounts {
       std::uint32_t* c = &counts_[row * std::size_t(width_ + 1)];
       c[0] = 0;
       for (int col = 0; col < width_; ++col) c[col + 1] = c[col] + !dem.valid(row, col);
+      any_ = any_ || c[width_] > 0;
     }
   }
+  bool any() const { return any_; }
   // Missing cells in columns [c0, c1] of a row; off-raster columns count as missing.
   std::int64_t inRow(int row, std::int64_t c0, std::int64_t c1) const {
     if (c0 > c1) return 0;
@@ -31,6 +33,7 @@ class MissingCounts {
  private:
   int width_;
   std::vector<std::uint32_t> counts_;
+  bool any_ = false;
 };
 
 std::int64_t floorDiv(std::int64_t n, std::int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
@@ -84,7 +87,10 @@ class TriangleFilter {
   TriangleFilter(const Dem& dem, const Triangulation& triangulation, const Tin& tin)
       : missing_(dem), triangulation_(triangulation), tin_(tin), keep_(triangulation.triangles.size(), true) {}
 
+  // Corners are cells of the raster, so without a missing cell no triangle can cover one:
+  // on a DEM without holes this pass over every triangle would find nothing.
   void dropOverNodata() {
+    if (!missing_.any()) return;
     for (std::size_t t = 0; t < keep_.size(); ++t) keep_[t] = !coversMissing(missing_, corners(t));
   }
 

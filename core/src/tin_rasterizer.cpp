@@ -45,14 +45,28 @@ void fillTriangle(const Plane& t, int rowBegin, int rowEnd, Grid& out) {
 
 int topRow(const Plane& p, int rows) { return clampedIndex(std::floor(p.top), 0, rows); }
 
-// Triangles in order of their top row let each band of rows skip to its own. A counting
-// sort: a million triangles sort in one pass.
-std::vector<Plane> byTopRow(std::vector<Plane> planes, int rows) {
+// False for a triangle without area or with a corner off any grid (not finite).
+bool planeOf(const std::vector<Pos>& positions, const std::vector<double>& z, const Triangle& t, Plane& out) {
+  const Pos &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
+  const double area = edge(a, b, c[0], c[1]);
+  if (area == 0 || !std::isfinite(area)) return false;
+  out = {a, b, c, z[t[0]], z[t[1]], z[t[2]], area, std::min({a[1], b[1], c[1]}), std::max({a[1], b[1], c[1]})};
+  return true;
+}
+
+// The planes in order of their top row, each row's in the triangles' order, which lets
+// each band of rows skip to its own. A counting sort that writes each plane once, in its
+// place: a million planes take about 100 MB, and a second copy cost as much as the filling.
+std::vector<Plane> planesByTopRow(const std::vector<Pos>& positions, const std::vector<double>& z,
+                                  const std::vector<Triangle>& triangles, int rows) {
   std::vector<std::size_t> start(static_cast<std::size_t>(rows) + 2, 0);
-  for (const Plane& p : planes) ++start[topRow(p, rows) + 1];
+  Plane p;
+  for (const Triangle& t : triangles)
+    if (planeOf(positions, z, t, p)) ++start[topRow(p, rows) + 1];
   for (std::size_t r = 1; r < start.size(); ++r) start[r] += start[r - 1];
-  std::vector<Plane> sorted(planes.size());
-  for (const Plane& p : planes) sorted[start[topRow(p, rows)]++] = p;
+  std::vector<Plane> sorted(start.back());
+  for (const Triangle& t : triangles)
+    if (planeOf(positions, z, t, p)) sorted[start[topRow(p, rows)]++] = p;
   return sorted;
 }
 
@@ -61,15 +75,7 @@ std::vector<Plane> byTopRow(std::vector<Plane> planes, int rows) {
 Grid rasterizeTin(const std::vector<Pos>& positions, const std::vector<double>& z, const std::vector<Triangle>& triangles,
                   int cols, int rows, const ProgressRange& progress) {
   Grid out(cols, rows);
-  std::vector<Plane> planes;
-  planes.reserve(triangles.size());
-  for (const Triangle& t : triangles) {
-    const Pos &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
-    const double area = edge(a, b, c[0], c[1]);
-    if (area != 0 && std::isfinite(area))  // not finite: a corner off any grid
-      planes.push_back({a, b, c, z[t[0]], z[t[1]], z[t[2]], area, std::min({a[1], b[1], c[1]}), std::max({a[1], b[1], c[1]})});
-  }
-  planes = byTopRow(std::move(planes), rows);
+  const std::vector<Plane> planes = planesByTopRow(positions, z, triangles, rows);
   double tallest = 0;
   for (const Plane& p : planes) tallest = std::max(tallest, p.bottom - p.top);
   auto work = [&](int rowBegin, int rowEnd) {
