@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
   timer.switchTo("Writing the GeoPackage");
   const std::string out = (std::filesystem::temp_directory_path() / "tinlod_bench_sample.gpkg").string();
   std::filesystem::remove(out);
-  tinlod::writeTinGpkg(tin, out, {}, tinlod::ProgressRange(tinlod::Feedback{}, 0, 1));
+  tinlod::writeTinGpkg(tin, out, tinlod::GpkgWriteOptions(), tinlod::ProgressRange(tinlod::Feedback{}, 0, 1));
   const Clock::time_point t3 = Clock::now();
   timer.switchTo("end");
 

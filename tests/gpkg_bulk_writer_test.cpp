@@ -12,6 +12,7 @@
 #include <random>
 #include <set>
 
+#include "gdal_metadata_xml.h"
 #include "packed_rtree.h"
 #include "test_support.h"
 #include "tinlod/error.h"
@@ -337,6 +338,32 @@ TEST(GpkgBulkWriter, CancelWhileIndexingLeavesNoFile) {
   EXPECT_FALSE(fs::exists(path));
   for (const auto& entry : fs::directory_iterator(test::tempDir()))
     EXPECT_EQ(entry.path().filename().string().find(".cancelled.gpkg.tinlod-"), std::string::npos) << entry.path();
+}
+
+TEST(GdalMetadataXml, ItemsAreAddedAndReplacedInTheDefaultDomain) {
+  std::string xml =
+      "<GDALMultiDomainMetadata>\n  <Metadata>\n    <MDI key=\"A\">1</MDI>\n    <MDI key=\"B\">2</MDI>\n  </Metadata>\n"
+      "  <Metadata domain=\"other\">\n    <MDI key=\"C\">3</MDI>\n  </Metadata>\n</GDALMultiDomainMetadata>\n";
+  ASSERT_TRUE(withGdalMetadataItems(xml, {{"B", "<&>"}, {"D", "4"}}));
+  EXPECT_EQ(xml,
+            "<GDALMultiDomainMetadata>\n  <Metadata>\n    <MDI key=\"A\">1</MDI>\n    <MDI key=\"B\">&lt;&amp;&gt;</MDI>\n"
+            "    <MDI key=\"D\">4</MDI>\n  </Metadata>\n  <Metadata domain=\"other\">\n    <MDI key=\"C\">3</MDI>\n"
+            "  </Metadata>\n</GDALMultiDomainMetadata>\n");
+  std::string none = "<GDALMultiDomainMetadata>\n</GDALMultiDomainMetadata>\n";
+  EXPECT_FALSE(withGdalMetadataItems(none, {{"A", "1"}}));
+}
+
+TEST(GpkgBulkWriter, LateMetadataReadsBackThroughGdal) {
+  const Tin& tin = built().h.base;
+  const std::string path = test::tempDir() + "/late.gpkg";
+  fs::remove(path);
+  GpkgWriteOptions options(false, {{"TINLOD_KIND", "tin"}, {"TINLOD_RMSE", "pending"}});
+  options.lateMetadata = [] { return std::map<std::string, std::string>{{"TINLOD_RMSE", "1.5"}, {"TINLOD_X", "a&b"}}; };
+  writeTinGpkg(tin, path, options, ProgressRange(Feedback{}, 0, 1));
+  Dataset d(path);
+  EXPECT_STREQ(d.ds->GetMetadataItem("TINLOD_KIND"), "tin");
+  EXPECT_STREQ(d.ds->GetMetadataItem("TINLOD_RMSE"), "1.5");
+  EXPECT_STREQ(d.ds->GetMetadataItem("TINLOD_X"), "a&b");
 }
 
 }  // namespace

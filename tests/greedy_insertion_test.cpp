@@ -320,7 +320,15 @@ TEST(InsertJob, WritesTheTinWithInsertionOrderAndLeavesNothingWhenCancelled) {
   EXPECT_GE(vertices->GetLayerDefn()->GetFieldIndex("error_before"), 0);
   EXPECT_EQ(ds->GetLayerByName("triangles")->GetFeatureCount(), GIntBig(s.triangles));
   EXPECT_STREQ(ds->GetMetadataItem("TINLOD_METHOD"), "insert");
-  EXPECT_NE(ds->GetMetadataItem("TINLOD_RMSE"), nullptr);
+  // The measured figures are written as the file is finished (the check runs beside the
+  // writing), among the other items: exactly the summary's.
+  ASSERT_NE(ds->GetMetadataItem("TINLOD_RMSE"), nullptr);
+  ASSERT_NE(ds->GetMetadataItem("TINLOD_MEASURED_MAX_ERROR"), nullptr);
+  EXPECT_NEAR(std::stod(ds->GetMetadataItem("TINLOD_RMSE")), s.rmse, 1e-5 * s.rmse);
+  EXPECT_NEAR(std::stod(ds->GetMetadataItem("TINLOD_MEASURED_MAX_ERROR")), s.measuredMaxError, 1e-5 * s.measuredMaxError);
+  EXPECT_STREQ(ds->GetMetadataItem("TINLOD_UNCOVERED_CELLS"), std::to_string(s.uncoveredCells).c_str());
+  EXPECT_STREQ(ds->GetMetadataItem("TINLOD_CANDIDATES"), "cells");
+  EXPECT_GT(s.measuredCells, 0u);
   EXPECT_LE(s.measuredMaxError, 2.0);
   ds.reset();
 

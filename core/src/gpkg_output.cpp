@@ -7,6 +7,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "gdal_metadata_xml.h"
 #include "gpkg_spatial_index.h"
 #include "tinlod/error.h"
 
@@ -183,7 +184,7 @@ void GpkgOutput::createFeatureView(const std::string& name, const std::string& s
 
 SqliteDatabase& GpkgOutput::database() {
   if (db_) return *db_;
-  writeMetadata();
+  writeMetadata(false);  // the late items are written once the rows are in
   closeGdal();
   db_ = std::make_unique<SqliteDatabase>(file_.staging.string(), file_.path);
   // 16 KiB pages hold 13 R-tree nodes where 4 KiB ones hold 3 with a tenth left empty, and
@@ -240,13 +241,15 @@ void GpkgOutput::commit() {
   if (ds_->CommitTransaction() != OGRERR_NONE) throw Error("cannot commit to GeoPackage '" + file_.path + "'");
 }
 
-void GpkgOutput::writeMetadata() {
+void GpkgOutput::writeMetadata(bool withLate) {
   // The file's own TINLOD_* items are replaced as a set (a sample written over a hierarchy
   // must not keep the hierarchy's); other items are kept.
   CPLStringList metadata;
   for (char** item = ds_->GetMetadata(); item && *item; ++item)
     if (std::string(*item).rfind("TINLOD_", 0) != 0) metadata.AddString(*item);
   for (const auto& [key, value] : options_.metadata) metadata.SetNameValue(key.c_str(), value.c_str());
+  if (withLate && options_.lateMetadata)
+    for (const auto& [key, value] : options_.lateMetadata()) metadata.SetNameValue(key.c_str(), value.c_str());
   ds_->SetMetadata(metadata.List());
 }
 
@@ -269,16 +272,24 @@ void GpkgOutput::finishDatabase(const ProgressRange& progress) {
   }
   indexes_.clear();  // the packed trees' memory goes back before the commit
   for (const std::string& sql : deferred_) db_->execute(sql);
+  const bool lateWritten = options_.lateMetadata && setGdalMetadataItems(*db_, options_.lateMetadata());
   db_->execute("COMMIT");
   if (vacuum_) db_->execute("VACUUM");  // outside any transaction, as SQLite requires
   db_.reset();
+  if (options_.lateMetadata && !lateWritten) {
+    // No metadata of GDAL's to add to: GDAL writes the late items itself.
+    ds_ = openOrCreate(file_.staging, true);
+    if (!ds_) throw Error("cannot reopen GeoPackage '" + file_.path + "' to finish it");
+    for (const auto& [key, value] : options_.lateMetadata()) ds_->SetMetadataItem(key.c_str(), value.c_str());
+    closeGdal();
+  }
 }
 
 void GpkgOutput::finish(const ProgressRange& progress) {
   if (db_) {
     finishDatabase(progress);
   } else {
-    writeMetadata();
+    writeMetadata(true);
     progress.report(0, "Building the spatial index");
     closeGdal();  // GDAL builds its layers' spatial indexes here
     runDeferred();

@@ -72,7 +72,7 @@ class GpkgOutput {
   void dropOurs(const std::function<bool(const std::string&)>& ours);
   // True when every layer and metadata item of the file is the job's own.
   bool holdsOnly(const std::function<bool(const std::string&)>& ours);
-  void writeMetadata();
+  void writeMetadata(bool withLate);
   void closeGdal();
   void runDeferred();
   void finishDatabase(const ProgressRange& progress);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <map>
 #include <utility>
 
@@ -68,13 +69,19 @@ void markOutline(Tin& tin) {
   }
 }
 
-// The TIN's heights at every cell, by a code path of its own (the accuracy rasteriser):
-// an independent check of the run's own error.
-void measure(const Dem& dem, const InsertedTin& out, const std::vector<std::array<double, 2>>& cellPositions,
-             InsertSummary& s, const ProgressRange& progress) {
+void warnIfHolesOpen(const InsertSummary& s, const ProgressRange& progress) {
+  if (s.holesOpen)
+    progress.warn("the vertex or triangle limit came before the TIN was cut free of the nodata holes: " +
+                  std::to_string(s.uncoveredCells) + " valid cells are not covered; raise the limit");
+}
+
+}  // namespace
+
+InsertSummary measureInsertedTin(const Dem& dem, const InsertedTin& out, const ProgressRange& progress) {
+  InsertSummary s = out.summary;
   std::vector<double> z(out.tin.vertices.size());
   for (std::size_t i = 0; i < z.size(); ++i) z[i] = out.tin.vertices[i].z;
-  const Grid heights = rasterizeTin(cellPositions, z, out.tin.triangles, dem.width, dem.height, progress);
+  const Grid heights = rasterizeTin(out.cellPositions, z, out.tin.triangles, dem.width, dem.height, progress);
   ErrorStatistics errors;
   for (int r = 0; r < dem.height; ++r)
     for (int c = 0; c < dem.width; ++c) {
@@ -87,9 +94,8 @@ void measure(const Dem& dem, const InsertedTin& out, const std::vector<std::arra
   s.measuredCells = errors.count();
   s.measuredMaxError = s.measuredCells ? errors.maxAbs() : 0;
   s.rmse = s.measuredCells ? errors.rmse() : 0;
+  return s;
 }
-
-}  // namespace
 
 InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* sampled, bool onGrid) {
   InsertGrid grid;
@@ -103,6 +109,13 @@ InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* 
 }
 
 InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, const ProgressRange& progress) {
+  InsertedTin out = insertedTin(dem, options, progress.sub(0, 0.9));
+  out.summary = measureInsertedTin(dem, out, progress.sub(0.9, 1));
+  warnIfHolesOpen(out.summary, progress);
+  return out;
+}
+
+InsertedTin insertedTin(const Dem& dem, const InsertOptions& options, const ProgressRange& progress) {
   options.validate();
   const bool cells = options.candidates == InsertCandidates::Cells;
   // With sampled candidates the sampling says what it has to about the CRS, once.
@@ -122,7 +135,7 @@ InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, con
   if (options.maxTriangles && options.maxTriangles < inserter.triangleCount())
     progress.warn("-max_triangles " + std::to_string(options.maxTriangles) + " is less than the " +
                   std::to_string(inserter.triangleCount()) + " triangles of the valid area's hull, where every run starts");
-  inserter.run({options.maxError, options.maxVertices, options.maxTriangles}, progress.sub(0.15, 0.9));
+  inserter.run({options.maxError, options.maxVertices, options.maxTriangles}, progress.sub(0.15, 1));
   out.summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.summary.maxError = inserter.maxError();
   out.summary.holesOpen = std::isinf(out.summary.maxError);
@@ -150,9 +163,8 @@ InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, con
   all.triangles = trianglesOnValidData(dem, inserter.triangulation(), all);
 
   // Keep the vertices some triangle uses, in insertion order.
-  std::vector<std::array<double, 2>> cellPositions;
   for (VertexId i : dropUnusedVertices(all)) {
-    cellPositions.push_back({inserter.candidateCol(inserted[i].candidate), inserter.candidateRow(inserted[i].candidate)});
+    out.cellPositions.push_back({inserter.candidateCol(inserted[i].candidate), inserter.candidateRow(inserted[i].candidate)});
     out.insertion.push_back(std::uint32_t(i + 1));
     out.errorBefore.push_back(inserted[i].errorBefore);
   }
@@ -165,10 +177,6 @@ InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, con
 
   InsertSummary& s = out.summary;
   s.vertices = out.tin.vertices.size(), s.triangles = out.tin.triangles.size(), s.crsName = out.tin.crsName;
-  measure(dem, out, cellPositions, s, progress.sub(0.9, 1));
-  if (s.holesOpen)
-    progress.warn("the vertex or triangle limit came before the TIN was cut free of the nodata holes: " +
-                  std::to_string(s.uncoveredCells) + " valid cells are not covered; raise the limit");
   return out;
 }
 
@@ -186,12 +194,15 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
           {"TINLOD_MAX_VERTICES_LIMIT", std::to_string(o.maxVertices)},
           {"TINLOD_MAX_TRIANGLES_LIMIT", std::to_string(o.maxTriangles)},
           {"TINLOD_DELAUNAY", o.delaunayOnGrid ? "grid" : "ground"},
-          {"TINLOD_UNCOVERED_CELLS", std::to_string(s.uncoveredCells)},
-          {"TINLOD_MEASURED_MAX_ERROR", formatNumber(s.measuredMaxError)},
-          {"TINLOD_RMSE", formatNumber(s.rmse)},
           {"TINLOD_SOURCE_SRS", o.sample.sourceSrs.empty() ? "from file" : o.sample.sourceSrs},
           {"TINLOD_TARGET_SRS", o.sample.targetSrs.empty() ? "auto" : o.sample.targetSrs},
           {"TINLOD_CRS", s.crsName}};
+}
+
+std::map<std::string, std::string> measuredMetadata(const InsertSummary& s) {
+  return {{"TINLOD_UNCOVERED_CELLS", std::to_string(s.uncoveredCells)},
+          {"TINLOD_MEASURED_MAX_ERROR", formatNumber(s.measuredMaxError)},
+          {"TINLOD_RMSE", formatNumber(s.rmse)}};
 }
 
 }  // namespace
@@ -205,8 +216,14 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readDem(demPath, options.sample.band, all.sub(0, 0.1), options.sample.validHeights);
-  const InsertedTin result = greedyInsertionTin(dem, options, all.sub(0.1, 0.9));
+  const InsertedTin result = insertedTin(dem, options, all.sub(0.1, 0.85));
+  // The independent check runs on the other core while the file is written; its figures
+  // are the file's last metadata items. (It reports no progress from its thread.)
+  std::shared_future<InsertSummary> check = std::async(std::launch::async, [&dem, &result] {
+    return measureInsertedTin(dem, result, ProgressRange(Feedback{}, 0, 1));
+  }).share();
   writeOptions.metadata = jobMetadata(demPath, options, result.summary);
+  writeOptions.lateMetadata = [check] { return measuredMetadata(check.get()); };
   // Not while a count stopped the run before the holes were cut out: no maximum then.
   if (std::isfinite(result.summary.maxError)) writeOptions.metadata["TINLOD_MAX_ERROR"] = formatNumber(result.summary.maxError);
   if (options.candidates == InsertCandidates::Samples) {
@@ -217,10 +234,12 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   std::vector<ExtraField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
   extra[0].values.assign(result.insertion.begin(), result.insertion.end());
   extra[1].values = result.errorBefore;
-  writeTinGpkg(result.tin, out, writeOptions, all.sub(0.9, 1), extra);
+  writeTinGpkg(result.tin, out, writeOptions, all.sub(0.85, 1), extra);
+  const InsertSummary summary = check.get();
+  warnIfHolesOpen(summary, all);
   files.commit();
   all.finish("Done");
-  return result.summary;
+  return summary;
 }
 
 }  // namespace tinlod

@@ -56,6 +56,10 @@ class SqliteStatement {
   // Runs the statement; true while it yields rows (then read with integerColumn).
   bool step();
   std::int64_t integerColumn(int column) const { return sqlite3_column_int64(stmt_, column); }
+  std::string textColumn(int column) const {
+    const unsigned char* text = sqlite3_column_text(stmt_, column);
+    return text ? std::string(reinterpret_cast<const char*>(text), sqlite3_column_bytes(stmt_, column)) : std::string();
+  }
   void reset() { sqlite3_reset(stmt_); }
 
  private:

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tinlod/feedback.h"
@@ -12,11 +14,16 @@
 namespace tinlod {
 
 struct GpkgWriteOptions {
+  explicit GpkgWriteOptions(bool overwrite = false, std::map<std::string, std::string> metadata = {})
+      : overwrite(overwrite), metadata(std::move(metadata)) {}
   // Replace tinlod's layers in an existing GeoPackage (its other layers are kept);
   // without it an existing file is an error.
   bool overwrite = false;
   // Stored as GeoPackage metadata (parameters, source) so a file explains itself.
   std::map<std::string, std::string> metadata;
+  // More items known only once the rows are written (a check run alongside the writing):
+  // asked for when the file is finished.
+  std::function<std::map<std::string, std::string>()> lateMetadata;
 };
 
 // Throws Error when `path` exists and overwrite is off, or its folder is missing.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -33,6 +34,8 @@ struct InsertedTin {
   std::vector<std::uint32_t> insertion;
   std::vector<double> errorBefore;
   InsertSummary summary;
+  // Per vertex: its DEM cell (column, row), for the independent check.
+  std::vector<std::array<double, 2>> cellPositions;
 };
 
 // The inserter's input for `dem`: every valid cell, or the vertices of `sampled` (a TIN
@@ -40,8 +43,14 @@ struct InsertedTin {
 // with square cells rather than on the ground.
 InsertGrid makeInsertGrid(const Dem& dem, const CrsTransform& toTin, const Tin* sampled, bool onGrid = false);
 
-// DEM in memory to a greedy-insertion TIN in the metric CRS.
+// DEM in memory to a greedy-insertion TIN in the metric CRS, measured (see measureInsertedTin).
 InsertedTin greedyInsertionTin(const Dem& dem, const InsertOptions& options, const ProgressRange& progress);
+// The same without the measuring, which the job runs beside the writing.
+InsertedTin insertedTin(const Dem& dem, const InsertOptions& options, const ProgressRange& progress);
+// `tin.summary` with the independent check filled in: the TIN's heights at every valid
+// cell by a code path of its own (the accuracy rasteriser), the largest error, the RMSE
+// and the cells left uncovered.
+InsertSummary measureInsertedTin(const Dem& dem, const InsertedTin& tin, const ProgressRange& progress);
 
 // The whole `tinlod insert` job: read, insert, measure, write the GeoPackage (the layers
 // of `tinlod sample`, the vertices with their insertion order).
