@@ -322,6 +322,7 @@ TEST(GpkgBulkWriter, ChosenLayers) {
   EXPECT_THROW(parseLevelList("-1", "-levels"), Error);
   EXPECT_EQ(parseLevelList("all", "-levels").size(), 0u);
   EXPECT_EQ(parseLevelList("3,last", "-levels"), (std::vector<std::int32_t>{3, HierarchyLayers::kCoarsest}));
+  EXPECT_EQ(parseLevelList("0, 2 ,last", "-levels"), (std::vector<std::int32_t>{0, 2, HierarchyLayers::kCoarsest}));
 }
 
 TEST(GpkgBulkWriter, CancelWhileIndexingLeavesNoFile) {

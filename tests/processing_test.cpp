@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The Processing algorithms in a headless QgsApplication, registered through the same
 // C entry point the plugin calls.
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
 #include <qgsrasterlayer.h>
 #include <qgsapplication.h>
 #include <qgsnativealgorithms.h>
@@ -284,6 +286,36 @@ TEST(Processing, BuildHierarchyRefusesMaxErrorWithAnotherMethod) {
   EXPECT_FALSE(r.ok);
   EXPECT_TRUE(r.error.contains("MAX_ERROR applies to the error method only")) << r.error.toStdString();
   EXPECT_FALSE(fs::exists(out.toStdString()));
+}
+
+// The first value of `sql`, run by SQLite on the GeoPackage (through GDAL).
+long long sqlCount(const std::string& gpkg, const std::string& sql) {
+  GDALDatasetUniquePtr ds(GDALDataset::Open(gpkg.c_str(), GDAL_OF_VECTOR));
+  if (!ds) return -1;
+  OGRLayer* result = ds->ExecuteSQL(sql.c_str(), nullptr, nullptr);
+  if (!result) return -1;
+  OGRFeatureUniquePtr f(result->GetNextFeature());
+  const long long n = f ? f->GetFieldAsInteger64(0) : -1;
+  ds->ReleaseResultSet(result);
+  return n;
+}
+
+TEST(Processing, BuildHierarchyWritesTheChosenLayers) {
+  const QString out = QString::fromStdString(test::tempDir() + "/chosen.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                                {{"INPUT", QString::fromStdString(defaultDem())}, {"LEVEL_VIEWS", "0, last"},
+                                 {"GROUP_OUTLINES", false}, {"VERTEX_INDEX", true}, {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  const std::string path = out.toStdString();
+  EXPECT_EQ(sqlCount(path, "SELECT count(*) FROM sqlite_master WHERE type = 'view'"), 2);
+  EXPECT_EQ(sqlCount(path, "SELECT count(*) FROM sqlite_master WHERE name = 'level_0'"), 1);
+  EXPECT_EQ(sqlCount(path, "SELECT count(*) FROM gpkg_contents WHERE table_name = 'groups' AND data_type = 'attributes'"), 1);
+  EXPECT_EQ(sqlCount(path, "SELECT count(*) FROM sqlite_master WHERE name = 'rtree_vertices_geom'"), 1);
+  const Result bad = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                                  {{"INPUT", QString::fromStdString(defaultDem())}, {"LEVEL_VIEWS", "0,coarse"},
+                                   {"OUTPUT", QString::fromStdString(test::tempDir() + "/bad.gpkg")}});
+  EXPECT_FALSE(bad.ok);
+  EXPECT_TRUE(bad.error.contains("LEVEL_VIEWS '0,coarse'")) << bad.error.toStdString();
 }
 
 TEST(Processing, BuildHierarchyKeepsPointsOfALayer) {

@@ -31,12 +31,17 @@ std::vector<std::int32_t> HierarchyLayers::missingLevels(std::int32_t coarsest) 
 }
 
 std::vector<std::int32_t> parseLevelList(const std::string& text, const std::string& option) {
-  if (text == "all") return {};
+  if (text.find_first_not_of(' ') != std::string::npos &&
+      text.substr(text.find_first_not_of(' '), text.find_last_not_of(' ') - text.find_first_not_of(' ') + 1) == "all")
+    return {};
   std::vector<std::int32_t> levels;
   std::size_t begin = 0;
   while (begin <= text.size()) {
     const std::size_t end = std::min(text.find(',', begin), text.size());
-    const std::string item = text.substr(begin, end - begin);
+    std::string item = text.substr(begin, end - begin);
+    // "0, 5, last" as people write lists
+    item.erase(0, item.find_first_not_of(' '));
+    item.erase(item.find_last_not_of(' ') + 1);
     std::int32_t level = -1;
     const auto [at, ec] = std::from_chars(item.data(), item.data() + item.size(), level);
     if (item == "last") level = HierarchyLayers::kCoarsest;
