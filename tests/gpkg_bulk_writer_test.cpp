@@ -341,6 +341,30 @@ TEST(GpkgBulkWriter, CancelWhileIndexingLeavesNoFile) {
     EXPECT_EQ(entry.path().filename().string().find(".cancelled.gpkg.tinlod-"), std::string::npos) << entry.path();
 }
 
+// docs/geopackage.md's table of layers names every layer and field a hierarchy file has.
+TEST(GpkgBulkWriter, TheDocumentedLayersAreTheWrittenOnes) {
+  const std::string doc = test::readFile(test::sourceDir() + "/docs/geopackage.md");
+  ASSERT_FALSE(doc.empty());
+  const std::string path = writeHierarchy("documented.gpkg", {{}, true, true});
+  Dataset d(path);
+  for (int i = 0; i < d.ds->GetLayerCount(); ++i) {
+    OGRLayer* layer = d.ds->GetLayer(i);
+    const std::string name = layer->GetName();
+    const bool view = name.rfind("level_", 0) == 0;
+    const std::size_t row = doc.find("| `" + (view ? std::string("level_0") : name) + "`");
+    ASSERT_NE(row, std::string::npos) << name << " is not in docs/geopackage.md";
+    if (view) continue;
+    const std::string line = doc.substr(row, doc.find('\n', row) - row);
+    OGRFeatureDefn* defn = layer->GetLayerDefn();
+    for (int f = 0; f < defn->GetFieldCount(); ++f) {
+      const std::string field = defn->GetFieldDefn(f)->GetNameRef();
+      // v0, v1 and v2 are written as a range there
+      if (field == "v1") continue;
+      EXPECT_NE(line.find("`" + field + "`"), std::string::npos) << name << "." << field << " is not in its row: " << line;
+    }
+  }
+}
+
 TEST(GdalMetadataXml, ItemsAreAddedAndReplacedInTheDefaultDomain) {
   std::string xml =
       "<GDALMultiDomainMetadata>\n  <Metadata>\n    <MDI key=\"A\">1</MDI>\n    <MDI key=\"B\">2</MDI>\n  </Metadata>\n"

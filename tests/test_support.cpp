@@ -37,6 +37,8 @@ std::string wktOf(int epsg) {
   return out;
 }
 
+std::string sourceDir() { return TINLOD_SOURCE_DIR; }
+
 std::string dataDir() {
   const char* env = std::getenv("TINLOD_TEST_DATA");
   const fs::path dir = env ? fs::path(env) : fs::path(TINLOD_SOURCE_DIR) / ".." / "shared" / "data";

@@ -14,6 +14,8 @@ namespace tinlod::test {
 
 // ../shared/data beside the checkout, or $TINLOD_TEST_DATA; empty when absent.
 std::string dataDir();
+// The project's checkout, for tests that hold documentation to the code.
+std::string sourceDir();
 
 // A fresh folder for one test, removed when the test binary ends.
 std::string tempDir();

@@ -65,7 +65,7 @@ written: lod, locate and accuracy need them):
                    last for the coarsest: -levels 0,5,last
   -no_group_outlines
                    write the groups layer as a table without its outline polygons
-                   (about 35 bytes a stored triangle less); the file is still a whole hierarchy
+                   (about 30 bytes a stored triangle less); the file is still a whole hierarchy
   -vertex_index    also give the vertices layer a spatial index (7 bytes a stored triangle),
                    for drawing it zoomed in; nothing in tinlod reads the vertices by place
 Every level is measured against the DEM at every valid cell centre it covers: its largest
