@@ -5,7 +5,8 @@
 #     copying just the triangles layer it wrote to a new file;
 #   - bytes per stored triangle in the hierarchy file, indexes included (target <= 250),
 #     and what each table and index pays, from SQLite's dbstat;
-#   - peak memory of the build (GNU time's maximum resident set size).
+#   - peak memory of the build (GNU time's maximum resident set size);
+#   - with HMM or HMM_SRC set, `tinlod insert` against hmm (bench/compare_hmm.sh).
 # Times are printed, never asserted. Each command runs RUNS times (default 3) and the
 # median is printed beside the minimum and maximum.
 #
@@ -49,3 +50,9 @@ echo "bytes per stored triangle:           $(awk -v b="$bytes" -v t="$triangles"
 echo "bytes per stored triangle, by table and index:"
 sqlite3 "$work/h.gpkg" "SELECT printf('  %-32s %6.1f', name, sum(pgsize) * 1.0 / $triangles) FROM dbstat
                         GROUP BY name HAVING sum(pgsize) * 1.0 / $triangles >= 0.1 ORDER BY sum(pgsize) DESC"
+
+# The insertion targets of the same issue, when hmm is at hand (see compare_hmm.sh).
+if [[ -n ${HMM:-} || -n ${HMM_SRC:-} ]]; then
+  echo
+  bash "$root/bench/compare_hmm.sh"
+fi

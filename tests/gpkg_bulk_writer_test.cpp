@@ -365,6 +365,50 @@ TEST(GpkgBulkWriter, TheDocumentedLayersAreTheWrittenOnes) {
   }
 }
 
+// Replacing tinlod's layers keeps everything else, registered or not: QGIS keeps projects
+// in a plain table, and another tool may leave out GDAL's feature counts.
+TEST(GpkgBulkWriter, OverwriteKeepsTheUsersOtherContent) {
+  const Tin& tin = built().h.base;
+  const std::string path = test::tempDir() + "/shared.gpkg";
+  fs::remove(path);
+  {
+    GDALAllRegister();
+    const char* const noCounts[] = {"ADD_GPKG_OGR_CONTENTS=NO", nullptr};
+    GDALDatasetUniquePtr ds(GetGDALDriverManager()->GetDriverByName("GPKG")->Create(
+        path.c_str(), 0, 0, 0, GDT_Unknown, const_cast<char**>(noCounts)));
+    ASSERT_TRUE(ds);
+    OGRLayer* mine = ds->CreateLayer("my_points", nullptr, wkbPoint, nullptr);
+    OGRFeature f(mine->GetLayerDefn());
+    f.SetGeometryDirectly(new OGRPoint(1, 2));
+    ASSERT_EQ(mine->CreateFeature(&f), OGRERR_NONE);
+  }
+  writeTinGpkg(tin, path, GpkgWriteOptions(true, {{"TINLOD_KIND", "tin"}}), ProgressRange(Feedback{}, 0, 1));
+  writeTinGpkg(tin, path, GpkgWriteOptions(true, {{"TINLOD_KIND", "tin"}}), ProgressRange(Feedback{}, 0, 1));
+  {
+    Dataset d(path);
+    ASSERT_NE(d.ds->GetLayerByName("my_points"), nullptr);
+    EXPECT_EQ(d.ds->GetLayerByName("my_points")->GetFeatureCount(), 1);
+    EXPECT_EQ(d.ds->GetLayerByName("triangles")->GetFeatureCount(), static_cast<GIntBig>(tin.triangles.size()));
+  }
+  // A project saved in a file of tinlod's layers: a table GeoPackage does not register.
+  const std::string project = test::tempDir() + "/project.gpkg";
+  fs::remove(project);
+  writeTinGpkg(tin, project, GpkgWriteOptions(false, {{"TINLOD_KIND", "tin"}}), ProgressRange(Feedback{}, 0, 1));
+  {
+    Sqlite db(project);
+    ASSERT_EQ(sqlite3_exec(db.db, "CREATE TABLE qgis_projects (name TEXT PRIMARY KEY, metadata BLOB, content BLOB); "
+                                  "INSERT INTO qgis_projects VALUES ('survey', NULL, x'01')", nullptr, nullptr, nullptr), SQLITE_OK);
+  }
+  writeTinGpkg(tin, project, GpkgWriteOptions(true, {{"TINLOD_KIND", "tin"}}), ProgressRange(Feedback{}, 0, 1));
+  EXPECT_EQ(Sqlite(project).column("SELECT count(*) FROM qgis_projects WHERE name = 'survey'"), std::vector<long long>{1});
+  // A file of tinlod's alone is made anew rather than emptied and compacted.
+  const std::string alone = test::tempDir() + "/alone.gpkg";
+  fs::remove(alone);
+  writeTinGpkg(tin, alone, GpkgWriteOptions(false, {{"TINLOD_KIND", "tin"}}), ProgressRange(Feedback{}, 0, 1));
+  writeTinGpkg(tin, alone, GpkgWriteOptions(true, {{"TINLOD_KIND", "tin"}}), ProgressRange(Feedback{}, 0, 1));
+  EXPECT_EQ(Sqlite(alone).column("PRAGMA page_size"), std::vector<long long>{16384});
+}
+
 TEST(GdalMetadataXml, ItemsAreAddedAndReplacedInTheDefaultDomain) {
   std::string xml =
       "<GDALMultiDomainMetadata>\n  <Metadata>\n    <MDI key=\"A\">1</MDI>\n    <MDI key=\"B\">2</MDI>\n  </Metadata>\n"

@@ -337,6 +337,16 @@ TEST(InsertJob, WritesTheTinWithInsertionOrderAndLeavesNothingWhenCancelled) {
   stop.progress = [](double f, const std::string&) { return f < 0.3; };
   EXPECT_THROW(runInsertJob(test::smallSyntheticDemFile(), cancelled, o, false, stop), Cancelled);
   EXPECT_FALSE(fs::exists(cancelled));
+  // Cancelled while the file is written, with the independent check running beside it.
+  bool writing = false;
+  Feedback late;
+  late.progress = [&writing](double f, const std::string&) {
+    writing = writing || f >= 0.86;
+    return !writing;
+  };
+  EXPECT_THROW(runInsertJob(test::smallSyntheticDemFile(), cancelled, o, false, late), Cancelled);
+  EXPECT_TRUE(writing);
+  EXPECT_FALSE(fs::exists(cancelled));
   EXPECT_THROW(runInsertJob(test::smallSyntheticDemFile(), out, o, false, Feedback{}), Error);  // exists
 }
 

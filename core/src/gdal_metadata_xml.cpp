@@ -57,7 +57,7 @@ bool setGdalMetadataItems(SqliteDatabase& db, const std::map<std::string, std::s
   const char* const where =
       " FROM gpkg_metadata WHERE md_scope = 'dataset' AND md_standard_uri = 'http://gdal.org' AND mime_type = 'text/xml'"
       " AND id IN (SELECT md_file_id FROM gpkg_metadata_reference WHERE reference_scope = 'geopackage')";
-  if (!db.hasTable("gpkg_metadata") || !db.hasTable("gpkg_metadata_reference")) return false;
+  if (!db.hasSchemaObject("gpkg_metadata") || !db.hasSchemaObject("gpkg_metadata_reference")) return false;
   SqliteStatement read = db.prepare(std::string("SELECT id, metadata") + where + " ORDER BY id LIMIT 1");
   if (!read.step()) return false;
   const std::int64_t id = read.integerColumn(0);

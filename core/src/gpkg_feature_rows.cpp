@@ -29,6 +29,7 @@ std::string countTrigger(const std::string& table, bool insert) {
 GpkgFeatureRows::GpkgFeatureRows(SqliteDatabase& db, std::string table, const std::vector<std::string>& fields,
                                  bool hasGeometry)
     : db_(db), table_(std::move(table)), first_(hasGeometry ? 2 : 1), rows_(db, table_, columnsOf(fields, hasGeometry)) {
+  counted_ = db_.hasSchemaObject("trigger_insert_feature_count_" + table_);
   db_.execute("DROP TRIGGER IF EXISTS " + q("trigger_insert_feature_count_" + table_));
   db_.execute("DROP TRIGGER IF EXISTS " + q("trigger_delete_feature_count_" + table_));
 }
@@ -49,12 +50,18 @@ void GpkgFeatureRows::insert(std::int64_t fid) {
 
 void GpkgFeatureRows::finish() {
   rows_.flush();
-  SqliteStatement count = db_.prepare("UPDATE gpkg_ogr_contents SET feature_count = ? WHERE lower(table_name) = lower(?)");
-  count.bind(1, count_);
-  count.bindText(2, table_);
-  count.step();
-  db_.execute(countTrigger(table_, true));
-  db_.execute(countTrigger(table_, false));
+  // A file made without GDAL's gpkg_ogr_contents (ADD_GPKG_OGR_CONTENTS=NO, another tool)
+  // has no count to keep.
+  if (db_.hasSchemaObject("gpkg_ogr_contents")) {
+    SqliteStatement count = db_.prepare("UPDATE gpkg_ogr_contents SET feature_count = ? WHERE lower(table_name) = lower(?)");
+    count.bind(1, count_);
+    count.bindText(2, table_);
+    count.step();
+  }
+  if (counted_) {
+    db_.execute(countTrigger(table_, true));
+    db_.execute(countTrigger(table_, false));
+  }
   if (extent_.isEmpty()) return;
   SqliteStatement extent = db_.prepare(
       "UPDATE gpkg_contents SET min_x = ?, min_y = ?, max_x = ?, max_y = ?, "

@@ -39,6 +39,7 @@ class GpkgFeatureRows {
   int first_;  // the column of field 0: after fid, and geom when there is one
   SqliteBatchInsert rows_;
   std::int64_t count_ = 0;
+  bool counted_ = false;  // GDAL's feature-count triggers were there, to be made again
   Envelope extent_ = Envelope::empty();
 };
 

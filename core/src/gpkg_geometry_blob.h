@@ -28,10 +28,14 @@ class GpkgGeometryBlob {
   // hasZ false, z is ignored and the polygon is 2D.
   template <class PointAt>
   void polygon(std::size_t points, PointAt at, bool hasZ) {
+    envelope_ = Envelope::empty();
     begin(hasZ ? 1003 : 3);
+    if (points == 0) {  // the empty polygon: no ring
+      put32(0);
+      return;
+    }
     put32(1);
     put32(static_cast<std::uint32_t>(points + 1));
-    envelope_ = Envelope::empty();
     for (std::size_t k = 0; k <= points; ++k) {
       double x, y, z;
       at(k == points ? 0 : k, x, y, z);

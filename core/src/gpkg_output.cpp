@@ -110,16 +110,28 @@ GpkgOutput::GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options,
 }
 
 bool GpkgOutput::holdsOnly(const std::function<bool(const std::string&)>& ours) {
-  bool only = true;
-  if (OGRLayer* r = ds_->ExecuteSQL("SELECT table_name FROM gpkg_contents", nullptr, nullptr)) {
-    for (auto& f : *r) only = only && ours(f->GetFieldAsString(0));
+  // Every table and view, registered or not (QGIS keeps projects in a plain table), must be
+  // the GeoPackage's own, an index's, or the job's; and the metadata only the job's items.
+  std::vector<std::string> names;
+  if (OGRLayer* r = ds_->ExecuteSQL("SELECT name FROM sqlite_master WHERE type IN ('table', 'view') "
+                                    "UNION ALL SELECT 'metadata:' || count(*) FROM gpkg_metadata "
+                                    "UNION ALL SELECT 'domains:' || count(*) FROM gpkg_metadata WHERE metadata LIKE '%domain=%'",
+                                    nullptr, nullptr)) {
+    for (auto& f : *r) names.push_back(f->GetFieldAsString(0));
     ds_->ReleaseResultSet(r);
-  } else {
-    return false;
+  }
+  if (names.empty()) return false;  // no gpkg_metadata table, or unreadable: keep what is there
+  const auto infrastructure = [](const std::string& name) {
+    return name.rfind("gpkg_", 0) == 0 || name.rfind("rtree_", 0) == 0 || name.rfind("sqlite_", 0) == 0;
+  };
+  for (const std::string& name : names) {
+    if (name == "metadata:0" || name == "metadata:1" || name == "domains:0") continue;
+    if (name.rfind("metadata:", 0) == 0 || name.rfind("domains:", 0) == 0) return false;
+    if (!infrastructure(name) && !ours(name)) return false;
   }
   for (char** item = ds_->GetMetadata(); item && *item; ++item)
-    only = only && std::string(*item).rfind("TINLOD_", 0) == 0;
-  return only;
+    if (std::string(*item).rfind("TINLOD_", 0) != 0) return false;
+  return true;
 }
 
 GpkgOutput::~GpkgOutput() {

@@ -33,7 +33,7 @@ void createTriggers(SqliteDatabase& db, const std::string& t, const std::string&
 }
 
 void registerExtension(SqliteDatabase& db, const std::string& table) {
-  if (!db.hasTable("gpkg_extensions"))
+  if (!db.hasSchemaObject("gpkg_extensions"))
     db.execute("CREATE TABLE gpkg_extensions (table_name TEXT, column_name TEXT, extension_name TEXT NOT NULL, "
                "definition TEXT NOT NULL, scope TEXT NOT NULL, "
                "CONSTRAINT ge_tce UNIQUE (table_name, column_name, extension_name))");

@@ -2,6 +2,7 @@
 #include "tinlod/hierarchy_layers.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 
 #include "tinlod/error.h"
@@ -30,18 +31,28 @@ std::vector<std::int32_t> HierarchyLayers::missingLevels(std::int32_t coarsest) 
   return out;
 }
 
+namespace {
+
+std::string trimmedLower(std::string text) {
+  const auto space = [](unsigned char c) { return std::isspace(c) != 0; };
+  while (!text.empty() && space(text.back())) text.pop_back();
+  std::size_t first = 0;
+  while (first < text.size() && space(text[first])) ++first;
+  text.erase(0, first);
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+}  // namespace
+
+// "0, 5, Last" as people type lists is taken too.
 std::vector<std::int32_t> parseLevelList(const std::string& text, const std::string& option) {
-  if (text.find_first_not_of(' ') != std::string::npos &&
-      text.substr(text.find_first_not_of(' '), text.find_last_not_of(' ') - text.find_first_not_of(' ') + 1) == "all")
-    return {};
+  if (trimmedLower(text) == "all") return {};
   std::vector<std::int32_t> levels;
   std::size_t begin = 0;
   while (begin <= text.size()) {
     const std::size_t end = std::min(text.find(',', begin), text.size());
-    std::string item = text.substr(begin, end - begin);
-    // "0, 5, last" as people write lists
-    item.erase(0, item.find_first_not_of(' '));
-    item.erase(item.find_last_not_of(' ') + 1);
+    const std::string item = trimmedLower(text.substr(begin, end - begin));
     std::int32_t level = -1;
     const auto [at, ec] = std::from_chars(item.data(), item.data() + item.size(), level);
     if (item == "last") level = HierarchyLayers::kCoarsest;

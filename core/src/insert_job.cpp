@@ -234,7 +234,12 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   std::vector<ExtraField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
   extra[0].values.assign(result.insertion.begin(), result.insertion.end());
   extra[1].values = result.errorBefore;
-  writeTinGpkg(result.tin, out, writeOptions, all.sub(0.85, 1), extra);
+  try {
+    writeTinGpkg(result.tin, out, writeOptions, all.sub(0.85, 1), extra);
+  } catch (...) {
+    check.wait();  // the check reads `result` and `dem`: it ends before they go
+    throw;
+  }
   const InsertSummary summary = check.get();
   warnIfHolesOpen(summary, all);
   files.commit();

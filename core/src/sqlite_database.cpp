@@ -15,11 +15,20 @@ SqliteDatabase::SqliteDatabase(const std::string& path, std::string userName) : 
     db_ = nullptr;
     throw Error("cannot open GeoPackage '" + userName_ + "' to write it: " + message);
   }
-  // The file is a staged copy that is thrown away on any failure, and moved into place
-  // only when complete: a rollback journal and syncs would buy nothing.
-  execute("PRAGMA journal_mode = OFF");
-  execute("PRAGMA synchronous = OFF");
-  execute("PRAGMA cache_size = -8192");  // 8 MiB: rows and index nodes are appended in key order
+  try {
+    // The file is a staged copy that is thrown away on any failure, and synced and moved
+    // into place only when complete: a rollback journal and syncs would buy nothing.
+    execute("PRAGMA journal_mode = OFF");
+    execute("PRAGMA synchronous = OFF");
+    execute("PRAGMA cache_size = -8192");  // 8 MiB: rows and index nodes are appended in key order
+    // The R-trees are loaded into the rtree module's own tables, which a defensive build
+    // of SQLite would make read-only.
+    sqlite3_db_config(db_, SQLITE_DBCONFIG_DEFENSIVE, 0, nullptr);
+  } catch (...) {
+    sqlite3_close_v2(db_);
+    db_ = nullptr;
+    throw;
+  }
 }
 
 SqliteDatabase::~SqliteDatabase() { sqlite3_close_v2(db_); }
@@ -46,7 +55,7 @@ std::int64_t SqliteDatabase::integer(const std::string& sql, std::int64_t otherw
   return statement.step() ? statement.integerColumn(0) : otherwise;
 }
 
-bool SqliteDatabase::hasTable(const std::string& name) {
+bool SqliteDatabase::hasSchemaObject(const std::string& name) {
   SqliteStatement statement(*this, "SELECT 1 FROM sqlite_master WHERE name = ?");
   statement.bindText(1, name);
   return statement.step();
@@ -62,7 +71,8 @@ SqliteStatement::SqliteStatement(SqliteStatement&& other) noexcept
     : db_(other.db_), stmt_(std::exchange(other.stmt_, nullptr)) {}
 
 void SqliteStatement::bindBlob(int parameter, const void* bytes, std::size_t size) {
-  check(sqlite3_bind_blob64(stmt_, parameter, bytes, size, SQLITE_STATIC));
+  // An empty blob is a blob, not null (SQLite takes a null pointer for null).
+  check(size ? sqlite3_bind_blob64(stmt_, parameter, bytes, size, SQLITE_STATIC) : sqlite3_bind_zeroblob(stmt_, parameter, 0));
 }
 
 bool SqliteStatement::step() {

@@ -25,7 +25,8 @@ class SqliteDatabase {
   SqliteStatement prepare(const std::string& sql);
   // The first column of the first row of `sql`, or `otherwise` when there is no row.
   std::int64_t integer(const std::string& sql, std::int64_t otherwise = 0);
-  bool hasTable(const std::string& name);
+  // A table, view, index or trigger of that name.
+  bool hasSchemaObject(const std::string& name);
   [[noreturn]] void fail(const std::string& what) const;
   sqlite3* handle() const { return db_; }
 
