@@ -15,6 +15,7 @@
 #include "tinlod/grid.h"
 #include "tinlod/insert_job.h"
 #include "tinlod/sample_job.h"
+#include "tinlod/synthetic_dem.h"
 #include "tinlod/triangulation.h"
 
 namespace fs = std::filesystem;
@@ -337,14 +338,19 @@ TEST(InsertJob, WritesTheTinWithInsertionOrderAndLeavesNothingWhenCancelled) {
   stop.progress = [](double f, const std::string&) { return f < 0.3; };
   EXPECT_THROW(runInsertJob(test::smallSyntheticDemFile(), cancelled, o, false, stop), Cancelled);
   EXPECT_FALSE(fs::exists(cancelled));
-  // Cancelled while the file is written, with the independent check running beside it.
+  // Cancelled as the file starts, with the independent check running beside it: on the
+  // default DEM (1.2 M cells) the check is still reading the DEM and the TIN then, which
+  // must outlive it (under ASan a use after free showed here).
+  const std::string big = dir + "/default_dem.tif";
+  writeDemGeoTiff(makeSyntheticDem(SyntheticDemOptions()), big);
   bool writing = false;
   Feedback late;
   late.progress = [&writing](double f, const std::string&) {
     writing = writing || f >= 0.86;
     return !writing;
   };
-  EXPECT_THROW(runInsertJob(test::smallSyntheticDemFile(), cancelled, o, false, late), Cancelled);
+  o.maxError = 20;
+  EXPECT_THROW(runInsertJob(big, cancelled, o, false, late), Cancelled);
   EXPECT_TRUE(writing);
   EXPECT_FALSE(fs::exists(cancelled));
   EXPECT_THROW(runInsertJob(test::smallSyntheticDemFile(), out, o, false, Feedback{}), Error);  // exists
