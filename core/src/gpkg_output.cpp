@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "gpkg_output.h"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -49,15 +48,6 @@ GDALDataset* openOrCreate(const fs::path& tmp, bool fromCopy) {
   CPLSetThreadLocalConfigOption("OGR_SQLITE_JOURNAL", nullptr);
   CPLPopErrorHandler();
   return ds;
-}
-
-// The job syncs its outputs before moving them into place: the rows written so far start
-// on their way to the disk now, while the indexes are computed, not all at the end.
-void startWriteback(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE);
-  ::close(fd);
 }
 
 }  // namespace
@@ -293,7 +283,6 @@ void GpkgOutput::closeGdal() {
 }
 
 void GpkgOutput::finishDatabase(const ProgressRange& progress) {
-  startWriteback(file_.staging);
   double total = 0, done = 0;
   for (const PendingIndex& index : indexes_) total += double(index.tree.get()->entries()) + 1;
   for (const PendingIndex& index : indexes_) {

@@ -17,26 +17,6 @@ namespace fs = std::filesystem;
 namespace tinlod {
 namespace {
 
-// The writers leave syncing to here (their staged files are thrown away on failure): a
-// file is on the disk before its name is, so a crash never leaves a torn output in place.
-void syncToDisk(const fs::path& path, const std::string& shownName) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  const bool ok = fd >= 0 && ::fsync(fd) == 0;
-  const int error = errno;
-  if (fd >= 0) ::close(fd);
-  if (!ok) throw Error("cannot write '" + shownName + "' to the disk (" + std::strerror(error) + "): nothing was written");
-}
-
-// The renames themselves reach the disk with their folder's entry; best effort, as the
-// outputs are in place by then and a failure here could undo nothing.
-void syncFolder(const fs::path& folder) noexcept {
-  const int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
-}
-
-
 std::atomic<bool>& committed() {
   static auto* done = new std::atomic<bool>(false);  // read by a watchdog thread at exit
   return *done;
@@ -138,8 +118,6 @@ const StagedFile& OutputFiles::add(const std::string& path, const std::string& o
 }
 
 void OutputFiles::commit() {
-  for (std::size_t i = 0; i < files_.size(); ++i)
-    for (const fs::path& staged : folders_[i]->stagedFiles()) syncToDisk(staged, files_[i]->path);
   std::vector<Moved> moved;
   {
     std::lock_guard<std::mutex> lock(StagingFolder::commitMutex());
@@ -165,7 +143,6 @@ void OutputFiles::commit() {
         }
       }
       committed() = true;
-      for (const Moved& m : moved) syncFolder(m.target.parent_path());
     } catch (const fs::filesystem_error& e) {
       takeBack(moved);
       throw Error("cannot move the outputs into place (" + e.code().message() + "): nothing was written");
