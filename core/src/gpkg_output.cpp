@@ -34,17 +34,14 @@ GDALDataset* openOrCreate(const fs::path& tmp, bool fromCopy) {
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
   if (!driver) throw Error("GDAL was built without the GeoPackage driver");
   CPLPushErrorHandler(CPLQuietErrorHandler);
-  // GDAL makes a new GeoPackage in some twenty transactions, each synced to disk with its
-  // journal file made and removed: most of a small job's writing. The file is a staged
-  // copy, thrown away on failure, so nothing is synced; the journal stays in memory so
-  // that GDAL's own rollbacks still work.
-  CPLSetThreadLocalConfigOption("OGR_SQLITE_SYNCHRONOUS", "OFF");
+  // GDAL makes a new GeoPackage in some twenty transactions, each making and removing a
+  // journal file. The file is a staged copy, thrown away on failure: the journal stays in
+  // memory, where GDAL's own rollbacks still find it.
   CPLSetThreadLocalConfigOption("OGR_SQLITE_JOURNAL", "MEMORY");
   const char* const gpkgOnly[] = {"GPKG", nullptr};
   GDALDataset* ds = fromCopy ? static_cast<GDALDataset*>(GDALOpenEx(tmp.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE,
                                                                     gpkgOnly, nullptr, nullptr))
                              : driver->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
-  CPLSetThreadLocalConfigOption("OGR_SQLITE_SYNCHRONOUS", nullptr);
   CPLSetThreadLocalConfigOption("OGR_SQLITE_JOURNAL", nullptr);
   CPLPopErrorHandler();
   return ds;

@@ -16,8 +16,8 @@ SqliteDatabase::SqliteDatabase(const std::string& path, std::string userName) : 
     throw Error("cannot open GeoPackage '" + userName_ + "' to write it: " + message);
   }
   try {
-    // The file is a staged copy that is thrown away on any failure, and synced and moved
-    // into place only when complete: a rollback journal and syncs would buy nothing.
+    // The file is a staged copy that is thrown away on any failure, and moved into place
+    // only when complete: a rollback journal and syncs would buy nothing.
     execute("PRAGMA journal_mode = OFF");
     execute("PRAGMA synchronous = OFF");
     execute("PRAGMA cache_size = -8192");  // 8 MiB: rows and index nodes are appended in key order
