@@ -6,8 +6,6 @@
 namespace tinlod {
 namespace {
 
-std::string q(const std::string& name) { return "\"" + name + "\""; }
-
 std::vector<std::string> columnsOf(const std::vector<std::string>& fields, bool hasGeometry) {
   std::vector<std::string> columns{"fid"};
   if (hasGeometry) columns.emplace_back("geom");
@@ -18,8 +16,8 @@ std::vector<std::string> columnsOf(const std::vector<std::string>& fields, bool 
 // GDAL's triggers count features one UPDATE per row; they are set aside while the rows
 // go in and made again, with the count written once, at the end.
 std::string countTrigger(const std::string& table, bool insert) {
-  return "CREATE TRIGGER " + q(std::string("trigger_") + (insert ? "insert" : "delete") + "_feature_count_" + table) +
-         (insert ? " AFTER INSERT" : " AFTER DELETE") + " ON " + q(table) +
+  return "CREATE TRIGGER " + sqlName(std::string("trigger_") + (insert ? "insert" : "delete") + "_feature_count_" + table) +
+         (insert ? " AFTER INSERT" : " AFTER DELETE") + " ON " + sqlName(table) +
          " BEGIN UPDATE gpkg_ogr_contents SET feature_count = feature_count " + (insert ? "+" : "-") +
          " 1 WHERE lower(table_name) = lower('" + table + "'); END";
 }
@@ -30,8 +28,8 @@ GpkgFeatureRows::GpkgFeatureRows(SqliteDatabase& db, std::string table, const st
                                  bool hasGeometry)
     : db_(db), table_(std::move(table)), first_(hasGeometry ? 2 : 1), rows_(db, table_, columnsOf(fields, hasGeometry)) {
   counted_ = db_.hasSchemaObject("trigger_insert_feature_count_" + table_);
-  db_.execute("DROP TRIGGER IF EXISTS " + q("trigger_insert_feature_count_" + table_));
-  db_.execute("DROP TRIGGER IF EXISTS " + q("trigger_delete_feature_count_" + table_));
+  db_.execute("DROP TRIGGER IF EXISTS " + sqlName("trigger_insert_feature_count_" + table_));
+  db_.execute("DROP TRIGGER IF EXISTS " + sqlName("trigger_delete_feature_count_" + table_));
 }
 
 void GpkgFeatureRows::insert(std::int64_t fid, const GpkgGeometryBlob& geometry) {

@@ -190,13 +190,14 @@ void GpkgOutput::execute(const std::string& sql) {
 
 void GpkgOutput::createFeatureView(const std::string& name, const std::string& select, const std::string& baseTable,
                                    const std::string& description) {
-  executeAfterClose("CREATE VIEW \"" + name + "\" AS " + select);
-  executeAfterClose("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, srs_id) SELECT " + quoted(name) +
-          ", 'features', " + quoted(name) + ", " + quoted(description) + ", srs_id FROM gpkg_contents WHERE table_name = " +
-          quoted(baseTable));
-  executeAfterClose("INSERT INTO gpkg_geometry_columns (table_name, column_name, geometry_type_name, srs_id, z, m) SELECT " +
-          quoted(name) + ", column_name, geometry_type_name, srs_id, z, m FROM gpkg_geometry_columns WHERE table_name = " +
-          quoted(baseTable));
+  SqliteDatabase& db = database();
+  db.execute("CREATE VIEW \"" + name + "\" AS " + select);
+  db.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, srs_id) SELECT " + quoted(name) +
+             ", 'features', " + quoted(name) + ", " + quoted(description) + ", srs_id FROM gpkg_contents WHERE table_name = " +
+             quoted(baseTable));
+  db.execute("INSERT INTO gpkg_geometry_columns (table_name, column_name, geometry_type_name, srs_id, z, m) SELECT " +
+             quoted(name) + ", column_name, geometry_type_name, srs_id, z, m FROM gpkg_geometry_columns WHERE table_name = " +
+             quoted(baseTable));
 }
 
 SqliteDatabase& GpkgOutput::database() {
@@ -227,27 +228,19 @@ std::int32_t GpkgOutput::srsId(const std::string& table) {
 
 void GpkgOutput::indexLater(const std::string& table, std::function<std::vector<RtreeBox>()> boxes) {
   const int capacity = gpkgRtreeCapacity(database());
-  std::shared_future<std::shared_ptr<const PackedRtree>> previous;
+  std::shared_future<PackedRtree> previous;
   if (!indexes_.empty()) previous = indexes_.back().tree;
   // One packing at a time, in the order asked: the caller's thread writes rows on the
   // other core, and only one layer's boxes are held at once.
   auto pack = [previous, boxes = std::move(boxes), capacity]() {
     if (previous.valid()) previous.wait();
-    return std::shared_ptr<const PackedRtree>(std::make_shared<PackedRtree>(boxes(), capacity));
+    return PackedRtree(boxes(), capacity);
   };
   indexes_.push_back({table, std::async(std::launch::async, std::move(pack)).share()});
 }
 
-void GpkgOutput::runDeferred() {
-  if (deferred_.empty() && !vacuum_) return;
-  ds_ = openOrCreate(file_.staging, true);
-  if (!ds_) throw Error("cannot reopen GeoPackage '" + file_.path + "' to finish it");
-  begin();
-  for (const std::string& sql : deferred_) execute(sql);
-  commit();
-  if (vacuum_) execute("VACUUM");  // outside any transaction, as SQLite requires
-  GDALClose(ds_);
-  ds_ = nullptr;
+void GpkgOutput::compactIfDropped() {
+  if (vacuum_) SqliteDatabase(file_.staging.string(), file_.path).execute("VACUUM");
 }
 
 void GpkgOutput::begin() {
@@ -281,14 +274,14 @@ void GpkgOutput::closeGdal() {
 
 void GpkgOutput::finishDatabase(const ProgressRange& progress) {
   double total = 0, done = 0;
-  for (const PendingIndex& index : indexes_) total += double(index.tree.get()->entries()) + 1;
+  for (const PendingIndex& index : indexes_) total += double(index.tree.get().entries()) + 1;
   for (const PendingIndex& index : indexes_) {
-    const double share = (double(index.tree.get()->entries()) + 1) / total;
-    writeGpkgSpatialIndex(*db_, index.table, *index.tree.get(), progress.sub(0.95 * done, 0.95 * (done + share)));
+    const PackedRtree& tree = index.tree.get();
+    const double share = (double(tree.entries()) + 1) / total;
+    writeGpkgSpatialIndex(*db_, index.table, tree, progress.sub(0.95 * done, 0.95 * (done + share)));
     done += share;
   }
   indexes_.clear();  // the packed trees' memory goes back before the commit
-  for (const std::string& sql : deferred_) db_->execute(sql);
   const bool lateWritten = options_.lateMetadata && setGdalMetadataItems(*db_, options_.lateMetadata());
   db_->execute("COMMIT");
   if (vacuum_) db_->execute("VACUUM");  // outside any transaction, as SQLite requires
@@ -309,7 +302,7 @@ void GpkgOutput::finish(const ProgressRange& progress) {
     writeMetadata(true);
     progress.report(0, "Building the spatial index");
     closeGdal();  // GDAL builds its layers' spatial indexes here
-    runDeferred();
+    compactIfDropped();
   }
   // Nothing is in place before the job commits its outputs: a cancel asked for during the
   // index build is still honoured here. (The end of the range, 1, is the job's to report

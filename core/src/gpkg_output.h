@@ -51,12 +51,8 @@ class GpkgOutput {
   // (one layer after another, while the caller writes rows); finish() stores it.
   void indexLater(const std::string& table, std::function<std::vector<RtreeBox>()> boxes);
   void execute(const std::string& sql);
-  // Run once the features are written and the file closed. GDAL 3.6 builds R-trees in a
-  // background thread with a database attached, and SQL run meanwhile fails with
-  // "database is locked"; the file is reopened for these statements instead.
-  void executeAfterClose(const std::string& sql) { deferred_.push_back(sql); }
   // A GeoPackage view registered as a feature layer with the geometry of `baseTable`, so
-  // that GDAL and QGIS list it beside the tables (created after close).
+  // that GDAL and QGIS list it beside the tables; made in the bulk writer's transaction.
   void createFeatureView(const std::string& name, const std::string& select, const std::string& baseTable,
                          const std::string& description);
   void begin();
@@ -67,18 +63,19 @@ class GpkgOutput {
  private:
   struct PendingIndex {
     std::string table;
-    std::shared_future<std::shared_ptr<const PackedRtree>> tree;
+    std::shared_future<PackedRtree> tree;
   };
   void dropOurs(const std::function<bool(const std::string&)>& ours);
   // True when every layer and metadata item of the file is the job's own.
   bool holdsOnly(const std::function<bool(const std::string&)>& ours);
   void writeMetadata(bool withLate);
   void closeGdal();
-  void runDeferred();
+  // What dropping the job's old layers left free is given back (GDAL's part only: the
+  // bulk writer compacts in its own connection).
+  void compactIfDropped();
   void finishDatabase(const ProgressRange& progress);
   std::vector<PendingIndex> indexes_;
   std::unique_ptr<SqliteDatabase> db_;
-  std::vector<std::string> deferred_;
   bool vacuum_ = false;
   bool created_ = false;
   std::string said(const std::string& gdalMessage) const { return inUserTerms(file_, gdalMessage); }

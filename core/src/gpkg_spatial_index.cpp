@@ -7,29 +7,27 @@
 namespace tinlod {
 namespace {
 
-std::string q(const std::string& name) { return "\"" + name + "\""; }
-
 // The extension's triggers keep the index true when the table is edited afterwards (in
 // QGIS, say), in the words GDAL 3.6 writes them.
 void createTriggers(SqliteDatabase& db, const std::string& t, const std::string& rtree) {
   const std::string bounds = "(NEW.\"fid\",ST_MinX(NEW.\"geom\"), ST_MaxX(NEW.\"geom\"),ST_MinY(NEW.\"geom\"), ST_MaxY(NEW.\"geom\"))";
-  const std::string on = " ON " + q(t) + " WHEN ";
+  const std::string on = " ON " + sqlName(t) + " WHEN ";
   const std::string present = "(NEW.\"geom\" NOTNULL AND NOT ST_IsEmpty(NEW.\"geom\"))";
   const std::string absent = "(NEW.\"geom\" ISNULL OR ST_IsEmpty(NEW.\"geom\"))";
-  const std::string insert = "INSERT OR REPLACE INTO " + q(rtree) + " VALUES " + bounds + "; END";
+  const std::string insert = "INSERT OR REPLACE INTO " + sqlName(rtree) + " VALUES " + bounds + "; END";
   const std::string trigger = "CREATE TRIGGER " ;
-  db.execute(trigger + q(rtree + "_insert") + " AFTER INSERT ON " + q(t) +
+  db.execute(trigger + sqlName(rtree + "_insert") + " AFTER INSERT ON " + sqlName(t) +
              " WHEN (new.\"geom\" NOT NULL AND NOT ST_IsEmpty(NEW.\"geom\")) BEGIN " + insert);
-  db.execute(trigger + q(rtree + "_update1") + " AFTER UPDATE OF \"geom\"" + on + "OLD.\"fid\" = NEW.\"fid\" AND " +
+  db.execute(trigger + sqlName(rtree + "_update1") + " AFTER UPDATE OF \"geom\"" + on + "OLD.\"fid\" = NEW.\"fid\" AND " +
              present + " BEGIN " + insert);
-  db.execute(trigger + q(rtree + "_update2") + " AFTER UPDATE OF \"geom\"" + on + "OLD.\"fid\" = NEW.\"fid\" AND " +
-             absent + " BEGIN DELETE FROM " + q(rtree) + " WHERE id = OLD.\"fid\"; END");
-  db.execute(trigger + q(rtree + "_update3") + " AFTER UPDATE" + on + "OLD.\"fid\" != NEW.\"fid\" AND " + present +
-             " BEGIN DELETE FROM " + q(rtree) + " WHERE id = OLD.\"fid\"; " + insert);
-  db.execute(trigger + q(rtree + "_update4") + " AFTER UPDATE" + on + "OLD.\"fid\" != NEW.\"fid\" AND " + absent +
-             " BEGIN DELETE FROM " + q(rtree) + " WHERE id IN (OLD.\"fid\", NEW.\"fid\"); END");
-  db.execute(trigger + q(rtree + "_delete") + " AFTER DELETE ON " + q(t) +
-             " WHEN old.\"geom\" NOT NULL BEGIN DELETE FROM " + q(rtree) + " WHERE id = OLD.\"fid\"; END");
+  db.execute(trigger + sqlName(rtree + "_update2") + " AFTER UPDATE OF \"geom\"" + on + "OLD.\"fid\" = NEW.\"fid\" AND " +
+             absent + " BEGIN DELETE FROM " + sqlName(rtree) + " WHERE id = OLD.\"fid\"; END");
+  db.execute(trigger + sqlName(rtree + "_update3") + " AFTER UPDATE" + on + "OLD.\"fid\" != NEW.\"fid\" AND " + present +
+             " BEGIN DELETE FROM " + sqlName(rtree) + " WHERE id = OLD.\"fid\"; " + insert);
+  db.execute(trigger + sqlName(rtree + "_update4") + " AFTER UPDATE" + on + "OLD.\"fid\" != NEW.\"fid\" AND " + absent +
+             " BEGIN DELETE FROM " + sqlName(rtree) + " WHERE id IN (OLD.\"fid\", NEW.\"fid\"); END");
+  db.execute(trigger + sqlName(rtree + "_delete") + " AFTER DELETE ON " + sqlName(t) +
+             " WHEN old.\"geom\" NOT NULL BEGIN DELETE FROM " + sqlName(rtree) + " WHERE id = OLD.\"fid\"; END");
 }
 
 void registerExtension(SqliteDatabase& db, const std::string& table) {
@@ -46,8 +44,8 @@ void registerExtension(SqliteDatabase& db, const std::string& table) {
 
 void writeNodes(SqliteDatabase& db, const std::string& rtree, const PackedRtree& tree, std::size_t nodeBytes,
                 const ProgressRange& progress) {
-  db.execute("DELETE FROM " + q(rtree + "_node"));  // the empty root SQLite made
-  SqliteStatement node = db.prepare("INSERT INTO " + q(rtree + "_node") + " (nodeno, data) VALUES (?, ?)");
+  db.execute("DELETE FROM " + sqlName(rtree + "_node"));  // the empty root SQLite made
+  SqliteStatement node = db.prepare("INSERT INTO " + sqlName(rtree + "_node") + " (nodeno, data) VALUES (?, ?)");
   std::vector<unsigned char> blob;
   for (std::size_t n = 1; n <= tree.nodes(); ++n) {
     tree.nodeBlob(n, nodeBytes, blob);
@@ -57,7 +55,7 @@ void writeNodes(SqliteDatabase& db, const std::string& rtree, const PackedRtree&
     if ((n & 0x3FF) == 0) progress.report(double(n) / tree.nodes(), "Writing the spatial index");
   }
   const std::vector<std::uint32_t> parent = tree.parents();
-  SqliteStatement link = db.prepare("INSERT INTO " + q(rtree + "_parent") + " (nodeno, parentnode) VALUES (?, ?)");
+  SqliteStatement link = db.prepare("INSERT INTO " + sqlName(rtree + "_parent") + " (nodeno, parentnode) VALUES (?, ?)");
   for (std::size_t n = 2; n < parent.size(); ++n) {
     link.bind(1, static_cast<std::int64_t>(n));
     link.bind(2, parent[n]);
@@ -87,8 +85,8 @@ int gpkgRtreeCapacity(SqliteDatabase& db) {
 void writeGpkgSpatialIndex(SqliteDatabase& db, const std::string& table, const PackedRtree& tree,
                            const ProgressRange& progress) {
   const std::string rtree = "rtree_" + table + "_geom";
-  db.execute("CREATE VIRTUAL TABLE " + q(rtree) + " USING rtree(id, minx, maxx, miny, maxy)");
-  const auto nodeBytes = static_cast<std::size_t>(db.integer("SELECT length(data) FROM " + q(rtree + "_node") + " WHERE nodeno = 1"));
+  db.execute("CREATE VIRTUAL TABLE " + sqlName(rtree) + " USING rtree(id, minx, maxx, miny, maxy)");
+  const auto nodeBytes = static_cast<std::size_t>(db.integer("SELECT length(data) FROM " + sqlName(rtree + "_node") + " WHERE nodeno = 1"));
   if (nodeBytes < 4 + 24 * std::size_t(gpkgRtreeCapacity(db)))
     throw Error("SQLite made R-tree nodes of " + std::to_string(nodeBytes) + " bytes, too small for the packed index");
   if (tree.entries() > 0) {

@@ -27,8 +27,8 @@ void SqliteBatchInsert::flush() {
 SqliteStatement& SqliteBatchInsert::statementFor(int rows) {
   auto found = statements_.find(rows);
   if (found != statements_.end()) return found->second;
-  std::string sql = "INSERT INTO \"" + table_ + "\" (";
-  for (std::size_t c = 0; c < columns_.size(); ++c) sql += (c ? ", \"" : "\"") + columns_[c] + "\"";
+  std::string sql = "INSERT INTO " + sqlName(table_) + " (";
+  for (std::size_t c = 0; c < columns_.size(); ++c) sql += (c ? ", " : "") + sqlName(columns_[c]);
   sql += ") VALUES ";
   for (int r = 0; r < rows; ++r) {
     sql += r ? ", (" : "(";

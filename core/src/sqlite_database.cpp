@@ -7,6 +7,12 @@
 
 namespace tinlod {
 
+std::string sqlName(const std::string& name) {
+  std::string out = "\"";
+  for (char c : name) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
 SqliteDatabase::SqliteDatabase(const std::string& path, std::string userName) : userName_(std::move(userName)) {
   // One thread uses the connection: SQLite's own locking of it would only cost time.
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr) != SQLITE_OK) {

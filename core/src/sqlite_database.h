@@ -13,6 +13,9 @@ namespace tinlod {
 
 class SqliteStatement;
 
+// A table or column name as SQL writes one: in double quotes, its own quotes doubled.
+std::string sqlName(const std::string& name);
+
 class SqliteDatabase {
  public:
   // `userName` words errors in the user's terms (the staged file's path means nothing to them).
