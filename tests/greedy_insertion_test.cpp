@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <random>
 
 #include "mesh_checks.h"
@@ -171,6 +172,19 @@ TEST(GreedyInsertion, HolesStayHolesAndEveryValidCellIsCovered) {
   const test::Topology topo = test::analyseTopology(out.tin);
   EXPECT_EQ(topo.problem, "");
   EXPECT_GE(topo.boundaryLoops, 2u);  // the outline and the void
+  // A vertex is on the outline exactly when it ends an edge that only one triangle has.
+  std::map<std::pair<VertexId, VertexId>, int> edgeUses;
+  for (const Triangle& t : out.tin.triangles)
+    for (int k = 0; k < 3; ++k) ++edgeUses[std::minmax(t[k], t[(k + 1) % 3])];
+  std::vector<bool> onOutline(out.tin.vertices.size(), false);
+  for (const auto& [edge, uses] : edgeUses)
+    if (uses == 1) onOutline[edge.first] = onOutline[edge.second] = true;
+  std::size_t outline = 0;
+  for (std::size_t i = 0; i < onOutline.size(); ++i) {
+    EXPECT_EQ(out.tin.vertices[i].outline, onOutline[i]) << "vertex " << i;
+    outline += onOutline[i];
+  }
+  EXPECT_GT(outline, 8u);
 }
 
 TEST(GreedyInsertion, SameInputSameTin) {

@@ -11,12 +11,15 @@ namespace {
 // triangle in O(rows it spans), however large the hole under it.
 class MissingCounts {
  public:
-  explicit MissingCounts(const Dem& dem) : width_(dem.width), counts_((dem.width + 1) * std::size_t(dem.height)) {
+  // Nothing is counted on a DEM without holes (the common case: 4 bytes a cell saved).
+  explicit MissingCounts(const Dem& dem) : width_(dem.width) {
+    any_ = std::any_of(dem.z.begin(), dem.z.end(), [](float v) { return v != v; });
+    if (!any_) return;
+    counts_.resize((dem.width + 1) * std::size_t(dem.height));
     for (int row = 0; row < dem.height; ++row) {
       std::uint32_t* c = &counts_[row * std::size_t(width_ + 1)];
       c[0] = 0;
       for (int col = 0; col < width_; ++col) c[col + 1] = c[col] + !dem.valid(row, col);
-      any_ = any_ || c[width_] > 0;
     }
   }
   bool any() const { return any_; }
@@ -166,8 +169,11 @@ TriangleFilter filterOnValidData(const Dem& dem, const Triangulation& triangulat
 
 }  // namespace
 
-std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin) {
-  return filterOnValidData(dem, triangulation, tin).kept();
+std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin,
+                                           std::vector<std::array<std::int32_t, 3>>* neighbours) {
+  const TriangleFilter filter = filterOnValidData(dem, triangulation, tin);
+  if (neighbours) *neighbours = filter.keptNeighbours();
+  return filter.kept();
 }
 
 std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triangulation, Tin& tin,

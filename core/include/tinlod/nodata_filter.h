@@ -23,7 +23,10 @@ std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triang
                                      const ProgressRange& progress);
 
 // The same choice of triangles, returned as they are (indexing tin.vertices, which only
-// give the triangles' cells); nothing is renumbered.
-std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin);
+// give the triangles' cells); nothing is renumbered. With `neighbours`, each kept
+// triangle's neighbours too, as keepTrianglesOnValidData sets them (numbered as the kept
+// triangles, kNoNeighbour across an outline edge).
+std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin,
+                                           std::vector<std::array<std::int32_t, 3>>* neighbours = nullptr);
 
 }  // namespace tinlod
