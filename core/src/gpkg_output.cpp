@@ -38,11 +38,16 @@ GDALDataset* openOrCreate(const fs::path& tmp, bool fromCopy) {
   // journal file. The file is a staged copy, thrown away on failure: the journal stays in
   // memory, where GDAL's own rollbacks still find it.
   CPLSetThreadLocalConfigOption("OGR_SQLITE_JOURNAL", "MEMORY");
+  // 16 KiB pages hold 13 R-tree nodes where 4 KiB ones hold 3 with a tenth left empty, and
+  // waste less at the end of each page of rows: 7 bytes a triangle less than GDAL's 4 KiB.
+  // GDAL sets it before its first table; a file that has the user's layers keeps its own.
+  if (!fromCopy) CPLSetThreadLocalConfigOption("OGR_SQLITE_PRAGMA", "page_size=16384");
   const char* const gpkgOnly[] = {"GPKG", nullptr};
   GDALDataset* ds = fromCopy ? static_cast<GDALDataset*>(GDALOpenEx(tmp.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE,
                                                                     gpkgOnly, nullptr, nullptr))
                              : driver->Create(tmp.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
   CPLSetThreadLocalConfigOption("OGR_SQLITE_JOURNAL", nullptr);
+  CPLSetThreadLocalConfigOption("OGR_SQLITE_PRAGMA", nullptr);
   CPLPopErrorHandler();
   return ds;
 }
@@ -78,7 +83,6 @@ GpkgOutput::GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options,
     : file_(file), options_(options) {
   const bool fromCopy = fs::exists(file_.staging);  // OutputFiles copied the existing output
   ds_ = openOrCreate(file_.staging, fromCopy);
-  created_ = !fromCopy;
   if (!ds_)
     throw Error(fromCopy ? "'" + file_.path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name"
                          : "cannot create GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
@@ -90,7 +94,6 @@ GpkgOutput::GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options,
     fs::remove(file_.staging);
     ds_ = openOrCreate(file_.staging, false);
     if (!ds_) throw Error("cannot create GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
-    created_ = true;
     return;
   }
   dropOurs(ours);
@@ -205,14 +208,6 @@ SqliteDatabase& GpkgOutput::database() {
   writeMetadata(false);  // the late items are written once the rows are in
   closeGdal();
   db_ = std::make_unique<SqliteDatabase>(file_.staging.string(), file_.path);
-  // 16 KiB pages hold 13 R-tree nodes where 4 KiB ones hold 3 with a tenth left empty, and
-  // waste less at the end of each page of rows: 7 bytes a triangle less than GDAL's 4 KiB.
-  // The new file holds only GDAL's empty tables yet, so rewriting it is immediate; a file
-  // that has the user's other layers keeps its page size.
-  if (created_) {
-    db_->execute("PRAGMA page_size = 16384");
-    db_->execute("VACUUM");
-  }
   db_->execute("BEGIN");
   return *db_;
 }

@@ -77,7 +77,6 @@ class GpkgOutput {
   std::vector<PendingIndex> indexes_;
   std::unique_ptr<SqliteDatabase> db_;
   bool vacuum_ = false;
-  bool created_ = false;
   std::string said(const std::string& gdalMessage) const { return inUserTerms(file_, gdalMessage); }
   StagedFile file_;
   GpkgWriteOptions options_;
