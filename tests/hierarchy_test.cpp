@@ -254,6 +254,32 @@ TEST(Hierarchy, MaxErrorBoundsEveryLevel) {
   expectValidHierarchy(dem, h);
 }
 
+TEST(Hierarchy, PhasesAreReportedInTheOrderTheyHappenAndOnlyForLevelsMade) {
+  const Dem dem = test::smallSyntheticDem();
+  std::vector<std::string> phases;
+  Feedback f;
+  f.progress = [&](double, const std::string& phase) {
+    if (phases.empty() || phases.back() != phase) phases.push_back(phase);
+    return true;
+  };
+  const Hierarchy h = buildHierarchy(sampleTin(dem, {}, kQuiet), dem, {}, {}, ProgressRange(f, 0, 1));
+  ASSERT_GE(h.coarsest(), 3);
+  // Selecting level L, then Simplifying level L, for L = 1.. in turn; the selection that
+  // finds the next level not worth making is the last phase, and no level is named that
+  // was not made but that one.
+  std::vector<std::string> levelPhases;
+  for (const std::string& p : phases)
+    if (p.rfind("Selecting level ", 0) == 0 || p.rfind("Simplifying level ", 0) == 0) levelPhases.push_back(p);
+  std::vector<std::string> expected;
+  for (std::int32_t L = 1; L <= h.coarsest(); ++L) {
+    expected.push_back("Selecting level " + std::to_string(L));
+    expected.push_back("Simplifying level " + std::to_string(L));
+  }
+  if (!h.stopReason.empty() && h.stopReason.find("-max_levels") == std::string::npos)
+    expected.push_back("Selecting level " + std::to_string(h.coarsest() + 1));
+  EXPECT_EQ(levelPhases, expected);
+}
+
 TEST(Hierarchy, DegreeMeasureDeletesOnlyLowDegreeVertices) {
   const Dem dem = test::smallSyntheticDem();
   const Hierarchy h = build(dem, Measure::Degree);

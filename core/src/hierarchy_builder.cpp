@@ -83,7 +83,7 @@ class Simplifier {
       const Clock::time_point t2 = Clock::now();
       current_ -= picks.size();
       h_.levels.push_back(levelStats(level, picks.size(), seconds(t0, t1), seconds(t1, t2)));
-      reportProgress(level + 1, 0, 0);
+      reportProgress(level, 1, 0);  // the level just made: the next is named when its selection starts
     }
     finish();
     return std::move(h_);
