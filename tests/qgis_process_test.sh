@@ -226,5 +226,29 @@ check "a bad band exits 1" test "$bad_rc" -eq 1
 check "a bad band names BAND on stderr" grep -q "Invalid band number for BAND (9)" "$work/bad.err"
 check "a bad band writes nothing" test ! -e "$work/bad.gpkg"
 
+# A provider built for another QGIS, simulated as the issue says: a copy of the plugin whose
+# library needs a libqgis_core of another version (its name changed, same length, in the
+# copy). QGIS must say so once, in words, and go on: no traceback, native algorithms there.
+other=$work/other_config
+mkdir -p "$other/profiles/default/python/plugins"
+cp -r "$plugin_dir" "$other/profiles/default/python/plugins/tinlod"
+/usr/bin/python3 - "$other/profiles/default/python/plugins/tinlod/libtinlod_processing.so" <<'PY'
+import re, sys
+path = sys.argv[1]
+data = open(path, "rb").read()
+needed = re.search(rb"libqgis_core\.so\.3\.\d+\.\d+", data).group(0)
+other = needed[:-2] + (b"98" if needed.endswith(b"99") else b"99")
+open(path, "wb").write(data.replace(needed, other))
+PY
+QGIS_CUSTOM_CONFIG_PATH=$other "$qp" plugins enable tinlod > /dev/null 2>&1 || true
+QGIS_CUSTOM_CONFIG_PATH=$other "$qp" list > "$work/other.out" 2> "$work/other.err" && other_rc=0 || other_rc=$?
+cat "$work/other.out" "$work/other.err" > "$work/other.all"
+check "another QGIS: qgis_process still works (exit 0, native algorithms listed)" \
+  bash -c "test $other_rc -eq 0 && grep -q 'native:buffer' '$work/other.out'"
+check "another QGIS: no traceback" bash -c "! grep -q Traceback '$work/other.all'"
+check "another QGIS: one clear message naming the QGIS it was built for and what to do" \
+  bash -c "test \$(grep -c 'tinlod: its Processing provider was built for QGIS $(cat "$plugin_dir/built_for_qgis.txt") and cannot load' '$work/other.all') -eq 1 && grep -q 'rebuild tinlod on this machine' '$work/other.all'"
+check "another QGIS: no tinlod algorithm is listed" bash -c "! grep -q 'tinlod:' '$work/other.out'"
+
 echo "qgis_process: $passes passed, $failures failed"
 exit $((failures > 0))
