@@ -54,7 +54,8 @@ bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProce
   return true;
 }
 
-QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessingContext&, QgsProcessingFeedback* feedback) {
+QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessingContext& context,
+                                               QgsProcessingFeedback* feedback) {
   const AccuracyReport report = translateErrors(
       [&] { return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback), validHeights_); });
   const int level = accuracy_.rasterLevel < 0 ? static_cast<int>(report.rows.size()) - 1 : accuracy_.rasterLevel;
@@ -68,6 +69,7 @@ QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessin
                   .arg(r.insertRmse, 0, 'f', 2).arg(r.insertRatio, 0, 'f', 3);
     feedback->pushInfo(line);
   }
+  accuracyLoad_.reRegister(context);
   QVariantMap outputs;
   if (!accuracy_.rasterPath.empty()) outputs.insert(QStringLiteral("ACCURACY"), QString::fromStdString(accuracy_.rasterPath));
   if (!accuracy_.reportPath.empty()) outputs.insert(QStringLiteral("REPORT"), QString::fromStdString(accuracy_.reportPath));

@@ -47,6 +47,7 @@ void DemAlgorithm::readAccuracyParameters(const QVariantMap& parameters, QgsProc
   accuracy_.compareInsert = parameterAsBoolean(parameters, QStringLiteral("COMPARE_INSERT"), context);
   const QString raster = optionalPath(parameterAsOutputLayer(parameters, QStringLiteral("ACCURACY"), context));
   accuracy_.rasterPath = raster.toStdString();
+  accuracyLoad_.remember(context, raster);
   if (!raster.isEmpty()) {
     const QString driver = QgsRasterFileWriter::driverForExtension(QFileInfo(raster).suffix());
     accuracy_.raster.format = driver.isEmpty() ? QStringLiteral("GTiff").toStdString() : driver.toStdString();

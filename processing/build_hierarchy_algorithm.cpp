@@ -172,6 +172,7 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
       loadTinLayerOnCompletion(context, output, QStringLiteral("level_%1").arg(level), QStringLiteral("OUTPUT"), group,
                                level == s.levels, level);
   }
+  accuracyLoad_.reRegister(context);
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("LEVELS"), s.levels + 1);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "accuracy_raster_style.h"
 #include "tinlod/accuracy_job.h"
 #include "tinlod/sample_options.h"
 
@@ -43,6 +44,9 @@ class DemAlgorithm : public QgsProcessingAlgorithm {
   SampleOptions sample_;
   std::optional<HeightRange> validHeights_;
   AccuracyOutputs accuracy_;
+  // The accuracy raster's loading into the project, if asked: call reRegister() from
+  // processAlgorithm once the raster is written.
+  AccuracyRasterLoad accuracyLoad_;
 };
 
 }  // namespace tinlod::qgis

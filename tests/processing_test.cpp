@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 #include <qgsrasterlayer.h>
+#include <qgssinglebandpseudocolorrenderer.h>
+#include <qgsrasterdataprovider.h>
+#include <qgsprocessingparameters.h>
 #include <qgsapplication.h>
 #include <qgsnativealgorithms.h>
 #include <qgsprocessingalgorithm.h>
@@ -23,6 +26,7 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
@@ -420,6 +424,56 @@ TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
 
 // QGIS asks before replacing a destination, but an input is never one: the DEM and the
 // hierarchy stay as they were.
+// As the dialog runs an algorithm with "Open output file after running": parameters read
+// on the main thread (prepare), the work on another (QgsProcessingAlgRunnerTask), whose
+// context's list of layers to load replaces the caller's. The accuracy raster must still
+// load, on a single-band diverging ramp centred on zero.
+TEST(Processing, AccuracyRasterLoadsStyledFromABackgroundRun) {
+  const std::string dir = test::tempDir();
+  const QString hier = QString::fromStdString(dir + "/bg_hier.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  for (const QString id : {QStringLiteral("tinlod:accuracy"), QStringLiteral("tinlod:buildhierarchy")}) {
+    const QString raster = QString::fromStdString(dir + "/bg_" + id.mid(7).toStdString() + ".tif");
+    QgsProject project;
+    QgsProcessingContext context;
+    context.setProject(&project);
+    QVariantMap parameters{{"INPUT", QString::fromStdString(defaultDem())},
+                           {"ACCURACY", QVariant::fromValue(QgsProcessingOutputLayerDefinition(raster, &project))}};
+    if (id == QStringLiteral("tinlod:accuracy")) parameters.insert("HIERARCHY", hier);
+    else parameters.insert("OUTPUT", QString::fromStdString(dir + "/bg_built.gpkg")), parameters.insert("LOAD_LEVELS", false);
+    std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById(id));
+    RecordingFeedback feedback;
+    ASSERT_TRUE(alg->prepare(parameters, context, &feedback)) << feedback.errors.toStdString();
+    bool ok = false;
+    std::thread worker([&] {
+      try {
+        alg->runPrepared(parameters, context, &feedback);
+        ok = true;
+      } catch (const QgsProcessingException& e) {
+        feedback.errors += e.what();
+      }
+    });
+    worker.join();
+    ASSERT_TRUE(ok) << feedback.errors.toStdString();
+    alg->postProcess(context, &feedback);  // the task's end, on the main thread: the lists are swapped here
+    ASSERT_TRUE(context.willLoadLayerOnCompletion(raster)) << id.toStdString() << ": the raster would not be loaded";
+    QgsProcessingContext::LayerDetails& details = context.layerToLoadOnCompletionDetails(raster);
+    ASSERT_NE(details.postProcessor(), nullptr);
+    auto* layer = new QgsRasterLayer(raster, details.name, QStringLiteral("gdal"));
+    ASSERT_TRUE(layer->isValid());
+    project.addMapLayer(layer);
+    details.postProcessor()->postProcessLayer(layer, context, &feedback);
+    auto* renderer = dynamic_cast<QgsSingleBandPseudoColorRenderer*>(layer->renderer());
+    ASSERT_NE(renderer, nullptr) << id.toStdString() << ": " << layer->renderer()->type().toStdString();
+    EXPECT_EQ(renderer->band(), 1);
+    EXPECT_GT(renderer->classificationMax(), 0);
+    EXPECT_EQ(renderer->classificationMin(), -renderer->classificationMax());
+    EXPECT_EQ(layer->dataProvider()->generateBandName(1).isEmpty(), false);
+    EXPECT_EQ(layer->bandName(1).contains(QStringLiteral("elevation difference")), true) << layer->bandName(1).toStdString();
+  }
+}
+
 TEST(Processing, AccuracyNeverReplacesItsInputs) {
   const std::string dir = test::tempDir();
   const std::string dem = dir + "/dem.tif";

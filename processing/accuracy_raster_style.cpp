@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "accuracy_raster_style.h"
+
+#include <qgscolorramp.h>
+#include <qgsrasterbandstats.h>
+#include <qgsrasterdataprovider.h>
+#include <qgsrasterlayer.h>
+#include <qgssinglebandpseudocolorrenderer.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tinlod::qgis {
+
+void AccuracyRasterStyle::apply(QgsRasterLayer& layer) {
+  QgsRasterDataProvider* provider = layer.dataProvider();
+  if (!provider || provider->bandCount() < 1) return;
+  // Symmetric about zero, so that white is "no error" whatever the signs' balance; the
+  // 2nd and 98th percentiles would hide the very errors the raster is for: the extremes.
+  const QgsRasterBandStats stats = provider->bandStatistics(1, QgsRasterBandStats::Min | QgsRasterBandStats::Max);
+  double reach = std::max(std::fabs(stats.minimumValue), std::fabs(stats.maximumValue));
+  if (!(reach > 0) || !std::isfinite(reach)) reach = 1;
+  auto* renderer = new QgsSingleBandPseudoColorRenderer(provider, 1);
+  renderer->setClassificationMin(-reach);
+  renderer->setClassificationMax(reach);
+  renderer->createShader(new QgsColorBrewerColorRamp(QStringLiteral("RdBu"), 11, true));
+  layer.setRenderer(renderer);
+  layer.triggerRepaint();
+}
+
+void AccuracyRasterStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext&, QgsProcessingFeedback*) {
+  if (auto* raster = qobject_cast<QgsRasterLayer*>(layer)) apply(*raster);
+}
+
+void AccuracyRasterLoad::remember(QgsProcessingContext& context, const QString& path) {
+  path_.clear();
+  if (path.isEmpty() || !context.willLoadLayerOnCompletion(path)) return;
+  const QgsProcessingContext::LayerDetails& asked = context.layerToLoadOnCompletionDetails(path);
+  path_ = path, name_ = asked.name, outputName_ = asked.outputName, project_ = asked.project;
+  reRegister(context);  // styled here too: a run on this thread keeps this list
+}
+
+void AccuracyRasterLoad::reRegister(QgsProcessingContext& context) const {
+  if (path_.isEmpty()) return;
+  QgsProcessingContext::LayerDetails details(name_, project_, outputName_, QgsProcessingUtils::LayerHint::Raster);
+  details.setPostProcessor(new AccuracyRasterStyle);
+  context.addLayerToLoadOnCompletion(path_, details);
+}
+
+}  // namespace tinlod::qgis
