@@ -167,10 +167,10 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
                          .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1).arg(s.levels)
                          .arg(s.coarsestRmse, 0, 'f', 2).arg(s.cellsGivenUp));
   if (loadLevels_) {
-    const QString group = QFileInfo(output).completeBaseName() + QStringLiteral(" levels");
+    const QString base = outputBaseName(output, QStringLiteral("TIN hierarchy"));
     for (const std::int32_t level : s.levelViews)
-      loadTinLayerOnCompletion(context, output, QStringLiteral("level_%1").arg(level), QStringLiteral("OUTPUT"), group,
-                               level == s.levels, level);
+      loadTinLayerOnCompletion(context, output, QStringLiteral("level_%1").arg(level), QStringLiteral("OUTPUT"), base,
+                               base + QStringLiteral(" levels"), level == s.levels, level);
   }
   accuracyLoad_.reRegister(context);
   QVariantMap outputs;

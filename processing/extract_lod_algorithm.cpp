@@ -106,7 +106,8 @@ QVariantMap ExtractLodAlgorithm::processAlgorithm(const QVariantMap& parameters,
       [&] { return runLodJob(hierarchy_, output.toStdString(), options_, true, processingFeedback(feedback)); });
   feedback->pushInfo(QStringLiteral("%1 triangles (level 0 has %2) and %3 vertices in %4")
                          .arg(s.triangles).arg(s.levelZeroTriangles).arg(s.vertices).arg(QString::fromStdString(s.crsName)));
-  loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"));
+  loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"),
+                           outputBaseName(output, QStringLiteral("level of detail TIN")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("TRIANGLES"), static_cast<qlonglong>(s.triangles));

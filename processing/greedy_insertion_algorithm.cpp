@@ -105,8 +105,10 @@ QVariantMap GreedyInsertionAlgorithm::processAlgorithm(const QVariantMap& parame
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3; maximum error %4 m, RMSE %5 m over %6 cells")
                          .arg(s.vertices).arg(s.triangles).arg(QString::fromStdString(s.crsName))
                          .arg(s.measuredMaxError).arg(s.rmse).arg(s.measuredCells));
-  for (const QString& layer : {QStringLiteral("vertices"), QStringLiteral("triangles")})
-    loadTinLayerOnCompletion(context, output, layer, QStringLiteral("OUTPUT"));
+  // The vertices load hidden: a hundred thousand dots would cover the map.
+  const QString base = outputBaseName(output, QStringLiteral("greedy insertion TIN"));
+  loadTinLayerOnCompletion(context, output, QStringLiteral("vertices"), QStringLiteral("OUTPUT"), base, QString(), false);
+  loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"), base);
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(s.vertices));

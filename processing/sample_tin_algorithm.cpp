@@ -55,8 +55,10 @@ QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, 
   });
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3")
                          .arg(summary.vertices).arg(summary.triangles).arg(QString::fromStdString(summary.crsName)));
-  for (const QString& layer : {QStringLiteral("vertices"), QStringLiteral("triangles")})
-    loadTinLayerOnCompletion(context, output, layer, QStringLiteral("OUTPUT"));
+  // The vertices load hidden: a hundred thousand dots would cover the map.
+  const QString base = outputBaseName(output, QStringLiteral("sampled TIN"));
+  loadTinLayerOnCompletion(context, output, QStringLiteral("vertices"), QStringLiteral("OUTPUT"), base, QString(), false);
+  loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"), base);
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(summary.vertices));

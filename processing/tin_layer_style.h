@@ -8,7 +8,9 @@ namespace tinlod::qgis {
 // Styles a TIN layer that an algorithm loads into the project: triangles as thin outlines
 // over a faint fill, vertices as small dots, so that a dense TIN does not come up as a
 // solid dark block. With a group name, the layer moves into that group of the layer
-// tree (created on first use), visible or not: a hierarchy's levels load as one group.
+// tree (created on first use): a hierarchy's levels load as one group. Without one, a
+// layer that QGIS put inside such a group (the current layer was a level) goes to the top.
+// Shown or hidden as `visible` says.
 class TinLayerStyle : public QgsProcessingLayerPostProcessorInterface {
  public:
   // `order` places the layer among the group's layers (QGIS loads results in name order,
@@ -18,17 +20,21 @@ class TinLayerStyle : public QgsProcessingLayerPostProcessorInterface {
   void postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback* feedback) override;
 
  private:
-  void moveIntoGroup(QgsMapLayer* layer, QgsProcessingContext& context) const;
+  void place(QgsMapLayer* layer, QgsProcessingContext& context) const;
   QString group_;
   bool visible_;
   int order_;
 };
 
+// The name an output's layers are called by: the file's, or `temporaryName` for a
+// temporary output (QGIS names its file after the parameter: "OUTPUT").
+QString outputBaseName(const QString& path, const QString& temporaryName);
+
 // Asks QGIS to load `layerName` of the GeoPackage when the algorithm finishes, named
-// "<file name> <layer name>" (or just the layer name inside `group`, if given) and styled
+// "<baseName> <layer name>" (or just the layer name inside `group`, if given) and styled
 // by TinLayerStyle.
 void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg, const QString& layerName,
-                              const QString& outputName, const QString& group = QString(), bool visible = true,
-                              int order = 0);
+                              const QString& outputName, const QString& baseName, const QString& group = QString(),
+                              bool visible = true, int order = 0);
 
 }  // namespace tinlod::qgis

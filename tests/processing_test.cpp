@@ -14,6 +14,7 @@
 #include <qgsprocessingcontext.h>
 #include <qgsprocessingfeedback.h>
 #include <qgsprocessingregistry.h>
+#include <qgsprocessingutils.h>
 #include <qgslayertree.h>
 #include <qgsproject.h>
 #include <qgsvectorlayer.h>
@@ -197,6 +198,58 @@ TEST(Processing, OutputLayersAreLoadedNamedAndStyled) {
   }
   names.sort();
   EXPECT_EQ(names, QStringList({"my_tin triangles", "my_tin vertices"}));
+}
+
+// What QGIS does when the run ends: each registered layer is loaded into the project
+// (where the current layer is: `into`, or the root) and handed to its post-processor.
+void loadAsQgisDoes(QgsProcessingContext& context, QgsProject& project, QgsLayerTreeGroup* into = nullptr) {
+  const auto layers = context.layersToLoadOnCompletion();
+  RecordingFeedback feedback;
+  for (auto it = layers.constBegin(); it != layers.constEnd(); ++it) {
+    auto* layer = new QgsVectorLayer(it.key(), it.value().name, QStringLiteral("ogr"));
+    project.addMapLayer(layer, into == nullptr);
+    if (into) into->addLayer(layer);
+    QgsProcessingContext loading;
+    loading.setProject(&project);
+    it.value().postProcessor()->postProcessLayer(layer, loading, &feedback);
+  }
+}
+
+TEST(Processing, TemporaryOutputsAreNamedAfterTheToolVerticesHiddenAndOutOfAHierarchysGroup) {
+  QgsProject project;
+  // A hierarchy first: its levels make a group, and a level is the current layer.
+  QgsProcessingContext first;
+  first.setProject(&project);
+  RecordingFeedback feedback;
+  bool ok = false;
+  std::unique_ptr<QgsProcessingAlgorithm> build(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:buildhierarchy"));
+  build->run({{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", 2},
+              {"OUTPUT", QString::fromStdString(test::tempDir() + "/peaks.gpkg")}}, first, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  loadAsQgisDoes(first, project);
+  QgsLayerTreeGroup* levels = project.layerTreeRoot()->findGroup(QStringLiteral("peaks levels"));
+  ASSERT_NE(levels, nullptr);
+  // Then a sample to a temporary output, loaded where QGIS would put it: in that group.
+  QgsProcessingContext second;
+  second.setProject(&project);
+  std::unique_ptr<QgsProcessingAlgorithm> sample(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:sampletin"));
+  const QString temporary = QgsProcessingUtils::generateTempFilename(QStringLiteral("OUTPUT.gpkg"));
+  sample->run({{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", temporary}}, second, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  loadAsQgisDoes(second, project, levels);
+  QgsLayerTreeLayer* triangles = nullptr;
+  QgsLayerTreeLayer* vertices = nullptr;
+  for (QgsLayerTreeLayer* node : project.layerTreeRoot()->findLayers()) {
+    if (node->name() == QStringLiteral("sampled TIN triangles")) triangles = node;
+    if (node->name() == QStringLiteral("sampled TIN vertices")) vertices = node;
+  }
+  ASSERT_NE(triangles, nullptr) << "a temporary output's layers are named after the tool, not 'OUTPUT'";
+  ASSERT_NE(vertices, nullptr);
+  EXPECT_EQ(triangles->parent(), project.layerTreeRoot());
+  EXPECT_EQ(vertices->parent(), project.layerTreeRoot());
+  EXPECT_TRUE(triangles->itemVisibilityChecked());
+  EXPECT_FALSE(vertices->itemVisibilityChecked());
+  EXPECT_EQ(levels->findLayers().size(), 3);  // the levels alone
 }
 
 TEST(Processing, CancelStopsAndLeavesNoFile) {
