@@ -226,6 +226,14 @@ check "a bad band exits 1" test "$bad_rc" -eq 1
 check "a bad band names BAND on stderr" grep -q "Invalid band number for BAND (9)" "$work/bad.err"
 check "a bad band writes nothing" test ! -e "$work/bad.gpkg"
 
+# scripts/install-plugin.sh into a profile folder of one's choosing: installed and enabled
+# there, so qgis_process on that configuration lists the algorithms.
+chosen=$work/chosen_config
+TINLOD_PLUGIN_DIR=$plugin_dir QGIS_PROFILE_DIR=$chosen/profiles/default bash "$here/../scripts/install-plugin.sh" > "$work/install.out"
+check "install-plugin.sh says it enabled the plugin in the chosen profile" grep -q "enabled it in $chosen/profiles/default" "$work/install.out"
+QGIS_CUSTOM_CONFIG_PATH=$chosen "$qp" list > "$work/chosen.txt" 2>/dev/null || true
+check "install-plugin.sh: qgis_process on that profile lists tinlod:sampletin" grep -q "tinlod:sampletin" "$work/chosen.txt"
+
 # A provider built for another QGIS, simulated as the issue says: a copy of the plugin whose
 # library needs a libqgis_core of another version (its name changed, same length, in the
 # copy). QGIS must say so once, in words, and go on: no traceback, native algorithms there.
