@@ -12,6 +12,7 @@
 #include <regex>
 #include <sstream>
 
+#include "report_plots.h"
 #include "tinlod/error.h"
 
 namespace fs = std::filesystem;
@@ -305,6 +306,18 @@ TEST(AccuracyReport, HtmlHasOneSvgPerPlotWithTheRunsInTheLegend) {
   EXPECT_NE(svgs[0].find("log10(1 - r)"), std::string::npos);
   EXPECT_NE(svgs[0].find("lower is better"), std::string::npos);
   EXPECT_NE(html.find("alps.tif, degree, delete 20 %, stop 5 %"), std::string::npos);  // the table's heading
+}
+
+TEST(AccuracyReport, TheReferenceAgainstItselfIsNotPlottedAtTheRoundingOfR) {
+  std::vector<LevelAccuracy> rows = run("alps.tif", "degree", 5);
+  rows[0].variables[0].correlation = 0.9999999999999999;  // level 0 against itself, as sums round it
+  const std::vector<ReportPlot> plots = reportPlots(groupRuns(rows));
+  ASSERT_FALSE(plots.empty());
+  ASSERT_EQ(plots[0].plot.lines.size(), 1u);
+  const std::vector<PlotPoint>& points = plots[0].plot.lines[0].points;
+  // Levels 1 to 4 alone; level 0 would have been at -16.
+  ASSERT_EQ(points.size(), 4u) << "first point at " << points[0].y;
+  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(points[i].y, -5 + 0.3 * double(i + 1), 1e-6);
 }
 
 TEST(AccuracyReport, HtmlEscapesTextAndNeedsNothingFromElsewhere) {

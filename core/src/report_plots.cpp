@@ -19,11 +19,17 @@ struct Quantity {
 std::string metres(double v) { return significantNumber(v, 4) + " m"; }
 std::string seconds(double v) { return significantNumber(v, 3) + " s"; }
 
-// log10(1 - r) of `variable`: NaN where it is missing or r is 1 (the reference itself).
+// Below this, 1 - r is the rounding of sums over up to millions of test points, not a
+// difference: the reference against itself comes out as 0.9999999999999999, which would
+// plot at -16 and squash every other point against the top of the chart.
+constexpr double kRoundingOfR = 1e-13;
+
+// log10(1 - r) of `variable`: NaN where it is missing or r is 1 within rounding (the
+// reference itself).
 template <const char* Variable>
 double logOneMinusR(const LevelAccuracy& l) {
   const VariableComparison* v = findVariable(l, Variable);
-  return v && v->correlation < 1 ? std::log10(1 - v->correlation) : NAN;
+  return v && 1 - v->correlation > kRoundingOfR ? std::log10(1 - v->correlation) : NAN;
 }
 
 std::string rOf(double logOneMinusR) { return "r = " + correlationText(1 - std::pow(10.0, logOneMinusR)); }
