@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "hierarchy_parameter.h"
 #include "processing_feedback.h"
 
 namespace tinlod::qgis {
@@ -31,8 +32,7 @@ AccuracyAlgorithm* AccuracyAlgorithm::createInstance() const { return new Accura
 
 void AccuracyAlgorithm::initAlgorithm(const QVariantMap&) {
   addDemParameters(true);
-  addParameter(new QgsProcessingParameterFile(QStringLiteral("HIERARCHY"), QStringLiteral("Hierarchy or TIN GeoPackage"),
-                                              QgsProcessingParameterFile::File, QStringLiteral("gpkg")));
+  addParameter(hierarchyParameter(QStringLiteral("Hierarchy or TIN (GeoPackage or one of its layers)")));
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("LEVEL"), QStringLiteral("Level of the raster (-1: the coarsest)"),
                                                 QgsProcessingParameterNumber::Integer, -1, false, -1));
   addAccuracyParameters(true);
@@ -45,8 +45,7 @@ void AccuracyAlgorithm::initAlgorithm(const QVariantMap&) {
 
 bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
   readDemParameters(parameters, context, 0);
-  hierarchy_ = parameterAsFile(parameters, QStringLiteral("HIERARCHY"), context).toStdString();
-  if (hierarchy_.empty()) throw QgsProcessingException(QStringLiteral("HIERARCHY: choose a GeoPackage written by tinlod"));
+  hierarchy_ = hierarchyFile(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context);
   readAccuracyParameters(parameters, context);
   accuracy_.rasterLevel = parameterAsInt(parameters, QStringLiteral("LEVEL"), context);
   if (!accuracy_.wanted())

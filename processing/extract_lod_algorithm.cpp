@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "layer_file.h"
+#include "hierarchy_parameter.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
 
@@ -51,8 +52,7 @@ QString ExtractLodAlgorithm::shortHelpString() const {
 ExtractLodAlgorithm* ExtractLodAlgorithm::createInstance() const { return new ExtractLodAlgorithm(); }
 
 void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
-  addParameter(new QgsProcessingParameterFile(QStringLiteral("HIERARCHY"), QStringLiteral("Hierarchy GeoPackage"),
-                                              QgsProcessingParameterFile::File, QStringLiteral("gpkg")));
+  addParameter(hierarchyParameter(QStringLiteral("Hierarchy (GeoPackage or one of its layers)")));
   addParameter(new QgsProcessingParameterPoint(QStringLiteral("CENTER"), QStringLiteral("Centre of detail"), QVariant(), true));
   addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("CENTERS"), QStringLiteral("Centres of detail (point layer)"),
                                                      QList<int>() << QgsProcessing::TypeVectorPoint, QVariant(), true));
@@ -72,8 +72,7 @@ void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
 }
 
 bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
-  hierarchy_ = parameterAsFile(parameters, QStringLiteral("HIERARCHY"), context).toStdString();
-  if (hierarchy_.empty()) throw QgsProcessingException(QStringLiteral("HIERARCHY: choose a GeoPackage written by tinlod build"));
+  hierarchy_ = hierarchyFile(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context);
   options_ = LodJobOptions();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (given(parameters, QStringLiteral("CENTER"))) {

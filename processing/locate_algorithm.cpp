@@ -6,6 +6,7 @@
 #include <qgsvectorlayer.h>
 
 #include "layer_file.h"
+#include "hierarchy_parameter.h"
 #include "processing_feedback.h"
 #include "tinlod/locate_job.h"
 
@@ -36,8 +37,7 @@ LocateAlgorithm* LocateAlgorithm::createInstance() const { return new LocateAlgo
 void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("INPUT"), QStringLiteral("Points"),
                                                      QList<int>() << QgsProcessing::TypeVectorPoint));
-  addParameter(new QgsProcessingParameterFile(QStringLiteral("HIERARCHY"), QStringLiteral("Hierarchy GeoPackage"),
-                                              QgsProcessingParameterFile::File, QStringLiteral("gpkg")));
+  addParameter(hierarchyParameter(QStringLiteral("Hierarchy (GeoPackage or one of its layers)")));
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("LEVEL"), QStringLiteral("Level (0: the original TIN, -1: the coarsest)"),
                                                 QgsProcessingParameterNumber::Integer, 0, false, -1));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Points with elevation"),
@@ -49,8 +49,7 @@ void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
 bool LocateAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
   points_ = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context), QStringLiteral("INPUT"),
                        QStringLiteral("a point layer"));
-  hierarchy_ = parameterAsFile(parameters, QStringLiteral("HIERARCHY"), context).toStdString();
-  if (hierarchy_.empty()) throw QgsProcessingException(QStringLiteral("HIERARCHY: choose a GeoPackage written by tinlod"));
+  hierarchy_ = hierarchyFile(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context);
   level_ = parameterAsInt(parameters, QStringLiteral("LEVEL"), context);
   return true;
 }

@@ -606,6 +606,44 @@ TEST(Processing, ExtractLodMatchesTheCommandLineCoreAndNamesMissingTests) {
   EXPECT_TRUE(none.error.contains("DROPOFF")) << none.error.toStdString();
 }
 
+// HIERARCHY as a level layer already on the map (by its id, as the dialog's layer list
+// gives it) works as the file does; a layer not in a GeoPackage is refused by name.
+TEST(Processing, HierarchyIsAFileOrALoadedLayerOfIt) {
+  const std::string dir = test::tempDir();
+  const QString hier = QString::fromStdString(dir + "/layer_h.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  QgsProject project;
+  auto* level = new QgsVectorLayer(hier + QStringLiteral("|layername=level_2"), QStringLiteral("level_2"), QStringLiteral("ogr"));
+  auto* scratch = new QgsVectorLayer(QStringLiteral("Point?crs=EPSG:32632"), QStringLiteral("scratch"), QStringLiteral("memory"));
+  ASSERT_TRUE(level->isValid());
+  project.addMapLayers({level, scratch});
+  const QString points = hier + QStringLiteral("|layername=vertices");
+  auto locate = [&](const QVariant& hierarchy, const QString& out) {
+    std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:locate"));
+    QgsProcessingContext context;
+    context.setProject(&project);
+    RecordingFeedback feedback;
+    Result r;
+    try {
+      r.outputs = alg->run({{"INPUT", points}, {"HIERARCHY", hierarchy}, {"LEVEL", 0}, {"OUTPUT", out}}, context, &feedback, &r.ok);
+    } catch (const QgsProcessingException& e) {
+      r.error = e.what();
+    }
+    r.error += feedback.errors;
+    return r;
+  };
+  const Result byFile = locate(hier, QString::fromStdString(dir + "/by_file.gpkg"));
+  const Result byLayer = locate(level->id(), QString::fromStdString(dir + "/by_layer.gpkg"));
+  ASSERT_TRUE(byFile.ok) << byFile.error.toStdString();
+  ASSERT_TRUE(byLayer.ok) << byLayer.error.toStdString();
+  EXPECT_GT(byLayer.outputs.value("LOCATED").toLongLong(), 1000);
+  EXPECT_EQ(byLayer.outputs.value("LOCATED"), byFile.outputs.value("LOCATED"));
+  const Result bad = locate(scratch->id(), QString::fromStdString(dir + "/bad_layer.gpkg"));
+  EXPECT_FALSE(bad.ok);
+  EXPECT_TRUE(bad.error.contains("HIERARCHY: 'scratch' is not stored in a GeoPackage")) << bad.error.toStdString();
+}
+
 TEST(Processing, LocateAddsElevationsAsTheCoreDoes) {
   const std::string dir = test::tempDir();
   ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),

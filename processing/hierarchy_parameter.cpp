@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hierarchy_parameter.h"
+
+#include <qgsexception.h>
+#include <qgsproviderregistry.h>
+#include <qgsvectorlayer.h>
+
+#include <QFileInfo>
+
+namespace tinlod::qgis {
+
+QgsProcessingParameterDefinition* hierarchyParameter(const QString& description) {
+  return new QgsProcessingParameterVectorLayer(QStringLiteral("HIERARCHY"), description,
+                                               QList<int>() << QgsProcessing::TypeVectorAnyGeometry);
+}
+
+std::string hierarchyFile(const QgsProcessingParameterDefinition* definition, const QVariantMap& parameters,
+                          QgsProcessingContext& context) {
+  const QString wanted = QStringLiteral("choose a GeoPackage written by tinlod, or one of its layers on the map");
+  QgsVectorLayer* layer = QgsProcessingParameters::parameterAsVectorLayer(definition, parameters, context);
+  if (!layer) throw QgsProcessingException(QStringLiteral("HIERARCHY: ") + wanted);
+  const QVariantMap parts = QgsProviderRegistry::instance()->decodeUri(layer->providerType(), layer->source());
+  const QString path = parts.value(QStringLiteral("path")).toString();
+  if (layer->providerType() != QLatin1String("ogr") || QFileInfo(path).suffix().compare(QLatin1String("gpkg"), Qt::CaseInsensitive) != 0)
+    throw QgsProcessingException(QStringLiteral("HIERARCHY: '%1' is not stored in a GeoPackage: %2").arg(layer->name(), wanted));
+  return path.toStdString();
+}
+
+}  // namespace tinlod::qgis
