@@ -8,7 +8,7 @@
 #include <QFileInfo>
 #include <cmath>
 
-#include "layer_file.h"
+#include "source_file.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
 #include "tinlod/build_job.h"
@@ -108,7 +108,7 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
 }
 
 bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
-                                               QgsProcessingFeedback*) {
+                                               QgsProcessingFeedback* feedback) {
   readDemAndSamplingParameters(parameters, context);
   options_ = HierarchyOptions();
   options_.measure = parseMeasure(kMethods.value(parameterAsEnum(parameters, QStringLiteral("METHOD"), context)).toStdString());
@@ -140,19 +140,10 @@ bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Qg
   layers_.groupOutlines = parameterAsBoolean(parameters, QStringLiteral("GROUP_OUTLINES"), context);
   layers_.vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
   readAccuracyParameters(parameters, context);
-  readFixedPoints(parameters, context);
+  options_.fixedPoints = sourceFile(parameterDefinition(QStringLiteral("FIXED_POINTS")), parameters, context, feedback,
+                                    QStringLiteral("a point layer"));
   translateErrors([&] { options_.validate(); });
   return true;
-}
-
-// The core reads points with GDAL: a layer that is a plain file is handed over as it is.
-void BuildHierarchyAlgorithm::readFixedPoints(const QVariantMap& parameters, QgsProcessingContext& context) {
-  options_.fixedPoints.clear();
-  if (!parameters.value(QStringLiteral("FIXED_POINTS")).isValid() ||
-      parameters.value(QStringLiteral("FIXED_POINTS")).toString().isEmpty())
-    return;
-  options_.fixedPoints = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("FIXED_POINTS"), context),
-                                   QStringLiteral("FIXED_POINTS"), QStringLiteral("a point layer"));
 }
 
 QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

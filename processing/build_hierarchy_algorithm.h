@@ -26,7 +26,6 @@ class BuildHierarchyAlgorithm : public DemAlgorithm {
                                QgsProcessingFeedback* feedback) override;
 
  private:
-  void readFixedPoints(const QVariantMap& parameters, QgsProcessingContext& context);
   HierarchyOptions options_;
   HierarchyLayers layers_;
   bool loadLevels_ = true;

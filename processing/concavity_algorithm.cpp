@@ -5,7 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
-#include "layer_file.h"
+#include "source_file.h"
 #include "processing_feedback.h"
 
 namespace tinlod::qgis {
@@ -37,7 +37,7 @@ QString ConcavityAlgorithm::shortHelpString() const {
 ConcavityAlgorithm* ConcavityAlgorithm::createInstance() const { return new ConcavityAlgorithm(); }
 
 void ConcavityAlgorithm::initAlgorithm(const QVariantMap&) {
-  addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("INPUT"), QStringLiteral("Lines"),
+  addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("INPUT"), QStringLiteral("Lines"),
                                                      QList<int>() << QgsProcessing::TypeVectorLine));
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("WINDOW"), QStringLiteral("Window along the line (metres)"),
                                                 QgsProcessingParameterNumber::Double, 100, false, 0));
@@ -58,9 +58,9 @@ void ConcavityAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("CONCAVE"), QStringLiteral("Concave parts")));
 }
 
-bool ConcavityAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
-  lines_ = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context), QStringLiteral("INPUT"),
-                      QStringLiteral("a line layer"));
+bool ConcavityAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                           QgsProcessingFeedback* feedback) {
+  lines_ = sourceFile(parameterDefinition(QStringLiteral("INPUT")), parameters, context, feedback, QStringLiteral("a line layer"));
   options_ = ConcavityOptions();
   options_.windowFraction = parameterAsDouble(parameters, QStringLiteral("WINDOW_FRACTION"), context);
   options_.window = options_.windowFraction > 0 ? 0 : parameterAsDouble(parameters, QStringLiteral("WINDOW"), context);

@@ -5,7 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
-#include "layer_file.h"
+#include "source_file.h"
 #include "processing_feedback.h"
 
 namespace tinlod::qgis {
@@ -33,7 +33,7 @@ QString DpValuesAlgorithm::shortHelpString() const {
 DpValuesAlgorithm* DpValuesAlgorithm::createInstance() const { return new DpValuesAlgorithm(); }
 
 void DpValuesAlgorithm::initAlgorithm(const QVariantMap&) {
-  addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("INPUT"), QStringLiteral("Lines"),
+  addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("INPUT"), QStringLiteral("Lines"),
                                                      QList<int>() << QgsProcessing::TypeVectorLine));
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"),
                                                 QStringLiteral("Threshold for the simplified lines and crossings (metres)"),
@@ -46,9 +46,9 @@ void DpValuesAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("CROSSINGS"), QStringLiteral("Crossings at the threshold")));
 }
 
-bool DpValuesAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
-  lines_ = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context), QStringLiteral("INPUT"),
-                      QStringLiteral("a line layer"));
+bool DpValuesAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                          QgsProcessingFeedback* feedback) {
+  lines_ = sourceFile(parameterDefinition(QStringLiteral("INPUT")), parameters, context, feedback, QStringLiteral("a line layer"));
   options_ = DpOptions();
   const QVariant threshold = parameters.value(QStringLiteral("THRESHOLD"));
   if (threshold.isValid() && !threshold.toString().isEmpty())

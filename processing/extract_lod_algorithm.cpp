@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "layer_file.h"
+#include "source_file.h"
 #include "hierarchy_parameter.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
@@ -54,7 +54,7 @@ ExtractLodAlgorithm* ExtractLodAlgorithm::createInstance() const { return new Ex
 void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(hierarchyParameter(QStringLiteral("Hierarchy (GeoPackage or one of its layers)")));
   addParameter(new QgsProcessingParameterPoint(QStringLiteral("CENTER"), QStringLiteral("Centre of detail"), QVariant(), true));
-  addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("CENTERS"), QStringLiteral("Centres of detail (point layer)"),
+  addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("CENTERS"), QStringLiteral("Centres of detail (point layer)"),
                                                      QList<int>() << QgsProcessing::TypeVectorPoint, QVariant(), true));
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("DROPOFF"), QStringLiteral("Dropoff distance per level (metres)"),
                                                 QgsProcessingParameterNumber::Double, QVariant(), true, 0));
@@ -63,7 +63,7 @@ void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("ERROR_GROWTH"),
                                                 QStringLiteral("Error growth with distance (metres per metre)"),
                                                 QgsProcessingParameterNumber::Double, 0, false, 0));
-  addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("REGION"), QStringLiteral("Region of full detail (polygons)"),
+  addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("REGION"), QStringLiteral("Region of full detail (polygons)"),
                                                      QList<int>() << QgsProcessing::TypeVectorPolygon, QVariant(), true));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("TIN GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
@@ -71,7 +71,8 @@ void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
 }
 
-bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
+bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                           QgsProcessingFeedback* feedback) {
   hierarchy_ = hierarchyFile(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context);
   options_ = LodJobOptions();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -83,10 +84,10 @@ bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsPro
     options_.lod.centres.push_back({p.x(), p.y()});
   }
   auto fileOf = [&](const QString& name, const QString& kind) {
-    return layerFile(parameterAsVectorLayer(parameters, name, context), name, kind);
+    return sourceFile(parameterDefinition(name), parameters, context, feedback, kind);
   };
-  if (given(parameters, QStringLiteral("CENTERS"))) options_.centresPath = fileOf(QStringLiteral("CENTERS"), QStringLiteral("a point layer"));
-  if (given(parameters, QStringLiteral("REGION"))) options_.regionPath = fileOf(QStringLiteral("REGION"), QStringLiteral("a polygon layer"));
+  options_.centresPath = fileOf(QStringLiteral("CENTERS"), QStringLiteral("a point layer"));
+  options_.regionPath = fileOf(QStringLiteral("REGION"), QStringLiteral("a polygon layer"));
   options_.lod.dropoff = given(parameters, QStringLiteral("DROPOFF")) ? parameterAsDouble(parameters, QStringLiteral("DROPOFF"), context) : nan;
   options_.lod.maxError =
       given(parameters, QStringLiteral("MAX_ERROR")) ? parameterAsDouble(parameters, QStringLiteral("MAX_ERROR"), context) : nan;

@@ -5,7 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
-#include "layer_file.h"
+#include "source_file.h"
 #include "hierarchy_parameter.h"
 #include "processing_feedback.h"
 #include "tinlod/locate_job.h"
@@ -35,7 +35,7 @@ QString LocateAlgorithm::shortHelpString() const {
 LocateAlgorithm* LocateAlgorithm::createInstance() const { return new LocateAlgorithm(); }
 
 void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
-  addParameter(new QgsProcessingParameterVectorLayer(QStringLiteral("INPUT"), QStringLiteral("Points"),
+  addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("INPUT"), QStringLiteral("Points"),
                                                      QList<int>() << QgsProcessing::TypeVectorPoint));
   addParameter(hierarchyParameter(QStringLiteral("Hierarchy (GeoPackage or one of its layers)")));
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("LEVEL"), QStringLiteral("Level (0: the original TIN, -1: the coarsest)"),
@@ -46,9 +46,9 @@ void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("LOCATED"), QStringLiteral("Points on the TIN")));
 }
 
-bool LocateAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
-  points_ = layerFile(parameterAsVectorLayer(parameters, QStringLiteral("INPUT"), context), QStringLiteral("INPUT"),
-                       QStringLiteral("a point layer"));
+bool LocateAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                       QgsProcessingFeedback* feedback) {
+  points_ = sourceFile(parameterDefinition(QStringLiteral("INPUT")), parameters, context, feedback, QStringLiteral("a point layer"));
   hierarchy_ = hierarchyFile(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context);
   level_ = parameterAsInt(parameters, QStringLiteral("LEVEL"), context);
   return true;

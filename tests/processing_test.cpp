@@ -18,6 +18,8 @@
 #include <qgslayertree.h>
 #include <qgsproject.h>
 #include <qgsvectorlayer.h>
+#include <qgsgeometry.h>
+#include <qgsvectordataprovider.h>
 
 #include <QFile>
 #include <algorithm>
@@ -405,6 +407,49 @@ TEST(Processing, BuildHierarchyKeepsPointsOfALayer) {
   }
 }
 
+// A memory layer with a selection, "Selected features only": exactly the selected points
+// are kept (QGIS hands them over as a temporary file); the others are not.
+TEST(Processing, FixedPointsFromASelectionOfAMemoryLayer) {
+  const std::string dir = test::tempDir();
+  const Tin tin = sampleTin(readDem(defaultDem(), 1, ProgressRange(Feedback{}, 0, 1)), {}, ProgressRange(Feedback{}, 0, 1));
+  QgsProject project;
+  auto* layer = new QgsVectorLayer(QStringLiteral("Point?crs=EPSG:32632"), QStringLiteral("picked"), QStringLiteral("memory"));
+  project.addMapLayer(layer);
+  std::vector<std::size_t> picked;
+  for (std::size_t i = tin.vertices.size() / 3; picked.size() < 5; i += 7)
+    if (!tin.vertices[i].outline) picked.push_back(i);
+  QgsFeatureList features;
+  for (std::size_t id : picked) {
+    QgsFeature f(layer->fields());
+    f.setGeometry(QgsGeometry::fromPointXY(QgsPointXY(tin.vertices[id].x, tin.vertices[id].y)));
+    features << f;
+  }
+  ASSERT_TRUE(layer->dataProvider()->addFeatures(features));
+  QgsFeatureIds selected;
+  QgsFeature f;
+  int n = 0;
+  for (QgsFeatureIterator it = layer->getFeatures(); it.nextFeature(f); ++n)
+    if (n < 3) selected.insert(f.id());
+  layer->selectByIds(selected);
+  const QString out = QString::fromStdString(dir + "/selected.gpkg");
+  std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:buildhierarchy"));
+  QgsProcessingContext context;
+  context.setProject(&project);
+  RecordingFeedback feedback;
+  bool ok = false;
+  const QVariantMap outputs = alg->run({{"INPUT", QString::fromStdString(defaultDem())},
+                                        {"FIXED_POINTS", QVariant::fromValue(QgsProcessingFeatureSourceDefinition(layer->id(), true))},
+                                        {"LOAD_LEVELS", false},
+                                        {"OUTPUT", out}},
+                                       context, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  QgsVectorLayer vertices(out + "|layername=vertices", "v", QStringLiteral("ogr"));
+  for (std::size_t k = 0; k < picked.size(); ++k) {
+    const QgsFeature v = vertices.getFeature(static_cast<QgsFeatureId>(picked[k]) + 1);
+    EXPECT_EQ(v.attribute("fixed").toInt(), k < 3 ? 1 : 0) << "point " << k;
+  }
+}
+
 TEST(Processing, BuildHierarchyWritesTheAccuracyRasterAndReportWhenAsked) {
   const std::string dir = test::tempDir();
   const QString out = QString::fromStdString(dir + "/hier.gpkg"), raster = QString::fromStdString(dir + "/acc.tif"),
@@ -690,6 +735,69 @@ TEST(Processing, DpValuesMatchTheCoreAndCountCrossings) {
                                                                       {"OUTPUT", QString::fromStdString(dir + "/dp2.gpkg")}});
   ASSERT_TRUE(cut.ok) << cut.error.toStdString();
   EXPECT_EQ(cut.outputs.value("CROSSINGS").toLongLong(), 0);  // both chords: parallel
+}
+
+// Every other vector input from a memory layer, as from a file: the same results.
+TEST(Processing, MemoryLayersServeAsEveryVectorInput) {
+  const std::string dir = test::tempDir();
+  QgsProject project;
+  auto run = [&](const QString& id, const QVariantMap& parameters) {
+    std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById(id));
+    QgsProcessingContext context;
+    context.setProject(&project);
+    RecordingFeedback feedback;
+    Result r;
+    r.outputs = alg->run(parameters, context, &feedback, &r.ok);
+    r.error = feedback.errors;
+    return r;
+  };
+  auto memory = [&](const QString& uri, const QStringList& wkts) {
+    auto* layer = new QgsVectorLayer(uri, QStringLiteral("scratch"), QStringLiteral("memory"));
+    QgsFeatureList features;
+    for (const QString& wkt : wkts) {
+      QgsFeature f(layer->fields());
+      f.setGeometry(QgsGeometry::fromWkt(wkt));
+      features << f;
+    }
+    layer->dataProvider()->addFeatures(features);
+    project.addMapLayer(layer);
+    return layer->id();
+  };
+  // dpvalues: the two lines of DpValuesMatchTheCoreAndCountCrossings.
+  const Result dp = run(QStringLiteral("tinlod:dpvalues"),
+                        {{"INPUT", memory(QStringLiteral("LineString?crs=EPSG:32632"),
+                                          {QStringLiteral("LINESTRING(0 0, 5 4, 10 0)"), QStringLiteral("LINESTRING(0 1, 5 4.5, 10 1)")})},
+                         {"THRESHOLD", 3.7}, {"OUTPUT", QString::fromStdString(dir + "/mem_dp.gpkg")}});
+  ASSERT_TRUE(dp.ok) << dp.error.toStdString();
+  EXPECT_EQ(dp.outputs.value("CROSSINGS").toLongLong(), 2);
+  // locate, extractlod's CENTERS and REGION: a hierarchy of the default DEM.
+  const QString hier = QString::fromStdString(dir + "/mem_h.gpkg");
+  ASSERT_TRUE(run(QStringLiteral("tinlod:buildhierarchy"),
+                  {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  const Result located = run(QStringLiteral("tinlod:locate"),
+                             {{"INPUT", memory(QStringLiteral("Point?crs=EPSG:32632"),
+                                               {QStringLiteral("POINT(404500 5203750)"), QStringLiteral("POINT(404400 5203700)")})},
+                              {"HIERARCHY", hier}, {"OUTPUT", QString::fromStdString(dir + "/mem_located.gpkg")}});
+  ASSERT_TRUE(located.ok) << located.error.toStdString();
+  EXPECT_EQ(located.outputs.value("POINTS").toLongLong(), 2);
+  EXPECT_EQ(located.outputs.value("LOCATED").toLongLong(), 2);
+  const Result centres = run(QStringLiteral("tinlod:extractlod"),
+                             {{"HIERARCHY", hier},
+                              {"CENTERS", memory(QStringLiteral("Point?crs=EPSG:32632"), {QStringLiteral("POINT(404500 5203750)")})},
+                              {"DROPOFF", 200}, {"OUTPUT", QString::fromStdString(dir + "/mem_lod.gpkg")}});
+  const Result centre = run(QStringLiteral("tinlod:extractlod"),
+                            {{"HIERARCHY", hier}, {"CENTER", QStringLiteral("404500,5203750 [EPSG:32632]")}, {"DROPOFF", 200},
+                             {"OUTPUT", QString::fromStdString(dir + "/point_lod.gpkg")}});
+  ASSERT_TRUE(centres.ok) << centres.error.toStdString();
+  ASSERT_TRUE(centre.ok) << centre.error.toStdString();
+  EXPECT_EQ(centres.outputs.value("TRIANGLES"), centre.outputs.value("TRIANGLES"));
+  const Result region = run(QStringLiteral("tinlod:extractlod"),
+                            {{"HIERARCHY", hier},
+                             {"REGION", memory(QStringLiteral("Polygon?crs=EPSG:32632"),
+                                               {QStringLiteral("POLYGON((404300 5203500, 404700 5203500, 404700 5203900, 404300 5203900, 404300 5203500))")})},
+                             {"OUTPUT", QString::fromStdString(dir + "/mem_region.gpkg")}});
+  ASSERT_TRUE(region.ok) << region.error.toStdString();
+  EXPECT_GT(region.outputs.value("TRIANGLES").toLongLong(), 0);
 }
 
 TEST(Processing, ConcavityAgreesWithTheCore) {
