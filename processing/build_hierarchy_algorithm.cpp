@@ -8,8 +8,9 @@
 #include <QFileInfo>
 #include <cmath>
 
-#include "source_file.h"
+#include "parameter_decimals.h"
 #include "processing_feedback.h"
+#include "source_file.h"
 #include "tin_layer_style.h"
 #include "tinlod/build_job.h"
 
@@ -67,10 +68,10 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addDemAndSamplingParameters();
   addParameter(new QgsProcessingParameterEnum(QStringLiteral("METHOD"), QStringLiteral("Importance method"), kMethods,
                                               false, static_cast<int>(d.measure)));
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("DELETE_PCT"), QStringLiteral("Delete percentage per level"),
-                                                QgsProcessingParameterNumber::Double, d.deletePct, false, 0.1, 100));
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("STOP_PCT"), QStringLiteral("Stop percentage of the original vertices"),
-                                                QgsProcessingParameterNumber::Double, d.stopPct, false, 0, 99.9));
+  addParameter(decimals(1, new QgsProcessingParameterNumber(QStringLiteral("DELETE_PCT"), QStringLiteral("Delete percentage per level"),
+                                                QgsProcessingParameterNumber::Double, d.deletePct, false, 0.1, 100)));
+  addParameter(decimals(1, new QgsProcessingParameterNumber(QStringLiteral("STOP_PCT"), QStringLiteral("Stop percentage of the original vertices"),
+                                                QgsProcessingParameterNumber::Double, d.stopPct, false, 0, 99.9)));
   addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("FIXED_POINTS"), QStringLiteral("Points to keep"),
                                                        {QgsProcessing::TypeVectorPoint}, QVariant(), true));
   addParameter(new QgsProcessingParameterBoolean(QStringLiteral("FIX_PEAKS_PITS"), QStringLiteral("Keep peaks and pits"), false));
@@ -78,14 +79,14 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
                                                          QgsProcessingParameterNumber::Integer, d.maxLevels, false, 0)));
   addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("MAX_DEGREE"), QStringLiteral("Maximum degree (degree method)"),
                                                          QgsProcessingParameterNumber::Integer, d.maxDegree, false, 3)));
-  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error, metres (error method)"),
-                                                         QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
-  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"),
+  addParameter(advanced(decimals(2, new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error, metres (error method)"),
+                                                         QgsProcessingParameterNumber::Double, QVariant(), true, 0))));
+  addParameter(advanced(decimals(4, new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"),
                                                          QStringLiteral("Threshold mode: delete every independent vertex below this importance"),
-                                                         QgsProcessingParameterNumber::Double, QVariant(), true)));
-  addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("OUTLINE_TOLERANCE"),
+                                                         QgsProcessingParameterNumber::Double, QVariant(), true))));
+  addParameter(advanced(decimals(2, new QgsProcessingParameterNumber(QStringLiteral("OUTLINE_TOLERANCE"),
                                                          QStringLiteral("Outline tolerance at level 1, metres (empty: one DEM cell)"),
-                                                         QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
+                                                         QgsProcessingParameterNumber::Double, QVariant(), true, 0))));
   addParameter(advanced(new QgsProcessingParameterBoolean(QStringLiteral("KEEP_OUTLINE"),
                                                           QStringLiteral("Keep every outline vertex (every level covers level 0's area)"), false)));
   addAccuracyParameters(false);

@@ -5,8 +5,9 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
-#include "source_file.h"
+#include "parameter_decimals.h"
 #include "processing_feedback.h"
+#include "source_file.h"
 
 namespace tinlod::qgis {
 
@@ -39,17 +40,17 @@ ConcavityAlgorithm* ConcavityAlgorithm::createInstance() const { return new Conc
 void ConcavityAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("INPUT"), QStringLiteral("Lines"),
                                                      QList<int>() << QgsProcessing::TypeVectorLine));
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("WINDOW"), QStringLiteral("Window along the line (metres)"),
-                                                QgsProcessingParameterNumber::Double, 100, false, 0));
-  auto* fraction = new QgsProcessingParameterNumber(QStringLiteral("WINDOW_FRACTION"),
+  addParameter(decimals(1, new QgsProcessingParameterNumber(QStringLiteral("WINDOW"), QStringLiteral("Window along the line (metres)"),
+                                                QgsProcessingParameterNumber::Double, 100, false, 0)));
+  auto* fraction = decimals(2, new QgsProcessingParameterNumber(QStringLiteral("WINDOW_FRACTION"),
                                                     QStringLiteral("Window as a share of each line's length (0: use WINDOW)"),
-                                                    QgsProcessingParameterNumber::Double, 0, false, 0, 0.49);
+                                                    QgsProcessingParameterNumber::Double, 0, false, 0, 0.49));
   fraction->setFlags(fraction->flags() | QgsProcessingParameterDefinition::FlagAdvanced);
   addParameter(fraction);
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("RADIUS"), QStringLiteral("Disk radius (metres; 0: the window)"),
-                                                QgsProcessingParameterNumber::Double, 0, false, 0));
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"), QStringLiteral("Secant threshold for the parts"),
-                                                QgsProcessingParameterNumber::Double, ConcavityOptions().threshold, false, 0));
+  addParameter(decimals(1, new QgsProcessingParameterNumber(QStringLiteral("RADIUS"), QStringLiteral("Disk radius (metres; 0: the window)"),
+                                                QgsProcessingParameterNumber::Double, 0, false, 0)));
+  addParameter(decimals(3, new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"), QStringLiteral("Secant threshold for the parts"),
+                                                QgsProcessingParameterNumber::Double, ConcavityOptions().threshold, false, 0)));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Concavity"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));

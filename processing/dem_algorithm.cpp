@@ -7,6 +7,8 @@
 #include <cmath>
 #include <memory>
 
+#include "parameter_decimals.h"
+
 namespace tinlod::qgis {
 namespace {
 
@@ -47,9 +49,8 @@ void DemAlgorithm::addDemAndSamplingParameters() {
   addDemParameters();
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("BLOCK"), QStringLiteral("Block size k (one sample per k x k cells)"),
                                                 QgsProcessingParameterNumber::Integer, defaults.block, false, 1, 1000));
-  auto* jitter = new QgsProcessingParameterNumber(QStringLiteral("JITTER"), QStringLiteral("Jitter (metres)"),
-                                                  QgsProcessingParameterNumber::Double, defaults.jitter, false, 0.0, 100.0);
-  jitter->setMetadata({{QStringLiteral("widget_wrapper"), QVariantMap{{QStringLiteral("decimals"), 2}}}});
+  auto* jitter = decimals(2, new QgsProcessingParameterNumber(QStringLiteral("JITTER"), QStringLiteral("Jitter (metres)"),
+                                                  QgsProcessingParameterNumber::Double, defaults.jitter, false, 0.0, 100.0));
   addParameter(advanced(jitter));
   addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("SEED"), QStringLiteral("Random seed"),
                                                          QgsProcessingParameterNumber::Integer,

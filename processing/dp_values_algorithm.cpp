@@ -5,8 +5,9 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
-#include "source_file.h"
+#include "parameter_decimals.h"
 #include "processing_feedback.h"
+#include "source_file.h"
 
 namespace tinlod::qgis {
 
@@ -35,9 +36,9 @@ DpValuesAlgorithm* DpValuesAlgorithm::createInstance() const { return new DpValu
 void DpValuesAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("INPUT"), QStringLiteral("Lines"),
                                                      QList<int>() << QgsProcessing::TypeVectorLine));
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"),
+  addParameter(decimals(2, new QgsProcessingParameterNumber(QStringLiteral("THRESHOLD"),
                                                 QStringLiteral("Threshold for the simplified lines and crossings (metres)"),
-                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0));
+                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
   addParameter(new QgsProcessingParameterBoolean(QStringLiteral("POINTS"), QStringLiteral("Also write a vertex layer"), false));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Lines with values"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));

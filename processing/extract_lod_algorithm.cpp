@@ -8,9 +8,10 @@
 #include <cmath>
 #include <limits>
 
-#include "source_file.h"
 #include "hierarchy_parameter.h"
+#include "parameter_decimals.h"
 #include "processing_feedback.h"
+#include "source_file.h"
 #include "tin_layer_style.h"
 
 namespace tinlod::qgis {
@@ -56,13 +57,13 @@ void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(new QgsProcessingParameterPoint(QStringLiteral("CENTER"), QStringLiteral("Centre of detail"), QVariant(), true));
   addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("CENTERS"), QStringLiteral("Centres of detail (point layer)"),
                                                      QList<int>() << QgsProcessing::TypeVectorPoint, QVariant(), true));
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("DROPOFF"), QStringLiteral("Dropoff distance per level (metres)"),
-                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0));
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error (metres)"),
-                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0));
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("ERROR_GROWTH"),
+  addParameter(decimals(1, new QgsProcessingParameterNumber(QStringLiteral("DROPOFF"), QStringLiteral("Dropoff distance per level (metres)"),
+                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
+  addParameter(decimals(2, new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error (metres)"),
+                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
+  addParameter(decimals(3, new QgsProcessingParameterNumber(QStringLiteral("ERROR_GROWTH"),
                                                 QStringLiteral("Error growth with distance (metres per metre)"),
-                                                QgsProcessingParameterNumber::Double, 0, false, 0));
+                                                QgsProcessingParameterNumber::Double, 0, false, 0)));
   addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("REGION"), QStringLiteral("Region of full detail (polygons)"),
                                                      QList<int>() << QgsProcessing::TypeVectorPolygon, QVariant(), true));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("TIN GeoPackage"),

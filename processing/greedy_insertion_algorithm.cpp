@@ -4,6 +4,7 @@
 #include <qgsprocessingoutputs.h>
 #include <qgsprocessingparameters.h>
 
+#include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
 #include "tinlod/insert_job.h"
@@ -50,9 +51,9 @@ GreedyInsertionAlgorithm* GreedyInsertionAlgorithm::createInstance() const { ret
 
 void GreedyInsertionAlgorithm::initAlgorithm(const QVariantMap&) {
   addDemAndSamplingParameters();
-  addParameter(new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"),
+  addParameter(decimals(2, new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"),
                                                 QStringLiteral("Maximum vertical error, metres (empty: 1, or none when a count is set)"),
-                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0));
+                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
   addParameter(new QgsProcessingParameterNumber(QStringLiteral("MAX_VERTICES"), QStringLiteral("Maximum vertices (0: no limit)"),
                                                 QgsProcessingParameterNumber::Integer, 0, false, 0));
   addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("MAX_TRIANGLES"),

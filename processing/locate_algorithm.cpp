@@ -5,9 +5,9 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
-#include "source_file.h"
 #include "hierarchy_parameter.h"
 #include "processing_feedback.h"
+#include "source_file.h"
 #include "tinlod/locate_job.h"
 
 namespace tinlod::qgis {

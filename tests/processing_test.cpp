@@ -100,6 +100,24 @@ TEST(Processing, ProviderListsTheAlgorithm) {
   EXPECT_EQ(tinlod_register_provider(), 1);  // a second call is harmless
 }
 
+// Decimal parameters say how many decimals the dialog shows (QGIS's default is six:
+// "20.000000" for a percentage).
+TEST(Processing, EveryDecimalParameterShowsAFewDecimals) {
+  const QgsProcessingProvider* provider = QgsApplication::processingRegistry()->providerById(QStringLiteral("tinlod"));
+  ASSERT_NE(provider, nullptr);
+  int checked = 0;
+  for (const QgsProcessingAlgorithm* alg : provider->algorithms())
+    for (const QgsProcessingParameterDefinition* p : alg->parameterDefinitions()) {
+      const auto* number = dynamic_cast<const QgsProcessingParameterNumber*>(p);
+      if (!number || number->dataType() != QgsProcessingParameterNumber::Double) continue;
+      const QVariant places = p->metadata().value(QStringLiteral("widget_wrapper")).toMap().value(QStringLiteral("decimals"));
+      EXPECT_TRUE(places.isValid() && places.toInt() >= 1 && places.toInt() <= 4)
+          << alg->id().toStdString() << " " << p->name().toStdString();
+      ++checked;
+    }
+  EXPECT_GE(checked, 16);
+}
+
 TEST(Processing, SampleTinMatchesTheCore) {
   const QString out = QString::fromStdString(test::tempDir() + "/tin.gpkg");
   const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
