@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "group_icon.h"
 #include "hierarchy_parameter.h"
 #include "processing_feedback.h"
 
@@ -17,6 +18,11 @@ QString AccuracyAlgorithm::groupId() const { return QStringLiteral("accuracy"); 
 QStringList AccuracyAlgorithm::tags() const {
   return QStringLiteral("tin,dem,accuracy,rmse,curvature,b-spline,correlation,error,hierarchy").split(',');
 }
+
+QString AccuracyAlgorithm::shortDescription() const {
+  return QStringLiteral("Measures every level of a TIN hierarchy against the DEM: RMSE, maximum error, elevation and mean curvature correlations; writes a raster and a report.");
+}
+QIcon AccuracyAlgorithm::icon() const { return groupIcon(groupId()); }
 
 QString AccuracyAlgorithm::shortHelpString() const {
   return QStringLiteral(

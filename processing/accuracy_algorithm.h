@@ -14,6 +14,8 @@ class AccuracyAlgorithm : public DemAlgorithm {
   QString groupId() const override;
   QStringList tags() const override;
   QString shortHelpString() const override;
+  QString shortDescription() const override;
+  QIcon icon() const override;
   AccuracyAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

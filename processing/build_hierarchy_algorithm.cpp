@@ -8,6 +8,7 @@
 #include <QFileInfo>
 #include <cmath>
 
+#include "group_icon.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -29,6 +30,11 @@ QString BuildHierarchyAlgorithm::groupId() const { return QStringLiteral("constr
 QStringList BuildHierarchyAlgorithm::tags() const {
   return QStringLiteral("tin,dem,hierarchy,kirkpatrick,simplification,level of detail,lod,delaunay,terrain").split(',');
 }
+
+QString BuildHierarchyAlgorithm::shortDescription() const {
+  return QStringLiteral("Samples a DEM into a Delaunay TIN and simplifies it level by level into a Kirkpatrick hierarchy of TINs in one GeoPackage.");
+}
+QIcon BuildHierarchyAlgorithm::icon() const { return groupIcon(groupId()); }
 
 QString BuildHierarchyAlgorithm::shortHelpString() const {
   return QStringLiteral(

@@ -16,6 +16,8 @@ class BuildHierarchyAlgorithm : public DemAlgorithm {
   QString groupId() const override;
   QStringList tags() const override;
   QString shortHelpString() const override;
+  QString shortDescription() const override;
+  QIcon icon() const override;
   BuildHierarchyAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

@@ -5,6 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
+#include "group_icon.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -18,6 +19,11 @@ QString ConcavityAlgorithm::groupId() const { return QStringLiteral("lines"); }
 QStringList ConcavityAlgorithm::tags() const {
   return QStringLiteral("concavity,convexity,curvature,bend,secant,disk,contour,line").split(',');
 }
+
+QString ConcavityAlgorithm::shortDescription() const {
+  return QStringLiteral("Secant and disk concavity of each vertex of lines (contours, say): convex, straight or concave parts.");
+}
+QIcon ConcavityAlgorithm::icon() const { return groupIcon(groupId()); }
 
 QString ConcavityAlgorithm::shortHelpString() const {
   return QStringLiteral(

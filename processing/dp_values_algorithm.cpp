@@ -5,6 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
+#include "group_icon.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -18,6 +19,11 @@ QString DpValuesAlgorithm::groupId() const { return QStringLiteral("lines"); }
 QStringList DpValuesAlgorithm::tags() const {
   return QStringLiteral("douglas,peucker,ramer,simplify,generalize,contour,line,tolerance").split(',');
 }
+
+QString DpValuesAlgorithm::shortDescription() const {
+  return QStringLiteral("Douglas-Peucker value of each vertex of lines: the tolerance at which it would be dropped.");
+}
+QIcon DpValuesAlgorithm::icon() const { return groupIcon(groupId()); }
 
 QString DpValuesAlgorithm::shortHelpString() const {
   return QStringLiteral(

@@ -18,6 +18,8 @@ class DpValuesAlgorithm : public QgsProcessingAlgorithm {
   QString groupId() const override;
   QStringList tags() const override;
   QString shortHelpString() const override;
+  QString shortDescription() const override;
+  QIcon icon() const override;
   DpValuesAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "group_icon.h"
 #include "hierarchy_parameter.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
@@ -33,6 +34,11 @@ QString ExtractLodAlgorithm::groupId() const { return QStringLiteral("use"); }
 QStringList ExtractLodAlgorithm::tags() const {
   return QStringLiteral("tin,lod,level of detail,hierarchy,kirkpatrick,dobrindt,view,terrain,mesh").split(',');
 }
+
+QString ExtractLodAlgorithm::shortDescription() const {
+  return QStringLiteral("A TIN of varying level of detail from a hierarchy: fine near centres or in a region, coarse far away.");
+}
+QIcon ExtractLodAlgorithm::icon() const { return groupIcon(groupId()); }
 
 QString ExtractLodAlgorithm::shortHelpString() const {
   return QStringLiteral(

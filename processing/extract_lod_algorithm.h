@@ -16,6 +16,8 @@ class ExtractLodAlgorithm : public QgsProcessingAlgorithm {
   QString groupId() const override;
   QStringList tags() const override;
   QString shortHelpString() const override;
+  QString shortDescription() const override;
+  QIcon icon() const override;
   ExtractLodAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

@@ -4,6 +4,7 @@
 #include <qgsprocessingoutputs.h>
 #include <qgsprocessingparameters.h>
 
+#include "group_icon.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
@@ -24,6 +25,11 @@ QString GreedyInsertionAlgorithm::groupId() const { return QStringLiteral("const
 QStringList GreedyInsertionAlgorithm::tags() const {
   return QStringLiteral("tin,dem,delaunay,greedy,insertion,garland,heckbert,tolerance,simplify,terrain,mesh").split(',');
 }
+
+QString GreedyInsertionAlgorithm::shortDescription() const {
+  return QStringLiteral("A TIN from a DEM by greedy insertion (Garland and Heckbert) until every cell is within a vertical tolerance.");
+}
+QIcon GreedyInsertionAlgorithm::icon() const { return groupIcon(groupId()); }
 
 QString GreedyInsertionAlgorithm::shortHelpString() const {
   return QStringLiteral(

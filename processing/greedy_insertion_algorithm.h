@@ -15,6 +15,8 @@ class GreedyInsertionAlgorithm : public DemAlgorithm {
   QString groupId() const override;
   QStringList tags() const override;
   QString shortHelpString() const override;
+  QString shortDescription() const override;
+  QIcon icon() const override;
   GreedyInsertionAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

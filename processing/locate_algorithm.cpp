@@ -5,6 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
+#include "group_icon.h"
 #include "hierarchy_parameter.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -19,6 +20,11 @@ QString LocateAlgorithm::groupId() const { return QStringLiteral("use"); }
 QStringList LocateAlgorithm::tags() const {
   return QStringLiteral("tin,elevation,height,point location,kirkpatrick,hierarchy,interpolate,drape").split(',');
 }
+
+QString LocateAlgorithm::shortDescription() const {
+  return QStringLiteral("Elevation of points on a level of a TIN hierarchy, each point located through the hierarchy.");
+}
+QIcon LocateAlgorithm::icon() const { return groupIcon(groupId()); }
 
 QString LocateAlgorithm::shortHelpString() const {
   return QStringLiteral(

@@ -4,6 +4,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsprocessingoutputs.h>
 
+#include "group_icon.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
 #include "tinlod/sample_job.h"
@@ -17,6 +18,11 @@ QString SampleTinAlgorithm::groupId() const { return QStringLiteral("constructio
 QStringList SampleTinAlgorithm::tags() const {
   return QStringLiteral("tin,dem,delaunay,triangulation,sample,terrain,mesh").split(',');
 }
+
+QString SampleTinAlgorithm::shortDescription() const {
+  return QStringLiteral("A Delaunay TIN of one random cell per k x k block of a DEM, written as vertex and triangle layers.");
+}
+QIcon SampleTinAlgorithm::icon() const { return groupIcon(groupId()); }
 
 QString SampleTinAlgorithm::shortHelpString() const {
   return QStringLiteral(

@@ -22,6 +22,9 @@
 #include <qgsvectordataprovider.h>
 
 #include <QFile>
+#include <QImage>
+#include <QPixmap>
+#include <QSet>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -116,6 +119,27 @@ TEST(Processing, EveryDecimalParameterShowsAFewDecimals) {
       ++checked;
     }
   EXPECT_GE(checked, 16);
+}
+
+// Each algorithm has a one-line description for the toolbox and its group's icon; the
+// provider its own: SVGs that draw.
+TEST(Processing, AlgorithmsHaveShortDescriptionsAndDrawnIcons) {
+  const QgsProcessingProvider* provider = QgsApplication::processingRegistry()->providerById(QStringLiteral("tinlod"));
+  ASSERT_NE(provider, nullptr);
+  EXPECT_FALSE(provider->icon().pixmap(32).isNull());
+  const QImage providerImage = provider->icon().pixmap(32).toImage();
+  QSet<QString> groups;
+  for (const QgsProcessingAlgorithm* alg : provider->algorithms()) {
+    const std::string id = alg->id().toStdString();
+    EXPECT_GT(alg->shortDescription().size(), 30) << id;
+    EXPECT_TRUE(alg->shortDescription().endsWith('.')) << id;
+    EXPECT_TRUE(QFile::exists(QStringLiteral(":/tinlod/%1.svg").arg(alg->groupId()))) << id;
+    const QPixmap pixmap = alg->icon().pixmap(32);
+    ASSERT_FALSE(pixmap.isNull()) << id;
+    EXPECT_NE(pixmap.toImage(), providerImage) << id;
+    groups << alg->groupId();
+  }
+  EXPECT_EQ(groups.size(), 4);
 }
 
 TEST(Processing, SampleTinMatchesTheCore) {
