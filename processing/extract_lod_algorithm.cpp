@@ -63,8 +63,11 @@ void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(new QgsProcessingParameterPoint(QStringLiteral("CENTER"), QStringLiteral("Centre of detail"), QVariant(), true));
   addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("CENTERS"), QStringLiteral("Centres of detail (point layer)"),
                                                      QList<int>() << QgsProcessing::TypeVectorPoint, QVariant(), true));
-  addParameter(decimals(1, new QgsProcessingParameterNumber(QStringLiteral("DROPOFF"), QStringLiteral("Dropoff distance per level (metres)"),
-                                                QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
+  // A distance in the hierarchy's (metric) CRS: the dialog shows its unit from HIERARCHY.
+  auto* dropoff = new QgsProcessingParameterDistance(QStringLiteral("DROPOFF"), QStringLiteral("Dropoff distance per level"),
+                                                     QVariant(), QStringLiteral("HIERARCHY"), true, 0);
+  dropoff->setDefaultUnit(QgsUnitTypes::DistanceMeters);
+  addParameter(decimals(1, dropoff));
   addParameter(decimals(2, new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error (metres)"),
                                                 QgsProcessingParameterNumber::Double, QVariant(), true, 0)));
   addParameter(decimals(3, new QgsProcessingParameterNumber(QStringLiteral("ERROR_GROWTH"),

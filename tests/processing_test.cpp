@@ -119,6 +119,12 @@ TEST(Processing, EveryDecimalParameterShowsAFewDecimals) {
       ++checked;
     }
   EXPECT_GE(checked, 16);
+  // A distance in the hierarchy's CRS shows its unit, taken from HIERARCHY.
+  const QgsProcessingAlgorithm* lod = QgsApplication::processingRegistry()->algorithmById(QStringLiteral("tinlod:extractlod"));
+  const auto* dropoff = dynamic_cast<const QgsProcessingParameterDistance*>(lod->parameterDefinition(QStringLiteral("DROPOFF")));
+  ASSERT_NE(dropoff, nullptr);
+  EXPECT_EQ(dropoff->parentParameterName(), QStringLiteral("HIERARCHY"));
+  EXPECT_EQ(dropoff->defaultUnit(), QgsUnitTypes::DistanceMeters);
 }
 
 // Each algorithm has a one-line description for the toolbox and its group's icon; the
