@@ -383,6 +383,7 @@ TEST(GpkgBulkWriter, OverwriteKeepsTheUsersOtherContent) {
     ASSERT_EQ(mine->CreateFeature(&f), OGRERR_NONE);
   }
   writeTinGpkg(tin, path, GpkgWriteOptions(true, {{"TINLOD_KIND", "tin"}}), ProgressRange(Feedback{}, 0, 1));
+  const auto size = fs::file_size(path);
   writeTinGpkg(tin, path, GpkgWriteOptions(true, {{"TINLOD_KIND", "tin"}}), ProgressRange(Feedback{}, 0, 1));
   {
     Dataset d(path);
@@ -390,6 +391,20 @@ TEST(GpkgBulkWriter, OverwriteKeepsTheUsersOtherContent) {
     EXPECT_EQ(d.ds->GetLayerByName("my_points")->GetFeatureCount(), 1);
     EXPECT_EQ(d.ds->GetLayerByName("triangles")->GetFeatureCount(), static_cast<GIntBig>(tin.triangles.size()));
   }
+  // The same output again reuses the old layers' pages (no compaction needed); a much
+  // smaller one leaves them free, and the file is compacted.
+  auto freeShare = [&] {
+    Sqlite db(path);
+    return double(db.column("PRAGMA freelist_count")[0]) / double(db.column("PRAGMA page_count")[0]);
+  };
+  EXPECT_LE(freeShare(), 1.0 / 8);
+  EXPECT_LE(fs::file_size(path), size + size / 8);
+  Tin small = tin;
+  small.triangles.resize(tin.triangles.size() / 20);
+  writeTinGpkg(small, path, GpkgWriteOptions(true, {{"TINLOD_KIND", "tin"}}), ProgressRange(Feedback{}, 0, 1));
+  EXPECT_LE(freeShare(), 1.0 / 8);
+  EXPECT_LT(fs::file_size(path), size / 2);
+  EXPECT_EQ(Dataset(path).ds->GetLayerByName("my_points")->GetFeatureCount(), 1);
   // A project saved in a file of tinlod's layers: a table GeoPackage does not register.
   const std::string project = test::tempDir() + "/project.gpkg";
   fs::remove(project);

@@ -234,8 +234,22 @@ void GpkgOutput::indexLater(const std::string& table, std::function<std::vector<
   indexes_.push_back({table, std::async(std::launch::async, std::move(pack)).share()});
 }
 
+namespace {
+
+// The pages of dropped layers are reused by the rows written after them: compacting, a
+// rewrite of the whole file that reports no progress, pays only when many are left over
+// (a smaller output than the one it replaces).
+void compactIfWasteful(SqliteDatabase& db) {
+  const std::int64_t pages = db.integer("PRAGMA page_count"), unused = db.integer("PRAGMA freelist_count");
+  if (unused * 8 > pages) db.execute("VACUUM");  // outside any transaction, as SQLite requires
+}
+
+}  // namespace
+
 void GpkgOutput::compactIfDropped() {
-  if (vacuum_) SqliteDatabase(file_.staging.string(), file_.path).execute("VACUUM");
+  if (!vacuum_) return;
+  SqliteDatabase db(file_.staging.string(), file_.path);
+  compactIfWasteful(db);
 }
 
 void GpkgOutput::begin() {
@@ -279,7 +293,7 @@ void GpkgOutput::finishDatabase(const ProgressRange& progress) {
   indexes_.clear();  // the packed trees' memory goes back before the commit
   const bool lateWritten = options_.lateMetadata && setGdalMetadataItems(*db_, options_.lateMetadata());
   db_->execute("COMMIT");
-  if (vacuum_) db_->execute("VACUUM");  // outside any transaction, as SQLite requires
+  if (vacuum_) compactIfWasteful(*db_);
   db_.reset();
   if (options_.lateMetadata && !lateWritten) {
     // No metadata of GDAL's to add to: GDAL writes the late items itself.
