@@ -8,8 +8,11 @@ if(TINLOD_WITH_QGIS)
   set(TINLOD_QGIS_PLUGIN_DIR share/qgis/python/plugins/tinlod)
   install(TARGETS tinlod_processing LIBRARY DESTINATION ${TINLOD_QGIS_PLUGIN_DIR})
   install(FILES ${PLUGIN_SOURCES} DESTINATION ${TINLOD_QGIS_PLUGIN_DIR})
+  install(FILES ${PLUGIN_HELP_PAGES} DESTINATION ${TINLOD_QGIS_PLUGIN_DIR}/help)
 endif()
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION share/doc/tinlod)
+# The README's links lead into docs/.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs DESTINATION share/doc/tinlod)
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION share/doc/tinlod RENAME copyright)
 
 set(CPACK_GENERATOR DEB)

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "group_icon.h"
+#include "help_page.h"
 #include "hierarchy_parameter.h"
 #include "processing_feedback.h"
 
@@ -23,6 +24,7 @@ QString AccuracyAlgorithm::shortDescription() const {
   return QStringLiteral("Measures every level of a TIN hierarchy against the DEM: RMSE, maximum error, elevation and mean curvature correlations; writes a raster and a report.");
 }
 QIcon AccuracyAlgorithm::icon() const { return groupIcon(groupId()); }
+QString AccuracyAlgorithm::helpUrl() const { return helpPageUrl(name()); }
 
 QString AccuracyAlgorithm::shortHelpString() const {
   return QStringLiteral(

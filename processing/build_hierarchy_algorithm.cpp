@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "group_icon.h"
+#include "help_page.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -35,6 +36,7 @@ QString BuildHierarchyAlgorithm::shortDescription() const {
   return QStringLiteral("Samples a DEM into a Delaunay TIN and simplifies it level by level into a Kirkpatrick hierarchy of TINs in one GeoPackage.");
 }
 QIcon BuildHierarchyAlgorithm::icon() const { return groupIcon(groupId()); }
+QString BuildHierarchyAlgorithm::helpUrl() const { return helpPageUrl(name()); }
 
 QString BuildHierarchyAlgorithm::shortHelpString() const {
   return QStringLiteral(

@@ -18,6 +18,7 @@ class BuildHierarchyAlgorithm : public DemAlgorithm {
   QString shortHelpString() const override;
   QString shortDescription() const override;
   QIcon icon() const override;
+  QString helpUrl() const override;
   BuildHierarchyAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

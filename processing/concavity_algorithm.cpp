@@ -6,6 +6,7 @@
 #include <qgsvectorlayer.h>
 
 #include "group_icon.h"
+#include "help_page.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -24,6 +25,7 @@ QString ConcavityAlgorithm::shortDescription() const {
   return QStringLiteral("Secant and disk concavity of each vertex of lines (contours, say): convex, straight or concave parts.");
 }
 QIcon ConcavityAlgorithm::icon() const { return groupIcon(groupId()); }
+QString ConcavityAlgorithm::helpUrl() const { return helpPageUrl(name()); }
 
 QString ConcavityAlgorithm::shortHelpString() const {
   return QStringLiteral(

@@ -20,6 +20,7 @@ class ConcavityAlgorithm : public QgsProcessingAlgorithm {
   QString shortHelpString() const override;
   QString shortDescription() const override;
   QIcon icon() const override;
+  QString helpUrl() const override;
   ConcavityAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

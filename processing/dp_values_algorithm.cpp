@@ -6,6 +6,7 @@
 #include <qgsvectorlayer.h>
 
 #include "group_icon.h"
+#include "help_page.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -24,6 +25,7 @@ QString DpValuesAlgorithm::shortDescription() const {
   return QStringLiteral("Douglas-Peucker value of each vertex of lines: the tolerance at which it would be dropped.");
 }
 QIcon DpValuesAlgorithm::icon() const { return groupIcon(groupId()); }
+QString DpValuesAlgorithm::helpUrl() const { return helpPageUrl(name()); }
 
 QString DpValuesAlgorithm::shortHelpString() const {
   return QStringLiteral(

@@ -20,6 +20,7 @@ class DpValuesAlgorithm : public QgsProcessingAlgorithm {
   QString shortHelpString() const override;
   QString shortDescription() const override;
   QIcon icon() const override;
+  QString helpUrl() const override;
   DpValuesAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

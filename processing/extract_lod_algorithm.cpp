@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "group_icon.h"
+#include "help_page.h"
 #include "hierarchy_parameter.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
@@ -39,6 +40,7 @@ QString ExtractLodAlgorithm::shortDescription() const {
   return QStringLiteral("A TIN of varying level of detail from a hierarchy: fine near centres or in a region, coarse far away.");
 }
 QIcon ExtractLodAlgorithm::icon() const { return groupIcon(groupId()); }
+QString ExtractLodAlgorithm::helpUrl() const { return helpPageUrl(name()); }
 
 QString ExtractLodAlgorithm::shortHelpString() const {
   return QStringLiteral(

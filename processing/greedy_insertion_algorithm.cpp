@@ -5,6 +5,7 @@
 #include <qgsprocessingparameters.h>
 
 #include "group_icon.h"
+#include "help_page.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
@@ -30,6 +31,7 @@ QString GreedyInsertionAlgorithm::shortDescription() const {
   return QStringLiteral("A TIN from a DEM by greedy insertion (Garland and Heckbert) until every cell is within a vertical tolerance.");
 }
 QIcon GreedyInsertionAlgorithm::icon() const { return groupIcon(groupId()); }
+QString GreedyInsertionAlgorithm::helpUrl() const { return helpPageUrl(name()); }
 
 QString GreedyInsertionAlgorithm::shortHelpString() const {
   return QStringLiteral(

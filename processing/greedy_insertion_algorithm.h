@@ -17,6 +17,7 @@ class GreedyInsertionAlgorithm : public DemAlgorithm {
   QString shortHelpString() const override;
   QString shortDescription() const override;
   QIcon icon() const override;
+  QString helpUrl() const override;
   GreedyInsertionAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

@@ -6,6 +6,7 @@
 #include <qgsvectorlayer.h>
 
 #include "group_icon.h"
+#include "help_page.h"
 #include "hierarchy_parameter.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -25,6 +26,7 @@ QString LocateAlgorithm::shortDescription() const {
   return QStringLiteral("Elevation of points on a level of a TIN hierarchy, each point located through the hierarchy.");
 }
 QIcon LocateAlgorithm::icon() const { return groupIcon(groupId()); }
+QString LocateAlgorithm::helpUrl() const { return helpPageUrl(name()); }
 
 QString LocateAlgorithm::shortHelpString() const {
   return QStringLiteral(

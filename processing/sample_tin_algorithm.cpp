@@ -5,6 +5,7 @@
 #include <qgsprocessingoutputs.h>
 
 #include "group_icon.h"
+#include "help_page.h"
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
 #include "tinlod/sample_job.h"
@@ -23,6 +24,7 @@ QString SampleTinAlgorithm::shortDescription() const {
   return QStringLiteral("A Delaunay TIN of one random cell per k x k block of a DEM, written as vertex and triangle layers.");
 }
 QIcon SampleTinAlgorithm::icon() const { return groupIcon(groupId()); }
+QString SampleTinAlgorithm::helpUrl() const { return helpPageUrl(name()); }
 
 QString SampleTinAlgorithm::shortHelpString() const {
   return QStringLiteral(

@@ -16,6 +16,7 @@ class SampleTinAlgorithm : public DemAlgorithm {
   QString shortHelpString() const override;
   QString shortDescription() const override;
   QIcon icon() const override;
+  QString helpUrl() const override;
   SampleTinAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
 

@@ -29,7 +29,8 @@ check "the package depends on the package of $qgis_core ($qgis_package), from dp
 check "the package depends on GDAL's library" grep -Eq "Depends:.*\blibgdal[0-9]+\b" "$work/info.txt"
 check "the package depends on python3-qgis (the plugin's Python side)" grep -Eq "Depends:.*\bpython3-qgis\b" "$work/info.txt"
 check "the package holds the command line" grep -qx "./usr/bin/tinlod" "$work/contents.txt"
-for f in __init__.py tinlod_plugin.py metadata.txt icon.svg built_for_qgis.txt libtinlod_processing.so; do
+check "the package holds the docs the README links to" grep -qx "./usr/share/doc/tinlod/docs/cli/build.md" "$work/contents.txt"
+for f in __init__.py tinlod_plugin.py metadata.txt icon.svg built_for_qgis.txt libtinlod_processing.so help/sampletin.md; do
   check "the package holds the plugin's $f where QGIS finds system plugins" \
     grep -qx "./usr/share/qgis/python/plugins/tinlod/$f" "$work/contents.txt"
 done

@@ -25,6 +25,8 @@
 #include <QImage>
 #include <QPixmap>
 #include <QSet>
+#include <QUrl>
+#include <QFileInfo>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -139,6 +141,11 @@ TEST(Processing, AlgorithmsHaveShortDescriptionsAndDrawnIcons) {
     const std::string id = alg->id().toStdString();
     EXPECT_GT(alg->shortDescription().size(), 30) << id;
     EXPECT_TRUE(alg->shortDescription().endsWith('.')) << id;
+    // Help opens the algorithm's reference page, shipped beside the library.
+    const QUrl help(alg->helpUrl());
+    EXPECT_TRUE(help.isLocalFile() && help.toLocalFile().endsWith("/help/" + alg->name() + ".md") &&
+                QFileInfo::exists(help.toLocalFile()))
+        << id << ": " << alg->helpUrl().toStdString();
     EXPECT_TRUE(QFile::exists(QStringLiteral(":/tinlod/%1.svg").arg(alg->groupId()))) << id;
     const QPixmap pixmap = alg->icon().pixmap(32);
     ASSERT_FALSE(pixmap.isNull()) << id;
