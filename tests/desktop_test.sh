@@ -4,9 +4,9 @@
 # QGIS's own plugin installer, every tinlod algorithm run from the Processing toolbox
 # through its dialog, and each output checked on the map with its style
 # (tests/desktop_driver.py does the clicking and checking inside QGIS).
-# Kept in ARTEFACT_DIR: map.png (the map canvas), window.png (the whole window),
-# result.json (the checks, the desktop's log messages, the layer tree), driver.log,
-# qgis.log and each dialog's log.
+# Kept in ARTEFACT_DIR: map.png (the map canvas; map.pgw, its world file), window.png
+# (the whole window), result.json (the checks, the desktop's log messages, the layer
+# tree), driver.log, qgis.log and each dialog's log.
 # Usage: desktop_test.sh PLUGIN_ZIP TINLOD_CLI ARTEFACT_DIR
 set -euo pipefail
 plugin_zip=$(realpath "$1")
@@ -29,7 +29,7 @@ fi
 mkdir -p "$artefacts"
 artefacts=$(realpath "$artefacts")
 # Last run's artefacts would pass for this run's if QGIS wrote none.
-rm -f "$artefacts"/{map.png,window.png,result.json,driver.log,qgis.log} "$artefacts"/dialog_*.log
+rm -f "$artefacts"/{map.png,map.pgw,window.png,result.json,driver.log,qgis.log} "$artefacts"/dialog_*.log
 
 # Everything QGIS, Xvfb and Processing write goes under $work: a fresh home, profile,
 # runtime and temporary folder, removed at the end whatever happens.
