@@ -9,6 +9,7 @@ packages=(
   libgdal-dev gdal-bin libproj-dev libgeos-dev libsqlite3-dev
   qtbase5-dev libqgis-dev qgis qgis-providers python3-qgis python3-gdal
   libgtest-dev
+  xvfb xauth
 )
 
 missing=()
