@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "layer_placement.h"
+
 namespace tinlod::qgis {
 
 void AccuracyRasterStyle::apply(QgsRasterLayer& layer) {
@@ -28,8 +30,9 @@ void AccuracyRasterStyle::apply(QgsRasterLayer& layer) {
   layer.triggerRepaint();
 }
 
-void AccuracyRasterStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext&, QgsProcessingFeedback*) {
+void AccuracyRasterStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback*) {
   if (auto* raster = qobject_cast<QgsRasterLayer*>(layer)) apply(*raster);
+  placeLayer(layer, context.project());
 }
 
 void AccuracyRasterLoad::remember(QgsProcessingContext& context, const QString& path) {
@@ -43,6 +46,7 @@ void AccuracyRasterLoad::remember(QgsProcessingContext& context, const QString& 
 void AccuracyRasterLoad::reRegister(QgsProcessingContext& context) const {
   if (path_.isEmpty()) return;
   QgsProcessingContext::LayerDetails details(name_, project_, outputName_, QgsProcessingUtils::LayerHint::Raster);
+  details.forceName = true;  // QGIS would name it after its file by default
   details.setPostProcessor(new AccuracyRasterStyle);
   context.addLayerToLoadOnCompletion(path_, details);
 }

@@ -7,6 +7,7 @@
 
 #include "group_icon.h"
 #include "help_page.h"
+#include "layer_placement.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -88,8 +89,7 @@ QVariantMap ConcavityAlgorithm::processAlgorithm(const QVariantMap& parameters, 
   feedback->pushInfo(QStringLiteral("%1 vertices of %2 lines; parts: %3 convex, %4 straight, %5 concave")
                          .arg(s.vertices).arg(s.lines).arg(s.convex).arg(s.straight).arg(s.concave));
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=parts"),
-                                     QgsProcessingContext::LayerDetails(QStringLiteral("concavity parts"), context.project(),
-                                                                        QStringLiteral("OUTPUT")));
+                                     placedLayerDetails(QStringLiteral("concavity parts"), context, QStringLiteral("OUTPUT")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(s.vertices));

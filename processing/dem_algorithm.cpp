@@ -90,6 +90,8 @@ std::optional<HeightRange> DemAlgorithm::validRange(const QVariantMap& parameter
   const QVariant value = parameters.value(QStringLiteral("VALID_RANGE"));
   if (!value.isValid() || value.toString().isEmpty()) return std::nullopt;
   const QList<double> range = parameterAsRange(parameters, QStringLiteral("VALID_RANGE"), context);
+  // The dialog's "Not set" comes as "None,None": both ends missing is no range at all.
+  if (range.size() == 2 && std::isnan(range[0]) && std::isnan(range[1])) return std::nullopt;
   if (range.size() != 2 || !std::isfinite(range[0]) || !std::isfinite(range[1]) || !(range[0] < range[1]))
     throw QgsProcessingException(QStringLiteral("Invalid range for VALID_RANGE (%1): give the lowest and the highest valid "
                                                 "height in metres, the lower first, e.g. -12000,9000")

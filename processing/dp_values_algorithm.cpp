@@ -7,6 +7,7 @@
 
 #include "group_icon.h"
 #include "help_page.h"
+#include "layer_placement.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -75,8 +76,7 @@ QVariantMap DpValuesAlgorithm::processAlgorithm(const QVariantMap& parameters, Q
     feedback->pushInfo(QStringLiteral("At threshold %1 m: %2 vertices kept, %3 crossings between simplified lines")
                            .arg(options_.threshold).arg(s.keptVertices).arg(s.crossings));
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=lines"),
-                                     QgsProcessingContext::LayerDetails(QStringLiteral("lines with DP values"), context.project(),
-                                                                        QStringLiteral("OUTPUT")));
+                                     placedLayerDetails(QStringLiteral("lines with DP values"), context, QStringLiteral("OUTPUT")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("LINES"), static_cast<qlonglong>(s.lines));

@@ -8,8 +8,10 @@
 #include "group_icon.h"
 #include "help_page.h"
 #include "hierarchy_parameter.h"
+#include "layer_placement.h"
 #include "processing_feedback.h"
 #include "source_file.h"
+#include "tin_layer_style.h"
 #include "tinlod/locate_job.h"
 
 namespace tinlod::qgis {
@@ -68,9 +70,10 @@ QVariantMap LocateAlgorithm::processAlgorithm(const QVariantMap& parameters, Qgs
   const LocateSummary s = translateErrors(
       [&] { return runLocateJob(hierarchy_, points_, output.toStdString(), level_, true, processingFeedback(feedback)); });
   feedback->pushInfo(QStringLiteral("%1 of %2 points on the TIN of level %3").arg(s.located).arg(s.points).arg(s.level));
+  // As small dots: thousands of QGIS's default markers would hide the map.
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=points"),
-                                     QgsProcessingContext::LayerDetails(QStringLiteral("points with elevation"),
-                                                                        context.project(), QStringLiteral("OUTPUT")));
+                                     placedLayerDetails(QStringLiteral("points with elevation"), context,
+                                                        QStringLiteral("OUTPUT"), new TinLayerStyle));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("POINTS"), static_cast<qlonglong>(s.points));

@@ -7,10 +7,8 @@ namespace tinlod::qgis {
 
 // Styles a TIN layer that an algorithm loads into the project: triangles as thin outlines
 // over a faint fill, vertices as small dots, so that a dense TIN does not come up as a
-// solid dark block. With a group name, the layer moves into that group of the layer
-// tree (created on first use): a hierarchy's levels load as one group. Without one, a
-// layer that QGIS put inside such a group (the current layer was a level) goes to the top.
-// Shown or hidden as `visible` says.
+// solid dark block. Placed in the layer tree by placeLayer (layer_placement.h): a
+// hierarchy's levels as one group, in level order.
 class TinLayerStyle : public QgsProcessingLayerPostProcessorInterface {
  public:
   // `order` places the layer among the group's layers (QGIS loads results in name order,
@@ -20,7 +18,6 @@ class TinLayerStyle : public QgsProcessingLayerPostProcessorInterface {
   void postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback* feedback) override;
 
  private:
-  void place(QgsMapLayer* layer, QgsProcessingContext& context) const;
   QString group_;
   bool visible_;
   int order_;

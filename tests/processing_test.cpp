@@ -280,8 +280,8 @@ TEST(Processing, TemporaryOutputsAreNamedAfterTheToolVerticesHiddenAndOutOfAHier
   RecordingFeedback feedback;
   bool ok = false;
   std::unique_ptr<QgsProcessingAlgorithm> build(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:buildhierarchy"));
-  build->run({{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", 2},
-              {"OUTPUT", QString::fromStdString(test::tempDir() + "/peaks.gpkg")}}, first, &feedback, &ok);
+  const QString hier = QString::fromStdString(test::tempDir() + "/peaks.gpkg");
+  build->run({{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", 2}, {"OUTPUT", hier}}, first, &feedback, &ok);
   ASSERT_TRUE(ok) << feedback.errors.toStdString();
   loadAsQgisDoes(first, project);
   QgsLayerTreeGroup* levels = project.layerTreeRoot()->findGroup(QStringLiteral("peaks levels"));
@@ -307,6 +307,47 @@ TEST(Processing, TemporaryOutputsAreNamedAfterTheToolVerticesHiddenAndOutOfAHier
   EXPECT_TRUE(triangles->itemVisibilityChecked());
   EXPECT_FALSE(vertices->itemVisibilityChecked());
   EXPECT_EQ(levels->findLayers().size(), 3);  // the levels alone
+  // A locate afterwards, which QGIS would also put among the levels: at the top as well.
+  QgsProcessingContext third;
+  third.setProject(&project);
+  std::unique_ptr<QgsProcessingAlgorithm> locate(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:locate"));
+  locate->run({{"INPUT", hier + "|layername=vertices"}, {"HIERARCHY", hier},
+               {"OUTPUT", QString::fromStdString(test::tempDir() + "/peaks_located.gpkg")}}, third, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  loadAsQgisDoes(third, project, levels);
+  EXPECT_EQ(levels->findLayers().size(), 3);
+  bool locatedAtTop = false;
+  for (QgsLayerTreeNode* child : project.layerTreeRoot()->children())
+    locatedAtTop |= child->name() == QStringLiteral("points with elevation");
+  EXPECT_TRUE(locatedAtTop);
+}
+
+// QGIS adds each loaded layer where the current one is: inside the group of levels once
+// the first level is in it. The levels must still end in level order.
+TEST(Processing, LevelsKeepTheirOrderWhenQgisAddsThemInsideTheGroup) {
+  QgsProject project;
+  QgsProcessingContext context;
+  context.setProject(&project);
+  RecordingFeedback feedback;
+  bool ok = false;
+  std::unique_ptr<QgsProcessingAlgorithm> build(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:buildhierarchy"));
+  build->run({{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", 4},
+              {"OUTPUT", QString::fromStdString(test::tempDir() + "/ordered.gpkg")}}, context, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  QgsLayerTreeGroup* group = project.layerTreeRoot()->insertGroup(0, QStringLiteral("ordered levels"));
+  group->setCustomProperty(QStringLiteral("tinlod/group"), true);
+  const auto layers = context.layersToLoadOnCompletion();
+  for (auto it = layers.constBegin(); it != layers.constEnd(); ++it) {  // each new one on top of the group
+    auto* layer = new QgsVectorLayer(it.key(), it.value().name, QStringLiteral("ogr"));
+    project.addMapLayer(layer, false);
+    group->insertLayer(0, layer);
+    QgsProcessingContext loading;
+    loading.setProject(&project);
+    it.value().postProcessor()->postProcessLayer(layer, loading, &feedback);
+  }
+  QStringList order;
+  for (QgsLayerTreeLayer* node : group->findLayers()) order << node->name();
+  EXPECT_EQ(order, QStringList({"level_0", "level_1", "level_2", "level_3", "level_4"}));
 }
 
 TEST(Processing, CancelStopsAndLeavesNoFile) {
@@ -539,6 +580,7 @@ TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
   const Result r = runAlgorithm(QStringLiteral("tinlod:accuracy"), {{"INPUT", QString::fromStdString(defaultDem())},
                                                                     {"HIERARCHY", hier},
                                                                     {"LEVEL", 0},
+                                                                    {"VALID_RANGE", "None,None"},  // the dialog's "Not set"
                                                                     {"ACCURACY", raster},
                                                                     {"REPORT", report}});
   ASSERT_TRUE(r.ok) << r.error.toStdString();

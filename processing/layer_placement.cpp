@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "layer_placement.h"
+
+#include <qgslayertree.h>
+#include <qgsproject.h>
+
+namespace tinlod::qgis {
+namespace {
+
+const QString kOurGroup = QStringLiteral("tinlod/group");
+const QString kOrder = QStringLiteral("tinlod/order");
+
+QgsLayerTreeGroup* groupOfOurs(QgsLayerTreeGroup* root, const QString& name) {
+  QgsLayerTreeGroup* group = root->findGroup(name);
+  if (!group) {
+    group = root->insertGroup(0, name);
+    group->setCustomProperty(kOurGroup, true);
+  }
+  return group;
+}
+
+}  // namespace
+
+void placeLayer(QgsMapLayer* layer, QgsProject* project, const QString& group, int order, bool visible) {
+  if (!project) return;
+  QgsLayerTreeGroup* root = project->layerTreeRoot();
+  QgsLayerTreeLayer* node = root->findLayer(layer);
+  if (!node) return;
+  auto* parent = qobject_cast<QgsLayerTreeGroup*>(node->parent());
+  QgsLayerTreeGroup* target = nullptr;
+  if (!group.isEmpty()) target = groupOfOurs(root, group);
+  else if (parent && parent != root && parent->customProperty(kOurGroup).toBool()) target = root;
+  QgsLayerTreeLayer* placed = node;
+  if (target) {
+    // Before the first other layer of higher order, counted in the list as it is (QGIS may
+    // have put this one in it already). The new node goes in before the old one comes out:
+    // a layer left in no node is removed from the project by QGIS.
+    const QList<QgsLayerTreeNode*> children = target->children();
+    int index = group.isEmpty() ? 0 : children.size();
+    for (int i = 0; !group.isEmpty() && i < children.size(); ++i)
+      if (children[i] != node && children[i]->customProperty(kOrder).toInt() >= order) {
+        index = i;
+        break;
+      }
+    placed = target->insertLayer(index, layer);
+    if (parent) parent->removeChildNode(node);
+  }
+  placed->setCustomProperty(kOrder, order);
+  placed->setItemVisibilityChecked(visible);
+}
+
+QgsProcessingContext::LayerDetails placedLayerDetails(const QString& name, QgsProcessingContext& context,
+                                                      const QString& outputName,
+                                                      QgsProcessingLayerPostProcessorInterface* style) {
+  QgsProcessingContext::LayerDetails details(name, context.project(), outputName);
+  details.forceName = true;  // QGIS would name it after its table ("triangles") by default
+  details.setPostProcessor(style ? style : new PlacedLayer);
+  return details;
+}
+
+}  // namespace tinlod::qgis

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <qgsprocessingcontext.h>
+
+#include <QString>
+
+class QgsMapLayer;
+
+namespace tinlod::qgis {
+
+// Where an output layer goes in the layer tree once QGIS has loaded it. QGIS adds it beside
+// the current layer: after a hierarchy, that is inside its group of levels, where another
+// tool's output does not belong.
+//
+// Without a group, a layer QGIS put in a group of tinlod's goes to the top of the tree.
+// With one, it goes into that group (made on first use and marked as tinlod's) at its
+// place by `order`: QGIS loads results in name order, which would put level_10 before
+// level_2. Either way it is shown or hidden as `visible` says.
+void placeLayer(QgsMapLayer* layer, QgsProject* project, const QString& group = QString(), int order = 0,
+                bool visible = true);
+
+// The details to load an output layer with: named as given (not after its file, as QGIS
+// would by default), placed by placeLayer, or by `style` (which takes over placing) if given.
+QgsProcessingContext::LayerDetails placedLayerDetails(const QString& name, QgsProcessingContext& context,
+                                                      const QString& outputName,
+                                                      QgsProcessingLayerPostProcessorInterface* style = nullptr);
+
+// placeLayer as a post-processor, for outputs without a style of their own.
+class PlacedLayer : public QgsProcessingLayerPostProcessorInterface {
+ public:
+  void postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback*) override {
+    placeLayer(layer, context.project());
+  }
+};
+
+}  // namespace tinlod::qgis
