@@ -320,6 +320,18 @@ TEST(AccuracyReport, TheReferenceAgainstItselfIsNotPlottedAtTheRoundingOfR) {
   for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(points[i].y, -5 + 0.3 * double(i + 1), 1e-6);
 }
 
+// The level tables may be wider than any cap on the page: nothing holds the page narrower
+// than the window (a cap of 1420 px cut them).
+TEST(AccuracyReport, HtmlPageTakesTheWindowsWidth) {
+  TempFolder dir;
+  writeAccuracyReport(report(run("alps.tif", "degree", 4)), dir.file("w.html"));
+  const std::string html = readText(dir.file("w.html"));
+  const std::string style = html.substr(0, html.find("</style>"));
+  EXPECT_EQ(style.find("main{max-width"), std::string::npos);
+  EXPECT_EQ(std::regex_search(style, std::regex(R"((main|body|section|\.card|\.scroll)\{[^}]*max-width)")), false);
+  EXPECT_NE(html.find("<div class=\"scroll\"><table>"), std::string::npos);  // and scrolls where the window is narrower
+}
+
 TEST(AccuracyReport, HtmlEscapesTextAndNeedsNothingFromElsewhere) {
   TempFolder dir;
   AccuracyReport r = report(run("a<b & c>.tif", "degree", 3));

@@ -16,11 +16,12 @@
 namespace tinlod {
 namespace {
 
-// Old WebKit (QGIS's) has no CSS grid: figures are inline blocks, two per row when
-// the window is wide enough, one otherwise.
+// Old WebKit (QGIS's) has no CSS grid: figures are inline blocks, as many per row as the
+// window holds. The page takes the window's whole width: a level table with many variables
+// is wider than two figures, and a cap on the page's width cut it.
 const char* const kStyle = R"(*{box-sizing:border-box}
 body{margin:0;background:#f3f4f6;color:#1f2328;font:15px/1.5 system-ui,-apple-system,"Segoe UI",Roboto,"Helvetica Neue",Arial,sans-serif}
-main{max-width:1420px;margin:0 auto;padding:28px 20px 40px}
+main{padding:28px 20px 40px}
 h1{font-size:28px;line-height:1.2;margin:0 0 6px}
 h2{font-size:19px;margin:28px 0 12px}
 h3{font-size:16px;margin:0 0 2px}
