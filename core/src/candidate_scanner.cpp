@@ -130,7 +130,11 @@ ScanResult CandidateScanner::scanCells(std::array<std::uint32_t, 3> c) const {
         }
         ++validCells;
       }
-      if (e > rowBest) rowBest = e, rowArg = xx;
+      // Without a branch: which cell is worst is data, and mispredicted jumps cost more
+      // than the two selects (the first of equal errors still wins).
+      const bool worse = e > rowBest;
+      rowBest = worse ? e : rowBest;
+      rowArg = worse ? xx : rowArg;
     }
     if (rowBest > best) best = rowBest, bestCell = yy * cols + rowArg;
   }
