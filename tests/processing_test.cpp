@@ -68,16 +68,21 @@ struct Result {
   bool ok = false;
   QVariantMap outputs;
   QString error;
+  std::shared_ptr<QgsProcessingContext> context;  // what the run asked QGIS to load
 };
 
-Result runAlgorithm(const QString& id, const QVariantMap& parameters, RecordingFeedback* feedback = nullptr) {
+// With a project, the run sees its layers (ids as parameter values) and loads into it.
+Result runAlgorithm(const QString& id, const QVariantMap& parameters, RecordingFeedback* feedback = nullptr,
+                    QgsProject* project = nullptr) {
   std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById(id));
   EXPECT_NE(alg, nullptr) << id.toStdString();
   if (!alg) return {};
-  QgsProcessingContext context;
+  Result r;
+  r.context = std::make_shared<QgsProcessingContext>();
+  QgsProcessingContext& context = *r.context;
+  if (project) context.setProject(project);
   RecordingFeedback defaultFeedback;
   RecordingFeedback* f = feedback ? feedback : &defaultFeedback;
-  Result r;
   try {
     r.outputs = alg->run(parameters, context, f, &r.ok);
   } catch (const QgsProcessingException& e) {
@@ -265,7 +270,7 @@ void loadAsQgisDoes(QgsProcessingContext& context, QgsProject& project, QgsLayer
   for (auto it = layers.constBegin(); it != layers.constEnd(); ++it) {
     auto* layer = new QgsVectorLayer(it.key(), it.value().name, QStringLiteral("ogr"));
     project.addMapLayer(layer, into == nullptr);
-    if (into) into->addLayer(layer);
+    if (into) into->insertLayer(0, layer);  // above the current layer, as QGIS adds it
     QgsProcessingContext loading;
     loading.setProject(&project);
     it.value().postProcessor()->postProcessLayer(layer, loading, &feedback);
@@ -326,25 +331,14 @@ TEST(Processing, TemporaryOutputsAreNamedAfterTheToolVerticesHiddenAndOutOfAHier
 // the first level is in it. The levels must still end in level order.
 TEST(Processing, LevelsKeepTheirOrderWhenQgisAddsThemInsideTheGroup) {
   QgsProject project;
-  QgsProcessingContext context;
-  context.setProject(&project);
-  RecordingFeedback feedback;
-  bool ok = false;
-  std::unique_ptr<QgsProcessingAlgorithm> build(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:buildhierarchy"));
-  build->run({{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", 4},
-              {"OUTPUT", QString::fromStdString(test::tempDir() + "/ordered.gpkg")}}, context, &feedback, &ok);
-  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  const Result built = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                                    {{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", 4},
+                                     {"OUTPUT", QString::fromStdString(test::tempDir() + "/ordered.gpkg")}},
+                                    nullptr, &project);
+  ASSERT_TRUE(built.ok) << built.error.toStdString();
   QgsLayerTreeGroup* group = project.layerTreeRoot()->insertGroup(0, QStringLiteral("ordered levels"));
   group->setCustomProperty(QStringLiteral("tinlod/group"), true);
-  const auto layers = context.layersToLoadOnCompletion();
-  for (auto it = layers.constBegin(); it != layers.constEnd(); ++it) {  // each new one on top of the group
-    auto* layer = new QgsVectorLayer(it.key(), it.value().name, QStringLiteral("ogr"));
-    project.addMapLayer(layer, false);
-    group->insertLayer(0, layer);
-    QgsProcessingContext loading;
-    loading.setProject(&project);
-    it.value().postProcessor()->postProcessLayer(layer, loading, &feedback);
-  }
+  loadAsQgisDoes(*built.context, project, group);
   QStringList order;
   for (QgsLayerTreeLayer* node : group->findLayers()) order << node->name();
   EXPECT_EQ(order, QStringList({"level_0", "level_1", "level_2", "level_3", "level_4"}));
@@ -762,18 +756,8 @@ TEST(Processing, HierarchyIsAFileOrALoadedLayerOfIt) {
   project.addMapLayers({level, scratch});
   const QString points = hier + QStringLiteral("|layername=vertices");
   auto locate = [&](const QVariant& hierarchy, const QString& out) {
-    std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:locate"));
-    QgsProcessingContext context;
-    context.setProject(&project);
-    RecordingFeedback feedback;
-    Result r;
-    try {
-      r.outputs = alg->run({{"INPUT", points}, {"HIERARCHY", hierarchy}, {"LEVEL", 0}, {"OUTPUT", out}}, context, &feedback, &r.ok);
-    } catch (const QgsProcessingException& e) {
-      r.error = e.what();
-    }
-    r.error += feedback.errors;
-    return r;
+    return runAlgorithm(QStringLiteral("tinlod:locate"),
+                        {{"INPUT", points}, {"HIERARCHY", hierarchy}, {"LEVEL", 0}, {"OUTPUT", out}}, nullptr, &project);
   };
   const Result byFile = locate(hier, QString::fromStdString(dir + "/by_file.gpkg"));
   const Result byLayer = locate(level->id(), QString::fromStdString(dir + "/by_layer.gpkg"));
@@ -838,16 +822,7 @@ TEST(Processing, DpValuesMatchTheCoreAndCountCrossings) {
 TEST(Processing, MemoryLayersServeAsEveryVectorInput) {
   const std::string dir = test::tempDir();
   QgsProject project;
-  auto run = [&](const QString& id, const QVariantMap& parameters) {
-    std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById(id));
-    QgsProcessingContext context;
-    context.setProject(&project);
-    RecordingFeedback feedback;
-    Result r;
-    r.outputs = alg->run(parameters, context, &feedback, &r.ok);
-    r.error = feedback.errors;
-    return r;
-  };
+  auto run = [&](const QString& id, const QVariantMap& parameters) { return runAlgorithm(id, parameters, nullptr, &project); };
   auto memory = [&](const QString& uri, const QStringList& wkts) {
     auto* layer = new QgsVectorLayer(uri, QStringLiteral("scratch"), QStringLiteral("memory"));
     QgsFeatureList features;
