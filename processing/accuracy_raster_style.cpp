@@ -45,10 +45,8 @@ void AccuracyRasterLoad::remember(QgsProcessingContext& context, const QString& 
 
 void AccuracyRasterLoad::reRegister(QgsProcessingContext& context) const {
   if (path_.isEmpty()) return;
-  QgsProcessingContext::LayerDetails details(name_, project_, outputName_, QgsProcessingUtils::LayerHint::Raster);
-  details.forceName = true;  // QGIS would name it after its file by default
-  details.setPostProcessor(new AccuracyRasterStyle);
-  context.addLayerToLoadOnCompletion(path_, details);
+  context.addLayerToLoadOnCompletion(path_, placedLayerDetails(name_, project_, outputName_, new AccuracyRasterStyle,
+                                                               QgsProcessingUtils::LayerHint::Raster));
 }
 
 }  // namespace tinlod::qgis

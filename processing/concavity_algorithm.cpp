@@ -89,7 +89,8 @@ QVariantMap ConcavityAlgorithm::processAlgorithm(const QVariantMap& parameters, 
   feedback->pushInfo(QStringLiteral("%1 vertices of %2 lines; parts: %3 convex, %4 straight, %5 concave")
                          .arg(s.vertices).arg(s.lines).arg(s.convex).arg(s.straight).arg(s.concave));
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=parts"),
-                                     placedLayerDetails(QStringLiteral("concavity parts"), context, QStringLiteral("OUTPUT")));
+                                     placedLayerDetails(QStringLiteral("concavity parts"), context.project(),
+                                                        QStringLiteral("OUTPUT")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(s.vertices));

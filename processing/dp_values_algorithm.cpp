@@ -76,7 +76,8 @@ QVariantMap DpValuesAlgorithm::processAlgorithm(const QVariantMap& parameters, Q
     feedback->pushInfo(QStringLiteral("At threshold %1 m: %2 vertices kept, %3 crossings between simplified lines")
                            .arg(options_.threshold).arg(s.keptVertices).arg(s.crossings));
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=lines"),
-                                     placedLayerDetails(QStringLiteral("lines with DP values"), context, QStringLiteral("OUTPUT")));
+                                     placedLayerDetails(QStringLiteral("lines with DP values"), context.project(),
+                                                        QStringLiteral("OUTPUT")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("LINES"), static_cast<qlonglong>(s.lines));

@@ -49,11 +49,11 @@ void placeLayer(QgsMapLayer* layer, QgsProject* project, const QString& group, i
   placed->setItemVisibilityChecked(visible);
 }
 
-QgsProcessingContext::LayerDetails placedLayerDetails(const QString& name, QgsProcessingContext& context,
-                                                      const QString& outputName,
-                                                      QgsProcessingLayerPostProcessorInterface* style) {
-  QgsProcessingContext::LayerDetails details(name, context.project(), outputName);
-  details.forceName = true;  // QGIS would name it after its table ("triangles") by default
+QgsProcessingContext::LayerDetails placedLayerDetails(const QString& name, QgsProject* project, const QString& outputName,
+                                                      QgsProcessingLayerPostProcessorInterface* style,
+                                                      QgsProcessingUtils::LayerHint hint) {
+  QgsProcessingContext::LayerDetails details(name, project, outputName, hint);
+  details.forceName = true;  // QGIS would name it after its file or table ("triangles") by default
   details.setPostProcessor(style ? style : new PlacedLayer);
   return details;
 }

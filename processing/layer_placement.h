@@ -2,6 +2,7 @@
 #pragma once
 
 #include <qgsprocessingcontext.h>
+#include <qgsprocessingutils.h>
 
 #include <QString>
 
@@ -20,11 +21,13 @@ namespace tinlod::qgis {
 void placeLayer(QgsMapLayer* layer, QgsProject* project, const QString& group = QString(), int order = 0,
                 bool visible = true);
 
-// The details to load an output layer with: named as given (not after its file, as QGIS
-// would by default), placed by placeLayer, or by `style` (which takes over placing) if given.
-QgsProcessingContext::LayerDetails placedLayerDetails(const QString& name, QgsProcessingContext& context,
-                                                      const QString& outputName,
-                                                      QgsProcessingLayerPostProcessorInterface* style = nullptr);
+// The details to load an output layer into `project` with: named as given (not after its
+// file, as QGIS would by default), placed by placeLayer, or by `style` (which takes over
+// placing) if given.
+QgsProcessingContext::LayerDetails placedLayerDetails(
+    const QString& name, QgsProject* project, const QString& outputName,
+    QgsProcessingLayerPostProcessorInterface* style = nullptr,
+    QgsProcessingUtils::LayerHint hint = QgsProcessingUtils::LayerHint::Vector);
 
 // placeLayer as a post-processor, for outputs without a style of their own.
 class PlacedLayer : public QgsProcessingLayerPostProcessorInterface {

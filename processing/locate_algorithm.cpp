@@ -72,7 +72,7 @@ QVariantMap LocateAlgorithm::processAlgorithm(const QVariantMap& parameters, Qgs
   feedback->pushInfo(QStringLiteral("%1 of %2 points on the TIN of level %3").arg(s.located).arg(s.points).arg(s.level));
   // As small dots: thousands of QGIS's default markers would hide the map.
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=points"),
-                                     placedLayerDetails(QStringLiteral("points with elevation"), context,
+                                     placedLayerDetails(QStringLiteral("points with elevation"), context.project(),
                                                         QStringLiteral("OUTPUT"), new TinLayerStyle));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);

@@ -39,10 +39,9 @@ void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg
                               const QString& outputName, const QString& baseName, const QString& group, bool visible,
                               int order) {
   const QString name = group.isEmpty() ? QStringLiteral("%1 %2").arg(baseName, layerName) : layerName;
-  QgsProcessingContext::LayerDetails details(name, context.project(), outputName, QgsProcessingUtils::LayerHint::Vector);
-  details.forceName = true;  // QGIS would name it after its table ("triangles") by default
-  details.setPostProcessor(new TinLayerStyle(group, visible, order));
-  context.addLayerToLoadOnCompletion(gpkg + QStringLiteral("|layername=") + layerName, details);
+  context.addLayerToLoadOnCompletion(
+      gpkg + QStringLiteral("|layername=") + layerName,
+      placedLayerDetails(name, context.project(), outputName, new TinLayerStyle(group, visible, order)));
 }
 
 }  // namespace tinlod::qgis

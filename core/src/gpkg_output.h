@@ -57,7 +57,7 @@ class GpkgOutput {
                          const std::string& description);
   void begin();
   void commit();
-  // Spatial indexes, deferred statements and the final commit, over `progress`.
+  // Spatial indexes, the late metadata and the final commit, over `progress`.
   void finish(const ProgressRange& progress);
 
  private:
