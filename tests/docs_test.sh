@@ -42,11 +42,9 @@ for command in $(sed -n 's/^  \([a-z][a-z]*\)  .*/\1/p' "$work/commands.txt"); d
   "$tinlod_cli" "$command" --help > "$work/cli/$command.txt"
 done
 
-export QGIS_CUSTOM_CONFIG_PATH=$work/config QT_QPA_PLATFORM=offscreen HOME=$work XDG_RUNTIME_DIR=$work/xdg
-mkdir -p -m 700 "$XDG_RUNTIME_DIR" "$QGIS_CUSTOM_CONFIG_PATH/profiles/default/python/plugins"
-cp -r "$plugin_dir" "$QGIS_CUSTOM_CONFIG_PATH/profiles/default/python/plugins/tinlod"
-qp=/usr/bin/qgis_process.bin
-"$qp" plugins enable tinlod > /dev/null 2>&1
+# shellcheck source-path=SCRIPTDIR source=script_support.sh
+source "$root/tests/script_support.sh"
+isolated_qgis "$work" "$plugin_dir"
 "$qp" list 2> /dev/null > "$work/list.txt"
 for id in $(grep -o 'tinlod:[a-z]*' "$work/list.txt" | sed 's/^tinlod://'); do
   "$qp" --json help "tinlod:$id" 2> /dev/null > "$work/qgis/$id.json"

@@ -11,12 +11,8 @@ for tool in cpack dpkg-deb dpkg-shlibdeps; do
   command -v "$tool" > /dev/null || { echo "skipped: $tool is not installed"; exit 0; }
 done
 
-passes=0
-failures=0
-check() {  # check DESCRIPTION COMMAND...: passes when the command succeeds
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; passes=$((passes + 1)); else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
+# shellcheck source-path=SCRIPTDIR source=script_support.sh
+source "$(dirname "$0")/script_support.sh"
 
 (cd "$build" && cpack -G DEB -B "$work/out" > "$work/cpack.log" 2>&1) || { cat "$work/cpack.log"; exit 1; }
 deb=$(ls "$work"/out/tinlod_*_amd64.deb)
@@ -41,15 +37,11 @@ check "the unpacked command line runs" bash -c "'$root/usr/bin/tinlod' --version
 "$root/usr/bin/tinlod" makedem "$work/dem.tif" > /dev/null
 check "the unpacked command line samples a DEM" "$root/usr/bin/tinlod" sample "$work/dem.tif" "$work/tin.gpkg" -q
 
-export QGIS_CUSTOM_CONFIG_PATH=$work/config QT_QPA_PLATFORM=offscreen HOME=$work XDG_RUNTIME_DIR=$work/xdg
 export QGIS_PLUGINPATH=$root/usr/share/qgis/python/plugins
-mkdir -p -m 700 "$XDG_RUNTIME_DIR"
-qp=/usr/bin/qgis_process.bin
-"$qp" plugins enable tinlod > /dev/null 2>&1 || true
+isolated_qgis "$work"
 "$qp" list > "$work/list.txt" 2>&1 || true
 check "qgis_process with the unpacked plugin lists tinlod:sampletin" grep -q "tinlod:sampletin" "$work/list.txt"
 "$qp" run tinlod:sampletin --INPUT="$work/dem.tif" --OUTPUT="$work/qp.gpkg" > "$work/run.txt" 2>&1 || true
 check "qgis_process runs tinlod:sampletin from the unpacked plugin" test -s "$work/qp.gpkg"
 
-echo "package: $passes passed, $failures failed"
-exit $((failures > 0))
+finish_checks package

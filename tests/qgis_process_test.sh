@@ -9,21 +9,12 @@ here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# An isolated QGIS profile holding the plugin, as `plugins enable` would leave it.
+# shellcheck source-path=SCRIPTDIR source=script_support.sh
+source "$here/script_support.sh"
 # No .aux.xml statistics beside the DEMs of ../shared/data.
 export GDAL_PAM_ENABLED=NO
-export QGIS_CUSTOM_CONFIG_PATH=$work/config QT_QPA_PLATFORM=offscreen HOME=$work XDG_RUNTIME_DIR=$work/xdg
-mkdir -p -m 700 "$XDG_RUNTIME_DIR" "$QGIS_CUSTOM_CONFIG_PATH/profiles/default/python/plugins"
-cp -r "$plugin_dir" "$QGIS_CUSTOM_CONFIG_PATH/profiles/default/python/plugins/tinlod"
-qp=/usr/bin/qgis_process.bin
-"$qp" plugins enable tinlod > /dev/null 2>&1
-
-passes=0
-failures=0
-check() {  # check DESCRIPTION COMMAND...: passes when the command succeeds
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; passes=$((passes + 1)); else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
+# An isolated QGIS profile holding the plugin, as `plugins enable` would leave it.
+isolated_qgis "$work" "$plugin_dir"
 
 "$qp" list > "$work/list.txt" 2>/dev/null
 check "qgis_process list shows tinlod:sampletin" grep -q "tinlod:sampletin" "$work/list.txt"
@@ -258,5 +249,4 @@ check "another QGIS: one clear message naming the QGIS it was built for and what
   bash -c "test \$(grep -c 'tinlod: its Processing provider was built for QGIS $(cat "$plugin_dir/built_for_qgis.txt") and cannot load' '$work/other.all') -eq 1 && grep -q 'rebuild tinlod on this machine' '$work/other.all'"
 check "another QGIS: no tinlod algorithm is listed" bash -c "! grep -q 'tinlod:' '$work/other.out'"
 
-echo "qgis_process: $passes passed, $failures failed"
-exit $((failures > 0))
+finish_checks qgis_process
