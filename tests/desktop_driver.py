@@ -95,14 +95,21 @@ def rgba(colour):
     return (colour.red(), colour.green(), colour.blue(), colour.alpha())
 
 
-def triangle_style_problem(layer):
-    """What is wrong with a TIN triangle layer's style, or None."""
-    if layer.geometryType() != QgsWkbTypes.PolygonGeometry:
-        return "geometry %s, not polygons" % QgsWkbTypes.geometryDisplayString(layer.geometryType())
+def single_symbol(layer, geometry, geometry_name):
+    """The first symbol layer of a single-symbol layer of `geometry`, or what is wrong instead."""
+    if layer.geometryType() != geometry:
+        return None, "geometry %s, not %s" % (QgsWkbTypes.geometryDisplayString(layer.geometryType()), geometry_name)
     renderer = layer.renderer()
     if not isinstance(renderer, QgsSingleSymbolRenderer):
-        return "renderer %s, not a single symbol" % (renderer.type() if renderer else None)
-    fill = renderer.symbol().symbolLayer(0)
+        return None, "renderer %s, not a single symbol" % (renderer.type() if renderer else None)
+    return renderer.symbol().symbolLayer(0), None
+
+
+def triangle_style_problem(layer):
+    """What is wrong with a TIN triangle layer's style, or None."""
+    fill, problem = single_symbol(layer, QgsWkbTypes.PolygonGeometry, "polygons")
+    if problem:
+        return problem
     if fill.layerType() != "SimpleFill":
         return "symbol layer %s, not a simple fill" % fill.layerType()
     if rgba(fill.color()) != TRIANGLE_FILL or rgba(fill.strokeColor()) != TRIANGLE_OUTLINE:
@@ -112,12 +119,9 @@ def triangle_style_problem(layer):
 
 
 def vertex_style_problem(layer):
-    if layer.geometryType() != QgsWkbTypes.PointGeometry:
-        return "geometry %s, not points" % QgsWkbTypes.geometryDisplayString(layer.geometryType())
-    renderer = layer.renderer()
-    if not isinstance(renderer, QgsSingleSymbolRenderer):
-        return "renderer %s, not a single symbol" % (renderer.type() if renderer else None)
-    marker = renderer.symbol().symbolLayer(0)
+    marker, problem = single_symbol(layer, QgsWkbTypes.PointGeometry, "points")
+    if problem:
+        return problem
     if marker.layerType() != "SimpleMarker" or rgba(marker.color()) != VERTEX_COLOUR:
         return "marker %s %s, not the TIN vertex style %s" % (marker.layerType(), rgba(marker.color()), VERTEX_COLOUR)
     return None
