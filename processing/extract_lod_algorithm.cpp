@@ -12,22 +12,12 @@
 #include "help_page.h"
 #include "hierarchy_parameter.h"
 #include "parameter_decimals.h"
+#include "parameter_given.h"
 #include "processing_feedback.h"
 #include "source_file.h"
 #include "tin_layer_style.h"
 
 namespace tinlod::qgis {
-namespace {
-
-// Set at all: a layer or point object from PyQGIS reads as an empty string, so test the
-// variant itself, not its text.
-bool given(const QVariantMap& parameters, const QString& name) {
-  const QVariant v = parameters.value(name);
-  return v.isValid() && !v.isNull() && !(v.type() == QVariant::String && v.toString().isEmpty());
-}
-
-}  // namespace
-
 QString ExtractLodAlgorithm::name() const { return QStringLiteral("extractlod"); }
 QString ExtractLodAlgorithm::displayName() const { return QStringLiteral("Extract variable level-of-detail TIN"); }
 QString ExtractLodAlgorithm::group() const { return QStringLiteral("TIN use"); }
@@ -88,7 +78,7 @@ bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsPro
   hierarchy_ = hierarchyFile(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context);
   options_ = LodJobOptions();
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (given(parameters, QStringLiteral("CENTER"))) {
+  if (parameterGiven(parameters, QStringLiteral("CENTER"))) {
     // In the hierarchy's CRS, whatever CRS the point was picked in.
     const QgsVectorLayer triangles(QString::fromStdString(hierarchy_) + QStringLiteral("|layername=triangles"), QStringLiteral("t"),
                                    QStringLiteral("ogr"));
@@ -100,9 +90,9 @@ bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsPro
   };
   options_.centresPath = fileOf(QStringLiteral("CENTERS"), QStringLiteral("a point layer"));
   options_.regionPath = fileOf(QStringLiteral("REGION"), QStringLiteral("a polygon layer"));
-  options_.lod.dropoff = given(parameters, QStringLiteral("DROPOFF")) ? parameterAsDouble(parameters, QStringLiteral("DROPOFF"), context) : nan;
+  options_.lod.dropoff = parameterGiven(parameters, QStringLiteral("DROPOFF")) ? parameterAsDouble(parameters, QStringLiteral("DROPOFF"), context) : nan;
   options_.lod.maxError =
-      given(parameters, QStringLiteral("MAX_ERROR")) ? parameterAsDouble(parameters, QStringLiteral("MAX_ERROR"), context) : nan;
+      parameterGiven(parameters, QStringLiteral("MAX_ERROR")) ? parameterAsDouble(parameters, QStringLiteral("MAX_ERROR"), context) : nan;
   options_.lod.errorGrowth = parameterAsDouble(parameters, QStringLiteral("ERROR_GROWTH"), context);
   if (std::isnan(options_.lod.dropoff) && std::isnan(options_.lod.maxError) && options_.regionPath.empty())
     throw QgsProcessingException(QStringLiteral("Give a test: DROPOFF (with CENTER or CENTERS), MAX_ERROR or REGION"));

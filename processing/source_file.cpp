@@ -7,6 +7,8 @@
 
 #include <memory>
 
+#include "parameter_given.h"
+
 namespace tinlod::qgis {
 
 std::string sourceFile(const QgsProcessingParameterDefinition* definition, const QVariantMap& parameters,
@@ -14,9 +16,7 @@ std::string sourceFile(const QgsProcessingParameterDefinition* definition, const
   const QString name = definition->name();
   std::unique_ptr<QgsProcessingFeatureSource> source(QgsProcessingParameters::parameterAsSource(definition, parameters, context));
   if (!source) {
-    const QVariant value = parameters.value(name);
-    const bool given = value.isValid() && !(value.type() == QVariant::String && value.toString().isEmpty());
-    if (!given && (definition->flags() & QgsProcessingParameterDefinition::FlagOptional)) return {};
+    if (!parameterGiven(parameters, name) && (definition->flags() & QgsProcessingParameterDefinition::FlagOptional)) return {};
     throw QgsProcessingException(QStringLiteral("%1: choose %2 (a layer on the map or a file)").arg(name, kind));
   }
   QString layerName;
