@@ -1,0 +1,206 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The command line of tinlod-tiles, gdal-style: the options of a run and of `merge`, each
+checked before any work with a message naming the option and the fix."""
+import os
+import re
+import shutil
+import sys
+from dataclasses import dataclass, field
+
+from osgeo import gdal
+
+from .errors import TilesError
+
+HELP = """Builds a DEM of any size as tiles whose TIN hierarchies fit together exactly: Dask runs one
+`tinlod build` per tile (on a local cluster, or on a running scheduler's workers), and a
+catalogue GeoPackage lists the tiles and their status. A rerun resumes: finished tiles are
+skipped. Each level across the tiles is one layer: <stem>_levels/level_K.vrt.
+
+Usage: tinlod-tiles DEM CATALOGUE.gpkg -tile_size N [options] [-- build options]
+       tinlod-tiles merge CATALOGUE.gpkg -level K OUT.gpkg [-overwrite] [-q]
+
+Tiles:
+  -tile_size N     cells per tile side, a multiple of the build's -block (default 3);
+                   neighbouring tiles share a row or column of cells
+  -workers n       local cluster: worker processes, one tile each at a time
+                   (default: the number of cores)
+  -scheduler ADDR  a running Dask scheduler (tcp://host:8786) instead of a local cluster;
+                   its workers must reach the DEM, the tiles folder and tinlod by the same paths
+  -retries r       times a failed tile is tried again (default 2)
+  -tinlod PATH     the tinlod program (default: the one beside tinlod-tiles, else on PATH)
+  -- options       everything after -- goes to each tile's tinlod build, but for what belongs
+                   to the run: the tile options -tile and -tile_size, the outputs -accuracy
+                   and -report, and -overwrite and -q
+
+Merge:
+  -level K         merge: the level to merge, 0 to the catalogue's TINLOD_LEVELS - 1
+
+General:
+  -overwrite       start again: replace the catalogue, its tiles and level files
+                   (merge: replace OUT.gpkg)
+  -q               quiet: no progress, warnings and errors only
+"""
+
+REFUSED_BUILD_OPTIONS = {
+    "-tile": "tinlod-tiles gives each task its tile",
+    "-tile_size": "give -tile_size to tinlod-tiles itself, before --",
+    "-accuracy": "one raster per run cannot hold every tile",
+    "-report": "one report per run cannot hold every tile",
+    "-overwrite": "give -overwrite to tinlod-tiles itself, before --",
+    "-q": "give -q to tinlod-tiles itself, before --",
+}
+
+
+@dataclass
+class RunArguments:
+    dem: str
+    catalogue: str
+    tile_size: int
+    workers: int = field(default_factory=lambda: os.cpu_count() or 1)
+    scheduler: str = None
+    retries: int = 2
+    tinlod: str = None
+    overwrite: bool = False
+    quiet: bool = False
+    build_options: list = field(default_factory=list)
+
+
+@dataclass
+class MergeArguments:
+    catalogue: str
+    level: int
+    out: str
+    overwrite: bool = False
+    quiet: bool = False
+
+
+def whole_number(text, option, least):
+    if not re.fullmatch(r"[0-9]+", text or "") or int(text) < least:
+        raise TilesError("%s %s: give a whole number of at least %d" % (option, text, least))
+    return int(text)
+
+
+def split_options(args, valued, flags):
+    """(positionals, {option: value or True}) of args, gdal-style."""
+    positionals, options = [], {}
+    i = 0
+    while i < len(args):
+        arg = args[i]
+        if arg in valued:
+            if i + 1 >= len(args):
+                raise TilesError("%s needs a value" % arg)
+            options[arg] = args[i + 1]
+            i += 2
+            continue
+        if arg in flags:
+            options[arg] = True
+        elif arg.startswith("-") and len(arg) > 1:
+            raise TilesError("unknown option %s (tinlod-tiles --help lists them; build options go after --)" % arg)
+        else:
+            positionals.append(arg)
+        i += 1
+    return positionals, options
+
+
+def parse_run(args):
+    ours, build_options = (args[: args.index("--")], args[args.index("--") + 1:]) if "--" in args else (args, [])
+    positionals, options = split_options(ours, ("-tile_size", "-workers", "-scheduler", "-retries", "-tinlod"),
+                                         ("-overwrite", "-q"))
+    if len(positionals) != 2:
+        raise TilesError("give the DEM and the catalogue: tinlod-tiles DEM CATALOGUE.gpkg -tile_size N")
+    if "-tile_size" not in options:
+        raise TilesError("-tile_size is required: the cells per tile side, e.g. -tile_size 3000")
+    if "-workers" in options and "-scheduler" in options:
+        raise TilesError("-workers sizes the local cluster; a -scheduler's workers are started with it "
+                         "(dask worker ADDRESS --nworkers n): give one of them")
+    arguments = RunArguments(positionals[0], positionals[1], whole_number(options["-tile_size"], "-tile_size", 1),
+                             scheduler=options.get("-scheduler"), overwrite="-overwrite" in options,
+                             quiet="-q" in options, build_options=build_options)
+    if "-workers" in options:
+        arguments.workers = whole_number(options["-workers"], "-workers", 1)
+    if "-retries" in options:
+        arguments.retries = whole_number(options["-retries"], "-retries", 0)
+    check_run(arguments)
+    arguments.tinlod = find_tinlod(options.get("-tinlod"))
+    return arguments
+
+
+def check_run(arguments):
+    for option in arguments.build_options:
+        if option in REFUSED_BUILD_OPTIONS:
+            raise TilesError("%s after --: %s" % (option, REFUSED_BUILD_OPTIONS[option]))
+    block = build_block(arguments.build_options)
+    if arguments.tile_size % block:
+        lower = arguments.tile_size - arguments.tile_size % block
+        raise TilesError("-tile_size %d is not a multiple of -block %d (so the tiles' samples would not meet): "
+                         "use %s%d" % (arguments.tile_size, block, "%d or " % lower if lower else "", lower + block))
+    check_dem(arguments.dem)
+    check_output(arguments.catalogue, "CATALOGUE")
+
+
+def build_block(build_options):
+    """The build's -block (default 3), which a tile side must be a multiple of."""
+    for i, option in enumerate(build_options):
+        if option == "-block":
+            return whole_number(build_options[i + 1] if i + 1 < len(build_options) else "", "-block", 1)
+    return 3
+
+
+def check_dem(path):
+    if not os.path.exists(path) and not path.startswith("/vsi"):
+        raise TilesError("DEM %s does not exist" % path)
+    with gdal.quiet_errors() if hasattr(gdal, "quiet_errors") else _Quiet():
+        try:
+            dataset = gdal.OpenEx(path, gdal.OF_RASTER)
+        except RuntimeError:
+            dataset = None
+    if dataset is None:
+        raise TilesError("DEM %s is not a raster GDAL can open" % path)
+
+
+class _Quiet:
+    def __enter__(self):
+        gdal.PushErrorHandler("CPLQuietErrorHandler")
+
+    def __exit__(self, *_):
+        gdal.PopErrorHandler()
+
+
+def check_output(path, what):
+    if not path.lower().endswith(".gpkg"):
+        raise TilesError("%s %s: name a GeoPackage, ending in .gpkg" % (what, path))
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder) or not os.access(folder, os.W_OK):
+        raise TilesError("%s %s: its folder %s does not exist or is not writable" % (what, path, folder))
+    if os.path.isdir(path):
+        raise TilesError("%s %s is a folder" % (what, path))
+
+
+def find_tinlod(given):
+    """-tinlod, else tinlod beside this program (installed: bin/; build tree: core/), else PATH."""
+    if given is not None:
+        if not (os.path.isfile(given) and os.access(given, os.X_OK)):
+            raise TilesError("-tinlod %s is not an executable file" % given)
+        return os.path.abspath(given)
+    here = os.path.dirname(os.path.realpath(sys.argv[0]))
+    for candidate in (os.path.join(here, "tinlod"), os.path.join(here, "..", "core", "tinlod")):
+        if os.path.isfile(candidate) and os.access(candidate, os.X_OK):
+            return os.path.abspath(candidate)
+    found = shutil.which("tinlod")
+    if found is None:
+        raise TilesError("tinlod is neither beside tinlod-tiles nor on PATH: give -tinlod PATH")
+    return os.path.abspath(found)
+
+
+def parse_merge(args):
+    positionals, options = split_options(args, ("-level",), ("-overwrite", "-q"))
+    if len(positionals) != 2 or "-level" not in options:
+        raise TilesError("usage: tinlod-tiles merge CATALOGUE.gpkg -level K OUT.gpkg")
+    catalogue, out = positionals
+    if not os.path.isfile(catalogue):
+        raise TilesError("CATALOGUE %s does not exist" % catalogue)
+    check_output(out, "OUT")
+    if os.path.abspath(out) == os.path.abspath(catalogue):
+        raise TilesError("OUT %s is the catalogue itself: name another file" % out)
+    return MergeArguments(catalogue, whole_number(options["-level"], "-level", 0), out,
+                          "-overwrite" in options, "-q" in options)

@@ -1,0 +1,138 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The catalogue GeoPackage: one `tiles` layer (a feature per tile: its extent, window,
+file, status and what its build measured) and the job's settings as GDAL metadata.
+
+Only the driver writes it, one tile at a time, each change committed on its own: a run
+stopped anyhow leaves a catalogue that says which tiles are finished.
+"""
+import os
+
+from osgeo import ogr, osr
+
+from .errors import TilesError
+
+LAYER = "tiles"
+STATUSES = ("pending", "done", "empty", "failed")
+FIELDS = (  # (name, OGR type)
+    ("tile_col", ogr.OFTInteger), ("tile_row", ogr.OFTInteger),
+    ("xoff", ogr.OFTInteger), ("yoff", ogr.OFTInteger), ("xsize", ogr.OFTInteger), ("ysize", ogr.OFTInteger),
+    ("file", ogr.OFTString), ("status", ogr.OFTString), ("levels", ogr.OFTInteger),
+    ("vertices", ogr.OFTInteger64), ("triangles", ogr.OFTInteger64), ("attempts", ogr.OFTInteger),
+    ("seconds", ogr.OFTReal), ("peak_mib", ogr.OFTReal), ("error", ogr.OFTString),
+)
+# The settings a rerun must share with the catalogue's first run.
+JOB_KEYS = ("TINLOD_SOURCE", "TINLOD_TILE_SIZE", "TINLOD_BUILD_OPTIONS", "TINLOD_RASTER_SIZE")
+
+
+class Catalogue:
+    def __init__(self, dataset):
+        self.dataset = dataset
+        self.layer = dataset.GetLayerByName(LAYER)
+        self.srs = self.layer.GetSpatialRef()
+
+    @classmethod
+    def create(cls, path, settings, srs, tiles):
+        driver = ogr.GetDriverByName("GPKG")
+        dataset = driver.CreateDataSource(path)
+        if dataset is None:
+            raise TilesError("cannot create the catalogue %s: is its folder writable?" % path)
+        layer = dataset.CreateLayer(LAYER, srs, ogr.wkbPolygon, ["FID=fid", "GEOMETRY_NAME=geom"])
+        for name, kind in FIELDS:
+            layer.CreateField(ogr.FieldDefn(name, kind))
+        dataset.StartTransaction()
+        for tile in tiles:
+            layer.CreateFeature(pending_feature(layer, tile))
+        dataset.CommitTransaction()
+        for key, value in dict(settings, TINLOD_KIND="catalogue").items():
+            dataset.SetMetadataItem(key, value)
+        dataset.FlushCache()
+        return cls(dataset)
+
+    @classmethod
+    def open(cls, path):
+        dataset = ogr.Open(path, update=1)
+        if dataset is None or dataset.GetMetadataItem("TINLOD_KIND") != "catalogue" \
+                or dataset.GetLayerByName(LAYER) is None:
+            raise TilesError("%s exists and is no tinlod-tiles catalogue; name another file or add "
+                             "-overwrite to replace it" % path)
+        return cls(dataset)
+
+    def setting(self, key):
+        return self.dataset.GetMetadataItem(key)
+
+    def set_setting(self, key, value):
+        self.dataset.SetMetadataItem(key, value)
+        self.dataset.FlushCache()
+
+    def check_same_job(self, settings, path):
+        """A rerun resumes the catalogue's own job only: the same DEM, tile size and options."""
+        for key in JOB_KEYS:
+            if (self.setting(key) or "") != settings[key]:
+                raise TilesError("%s was made with %s=%s, not %s: run with the same settings to resume it, "
+                                 "or add -overwrite to start again"
+                                 % (path, key, self.setting(key) or "(none)", settings[key] or "(none)"))
+
+    def rows(self):
+        """Each tile's (col, row) -> its fields, as a dict."""
+        self.layer.ResetReading()
+        return {(f["tile_col"], f["tile_row"]): feature_values(f) for f in self.layer}
+
+    def update(self, col, row, values, extent=None):
+        """Sets some fields of one tile (and its extent, an OGR polygon), committed at once."""
+        feature = self.feature(col, row)
+        for name, value in values.items():
+            if value is None:
+                feature.SetFieldNull(name)
+            else:
+                feature.SetField(name, value)
+        if extent is not None:
+            feature.SetGeometry(extent)
+        self.dataset.StartTransaction()
+        self.layer.SetFeature(feature)
+        self.dataset.CommitTransaction()
+
+    def feature(self, col, row):
+        self.layer.SetAttributeFilter("tile_col = %d AND tile_row = %d" % (col, row))
+        feature = self.layer.GetNextFeature()
+        self.layer.SetAttributeFilter(None)
+        if feature is None:
+            raise TilesError("the catalogue has no tile %d,%d" % (col, row))
+        return feature
+
+    def extent_in_layer_srs(self, polygon, srs):
+        """A tile's extent in the catalogue's CRS (the same, unless the core chose another)."""
+        polygon = polygon.Clone()
+        if srs is not None and self.srs is not None and not srs.IsSame(self.srs):
+            srs = srs.Clone()
+            srs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+            polygon.Transform(osr.CoordinateTransformation(srs, self.srs))
+        return polygon
+
+    def close(self):
+        self.dataset.FlushCache()
+        self.dataset = self.layer = None
+
+
+def pending_feature(layer, tile):
+    feature = ogr.Feature(layer.GetLayerDefn())
+    for name in ("xoff", "yoff", "xsize", "ysize"):
+        feature.SetField(name, getattr(tile, name))
+    feature.SetField("tile_col", tile.col)
+    feature.SetField("tile_row", tile.row)
+    feature.SetField("status", "pending")
+    feature.SetField("attempts", 0)
+    return feature
+
+
+def feature_values(feature):
+    return {name: (feature.GetField(name) if feature.IsFieldSetAndNotNull(name) else None) for name, _ in FIELDS}
+
+
+def tiles_folder(catalogue_path):
+    """`<catalogue stem>_tiles` beside the catalogue."""
+    return os.path.splitext(catalogue_path)[0] + "_tiles"
+
+
+def levels_folder(catalogue_path):
+    """`<catalogue stem>_levels` beside the catalogue: a VRT per level."""
+    return os.path.splitext(catalogue_path)[0] + "_levels"

@@ -1,0 +1,238 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The run: the tile grid, the catalogue, and one Dask task per unfinished tile.
+
+The driver (this process) alone writes the catalogue, as the tasks' futures complete; the
+tasks only build tile files, which appear whole or not at all. Stopped anyhow (Ctrl-C, a
+killed driver), the catalogue still says which tiles are finished, and a rerun does the rest.
+"""
+import fcntl
+import logging
+import os
+import shlex
+import shutil
+import sys
+
+from osgeo import gdal
+
+from . import task
+from .catalogue import Catalogue, levels_folder, tiles_folder
+from .errors import TilesError
+from .grid import tile_grid
+from .levels import write_level_vrts
+from .progress import Progress
+from .tile_file import read_tile_summary
+from .tin_crs import predicted_tin_srs
+
+
+def run(arguments):
+    """Runs the job; returns the exit code (0, or 1 when tiles failed for good)."""
+    dem = gdal.Open(arguments.dem)
+    settings = job_settings(arguments, dem)
+    tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
+    if arguments.overwrite:
+        remove_job(arguments.catalogue)
+    folder = tiles_folder(arguments.catalogue)
+    os.makedirs(folder, exist_ok=True)
+    with driver_lock(folder, arguments.catalogue):
+        catalogue = open_catalogue(arguments, settings, predicted_tin_srs(dem, arguments.build_options), tiles)
+        dem = None
+        remove_leftovers(folder)
+        pending = pending_tiles(catalogue, tiles, arguments.catalogue)
+        outcome = run_tiles(catalogue, pending, arguments) if pending else {}
+        return finish(catalogue, arguments, len(tiles) - len(pending), outcome)
+
+
+def job_settings(arguments, dem):
+    """The catalogue's metadata: what a rerun must match."""
+    return {"TINLOD_SOURCE": os.path.abspath(arguments.dem), "TINLOD_TILE_SIZE": str(arguments.tile_size),
+            "TINLOD_BUILD_OPTIONS": shlex.join(arguments.build_options),
+            "TINLOD_RASTER_SIZE": "%d,%d" % (dem.RasterXSize, dem.RasterYSize)}
+
+
+def remove_job(catalogue_path):
+    """-overwrite: the catalogue, its tiles and its level files go."""
+    for folder in (tiles_folder(catalogue_path), levels_folder(catalogue_path)):
+        shutil.rmtree(folder, ignore_errors=True)
+    if os.path.exists(catalogue_path):
+        os.remove(catalogue_path)
+
+
+class driver_lock:
+    """One driver per catalogue: a second one would write it too."""
+
+    def __init__(self, folder, catalogue_path):
+        self.path, self.catalogue_path = os.path.join(folder, ".driver.lock"), catalogue_path
+
+    def __enter__(self):
+        self.file = open(self.path, "w")
+        try:
+            fcntl.flock(self.file, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            self.file.close()
+            raise TilesError("another tinlod-tiles is running on %s: wait for it, or stop it first"
+                             % self.catalogue_path) from None
+
+    def __exit__(self, *_):
+        self.file.close()
+
+
+def open_catalogue(arguments, settings, srs, tiles):
+    if not os.path.exists(arguments.catalogue):
+        return Catalogue.create(arguments.catalogue, settings, srs, tiles)
+    catalogue = Catalogue.open(arguments.catalogue)
+    catalogue.check_same_job(settings, arguments.catalogue)
+    return catalogue
+
+
+def remove_leftovers(folder):
+    """What a run killed outright left: half-written tiles, logs, attempt counts."""
+    for name in os.listdir(folder):
+        if name.startswith("tile_") and name.endswith((".partial.gpkg", ".gpkg.log", ".gpkg.attempts")):
+            os.remove(os.path.join(folder, name))
+
+
+def pending_tiles(catalogue, tiles, catalogue_path):
+    """The tiles to build: all but those finished whose file is there."""
+    rows = catalogue.rows()
+    base = os.path.dirname(os.path.abspath(catalogue_path))
+    pending = []
+    for tile in tiles:
+        row = rows[(tile.col, tile.row)]
+        if row["status"] == "empty" or (row["status"] == "done" and row["file"]
+                                        and os.path.isfile(os.path.join(base, row["file"]))):
+            continue
+        if row["status"] != "pending":
+            catalogue.update(tile.col, tile.row, {"status": "pending", "file": None})
+        pending.append(tile)
+    return pending
+
+
+def run_tiles(catalogue, pending, arguments):
+    """One task per pending tile; the catalogue follows their futures. Returns the count of
+    tiles per status."""
+    import distributed  # only a run with tiles to build needs Dask
+
+    outcome = {}
+    progress = Progress(len(pending), arguments.quiet)
+    client, cluster = start_client(distributed, arguments)
+    futures = {}
+    try:
+        futures = submit(client, distributed, pending, arguments)
+        for future in distributed.as_completed(list(futures)):
+            tile = futures.pop(future)
+            status = record(catalogue, tile, future, arguments.catalogue)
+            outcome[status] = outcome.get(status, 0) + 1
+            progress.tile(tile.col, tile.row, status)
+    except KeyboardInterrupt:
+        progress.end()
+        client.cancel(list(futures))
+        stop(client, cluster)
+        raise TilesStopped(len(futures))
+    progress.end()
+    stop(client, cluster)
+    return outcome
+
+
+class TilesStopped(Exception):
+    """Ctrl-C: the tiles not yet finished stay pending in the catalogue."""
+
+
+def start_client(distributed, arguments):
+    try:
+        if arguments.scheduler:
+            return distributed.Client(arguments.scheduler, timeout="20s"), None
+        cluster = distributed.LocalCluster(n_workers=arguments.workers, threads_per_worker=1, processes=True,
+                                           dashboard_address=None, silence_logs=logging.ERROR)
+        return distributed.Client(cluster), cluster
+    except OSError as e:
+        raise TilesError("cannot reach the Dask scheduler %s (%s): is `dask scheduler` running there?"
+                         % (arguments.scheduler, e)) from None
+
+
+def submit(client, distributed, pending, arguments):
+    """The tasks, their code shipped by value so that a remote worker needs only tinlod."""
+    import cloudpickle
+
+    cloudpickle.register_pickle_by_value(task)
+    folder = os.path.abspath(tiles_folder(arguments.catalogue))
+    futures = {}
+    for tile in pending:
+        job = {"tinlod": arguments.tinlod, "dem": os.path.abspath(arguments.dem), "tiles_dir": folder,
+               "name": tile.name, "col": tile.col, "row": tile.row, "tile_size": arguments.tile_size,
+               "build_options": list(arguments.build_options)}
+        futures[client.submit(task.run_tile, job, retries=arguments.retries, pure=False,
+                              key="tile-%d-%d-%s" % (tile.col, tile.row, os.urandom(4).hex()))] = tile
+    return futures
+
+
+def record(catalogue, tile, future, catalogue_path):
+    """The catalogue row of a tile whose task has ended; returns its status."""
+    folder = tiles_folder(catalogue_path)
+    final = os.path.join(folder, tile.name)
+    attempts = read_attempts(final)
+    previous = catalogue.rows()[(tile.col, tile.row)]["attempts"] or 0
+    values = {"attempts": previous + attempts}
+    extent = None
+    if future.status == "finished":
+        result = future.result()
+        values.update(status=result["status"], seconds=round(result["seconds"], 3),
+                      peak_mib=round(result["peak_mib"], 1), error=None)
+        if result["status"] == "done":
+            summary = read_tile_summary(final, "%d,%d" % (tile.col, tile.row))
+            values.update(file=os.path.relpath(final, os.path.dirname(os.path.abspath(catalogue_path))),
+                          levels=summary.levels, vertices=summary.vertices, triangles=summary.triangles)
+            extent = catalogue.extent_in_layer_srs(summary.extent, summary.srs)
+    else:
+        values.update(status="failed", file=None, error=failure_message(future))
+    catalogue.update(tile.col, tile.row, values, extent)
+    task.remove_if_present(task.attempts_path(final))
+    return values["status"]
+
+
+def read_attempts(final):
+    try:
+        with open(task.attempts_path(final)) as f:
+            return int(f.read().strip() or 0)
+    except (OSError, ValueError):
+        return 0
+
+
+def failure_message(future):
+    try:
+        return str(future.exception())
+    except Exception as e:  # a cancelled or lost future has no exception to give
+        return "the task ended without a result (%s)" % type(e).__name__
+
+
+def stop(client, cluster):
+    client.close()
+    if cluster is not None:
+        cluster.close()
+
+
+def finish(catalogue, arguments, skipped, outcome):
+    """TINLOD_LEVELS, the level files and the summary; 1 when tiles failed."""
+    rows = catalogue.rows().values()
+    counts = sorted({row["levels"] for row in rows if row["status"] == "done"})
+    if len(counts) > 1:
+        print("WARNING: the tiles have from %d to %d levels; the level files stop at the fewest"
+              % (counts[0], counts[-1]), file=sys.stderr)
+    levels = counts[0] if counts else 0
+    catalogue.set_setting("TINLOD_LEVELS", str(levels))
+    vrts = write_level_vrts(catalogue, arguments.catalogue, levels)
+    states = {}
+    for row in rows:
+        states[row["status"]] = states.get(row["status"], 0) + 1
+    catalogue.close()
+    ran = sum(outcome.values())
+    print("%d tiles run, %d skipped (already finished); the catalogue %s has %s"
+          % (ran, skipped, arguments.catalogue,
+             ", ".join("%d %s" % (states[s], s) for s in ("done", "empty", "failed", "pending") if s in states)))
+    if vrts:
+        print("levels 0 to %d across the tiles: %s" % (levels - 1, os.path.join(levels_folder(arguments.catalogue),
+                                                                                  "level_K.vrt")))
+    if states.get("failed"):
+        print("ERROR: %d tiles failed after their retries (the catalogue's error field says why): "
+              "run again to retry them" % states["failed"], file=sys.stderr)
+        return 1
+    return 0

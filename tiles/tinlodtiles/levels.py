@@ -1,0 +1,79 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Each level as one layer across tiles: an OGR VRT union of the tiles' `level_K` views,
+written beside the catalogue, and the same union merged into one GeoPackage on demand."""
+import os
+from xml.sax.saxutils import escape, quoteattr
+
+from osgeo import gdal, ogr
+
+from .catalogue import Catalogue, levels_folder
+from .errors import TilesError
+
+
+def built_tile_files(catalogue, catalogue_path):
+    """The catalogue's done tiles' files, as absolute paths, row by row."""
+    base = os.path.dirname(os.path.abspath(catalogue_path))
+    rows = catalogue.rows()
+    return [os.path.join(base, rows[key]["file"]) for key in sorted(rows, key=lambda k: (k[1], k[0]))
+            if rows[key]["status"] == "done" and rows[key]["file"]]
+
+
+def union_vrt(level, files, vrt_folder=None):
+    """The VRT text of level `level` over the files: their paths relative to vrt_folder (so
+    the catalogue's folder can move), or absolute without one."""
+    layers = []
+    for path in files:
+        name = os.path.relpath(path, vrt_folder) if vrt_folder else os.path.abspath(path)
+        layers.append('    <OGRVRTLayer name=%s>\n      <SrcDataSource relativeToVRT="%d">%s</SrcDataSource>\n'
+                      '      <SrcLayer>level_%d</SrcLayer>\n    </OGRVRTLayer>'
+                      % (quoteattr(os.path.splitext(os.path.basename(path))[0]), 1 if vrt_folder else 0,
+                         escape(name), level))
+    return ('<OGRVRTDataSource>\n  <OGRVRTUnionLayer name="level_%d">\n'
+            '    <SourceLayerFieldName>tile</SourceLayerFieldName>\n%s\n'
+            '  </OGRVRTUnionLayer>\n</OGRVRTDataSource>\n' % (level, "\n".join(layers)))
+
+
+def write_level_vrts(catalogue, catalogue_path, levels):
+    """`<stem>_levels/level_K.vrt` for K in 0..levels-1; returns their paths."""
+    files = built_tile_files(catalogue, catalogue_path)
+    folder = levels_folder(catalogue_path)
+    os.makedirs(folder, exist_ok=True)
+    for stale in os.listdir(folder):
+        if stale.startswith("level_") and stale.endswith(".vrt"):
+            os.remove(os.path.join(folder, stale))
+    paths = []
+    for level in range(levels if files else 0):
+        path = os.path.join(folder, "level_%d.vrt" % level)
+        with open(path + ".partial", "w", encoding="utf-8") as f:
+            f.write(union_vrt(level, files, folder))
+        os.replace(path + ".partial", path)
+        paths.append(path)
+    return paths
+
+
+def merge_level(catalogue_path, level, out_path, overwrite):
+    """The tiles' level `level` merged into one layer `level_K` of a new GeoPackage."""
+    catalogue = Catalogue.open(catalogue_path)
+    levels = int(catalogue.setting("TINLOD_LEVELS") or 0)
+    if not 0 <= level < levels:
+        raise TilesError("-level %d: the catalogue's tiles have levels 0 to %d" % (level, levels - 1)
+                         if levels else "-level: %s has no finished tile yet; run tinlod-tiles on it first"
+                         % catalogue_path)
+    files = built_tile_files(catalogue, catalogue_path)
+    catalogue.close()
+    if os.path.exists(out_path) and not overwrite:
+        raise TilesError("%s exists: add -overwrite to replace it" % out_path)
+    source = "/vsimem/tinlod_tiles_merge_%d.vrt" % os.getpid()
+    gdal.FileFromMemBuffer(source, union_vrt(level, files).encode("utf-8"))
+    partial = out_path + ".partial.gpkg"
+    try:
+        options = gdal.VectorTranslateOptions(format="GPKG", layerName="level_%d" % level)
+        if gdal.VectorTranslate(partial, source, options=options) is None:
+            raise TilesError("could not write %s" % out_path)
+        os.replace(partial, out_path)
+    finally:
+        gdal.Unlink(source)
+        if os.path.exists(partial):
+            os.remove(partial)
+    merged = ogr.Open(out_path)  # held: the layer dies with it
+    return merged.GetLayer(0).GetFeatureCount()

@@ -1,0 +1,134 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""One tile's task, run by a Dask worker: `tinlod build` on the tile, in a subprocess.
+
+Only the standard library: the module is shipped to workers by value (cloudpickle), so a
+worker on another host needs nothing of tinlod-tiles installed, only tinlod itself and the
+same paths to the DEM and the tiles folder.
+"""
+import ctypes
+import os
+import signal
+import subprocess
+import time
+
+EMPTY_EXIT_CODE = 3  # the core's "the tile holds no valid data: nothing written"
+KILL_HOOK_VARIABLE = "TINLOD_TILES_TEST_KILL"  # "C,R:seconds", for the tests only
+_PR_SET_PDEATHSIG = 1
+
+
+class TileFailed(Exception):
+    """tinlod failed on the tile or was killed; Dask retries the task."""
+
+
+def run_tile(job):
+    """Build one tile. `job` is a dict: tinlod, dem, tiles_dir, name, col, row, tile_size,
+    build_options. Returns the tile's status ('done' or 'empty'), seconds and peak MiB;
+    raises TileFailed otherwise."""
+    final = os.path.join(job["tiles_dir"], job["name"])
+    partial = partial_path(final)
+    attempt = count_attempt(final)
+    remove_if_present(partial)
+    command = [job["tinlod"], "build", job["dem"], partial, "-tile_size", str(job["tile_size"]),
+               "-tile", "%d,%d" % (job["col"], job["row"])] + list(job["build_options"]) + ["-q", "-overwrite"]
+    kill_after = kill_hook_seconds(job, attempt)
+    code, seconds, peak_mib, message = run_measured(command, final + ".log", kill_after)
+    if code == EMPTY_EXIT_CODE:
+        remove_if_present(partial)
+        return {"status": "empty", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt}
+    if code != 0 or not os.path.isfile(partial):
+        remove_if_present(partial)
+        raise TileFailed("tile %d,%d (attempt %d): %s" % (job["col"], job["row"], attempt, message))
+    os.replace(partial, final)  # the tile appears whole or not at all
+    return {"status": "done", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt}
+
+
+def partial_path(final):
+    """Where tinlod writes the tile until it is complete (a .gpkg, so tinlod knows the format)."""
+    return final[: -len(".gpkg")] + ".partial.gpkg"
+
+
+def attempts_path(final):
+    return final + ".attempts"
+
+
+def count_attempt(final):
+    """This attempt's number for the tile, kept in a marker file beside it: a retry may run
+    on another worker, and the driver reads the count when the tile fails for good."""
+    path = attempts_path(final)
+    try:
+        with open(path) as f:
+            attempt = int(f.read().strip() or 0) + 1
+    except (OSError, ValueError):
+        attempt = 1
+    with open(path, "w") as f:
+        f.write("%d\n" % attempt)
+    return attempt
+
+
+def kill_hook_seconds(job, attempt):
+    """The test hook: TINLOD_TILES_TEST_KILL="C,R:seconds" kills this tile's tinlod after
+    that many seconds on its first attempt, so that the task fails mid-run."""
+    hook = os.environ.get(KILL_HOOK_VARIABLE, "")
+    if attempt != 1 or ":" not in hook:
+        return None
+    tile, seconds = hook.split(":", 1)
+    return float(seconds) if tile == "%d,%d" % (job["col"], job["row"]) else None
+
+
+def run_measured(command, log_path, kill_after=None):
+    """Runs the command; returns (exit code, wall seconds, peak RSS in MiB, last stderr
+    line). A signal gives a negative code, as in subprocess."""
+    start = time.monotonic()
+    with open(log_path, "wb") as log:
+        # A session of its own: the terminal's Ctrl-C reaches the driver, which stops the
+        # run; the parent-death signal ends tinlod if its worker dies.
+        process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                   stderr=log, start_new_session=True, preexec_fn=_die_with_parent)
+        status, usage = wait_or_kill(process.pid, start, kill_after)
+    process.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
+    seconds = time.monotonic() - start
+    message = last_error_line(log_path, process.returncode)
+    remove_if_present(log_path)
+    return process.returncode, seconds, usage.ru_maxrss / 1024.0, message
+
+
+def wait_or_kill(pid, start, kill_after):
+    """os.wait4 (for the child's ru_maxrss), polling while a kill is due, so the pid is
+    never signalled once reaped."""
+    while kill_after is not None:
+        reaped, status, usage = os.wait4(pid, os.WNOHANG)
+        if reaped == pid:
+            return status, usage
+        if time.monotonic() - start >= kill_after:
+            os.kill(pid, signal.SIGKILL)
+            break
+        time.sleep(0.05)
+    _, status, usage = os.wait4(pid, 0)
+    return status, usage
+
+
+def last_error_line(log_path, code):
+    """The message to record: tinlod's last ERROR line, else its last line, else the code."""
+    try:
+        with open(log_path, errors="replace") as f:
+            lines = [line.strip() for line in f if line.strip()]
+    except OSError:
+        lines = []
+    errors = [line for line in lines if line.startswith("ERROR")]
+    if errors:
+        return errors[-1]
+    if code < 0:
+        return "tinlod was killed by signal %d" % -code
+    return lines[-1] if lines else "tinlod exited with code %d" % code
+
+
+def _die_with_parent():
+    """In the child: SIGTERM when the worker thread that started it ends (prctl)."""
+    ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+
+
+def remove_if_present(path):
+    try:
+        os.remove(path)
+    except FileNotFoundError:
+        pass
