@@ -3,6 +3,9 @@
 # folder (scripts/package.sh). Its dependencies come from dpkg-shlibdeps, so it is pinned
 # to the libraries, QGIS's exact libqgis_core among them, that it was built against.
 install(TARGETS tinlod RUNTIME DESTINATION bin)
+# The Dask tile driver: bin/tinlod-tiles finds its modules in share/tinlod/tiles.
+install(PROGRAMS ${TILES_SCRIPT} DESTINATION bin RENAME tinlod-tiles)
+install(FILES ${TILES_MODULES} DESTINATION share/tinlod/tiles/tinlodtiles)
 if(TINLOD_WITH_QGIS)
   # Where Debian's QGIS keeps its system-wide Python plugins (QgsApplication::pkgDataPath()).
   set(TINLOD_QGIS_PLUGIN_DIR share/qgis/python/plugins/tinlod)
@@ -28,4 +31,7 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 if(TINLOD_WITH_QGIS)
   set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3-qgis")
 endif()
+# tinlod-tiles runs on Debian's Python with GDAL's bindings and Dask; the rest of tinlod
+# works without them.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-gdal, python3-distributed")
 include(CPack)

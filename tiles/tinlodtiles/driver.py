@@ -10,6 +10,7 @@ import logging
 import os
 import shlex
 import shutil
+import signal
 import sys
 
 from osgeo import gdal
@@ -141,8 +142,14 @@ def start_client(distributed, arguments):
     try:
         if arguments.scheduler:
             return distributed.Client(arguments.scheduler, timeout="20s"), None
-        cluster = distributed.LocalCluster(n_workers=arguments.workers, threads_per_worker=1, processes=True,
-                                           dashboard_address=None, silence_logs=logging.ERROR)
+        # The workers inherit Ctrl-C ignored: the terminal sends it to them too, and the
+        # driver alone should stop the run (it closes the cluster, ending their tasks).
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        try:
+            cluster = distributed.LocalCluster(n_workers=arguments.workers, threads_per_worker=1, processes=True,
+                                               dashboard_address=None, silence_logs=logging.ERROR)
+        finally:
+            signal.signal(signal.SIGINT, previous)
         return distributed.Client(cluster), cluster
     except OSError as e:
         raise TilesError("cannot reach the Dask scheduler %s (%s): is `dask scheduler` running there?"
@@ -224,15 +231,19 @@ def finish(catalogue, arguments, skipped, outcome):
     for row in rows:
         states[row["status"]] = states.get(row["status"], 0) + 1
     catalogue.close()
-    ran = sum(outcome.values())
-    print("%d tiles run, %d skipped (already finished); the catalogue %s has %s"
-          % (ran, skipped, arguments.catalogue,
-             ", ".join("%d %s" % (states[s], s) for s in ("done", "empty", "failed", "pending") if s in states)))
-    if vrts:
-        print("levels 0 to %d across the tiles: %s" % (levels - 1, os.path.join(levels_folder(arguments.catalogue),
-                                                                                  "level_K.vrt")))
+    if not arguments.quiet:
+        print_summary(arguments.catalogue, sum(outcome.values()), skipped, states, levels if vrts else 0)
     if states.get("failed"):
         print("ERROR: %d tiles failed after their retries (the catalogue's error field says why): "
               "run again to retry them" % states["failed"], file=sys.stderr)
         return 1
     return 0
+
+
+def print_summary(catalogue_path, ran, skipped, states, levels):
+    print("%d tiles run, %d skipped (already finished); the catalogue %s has %s"
+          % (ran, skipped, catalogue_path,
+             ", ".join("%d %s" % (states[s], s) for s in ("done", "empty", "failed", "pending") if s in states)))
+    if levels:
+        print("levels 0 to %d across the tiles: %s"
+              % (levels - 1, os.path.join(levels_folder(catalogue_path), "level_K.vrt")))
