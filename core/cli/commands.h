@@ -18,5 +18,7 @@ int locateCommand(std::vector<std::string> args);
 int accuracyCommand(std::vector<std::string> args);
 int experimentCommand(std::vector<std::string> args);
 int makeDemCommand(std::vector<std::string> args);
+// Never returns but with an error: it runs tinlod-tiles in this process's place.
+int tilesCommand(std::vector<std::string> args);
 
 }  // namespace tinlod::cli

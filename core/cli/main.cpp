@@ -29,6 +29,7 @@ Commands:
   info        describe a GeoPackage written by tinlod
   sample      sample a DEM into a Delaunay TIN, written to a GeoPackage
   makedem     write the project's synthetic default DEM (a GeoTIFF)
+  tiles       build a DEM of any size as tiles with Dask, listed in a catalogue (tinlod-tiles)
 
   --version   print the version
 )";
@@ -47,7 +48,8 @@ int main(int argc, char** argv) {
                                                  {"locate", tinlod::cli::locateCommand},
                                                  {"lod", tinlod::cli::lodCommand},
                                                  {"sample", tinlod::cli::sampleCommand},
-                                                 {"makedem", tinlod::cli::makeDemCommand}};
+                                                 {"makedem", tinlod::cli::makeDemCommand},
+                                                 {"tiles", tinlod::cli::tilesCommand}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::cout << kHelp;
     return argc < 2 ? 1 : 0;
