@@ -1,0 +1,191 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""tinlod-tiles as a user runs it, on a local Dask cluster of 2 workers: the catalogue ends
+complete, a tile whose tinlod is killed mid-run is retried, a rerun builds no finished tile
+again, and each level across the tiles (VRT and merge) holds every tile's triangles.
+Usage: tiles_test.py TINLOD_CLI TINLOD_TILES STANDIN
+Skipped (exit 77) where python3-distributed is absent. A tinlod without -tile_size (the core
+before tiles) is stood in for by STANDIN, which cuts the tile's window itself."""
+import os
+import re
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+
+from osgeo import gdal, ogr
+
+SKIPPED = 77
+TILE_SIZE = 150  # a 400 x 300 DEM: 3 x 2 tiles
+KILLED_TILE, KILL_AFTER = (1, 0), 0.3
+EMPTY_TILE = (2, 1)  # its whole window nodata
+FIELDS = {"tile_col", "tile_row", "xoff", "yoff", "xsize", "ysize", "file", "status", "levels", "vertices",
+          "triangles", "attempts", "seconds", "peak_mib", "error"}
+
+failures = []
+
+
+def check(what, ok, detail=""):
+    print(("ok: " if ok else "FAILED: ") + what + ("" if ok else "  (%s)" % detail))
+    if not ok:
+        failures.append(what)
+
+
+def run(args, env=None):
+    started = time.monotonic()
+    result = subprocess.run(args, capture_output=True, text=True, env=env)
+    print("$ %s  -> exit %d in %.1f s" % (" ".join(args[:3] + ["..."]), result.returncode, time.monotonic() - started))
+    return result
+
+
+def make_dem(tinlod, path):
+    """The default terrain, 400 x 300, without the void; one tile's window made nodata."""
+    subprocess.run([tinlod, "makedem", path, "-size", "400", "300", "-no_void", "-q"], check=True)
+    dataset = gdal.Open(path, gdal.GA_Update)
+    band = dataset.GetRasterBand(1)
+    xoff, yoff = EMPTY_TILE[0] * TILE_SIZE, EMPTY_TILE[1] * TILE_SIZE
+    xsize, ysize = dataset.RasterXSize - xoff, dataset.RasterYSize - yoff
+    band.WriteRaster(xoff, yoff, xsize, ysize, struct.pack("%df" % (xsize * ysize), *([band.GetNoDataValue()] * (xsize * ysize))),
+                     buf_type=gdal.GDT_Float32)
+    dataset = None
+
+
+def tinlod_for_tiles(tinlod, standin, env):
+    """The real tinlod once it knows -tile_size, else the stand-in over it."""
+    if "-tile_size" in subprocess.run([tinlod, "build", "--help"], capture_output=True, text=True).stdout:
+        return tinlod
+    print("note: %s has no -tile_size yet; the stand-in %s cuts the tiles" % (tinlod, standin))
+    env["TINLOD_STANDIN_REAL"] = tinlod
+    return standin
+
+
+def rows(catalogue):
+    dataset = ogr.Open(catalogue)
+    layer = dataset.GetLayerByName("tiles")
+    names = {layer.GetLayerDefn().GetFieldDefn(i).GetName() for i in range(layer.GetLayerDefn().GetFieldCount())}
+    found = {(f["tile_col"], f["tile_row"]): {n: f.GetField(n) for n in names} for f in layer}
+    return found, names, dict(dataset.GetMetadata_Dict())
+
+
+def level_count(path, layer_name):
+    dataset = ogr.Open(path)
+    return dataset.GetLayerByName(layer_name).GetFeatureCount()
+
+
+def file_times(folder):
+    return {name: os.stat(os.path.join(folder, name)).st_mtime_ns for name in sorted(os.listdir(folder))
+            if name.endswith(".gpkg")}
+
+
+def check_complete(catalogue, label):
+    found, names, metadata = rows(catalogue)
+    check("%s: the catalogue lists the 6 tiles" % label, len(found) == 6, len(found))
+    check("%s: the tiles layer has every field" % label, FIELDS <= names, sorted(FIELDS - names))
+    check("%s: the all-nodata tile is 'empty'" % label, found.get(EMPTY_TILE, {}).get("status") == "empty",
+          found.get(EMPTY_TILE))
+    done = {k: r for k, r in found.items() if k != EMPTY_TILE}
+    check("%s: every other tile is 'done', with its file, levels and counts" % label,
+          all(r["status"] == "done" and r["file"] and r["levels"] and r["vertices"] and r["triangles"]
+              for r in done.values()), [(k, r["status"], r["error"]) for k, r in done.items()])
+    base = os.path.dirname(catalogue)
+    check("%s: every done tile's file exists" % label,
+          all(os.path.isfile(os.path.join(base, r["file"] or "-")) for r in done.values()))
+    check("%s: metadata (kind, tile size, raster size, levels)" % label,
+          metadata.get("TINLOD_KIND") == "catalogue" and metadata.get("TINLOD_TILE_SIZE") == str(TILE_SIZE)
+          and metadata.get("TINLOD_RASTER_SIZE") == "400,300" and int(metadata.get("TINLOD_LEVELS", 0)) > 1,
+          metadata)
+    return found, metadata
+
+
+def main(tinlod, tiles, standin):
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        print("SKIPPED: python3-distributed is absent (apt install python3-distributed)")
+        return SKIPPED
+    work = tempfile.mkdtemp(prefix="tinlod_tiles_test_")
+    env = dict(os.environ)
+    env.pop("TINLOD_TILES_TEST_KILL", None)
+    program = tinlod_for_tiles(tinlod, standin, env)
+    dem = os.path.join(work, "dem.tif")
+    make_dem(tinlod, dem)
+    base = [tiles, dem]
+    options = ["-tile_size", str(TILE_SIZE), "-workers", "2", "-tinlod", program, "--", "-seed", "5"]
+
+    check("tinlod tiles --help is tinlod-tiles --help",
+          run([tinlod, "tiles", "--help"]).stdout == run([tiles, "--help"]).stdout)
+    bad = run(base + [os.path.join(work, "x.gpkg"), "-tile_size", "100", "-tinlod", program])
+    check("-tile_size not a multiple of -block is refused, naming both",
+          bad.returncode == 1 and "-tile_size 100" in bad.stderr and "-block 3" in bad.stderr, bad.stderr)
+
+    # (a) A run: the catalogue ends complete.
+    catalogue = os.path.join(work, "a.gpkg")
+    first = run(base + [catalogue] + options, env)
+    check("(a) the run succeeds", first.returncode == 0, first.stderr[-2000:])
+    found, metadata = check_complete(catalogue, "(a)")
+    check("(a) the build options are recorded exactly", metadata.get("TINLOD_BUILD_OPTIONS") == "-seed 5", metadata)
+
+    # (b) The kill hook: tile 1,0's tinlod killed mid-run on its first attempt, retried.
+    killed = os.path.join(work, "b.gpkg")
+    env_kill = dict(env, TINLOD_TILES_TEST_KILL="%d,%d:%g" % (KILLED_TILE + (KILL_AFTER,)))
+    second = run(base + [killed] + options, env_kill)
+    check("(b) the run with a killed tile succeeds", second.returncode == 0, second.stderr[-2000:])
+    found_b, _ = check_complete(killed, "(b)")
+    tile = found_b.get(KILLED_TILE, {})
+    check("(b) the killed tile took 2 attempts", tile.get("attempts") == 2, tile)
+    check("(b) it was killed mid-run (a whole attempt takes longer than the kill delay)",
+          (tile.get("seconds") or 0) > KILL_AFTER, tile.get("seconds"))
+    check("(b) the other tiles took 1 attempt",
+          all(r["attempts"] == 1 for k, r in found_b.items() if k != KILLED_TILE), found_b)
+    leftovers = [n for n in os.listdir(os.path.join(work, "b_tiles")) if not re.fullmatch(r"tile_\d+_\d+\.gpkg|\.driver\.lock", n)]
+    check("(b) nothing half-written is left in the tiles folder", not leftovers, leftovers)
+
+    # (c) A rerun does no finished tile again.
+    folder = os.path.join(work, "a_tiles")
+    before = file_times(folder)
+    rerun = run(base + [catalogue] + options, env)
+    check("(c) the rerun succeeds", rerun.returncode == 0, rerun.stderr[-2000:])
+    check("(c) the rerun reports 0 run, 6 skipped", "0 tiles run, 6 skipped" in rerun.stdout, rerun.stdout)
+    check("(c) no tile file was written again", file_times(folder) == before)
+    os.remove(os.path.join(folder, "tile_0_1.gpkg"))
+    before.pop("tile_0_1.gpkg")
+    again = run(base + [catalogue] + options, env)
+    check("(c) a tile whose file is gone is built again, alone", "1 tiles run, 5 skipped" in again.stdout
+          and os.path.isfile(os.path.join(folder, "tile_0_1.gpkg")), again.stdout + again.stderr[-1000:])
+    after = file_times(folder)
+    after.pop("tile_0_1.gpkg", None)
+    check("(c) ... and the others are left as they were", after == before)
+    other = run(base + [catalogue] + options[:-1] + ["6"], env)
+    check("(c) a rerun with other build options is refused, suggesting -overwrite",
+          other.returncode == 1 and "-overwrite" in other.stderr, other.stderr)
+
+    # (d) Each level across the tiles: the VRT and merge hold the sum of the tiles' triangles.
+    found, metadata = rows(catalogue)[0], rows(catalogue)[2]
+    levels = int(metadata.get("TINLOD_LEVELS", 0))
+    files = [os.path.join(work, r["file"]) for r in found.values() if r["status"] == "done"]
+    for level in sorted({0, 1, levels - 1}):
+        expected = sum(level_count(f, "level_%d" % level) for f in files)
+        vrt = os.path.join(work, "a_levels", "level_%d.vrt" % level)
+        info = run(["ogrinfo", "-so", vrt, "level_%d" % level])
+        counted = re.search(r"Feature Count: (\d+)", info.stdout)
+        check("(d) level_%d.vrt opens as one layer of the %d triangles of the tiles" % (level, expected),
+              counted is not None and int(counted.group(1)) == expected and expected > 0, info.stdout + info.stderr)
+        out = os.path.join(work, "merged_%d.gpkg" % level)
+        merged = run([tiles, "merge", catalogue, "-level", str(level), out])
+        check("(d) merge -level %d gives one layer of the %d triangles" % (level, expected),
+              merged.returncode == 0 and level_count(out, "level_%d" % level) == expected, merged.stderr)
+    beyond = run([tiles, "merge", catalogue, "-level", str(levels), os.path.join(work, "m.gpkg")])
+    check("(d) merge refuses a level the tiles do not have", beyond.returncode == 1 and "-level" in beyond.stderr,
+          beyond.stderr)
+
+    print("tiles: %d failed" % len(failures))
+    if not failures:
+        subprocess.run(["rm", "-rf", work])
+    else:
+        print("the files are left in " + work)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:4]))
