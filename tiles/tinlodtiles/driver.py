@@ -166,7 +166,8 @@ def submit(client, distributed, pending, arguments):
     for tile in pending:
         job = {"tinlod": arguments.tinlod, "dem": os.path.abspath(arguments.dem), "tiles_dir": folder,
                "name": tile.name, "col": tile.col, "row": tile.row, "tile_size": arguments.tile_size,
-               "build_options": list(arguments.build_options)}
+               "build_options": list(arguments.build_options),
+               "kill_hook": os.environ.get(task.KILL_HOOK_VARIABLE)}
         futures[client.submit(task.run_tile, job, retries=arguments.retries, pure=False,
                               key="tile-%d-%d-%s" % (tile.col, tile.row, os.urandom(4).hex()))] = tile
     return futures

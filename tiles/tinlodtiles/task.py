@@ -22,7 +22,7 @@ class TileFailed(Exception):
 
 def run_tile(job):
     """Build one tile. `job` is a dict: tinlod, dem, tiles_dir, name, col, row, tile_size,
-    build_options. Returns the tile's status ('done' or 'empty'), seconds and peak MiB;
+    build_options, kill_hook. Returns the tile's status ('done' or 'empty'), seconds and peak MiB;
     raises TileFailed otherwise."""
     final = os.path.join(job["tiles_dir"], job["name"])
     partial = partial_path(final)
@@ -66,9 +66,10 @@ def count_attempt(final):
 
 
 def kill_hook_seconds(job, attempt):
-    """The test hook: TINLOD_TILES_TEST_KILL="C,R:seconds" kills this tile's tinlod after
-    that many seconds on its first attempt, so that the task fails mid-run."""
-    hook = os.environ.get(KILL_HOOK_VARIABLE, "")
+    """The test hook: TINLOD_TILES_TEST_KILL="C,R:seconds" (the driver's, passed in the job,
+    so that it reaches remote workers too) kills this tile's tinlod after that many seconds
+    on its first attempt, so that the task fails mid-run."""
+    hook = job.get("kill_hook") or ""
     if attempt != 1 or ":" not in hook:
         return None
     tile, seconds = hook.split(":", 1)
