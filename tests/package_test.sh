@@ -25,6 +25,9 @@ check "the package depends on the package of $qgis_core ($qgis_package), from dp
 check "the package depends on GDAL's library" grep -Eq "Depends:.*\blibgdal[0-9]+\b" "$work/info.txt"
 check "the package depends on python3-qgis (the plugin's Python side)" grep -Eq "Depends:.*\bpython3-qgis\b" "$work/info.txt"
 check "the package holds the command line" grep -qx "./usr/bin/tinlod" "$work/contents.txt"
+check "the package holds tinlod-tiles, the Dask tile driver" grep -qx "./usr/bin/tinlod-tiles" "$work/contents.txt"
+check "the package holds tinlod-tiles' modules" grep -qx "./usr/share/tinlod/tiles/tinlodtiles/driver.py" "$work/contents.txt"
+check "the package recommends python3-distributed (for tinlod-tiles)" grep -Eq "Recommends:.*\bpython3-distributed\b" "$work/info.txt"
 check "the package holds the docs the README links to" grep -qx "./usr/share/doc/tinlod/docs/cli/build.md" "$work/contents.txt"
 for f in __init__.py tinlod_plugin.py metadata.txt icon.svg built_for_qgis.txt libtinlod_processing.so help/sampletin.md; do
   check "the package holds the plugin's $f where QGIS finds system plugins" \
@@ -34,6 +37,8 @@ done
 root=$work/root
 dpkg-deb -x "$deb" "$root"
 check "the unpacked command line runs" bash -c "'$root/usr/bin/tinlod' --version | grep -q '^tinlod '"
+check "the unpacked tinlod-tiles runs, finding its modules" bash -c "'$root/usr/bin/tinlod-tiles' --help | grep -q '^Usage: tinlod-tiles '"
+check "the unpacked tinlod tiles forwards to tinlod-tiles" bash -c "'$root/usr/bin/tinlod' tiles --help | grep -q '^Usage: tinlod-tiles '"
 "$root/usr/bin/tinlod" makedem "$work/dem.tif" > /dev/null
 check "the unpacked command line samples a DEM" "$root/usr/bin/tinlod" sample "$work/dem.tif" "$work/tin.gpkg" -q
 
