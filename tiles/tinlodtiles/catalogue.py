@@ -29,6 +29,8 @@ class Catalogue:
         self.dataset = dataset
         self.layer = dataset.GetLayerByName(LAYER)
         self.srs = self.layer.GetSpatialRef()
+        # Each tile's feature id, read once: a grid of thousands of tiles is updated by id.
+        self.fids = {(f["tile_col"], f["tile_row"]): f.GetFID() for f in self.layer}
 
     @classmethod
     def create(cls, path, settings, srs, tiles):
@@ -92,12 +94,13 @@ class Catalogue:
         self.dataset.CommitTransaction()
 
     def feature(self, col, row):
-        self.layer.SetAttributeFilter("tile_col = %d AND tile_row = %d" % (col, row))
-        feature = self.layer.GetNextFeature()
-        self.layer.SetAttributeFilter(None)
-        if feature is None:
+        if (col, row) not in self.fids:
             raise TilesError("the catalogue has no tile %d,%d" % (col, row))
-        return feature
+        return self.layer.GetFeature(self.fids[(col, row)])
+
+    def value(self, col, row, name):
+        """One field of one tile (None when null)."""
+        return feature_values(self.feature(col, row))[name]
 
     def extent_in_layer_srs(self, polygon, srs):
         """A tile's extent in the catalogue's CRS (the same, unless the core chose another)."""

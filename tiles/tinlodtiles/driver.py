@@ -178,7 +178,7 @@ def record(catalogue, tile, future, catalogue_path):
     folder = tiles_folder(catalogue_path)
     final = os.path.join(folder, tile.name)
     attempts = read_attempts(final)
-    previous = catalogue.rows()[(tile.col, tile.row)]["attempts"] or 0
+    previous = catalogue.value(tile.col, tile.row, "attempts") or 0
     values = {"attempts": previous + attempts}
     extent = None
     if future.status == "finished":
