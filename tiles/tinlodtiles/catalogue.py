@@ -34,21 +34,14 @@ class Catalogue:
 
     @classmethod
     def create(cls, path, settings, srs, tiles):
-        driver = ogr.GetDriverByName("GPKG")
-        dataset = driver.CreateDataSource(path)
-        if dataset is None:
-            raise TilesError("cannot create the catalogue %s: is its folder writable?" % path)
-        layer = dataset.CreateLayer(LAYER, srs, ogr.wkbPolygon, ["FID=fid", "GEOMETRY_NAME=geom"])
-        for name, kind in FIELDS:
-            layer.CreateField(ogr.FieldDefn(name, kind))
-        dataset.StartTransaction()
-        for tile in tiles:
-            layer.CreateFeature(pending_feature(layer, tile))
-        dataset.CommitTransaction()
-        for key, value in dict(settings, TINLOD_KIND="catalogue").items():
-            dataset.SetMetadataItem(key, value)
-        dataset.FlushCache()
-        return cls(dataset)
+        """A new catalogue of pending tiles, written under a temporary name and renamed: a
+        run stopped meanwhile leaves no catalogue rather than half of one."""
+        partial = path + ".partial.gpkg"
+        if os.path.exists(partial):
+            os.remove(partial)
+        write_new(partial, settings, srs, tiles)
+        os.replace(partial, path)
+        return cls.open(path)
 
     @classmethod
     def open(cls, path):
@@ -114,6 +107,22 @@ class Catalogue:
     def close(self):
         self.dataset.FlushCache()
         self.dataset = self.layer = None
+
+
+def write_new(path, settings, srs, tiles):
+    dataset = ogr.GetDriverByName("GPKG").CreateDataSource(path)
+    if dataset is None:
+        raise TilesError("cannot create the catalogue %s: is its folder writable?" % path)
+    layer = dataset.CreateLayer(LAYER, srs, ogr.wkbPolygon, ["FID=fid", "GEOMETRY_NAME=geom"])
+    for name, kind in FIELDS:
+        layer.CreateField(ogr.FieldDefn(name, kind))
+    dataset.StartTransaction()
+    for tile in tiles:
+        layer.CreateFeature(pending_feature(layer, tile))
+    dataset.CommitTransaction()
+    for key, value in dict(settings, TINLOD_KIND="catalogue").items():
+        dataset.SetMetadataItem(key, value)
+    dataset = None  # closed: written whole
 
 
 def pending_feature(layer, tile):

@@ -8,8 +8,8 @@ killed driver), the catalogue still says which tiles are finished, and a rerun d
 import fcntl
 import logging
 import os
+import re
 import shlex
-import shutil
 import signal
 import sys
 
@@ -30,11 +30,13 @@ def run(arguments):
     dem = gdal.Open(arguments.dem)
     settings = job_settings(arguments, dem)
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
-    if arguments.overwrite:
-        remove_job(arguments.catalogue)
+    if os.path.exists(arguments.catalogue) and not arguments.overwrite:
+        Catalogue.open(arguments.catalogue).close()  # refused before anything is written
     folder = tiles_folder(arguments.catalogue)
     os.makedirs(folder, exist_ok=True)
-    with driver_lock(folder, arguments.catalogue):
+    with DriverLock(folder, arguments.catalogue):
+        if arguments.overwrite:
+            remove_job(arguments.catalogue)
         catalogue = open_catalogue(arguments, settings, predicted_tin_srs(dem, arguments.build_options), tiles)
         dem = None
         remove_leftovers(folder)
@@ -51,15 +53,22 @@ def job_settings(arguments, dem):
 
 
 def remove_job(catalogue_path):
-    """-overwrite: the catalogue, its tiles and its level files go."""
-    for folder in (tiles_folder(catalogue_path), levels_folder(catalogue_path)):
-        shutil.rmtree(folder, ignore_errors=True)
+    """-overwrite: the catalogue, its tiles and its level files go; only files tinlod-tiles
+    names, so that nothing else a user keeps in those folders is lost."""
+    removable = {tiles_folder(catalogue_path): re.compile(r"tile_\d+_\d+\.(gpkg|partial\.gpkg|gpkg\.log|gpkg\.attempts)"),
+                 levels_folder(catalogue_path): re.compile(r"level_\d+\.vrt")}
+    for folder, names in removable.items():
+        if os.path.isdir(folder):
+            for name in os.listdir(folder):
+                if names.fullmatch(name):
+                    os.remove(os.path.join(folder, name))
     if os.path.exists(catalogue_path):
         os.remove(catalogue_path)
 
 
-class driver_lock:
-    """One driver per catalogue: a second one would write it too."""
+class DriverLock:
+    """One driver per catalogue: a second one would write it too. The lock file stays in the
+    tiles folder (removing it would let a second driver lock another file)."""
 
     def __init__(self, folder, catalogue_path):
         self.path, self.catalogue_path = os.path.join(folder, ".driver.lock"), catalogue_path
@@ -186,10 +195,14 @@ def record(catalogue, tile, future, catalogue_path):
         values.update(status=result["status"], seconds=round(result["seconds"], 3),
                       peak_mib=round(result["peak_mib"], 1), error=None)
         if result["status"] == "done":
-            summary = read_tile_summary(final, "%d,%d" % (tile.col, tile.row))
-            values.update(file=os.path.relpath(final, os.path.dirname(os.path.abspath(catalogue_path))),
-                          levels=summary.levels, vertices=summary.vertices, triangles=summary.triangles)
-            extent = catalogue.extent_in_layer_srs(summary.extent, summary.srs)
+            try:
+                summary = read_tile_summary(final, "%d,%d" % (tile.col, tile.row))
+            except (TilesError, RuntimeError) as e:  # tinlod said done, but the file is not right
+                values.update(status="failed", file=None, error=str(e))
+            else:
+                values.update(file=os.path.relpath(final, os.path.dirname(os.path.abspath(catalogue_path))),
+                              levels=summary.levels, vertices=summary.vertices, triangles=summary.triangles)
+                extent = catalogue.extent_in_layer_srs(summary.extent, summary.srs)
     else:
         values.update(status="failed", file=None, error=failure_message(future))
     catalogue.update(tile.col, tile.row, values, extent)
