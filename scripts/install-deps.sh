@@ -10,6 +10,7 @@ packages=(
   qtbase5-dev libqgis-dev qgis qgis-providers python3-qgis python3-gdal
   libgtest-dev
   xvfb xauth
+  python3-distributed
 )
 
 missing=()

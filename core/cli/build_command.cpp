@@ -16,6 +16,7 @@ namespace {
 const char* const kUsage =
     "tinlod build DEM OUT.gpkg [-method degree|volume|normal|error] [-delete_pct p] [-stop_pct s] "
     "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-outline_tolerance m] [-keep_outline] "
+    "[-tile_size N -tile C,R] "
     "[-fixed POINTS] [-fix_peaks_pits] [-levels all|L,L,...] [-no_group_outlines] [-vertex_index] "
     "[sampling options] [accuracy options] [-overwrite] [-q]";
 
@@ -59,6 +60,15 @@ Simplification:
                    edge stays on its line (a projected DEM keeps its exact rectangle)
   -keep_outline    never delete outline vertices: every level covers level 0's area
 
+One tile of a raster (tinlod tiles runs them all; see docs/cli/tiles.md):
+  -tile_size N     cut the raster into tiles of N x N cells (N a multiple of -block), each
+                   reading one more column and row, shared with the next tile
+  -tile C,R        build tile C,R (from 0,0 at the raster's first column and row). Tiles
+                   fit together at every level: the cells on a shared line are vertices in
+                   both, and a rule that reads only the line thins it alike in both. Every
+                   tile makes -max_levels levels, or the levels -delete_pct and -stop_pct
+                   give (14 by default). Exit code 3: the tile holds no data (nothing written)
+
 What the GeoPackage holds (vertices, triangles, the groups and the levels table are always
 written: lod, locate and accuracy need them):
   -levels list     the level_N views to write: all (default), or levels separated by commas,
@@ -84,6 +94,19 @@ first_level, last_level, group_id, replaced_by, error), level_0, level_1, ... (v
 level to the map), groups (2D outline of each deleted vertex's neighbourhood), levels (counts,
 times, maximum and RMS error, cells covered and given up, outline vertices per level). `tinlod info OUT.gpkg` describes the file.
 )";
+
+void parseTile(const std::string& text, TileSpec& tile) {
+  const std::size_t comma = text.find(',');
+  try {
+    std::size_t end1 = 0, end2 = 0;
+    if (comma == std::string::npos) throw std::invalid_argument(text);
+    tile.col = std::stoi(text.substr(0, comma), &end1);
+    tile.row = std::stoi(text.substr(comma + 1), &end2);
+    if (end1 != comma || end2 != text.size() - comma - 1) throw std::invalid_argument(text);
+  } catch (const std::exception&) {
+    throw Error("-tile '" + text + "' is not a tile: give its column and row of tiles, e.g. -tile 0,0");
+  }
+}
 
 }  // namespace
 
@@ -117,12 +140,16 @@ int buildCommand(std::vector<std::string> args) {
   layers.levelViews = parseLevelList(a.text("-levels", "all"), "-levels");
   layers.groupOutlines = !a.flag("-no_group_outlines");
   layers.vertexIndex = a.flag("-vertex_index");
+  TileSpec tile;
+  tile.size = a.integer("-tile_size", 0);
+  if (a.given("-tile") != (tile.size > 0)) throw Error("-tile C,R and -tile_size N go together: one tile of a raster cut into N x N-cell tiles");
+  if (tile.size > 0) parseTile(a.text("-tile", ""), tile);
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
 
   const BuildSummary s =
-      runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet), accuracy, layers);
+      runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet), accuracy, layers, tile);
   if (!quiet)
     std::cout << "Wrote " << s.levels + 1 << (s.levels ? " levels (0 to " + std::to_string(s.levels) + ", " : " level (")
               << s.originalVertices << " -> " << s.coarsestVertices

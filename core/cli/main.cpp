@@ -70,6 +70,10 @@ int main(int argc, char** argv) {
     tinlod::cli::breakProgressLine();
     std::cerr << "ERROR: stopped before the end; nothing was written" << std::endl;
     return 130;  // as a shell reports a run ended by Ctrl-C
+  } catch (const tinlod::EmptyTile& e) {
+    tinlod::cli::breakProgressLine();
+    std::cerr << "NOTE: " << e.what() << "; nothing was written" << std::endl;
+    return 3;  // not a failure: a tiled run records the tile as empty
   } catch (const std::exception& e) {
     tinlod::cli::breakProgressLine();
     std::cerr << "ERROR: " << e.what() << std::endl;

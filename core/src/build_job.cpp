@@ -13,6 +13,8 @@
 #include "tinlod/hierarchy_writer.h"
 #include "tinlod/point_reader.h"
 #include "tinlod/sample_job.h"
+#include "tinlod/tile_reader.h"
+#include "tinlod/error.h"
 #include "tinlod/version.h"
 
 namespace tinlod {
@@ -64,6 +66,37 @@ void warnIfStoppedEarly(const Hierarchy& h, const ProgressRange& progress) {
                 formatNumber(h.options.stopPct) + " % asked for (" + std::to_string(target) + "): " + h.stopReason);
 }
 
+// Every tile of a job must cut the raster alike and make the same levels.
+void validateTile(const TileSpec& tile, const SampleOptions& sample, const HierarchyOptions& options) {
+  if (tile.size < 2 * sample.block || tile.size % sample.block != 0)
+    throw Error("-tile_size " + std::to_string(tile.size) + " must be a multiple of -block (" + std::to_string(sample.block) +
+                ") and at least two blocks: tiles are cut along block lines, e.g. -tile_size " +
+                std::to_string(std::max(2, 4096 / sample.block) * sample.block));
+  if (options.thresholdMode && options.maxLevels == 0)
+    throw Error("-threshold with -tile needs -max_levels: every tile of a job must make the same levels");
+}
+
+void addTileMetadata(const Dem& dem, const TileSpec& tile, std::map<std::string, std::string>& m) {
+  const auto pair = [](std::int64_t a, std::int64_t b) { return std::to_string(a) + "," + std::to_string(b); };
+  m["TINLOD_TILE"] = pair(tile.col, tile.row);
+  m["TINLOD_TILE_SIZE"] = std::to_string(tile.size);
+  m["TINLOD_TILE_WINDOW"] = pair(dem.window.colOffset, dem.window.rowOffset) + "," + pair(dem.width, dem.height);
+  m["TINLOD_RASTER_SIZE"] = pair(dem.wholeWidth(), dem.wholeHeight());
+}
+
+// A tile whose valid cells make no triangle is empty, not an error.
+Tin sampleTile(const Dem& dem, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {
+  if (tile.size == 0) return sampleTin(dem, sample, progress);
+  try {
+    return sampleTin(dem, sample, progress);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    if (std::string(e.what()).find("gives no triangle") == std::string::npos) throw;
+    throw EmptyTile("tile " + std::to_string(tile.col) + "," + std::to_string(tile.row) + " holds no triangle");
+  }
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
@@ -77,9 +110,10 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
 
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                          const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
-                         const AccuracyOutputs& accuracy, const HierarchyLayers& layers) {
+                         const AccuracyOutputs& accuracy, const HierarchyLayers& layers, const TileSpec& tile) {
   sample.validateForHierarchy();
   options.validate();
+  if (tile.size > 0) validateTile(tile, sample, options);
   accuracy.validate();
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
@@ -90,16 +124,25 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const StagedFile& out = files.add(outPath, "output", true);
   const AccuracyFiles accuracyFiles = stageAccuracyFiles(accuracy, files);
   const ProgressRange all(feedback, 0, 1);
-  const Dem dem = readDem(demPath, sample.band, all.sub(0, 0.05), sample.validHeights);
-  Tin tin = sampleTin(dem, sample, all.sub(0.05, 0.2));
+  TileDem read = tile.size > 0 ? readTile(demPath, sample.band, tile, pinningDistance(sample.block), all.sub(0, 0.05),
+                                          sample.validHeights)
+                                : TileDem{readDem(demPath, sample.band, all.sub(0, 0.05), sample.validHeights), {}};
+  const Dem& dem = read.dem;
+  Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
+  TileBorders borders;
+  if (tile.size > 0)
+    borders = tileBorders(dem, tin, tile, std::move(read.nearNodata), options.maxLevels > 0 ? options.maxLevels
+                                                                                         : tileLevelCount(options.deletePct, options.stopPct));
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
   // With accuracy outputs the last quarter of the job is theirs.
   const double write = accuracy.wanted() ? 0.6 : 0.75, measure = accuracy.wanted() ? 0.75 : 1;
-  const Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep);
-  warnIfStoppedEarly(h, all);
+  const Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,
+                                     tile.size > 0 ? &borders : nullptr);
+  if (tile.size == 0) warnIfStoppedEarly(h, all);
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
+  if (tile.size > 0) addTileMetadata(dem, tile, writeOptions.metadata);
   writeOptions.metadata["TINLOD_LEVEL_VIEWS"] = levelListText(layers.levelViews);
   writeOptions.metadata["TINLOD_GROUP_OUTLINES"] = layers.groupOutlines ? "yes" : "no";
   writeOptions.metadata["TINLOD_VERTEX_INDEX"] = layers.vertexIndex ? "yes" : "no";

@@ -35,8 +35,9 @@ bool isMetric(const OGRSpatialReference& srs) {
 
 // The DEM's centre in longitude/latitude of its own datum, close enough to pick a UTM zone.
 void centreLonLat(const Dem& dem, const OGRSpatialReference& src, double& lon, double& lat) {
-  lon = dem.geotransform[0] + 0.5 * dem.width * dem.geotransform[1];
-  lat = dem.geotransform[3] + 0.5 * dem.height * dem.geotransform[5];
+  const std::array<double, 6>& gt = dem.wholeGeotransform();  // a tile picks its whole raster's zone
+  lon = gt[0] + 0.5 * dem.wholeWidth() * gt[1];
+  lat = gt[3] + 0.5 * dem.wholeHeight() * gt[5];
   if (src.IsGeographic()) return;
   std::unique_ptr<OGRSpatialReference> geog(src.CloneGeogCS());
   geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
@@ -91,8 +92,9 @@ double scaleError(const std::string& wkt, double lon, double lat) {
 // database context and a search for operations of their own, are not needed.
 bool nearUtmMeridian(const OGRSpatialReference& dst, const Dem& dem, const CrsTransform& toTin) {
   if (dst.GetUTMZone() == 0) return false;
-  std::vector<double> x{dem.geotransform[0] + 0.5 * dem.width * dem.geotransform[1]};
-  std::vector<double> y{dem.geotransform[3] + 0.5 * dem.height * dem.geotransform[5]};
+  const std::array<double, 6>& gt = dem.wholeGeotransform();
+  std::vector<double> x{gt[0] + 0.5 * dem.wholeWidth() * gt[1]};
+  std::vector<double> y{gt[3] + 0.5 * dem.wholeHeight() * gt[5]};
   try {
     toTin.apply(x, y);
   } catch (const Error&) {

@@ -3,6 +3,7 @@
 
 #include <gdal_priv.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <memory>
@@ -71,7 +72,7 @@ void applyMask(GDALRasterBand& band, Dem& dem) {
   }
   if (flags & GMF_ALL_VALID) return;
   std::vector<unsigned char> mask(dem.z.size());
-  if (band.GetMaskBand()->RasterIO(GF_Read, 0, 0, dem.width, dem.height, mask.data(), dem.width,
+  if (band.GetMaskBand()->RasterIO(GF_Read, dem.window.colOffset, dem.window.rowOffset, dem.width, dem.height, mask.data(), dem.width,
                                    dem.height, GDT_Byte, 0, 0) != CE_None)
     throw Error("cannot read the mask of '" + dem.path + "': " + CPLGetLastErrorMsg());
   for (std::size_t i = 0; i < mask.size(); ++i)
@@ -131,7 +132,8 @@ void readHeights(GDALRasterBand& band, Dem& dem, const ProgressRange& progress) 
   for (int row = 0; row < dem.height; row += chunk) {
     const int rows = std::min(chunk, dem.height - row);
     float* dst = dem.z.data() + static_cast<std::size_t>(row) * dem.width;
-    if (band.RasterIO(GF_Read, 0, row, dem.width, rows, dst, dem.width, rows, GDT_Float32, 0, 0) !=
+    if (band.RasterIO(GF_Read, dem.window.colOffset, dem.window.rowOffset + row, dem.width, rows, dst, dem.width, rows,
+                      GDT_Float32, 0, 0) !=
         CE_None)
       throw Error("cannot read '" + dem.path + "': " + CPLGetLastErrorMsg());
     progress.report(double(row + rows) / dem.height, "Reading DEM");
@@ -151,7 +153,10 @@ void checkValidCells(const Dem& dem, const HeightRange& valid) {
 
 }  // namespace
 
-Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progress, const HeightRange& valid) {
+namespace {
+
+Dem readBand(const std::string& path, int bandNumber, const CellWindow* window, const ProgressRange& progress,
+             const HeightRange& valid) {
   valid.validate();
   DatasetPtr ds = openRaster(path);
   if (bandNumber < 1 || bandNumber > ds->GetRasterCount())
@@ -162,15 +167,56 @@ Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progre
   dem.band = bandNumber;
   dem.width = ds->GetRasterXSize();
   dem.height = ds->GetRasterYSize();
+  dem.window.fullWidth = dem.width, dem.window.fullHeight = dem.height;
   GDALRasterBand* band = ds->GetRasterBand(bandNumber);
   refuseComplex(*band, dem);
   readGeoreferencing(*ds, dem, progress);
+  dem.window.fullGeotransform = dem.geotransform;
+  if (window) {
+    if (window->xoff < 0 || window->yoff < 0 || window->xsize < 1 || window->ysize < 1 ||
+        window->xoff + window->xsize > dem.width || window->yoff + window->ysize > dem.height)
+      throw Error("the window of " + std::to_string(window->xsize) + " x " + std::to_string(window->ysize) +
+                  " cells at column " + std::to_string(window->xoff) + ", row " + std::to_string(window->yoff) +
+                  " is not inside '" + path + "' (" + std::to_string(dem.width) + " x " + std::to_string(dem.height) +
+                  " cells)");
+    dem.window.colOffset = window->xoff, dem.window.rowOffset = window->yoff;
+    dem.width = window->xsize, dem.height = window->ysize;
+    dem.geotransform[0] += window->xoff * dem.geotransform[1];
+    dem.geotransform[3] += window->yoff * dem.geotransform[5];
+  }
   readHeights(*band, dem, progress);
   applyMask(*band, dem);  // on the stored values, where declared nodata applies
   toMetres(*band, dem, progress);
   dropImplausibleHeights(dem, valid, progress);  // in metres, as the range is given
+  return dem;
+}
+
+}  // namespace
+
+Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progress, const HeightRange& valid) {
+  Dem dem = readBand(path, bandNumber, nullptr, progress, valid);
   checkValidCells(dem, valid);
   return dem;
+}
+
+Dem readDemWindow(const std::string& path, int band, const CellWindow& window, const ProgressRange& progress,
+                  const HeightRange& valid) {
+  return readBand(path, band, &window, progress, valid);
+}
+
+void cropDem(Dem& dem, int col0, int row0, int width, int height) {
+  if (col0 < 0 || row0 < 0 || width < 1 || height < 1 || col0 + width > dem.width || row0 + height > dem.height)
+    throw Error("internal error: cropping a DEM outside itself");
+  for (int r = 0; r < height; ++r) {
+    const float* from = dem.z.data() + static_cast<std::size_t>(row0 + r) * dem.width + col0;
+    std::copy(from, from + width, dem.z.begin() + static_cast<std::ptrdiff_t>(r) * width);
+  }
+  dem.z.resize(static_cast<std::size_t>(width) * height);
+  dem.z.shrink_to_fit();
+  dem.geotransform[0] += col0 * dem.geotransform[1];
+  dem.geotransform[3] += row0 * dem.geotransform[5];
+  dem.window.colOffset += col0, dem.window.rowOffset += row0;
+  dem.width = width, dem.height = height;
 }
 
 }  // namespace tinlod

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "border_lines.h"
 #include "cell_errors.h"
 #include "nearest_vertices.h"
 #include "outline_chain.h"
@@ -46,8 +47,8 @@ struct Pick {
 class Simplifier {
  public:
   Simplifier(Tin base, const Dem& dem, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
-             const ProgressRange& progress)
-      : options_(options), progress_(progress), dem_(dem) {
+             const ProgressRange& progress, const TileBorders* tile)
+      : options_(options), progress_(progress), dem_(dem), tile_(tile) {
     h_.base = std::move(base);
     h_.options = options;
     h_.fixed = std::move(fixed);
@@ -58,6 +59,7 @@ class Simplifier {
     // memory (80 MB on alps_2x2) takes a core some hundredths of a second.
     runBoth([&] { mesh_ = SimplificationMesh(h_.base); }, [&] { allocate(); });
     h_.base.neighbours = {};  // the mesh has them now
+    if (tile_) borders_ = BorderLines(h_.base, dem_, *tile_);
   }
 
   Hierarchy run(const std::vector<PointXY>& keep) {
@@ -65,8 +67,8 @@ class Simplifier {
     triangles_ = h_.base.triangles.size();
     setUp(keep);
     h_.levels.push_back(levelStats(0, 0, 0, 0));
-    while (current_ > stopCount_) {
-      if (options_.maxLevels > 0 && h_.coarsest() >= options_.maxLevels) {
+    while (tile_ ? h_.coarsest() < tile_->levels : current_ > stopCount_) {
+      if (!tile_ && options_.maxLevels > 0 && h_.coarsest() >= options_.maxLevels) {
         h_.stopReason = "-max_levels " + std::to_string(options_.maxLevels) + " reached";
         break;
       }
@@ -74,8 +76,9 @@ class Simplifier {
       const Clock::time_point t0 = Clock::now();
       std::vector<Pick> picks = select(level);
       const Clock::time_point t1 = Clock::now();
-      // A level that deletes almost nothing only adds a layer: the rest is fixed.
-      if (picks.empty() || (!options_.thresholdMode && picks.size() * kMinLevelShare < current_)) {
+      // A level that deletes almost nothing only adds a layer: the rest is fixed. A tile
+      // makes every level, as its neighbours do.
+      if (!tile_ && (picks.empty() || (!options_.thresholdMode && picks.size() * kMinLevelShare < current_))) {
         h_.stopReason = whyStopped(picks.size());
         break;
       }
@@ -124,8 +127,14 @@ class Simplifier {
     // Outline vertices go only as OutlineChain allows; a raster corner, a vertex where two
     // parts of the TIN touch, and every outline vertex with -keep_outline stay.
     for (VertexId v = 0; v < nv; ++v) {
-      if (mesh_.open(v) && (options_.keepOutline || !mesh_.deletableOpen(v) || outline_.rasterCorner(v))) h_.fixed[v] = 1;
-      if (!h_.fixed[v]) live_.push_back(v);
+      if (onBorder(v)) {
+        // Only the border rule, which both tiles apply alike, says whether a border vertex
+        // stays: not this tile's peaks, pits or points to keep.
+        h_.fixed[v] = tile_->pinned[v];
+      } else if (mesh_.open(v) && (options_.keepOutline || !mesh_.deletableOpen(v) || outline_.rasterCorner(v))) {
+        h_.fixed[v] = 1;
+      }
+      if (!h_.fixed[v] && !onBorder(v)) live_.push_back(v);
       outlineLeft_ += mesh_.open(v) && mesh_.inTriangle(v);
     }
     // The outline may move by one cell at level 1 unless told otherwise: a cell's size is
@@ -134,6 +143,23 @@ class Simplifier {
     for (const TriangleCells& c : slotCells_) covered += c.cells;
     cellSize_ = covered > 0 ? std::sqrt(totalArea(h_.base) / double(covered)) : 0;
     tolerance_ = std::isnan(options_.outlineTolerance) ? cellSize_ : options_.outlineTolerance;
+  }
+
+  bool onBorder(VertexId v) const { return tile_ && tile_->side[v] >= 0; }
+
+  // Whether a and b lie on the same shared border line. An outline vertex (of a hole that
+  // reaches the line) may not go if its new outline edge would run along the line: it would
+  // pass over line cells this tile left out, which the other tile has.
+  bool onOneBorderLine(VertexId a, VertexId b) const {
+    if (!tile_) return false;
+    const TinVertex &p = h_.base.vertices[a], &q = h_.base.vertices[b];
+    const int at[4] = {0, dem_.width - 1, 0, dem_.height - 1};
+    for (int s = 0; s < 4; ++s) {
+      if (tile_->lineClass[s] < 0) continue;
+      const bool column = s == kFirstCol || s == kLastCol;
+      if ((column ? p.col : p.row) == at[s] && (column ? q.col : q.row) == at[s]) return true;
+    }
+    return false;
   }
 
   // Every triangle of level 0 against the DEM, on every core.
@@ -251,7 +277,7 @@ class Simplifier {
     }
     // The exact fill, made once: the outline's checks and the error or volume read it.
     s.walk(mesh_, v);
-    if (!retriangulateStar(s.star, s.fill) ||
+    if (!retriangulateStar(s.star, s.fill) || (open && onOneBorderLine(s.ring.front(), s.ring.back())) ||
         (open && (!outline_.allows(mesh_, v, s.star, s.ring.front(), s.ring.back(), outlineTolerance(), 0.5 * cellSize_,
                                    [&](VertexId u) { return h_.vertexLevel[u] != kOpenLevel; }) ||
                   !fillMeetsItsNeighbours(s)))) {
@@ -305,10 +331,14 @@ class Simplifier {
   std::vector<Pick> select(std::int32_t level) {
     updateStaleImportances(level);
     sortCandidates();
-    std::size_t limit = current_ - stopCount_;
+    std::size_t limit = current_ > stopCount_ ? current_ - stopCount_ : 0;
     if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
     std::vector<Pick> picks;
+    if (tile_) {
+      pickBorders(level, picks);
+      limit += picks.size();  // the border's own share: its rule, not the tile's, says how many
+    }
     // The pick runs on one core; the other meanwhile writes the memory the hierarchy's
     // arrays will grow into, for as many picks as the last level made and a tenth more
     // (an independent set rarely holds more than a quarter of the vertices): never the
@@ -344,6 +374,28 @@ class Simplifier {
       radixSort(candidates, [](const Candidate& c) { return orderedBits(c.first); }, sortScratch_[h]);
     };
     runBoth([&] { half(0, 0, mid); }, [&] { half(1, mid, live_.size()); });
+  }
+
+  // The border rule's picks for the level, first: they block their neighbours, so the
+  // level's other picks stay independent of them. A pick this tile cannot delete as one
+  // fan would leave a crack beside the other tile, which deletes it: never silently.
+  void pickBorders(std::int32_t level, std::vector<Pick>& picks) {
+    const double share = 1 - std::pow(1 - options_.deletePct / 100.0, 4);  // a line is thinned every fourth level
+    const bool bounded = options_.measure == Measure::Error && std::isfinite(options_.maxError);
+    if (bounded) return;  // the bound holds at cells only this tile sees: the border stays
+    for (const auto& [deviation, v] : borders_.take(level, share)) {
+      if (v == BorderLines::kNoVertex) continue;  // left out of this tile's level 0
+      if (!mesh_.open(v) || !mesh_.deletableOpen(v) || stamp_[v] == level)
+        throw Error("tile border vertex at cell (row " + std::to_string(dem_.globalRow(h_.base.vertices[v].row)) +
+                    ", column " + std::to_string(dem_.globalCol(h_.base.vertices[v].col)) +
+                    ") cannot be deleted in this tile at level " + std::to_string(level) +
+                    ", as its neighbour tile deletes it; please report this with the DEM and options");
+      stamp_[v] = level;
+      mesh_.eachAround(v, [&](std::int32_t slot, int k) {
+        stamp_[mesh_.corner(slot, (k + 1) % 3)] = stamp_[mesh_.corner(slot, (k + 2) % 3)] = level;
+      });
+      picks.push_back({deviation, v, static_cast<std::uint32_t>(mesh_.degree(v)), true});
+    }
   }
 
   // The two halves' candidates merged as they are read, ties going to the first half's
@@ -546,6 +598,8 @@ class Simplifier {
   const HierarchyOptions& options_;
   ProgressRange progress_;
   const Dem& dem_;
+  const TileBorders* tile_;
+  BorderLines borders_;
   Hierarchy h_;
   SimplificationMesh mesh_;
   CellErrors cells_;
@@ -577,9 +631,9 @@ class Simplifier {
 }  // namespace
 
 Hierarchy buildHierarchy(Tin base, const Dem& dem, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
-                         const ProgressRange& progress, const std::vector<PointXY>& keep) {
+                         const ProgressRange& progress, const std::vector<PointXY>& keep, const TileBorders* tile) {
   options.validate();
-  return Simplifier(std::move(base), dem, std::move(fixed), options, progress).run(keep);
+  return Simplifier(std::move(base), dem, std::move(fixed), options, progress, tile).run(keep);
 }
 
 }  // namespace tinlod

@@ -4,10 +4,10 @@
 
 #include <cmath>
 #include <iomanip>
-#include <random>
 #include <sstream>
 
 #include "text_and_paths.h"
+#include "tinlod/cell_hash.h"
 #include "tinlod/crs_transform.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
@@ -18,9 +18,6 @@
 
 namespace tinlod {
 namespace {
-
-// Uniform in [0, 1) from the top 53 bits: reproducible on every platform.
-double unitRandom(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
 
 // The jitter moves each point within its cell, in the DEM's grid (so that the simplifier
 // knows where each vertex lies among the cells), by up to `jitter` metres along x and y.
@@ -38,35 +35,40 @@ struct CellJitter {
   }
 };
 
+// From the whole raster's middle, so that every tile converts metres to cells alike.
 CellJitter cellJitter(const Dem& dem, const CrsTransform& transform, double jitter) {
-  const int row = dem.height / 2, col = dem.width / 2;
-  const double across = dem.width > 1 ? transform.groundDistance(dem.centreX(col - (col > 0)), dem.centreY(row),
-                                                                 dem.centreX(col - (col > 0) + 1), dem.centreY(row))
-                                      : 1;
-  const double down = dem.height > 1 ? transform.groundDistance(dem.centreX(col), dem.centreY(row - (row > 0)),
-                                                                dem.centreX(col), dem.centreY(row - (row > 0) + 1))
-                                     : 1;
-  const double gt1 = dem.geotransform[1], gt5 = dem.geotransform[5];
+  const std::array<double, 6>& gt = dem.wholeGeotransform();
+  const int width = dem.wholeWidth(), height = dem.wholeHeight();
+  const int row = height / 2, col = width / 2 - (width / 2 > 0);
+  const auto x = [&](int c) { return gt[0] + (c + 0.5) * gt[1]; };
+  const auto y = [&](int r) { return gt[3] + (r + 0.5) * gt[5]; };
+  const int prow = row - (row > 0);
+  const double across = width > 1 ? transform.groundDistance(x(col), y(row), x(col + 1), y(row)) : 1;
+  const double down = height > 1 ? transform.groundDistance(x(width / 2), y(prow), x(width / 2), y(prow + 1)) : 1;
   // +x of the TIN is +col when the geotransform's x step is positive; +y is -row for a
   // north-up DEM (negative y step), +row for a bottom-up one.
-  return {jitter / std::max(across, 1e-12) * (gt1 >= 0 ? 1 : -1), jitter / std::max(down, 1e-12) * (gt5 < 0 ? -1 : 1),
+  return {jitter / std::max(across, 1e-12) * (gt[1] >= 0 ? 1 : -1), jitter / std::max(down, 1e-12) * (gt[5] < 0 ? -1 : 1),
           dem.height - 1, dem.width - 1};
 }
 
+// Each cell's jitter comes from a hash of the seed and the cell's place in the whole
+// raster, and its position from the whole raster's geotransform and cell indices: a
+// tile's vertex is bit for bit the whole run's (a vertex on a tile's edge moves only along
+// it, as one on the raster's edge does).
 std::vector<TinVertex> toVertices(const Dem& dem, const std::vector<SampleCell>& cells,
                                   const CrsTransform& transform, double jitter, std::uint64_t seed) {
   const CellJitter move = cellJitter(dem, transform, jitter);
-  // A stream apart from the sampler's, so that changing the jitter moves no sample.
-  std::mt19937_64 rng(seed ^ 0x9E3779B97F4A7C15ULL);
+  const std::array<double, 6>& gt = dem.wholeGeotransform();
   std::vector<double> x(cells.size()), y(cells.size());
   std::vector<TinVertex> vertices(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    const double ux = unitRandom(rng), uy = unitRandom(rng);
+    const std::int64_t row = dem.globalRow(cells[i].row), col = dem.globalCol(cells[i].col);
+    const double ux = unitFromHash(cellHash(seed, row, col, 1)), uy = unitFromHash(cellHash(seed, row, col, 2));
     const auto [dc, dr] = move(cells[i], ux, uy);
     TinVertex& v = vertices[i];
     v.dcol = static_cast<float>(dc), v.drow = static_cast<float>(dr);
-    x[i] = dem.geotransform[0] + (cells[i].col + 0.5 + double(v.dcol)) * dem.geotransform[1];
-    y[i] = dem.geotransform[3] + (cells[i].row + 0.5 + double(v.drow)) * dem.geotransform[5];
+    x[i] = gt[0] + (double(col) + 0.5 + double(v.dcol)) * gt[1];
+    y[i] = gt[3] + (double(row) + 0.5 + double(v.drow)) * gt[5];
     v.z = dem.at(cells[i].row, cells[i].col);
     v.row = cells[i].row;
     v.col = cells[i].col;

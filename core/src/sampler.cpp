@@ -2,12 +2,19 @@
 #include "tinlod/sampler.h"
 
 #include <algorithm>
-#include <random>
+
+#include "tinlod/cell_hash.h"
 
 namespace tinlod {
 namespace {
 
 enum : unsigned char { kNone = 0, kRandom = 1, kOutline = 2 };
+
+// A window starts on a block line (a tile's offset is a multiple of the block); a DEM
+// that is its own whole raster starts at 0.
+int firstBlockStart(std::int64_t globalStart, int block) {
+  return static_cast<int>((block - globalStart % block) % block);
+}
 
 bool isOutline(const Dem& dem, int row, int col) {
   for (int dr = -1; dr <= 1; ++dr)
@@ -25,26 +32,30 @@ void markOutline(const Dem& dem, std::vector<unsigned char>& marks, const Progre
   }
 }
 
-// The study's sampling: a uniformly random valid cell of each block. std::mt19937_64
-// is used without a std distribution because its output sequence, unlike theirs, is
-// fixed by the C++ standard: the same seed gives the same TIN on every platform.
+// The study's sampling: a uniformly random valid cell of each block. The cell is drawn
+// from a hash of the seed and the block's place in the whole raster, not from a stream:
+// a tile then samples each of its blocks as a run over the whole raster does. Blocks
+// start at the whole raster's multiples of `block`; one that starts on a tile's shared
+// last column or row is the next tile's.
 void markRandom(const Dem& dem, int block, std::uint64_t seed, std::vector<unsigned char>& marks,
                 const ProgressRange& progress) {
-  std::mt19937_64 rng(seed);
-  for (int r0 = 0; r0 < dem.height; r0 += block) {
+  const int ownRows = dem.height - dem.sharesLastRow(), ownCols = dem.width - dem.sharesLastCol();
+  const int firstRow = firstBlockStart(dem.globalRow(0), block), firstCol = firstBlockStart(dem.globalCol(0), block);
+  for (int r0 = firstRow; r0 < ownRows; r0 += block) {
     const int r1 = std::min(r0 + block, dem.height);
-    for (int c0 = 0; c0 < dem.width; c0 += block) {
+    for (int c0 = firstCol; c0 < ownCols; c0 += block) {
       const int c1 = std::min(c0 + block, dem.width);
       int count = 0;
       for (int r = r0; r < r1; ++r)
         for (int c = c0; c < c1; ++c) count += dem.valid(r, c);
       if (count == 0) continue;
-      int pick = static_cast<int>(rng() % static_cast<std::uint64_t>(count));
+      const std::uint64_t h = cellHash(seed, dem.globalRow(r0) / block, dem.globalCol(c0) / block);
+      int pick = static_cast<int>(h % static_cast<std::uint64_t>(count));
       for (int r = r0; r < r1 && pick >= 0; ++r)
         for (int c = c0; c < c1 && pick >= 0; ++c)
           if (dem.valid(r, c) && pick-- == 0) marks[static_cast<std::size_t>(r) * dem.width + c] |= kRandom;
     }
-    progress.report(double(r1) / dem.height, "Sampling cells");
+    if ((r0 / block) % 64 == 0) progress.report(double(r1) / dem.height, "Sampling cells");
   }
 }
 

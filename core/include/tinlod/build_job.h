@@ -10,6 +10,7 @@
 #include "tinlod/feedback.h"
 #include "tinlod/hierarchy.h"
 #include "tinlod/hierarchy_layers.h"
+#include "tinlod/tile_borders.h"
 #include "tinlod/point_reader.h"
 #include "tinlod/sample_options.h"
 
@@ -36,6 +37,6 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin);
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                          const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
                          const AccuracyOutputs& accuracy = AccuracyOutputs(),
-                         const HierarchyLayers& layers = HierarchyLayers());
+                         const HierarchyLayers& layers = HierarchyLayers(), const TileSpec& tile = TileSpec());
 
 }  // namespace tinlod

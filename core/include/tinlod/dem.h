@@ -4,10 +4,22 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace tinlod {
+
+// Where a DEM read as a window (a tile) lies in the whole raster. Sampling and placing
+// vertices by the whole raster's cell indices and geotransform makes a tile's vertices
+// those of a run over the whole raster, to the last bit.
+struct RasterWindow {
+  int colOffset = 0;  // the whole raster's column of the DEM's column 0
+  int rowOffset = 0;
+  int fullWidth = 0;  // the whole raster's size in cells
+  int fullHeight = 0;
+  std::array<double, 6> fullGeotransform{0, 1, 0, 0, 0, 1};
+};
 
 // A DEM band held in memory: heights row-major from the first stored row, with
 // missing cells (declared nodata, NaN, masked) stored as NaN.
@@ -22,6 +34,7 @@ struct Dem {
   bool hasGeotransform = false;
   std::string crsWkt;  // empty when the file has no CRS
   std::vector<float> z;
+  RasterWindow window;  // set by readDem: the whole raster when no window was asked for
 
   float at(int row, int col) const { return z[static_cast<std::size_t>(row) * width + col]; }
   bool valid(int row, int col) const {
@@ -31,6 +44,17 @@ struct Dem {
   double centreX(int col) const { return geotransform[0] + (col + 0.5) * geotransform[1]; }
   double centreY(int row) const { return geotransform[3] + (row + 0.5) * geotransform[5]; }
   std::size_t validCount() const;
+  // The whole raster's cell index of a cell of this DEM.
+  std::int64_t globalCol(int col) const { return std::int64_t{window.colOffset} + col; }
+  std::int64_t globalRow(int row) const { return std::int64_t{window.rowOffset} + row; }
+  // Whether the DEM's last column (row) is shared with a tile beyond it: that tile's
+  // blocks start there.
+  // The whole raster's geotransform and size (a DEM built in memory is its own whole).
+  const std::array<double, 6>& wholeGeotransform() const { return window.fullWidth > 0 ? window.fullGeotransform : geotransform; }
+  int wholeWidth() const { return window.fullWidth > 0 ? window.fullWidth : width; }
+  int wholeHeight() const { return window.fullHeight > 0 ? window.fullHeight : height; }
+  bool sharesLastCol() const { return window.colOffset + width < window.fullWidth; }
+  bool sharesLastRow() const { return window.rowOffset + height < window.fullHeight; }
 };
 
 }  // namespace tinlod

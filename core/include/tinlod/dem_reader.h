@@ -16,4 +16,17 @@ namespace tinlod {
 // valid cells.
 Dem readDem(const std::string& path, int band, const ProgressRange& progress, const HeightRange& valid = HeightRange{});
 
+// A window of a raster's cells: columns xoff .. xoff + xsize - 1, rows likewise.
+struct CellWindow {
+  int xoff = 0, yoff = 0, xsize = 0, ysize = 0;
+};
+
+// The same for a window of the raster (a tile), which must lie inside it; the DEM's
+// `window` says where it lies. A window may hold no valid cell: the caller decides.
+Dem readDemWindow(const std::string& path, int band, const CellWindow& window, const ProgressRange& progress,
+                  const HeightRange& valid = HeightRange{});
+
+// Cuts a DEM down to columns [col0, col0 + width) and rows [row0, row0 + height) of it, in place.
+void cropDem(Dem& dem, int col0, int row0, int width, int height);
+
 }  // namespace tinlod

@@ -19,4 +19,11 @@ class Cancelled : public Error {
   Cancelled() : Error("cancelled by the user") {}
 };
 
+// Thrown for a tile of a raster that holds too little data for a TIN: nothing is
+// written, and a tiled run records the tile as empty rather than failed.
+class EmptyTile : public Error {
+ public:
+  explicit EmptyTile(const std::string& message) : Error(message) {}
+};
+
 }  // namespace tinlod

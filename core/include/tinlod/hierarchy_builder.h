@@ -8,6 +8,7 @@
 #include "tinlod/dem.h"
 #include "tinlod/feedback.h"
 #include "tinlod/hierarchy.h"
+#include "tinlod/tile_borders.h"
 
 namespace tinlod {
 
@@ -21,7 +22,10 @@ using PointXY = std::array<double, 2>;
 // outline of the data or of a hole goes only while the outline moves by at most the
 // options' tolerance, and never out over nodata (none goes with keepOutline). The
 // hierarchy keeps `base`: pass std::move(tin) when the TIN is not needed afterwards.
+// With `tile`, `dem` is a tile of a raster: its border vertices go only by the border rule,
+// and exactly tile->levels levels are made.
 Hierarchy buildHierarchy(Tin base, const Dem& dem, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
-                         const ProgressRange& progress, const std::vector<PointXY>& keep = {});
+                         const ProgressRange& progress, const std::vector<PointXY>& keep = {},
+                         const TileBorders* tile = nullptr);
 
 }  // namespace tinlod

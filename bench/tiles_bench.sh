@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The targets of issue 19, printed in one run (never asserted; the run fails only if a tool
+# fails or a union is not conforming):
+#  1. alps_2x2 cut into 4 and into 16 tiles, patagonia_coast into 16: whether every level's
+#     union is conforming, and its accuracy (pooled RMSE and maximum error against the DEM,
+#     from the tiles' levels tables) against a whole-raster run with the same options, at
+#     the coarsest level and at the whole run's level nearest in vertex count;
+#  2. the peak memory of one 4096 x 4096 tile (tile 0,0 of a synthetic 8193 x 8193 DEM);
+#  3. with tinlod-tiles (Dask): cells per second on 1 and on 2 workers (alps_2x2, 16 tiles).
+# Usage: bash bench/tiles_bench.sh [parts...]   (parts: accuracy memory throughput; default all)
+# Environment: TINLOD (default build/core/tinlod), TINLOD_TILES (default build/tiles/tinlod-tiles),
+#   WORK (default build/tiles-bench: outputs go there), TINLOD_TEST_DATA (default ../shared/data).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+tinlod=${TINLOD:-$root/build/core/tinlod}
+tiles=${TINLOD_TILES:-$root/build/tiles/tinlod-tiles}
+data=${TINLOD_TEST_DATA:-$root/../shared/data}
+work=${WORK:-$root/build/tiles-bench}
+parts=${*:-accuracy memory throughput}
+mkdir -p "$work"
+
+# tile_grid DEM SIZE: "across down"
+tile_grid() {
+  local w h
+  read -r w h < <(gdalinfo "$1" | sed -n 's/^Size is \([0-9]*\), \([0-9]*\)/\1 \2/p')
+  echo "$(( (w - 2) / $2 + 1 )) $(( (h - 2) / $2 + 1 ))"
+}
+
+accuracy_case() {  # NAME DEM SIZE
+  local name=$1 dem=$2 size=$3 across down
+  read -r across down < <(tile_grid "$dem" "$size")
+  echo "== $name: $((across * down)) tiles of $size cells"
+  [[ -f $work/$name.whole.gpkg ]] || /usr/bin/time -f "whole run: %e s, peak %M KB" "$tinlod" build "$dem" "$work/$name.whole.gpkg" -q
+  local start=$SECONDS peak=0
+  for ((c = 0; c < across; c++)); do
+    for ((r = 0; r < down; r++)); do
+      /usr/bin/time -o "$work/time.txt" -f "%M" "$tinlod" build "$dem" "$work/$name.tile_${c}_${r}.gpkg" \
+        -tile_size "$size" -tile "$c,$r" -q -overwrite
+      peak=$(( $(cat "$work/time.txt") > peak ? $(cat "$work/time.txt") : peak ))
+    done
+  done
+  echo "tiles one after another: $((SECONDS - start)) s, largest peak $((peak / 1024)) MiB"
+  /usr/bin/python3 "$root/tests/tile_union.py" --whole "$work/$name.whole.gpkg" --json "$work/$name.json" \
+    "$work/$name".tile_*.gpkg > "$work/$name.union.txt" || { cat "$work/$name.union.txt"; return 1; }
+  tail -1 "$work/$name.union.txt"
+  /usr/bin/python3 - "$work/$name.json" << 'PY'
+import json, sys
+rows = json.load(open(sys.argv[1]))
+last = rows[-1]
+def ratio(a, b): return a / b if b else float("nan")
+print(f"coarsest level {last['level']}: tiles {last['vertices']} vertices, RMSE {last['rmse']:.3f} m, max {last['max_error']:.2f} m;"
+      f" whole {last['whole_vertices']} vertices, RMSE {last['whole_rmse']:.3f} m, max {last['whole_max_error']:.2f} m;"
+      f" RMSE ratio {ratio(last['rmse'], last['whole_rmse']):.4f}, max ratio {ratio(last['max_error'], last['whole_max_error']):.4f}")
+# At equal vertex counts: the whole run's RMSE interpolated (log-log) at each tile level's count.
+import math
+whole = sorted((r['whole_vertices'], r['whole_rmse'], r['whole_max_error']) for r in rows)
+worst = 0
+for r in rows:
+    v = r['vertices']
+    for (v0, e0, m0), (v1, e1, m1) in zip(whole, whole[1:]):
+        if v0 <= v <= v1 and v1 > v0 and e0 > 0 and e1 > 0:
+            t = (math.log(v) - math.log(v0)) / (math.log(v1) - math.log(v0))
+            e = math.exp(math.log(e0) + t * (math.log(e1) - math.log(e0)))
+            worst = max(worst, r['rmse'] / e)
+            print(f"  level {r['level']:2d}: {v} vertices, RMSE {r['rmse']:.3f} m; whole at that count {e:.3f} m (ratio {r['rmse'] / e:.4f})")
+            break
+print(f"largest RMSE ratio at equal vertex counts: {worst:.4f} (target 1.02)")
+PY
+}
+
+memory_case() {
+  local dem=$work/synthetic_8193.tif
+  [[ -f $dem ]] || "$tinlod" makedem "$dem" -size 8193 8193 -cell 10 -q
+  echo "== one 4096 x 4096 tile (4097 x 4097 cells read) of a synthetic 8193 x 8193 DEM"
+  /usr/bin/time -f "tile 0,0: %e s, peak %M KB (target: 1 GB)" "$tinlod" build "$dem" "$work/big_tile.gpkg" \
+    -tile_size 4096 -tile 0,0 -q -overwrite
+}
+
+throughput_case() {
+  if ! /usr/bin/python3 -c "import distributed" 2> /dev/null || [[ ! -x $tiles ]]; then
+    echo "== throughput: SKIPPED (python3-distributed or $tiles absent)"
+    return 0
+  fi
+  local dem=$data/alps_2x2_N46E007_N47E008.tif
+  echo "== throughput: alps_2x2 (5.76 M cells) as 16 tiles of 600 cells with tinlod-tiles"
+  local t1 t2
+  for n in 1 2; do
+    rm -rf "$work/cat$n.gpkg" "$work/cat${n}_tiles" "$work/cat${n}_levels"
+    local start
+    start=$(date +%s.%N)
+    "$tiles" "$dem" "$work/cat$n.gpkg" -tile_size 600 -workers "$n" -tinlod "$tinlod" -q
+    local secs
+    secs=$(echo "$(date +%s.%N) - $start" | bc)
+    echo "$n worker(s): $secs s, $(echo "5764801 / $secs" | bc) cells/s"
+    [[ $n == 1 ]] && t1=$secs || t2=$secs
+  done
+  echo "speed-up on 2 workers: $(echo "scale=3; $t1 / $t2" | bc)x (target 1.7x)"
+}
+
+for part in $parts; do
+  case $part in
+    accuracy)
+      accuracy_case alps4 "$data/alps_2x2_N46E007_N47E008.tif" 1200
+      accuracy_case alps16 "$data/alps_2x2_N46E007_N47E008.tif" 600
+      accuracy_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
+      ;;
+    memory) memory_case ;;
+    throughput) throughput_case ;;
+    *) echo "unknown part $part" >&2; exit 2 ;;
+  esac
+done

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "tinlod/dem.h"
+#include "tinlod/tin.h"
+
+namespace tinlod {
+
+// A tile of a raster cut into tile x tile cells; neighbouring tiles share one column or
+// row of cells, on which both sample every valid cell: the border line.
+struct TileSpec {
+  int size = 0;  // cells per tile side, a multiple of the sampling block
+  int col = 0, row = 0;
+
+  // Tiles across and down a raster of width x height cells.
+  static int count(int cells, int size) { return cells <= 1 ? 1 : (cells - 2) / size + 1; }
+};
+
+// The sides of a tile, by where they lie in its window.
+enum TileSide : int { kFirstCol = 0, kLastCol = 1, kFirstRow = 2, kLastRow = 3 };
+
+// What the simplifier needs to thin a tile's border lines exactly as its neighbours do.
+// A border vertex goes only by the border rule (HierarchyBuilder), which reads the line's
+// own vertices and is the same in both tiles; every level of every tile of a job is made,
+// so each tile has `levels` levels.
+struct TileBorders {
+  int levels = 0;
+  // By side: which of the four level classes thins the line (a line is thinned at levels
+  // 1 + class, 5 + class, ...; the two lines of a tile's pair of opposite sides have
+  // different classes, so no two lines of a tile are thinned at the same level); -1: the
+  // side is the raster's own edge, simplified as in a whole run.
+  std::array<int, 4> lineClass{-1, -1, -1, -1};
+  std::vector<std::int8_t> side;     // by vertex: the shared side it lies on, or -1
+  std::vector<std::uint8_t> pinned;  // by vertex: a border vertex that never goes
+  std::vector<std::uint8_t> nearNodata;  // by cell of the tile: a missing cell of the whole raster is near
+};
+
+// How near (in cells) a missing cell pins a border vertex: a level-0 triangle reaches about
+// two blocks from its vertices, and the nodata filter drops those over missing cells.
+inline int pinningDistance(int block) { return 3 * block; }
+
+// Levels that a whole run with these percentages makes when nothing stops it early.
+int tileLevelCount(double deletePct, double stopPct);
+
+// The tile of `dem`, a window of its raster read with `nearNodata` (by cell of the DEM:
+// some cell of the whole raster within the pinning distance is missing), for `tin`.
+// Vertices at the window's corners, and border vertices near missing cells, are pinned:
+// near nodata, how a tile's level 0 meets its border depends on cells the other tile
+// does not read.
+TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, std::vector<std::uint8_t> nearNodata,
+                        int levels);
+
+}  // namespace tinlod

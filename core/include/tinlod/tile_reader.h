@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "tinlod/dem.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/feedback.h"
+#include "tinlod/height_range.h"
+#include "tinlod/tile_borders.h"
+
+namespace tinlod {
+
+// A tile of a raster, and by each of its cells whether a missing cell of the whole raster
+// lies within `pinningDistance` (read from beyond the tile, so both tiles on a line agree).
+struct TileDem {
+  Dem dem;
+  std::vector<std::uint8_t> nearNodata;
+};
+
+// Width and height of a raster, in cells.
+std::array<int, 2> rasterSize(const std::string& path);
+
+// The window of tile (col, row): tile.size cells from col * size, and the first column of
+// the next tile (which the two share). Throws Error naming -tile when it is outside the grid.
+CellWindow tileWindow(const std::array<int, 2>& raster, const TileSpec& tile);
+
+// Reads the tile. Throws EmptyTile when it holds fewer than 3 valid cells.
+TileDem readTile(const std::string& path, int band, const TileSpec& tile, int pinning, const ProgressRange& progress,
+                 const HeightRange& valid);
+
+}  // namespace tinlod

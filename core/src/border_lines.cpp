@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "border_lines.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+
+namespace tinlod {
+namespace {
+
+std::uint64_t cellKey(int row, int col) { return (std::uint64_t(std::uint32_t(row)) << 32) | std::uint32_t(col); }
+
+}  // namespace
+
+BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& tile) {
+  const std::vector<std::uint8_t>& nearNodata = tile.nearNodata;
+  std::unordered_map<std::uint64_t, VertexId> vertexOf;
+  for (VertexId v = 0; v < base.vertices.size(); ++v)
+    if (tile.side[v] >= 0 || base.vertices[v].row == 0 || base.vertices[v].col == 0 ||
+        base.vertices[v].row == dem.height - 1 || base.vertices[v].col == dem.width - 1)
+      vertexOf.emplace(cellKey(base.vertices[v].row, base.vertices[v].col), v);
+  for (int s = 0; s < 4; ++s) {
+    if (tile.lineClass[s] < 0) continue;
+    Line line;
+    line.lineClass = tile.lineClass[s];
+    const bool column = s == kFirstCol || s == kLastCol;  // a column of cells, ordered by row
+    const int at = s == kFirstCol || s == kFirstRow ? 0 : column ? dem.width - 1 : dem.height - 1;
+    const int n = column ? dem.height : dem.width;
+    for (int i = 0; i < n; ++i) {
+      const int row = column ? i : at, col = column ? at : i;
+      if (!dem.valid(row, col)) continue;
+      const auto found = vertexOf.find(cellKey(row, col));
+      const VertexId v = found == vertexOf.end() ? kNoVertex : found->second;
+      // The cell's place, not its vertex's: the other tile may have left the vertex out.
+      const double along = column ? double(dem.globalRow(row)) : double(dem.globalCol(col));
+      const bool corner = i == 0 || i == n - 1;
+      line.cells.push_back({v, dem.at(row, col), along, corner || nearNodata[std::size_t(row) * dem.width + col] != 0});
+    }
+    lines_.push_back(std::move(line));
+  }
+}
+
+std::vector<std::pair<double, VertexId>> BorderLines::take(int level, double share) {
+  std::vector<std::pair<double, VertexId>> out;
+  for (Line& line : lines_)
+    if ((level - 1) % 4 == line.lineClass) takeFromLine(line, share, out);
+  return out;
+}
+
+void BorderLines::takeFromLine(Line& line, double share, std::vector<std::pair<double, VertexId>>& out) const {
+  std::vector<Cell>& cells = line.cells;
+  const std::size_t n = cells.size();
+  if (n < 3) return;
+  struct Candidate {
+    double deviation;
+    std::size_t at;
+  };
+  std::vector<Candidate> candidates;
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    if (cells[i].pinned) continue;
+    const Cell &a = cells[i - 1], &b = cells[i + 1];
+    const double f = (cells[i].along - a.along) / (b.along - a.along);
+    candidates.push_back({std::fabs(cells[i].z - (a.z + f * (b.z - a.z))), i});
+  }
+  // Ties go to the cell first along the line: nothing but the line decides.
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.deviation < b.deviation; });
+  const std::size_t limit = static_cast<std::size_t>(std::floor(share * double(n - 2)));
+  std::vector<std::uint8_t> blocked(n, 0), gone(n, 0);
+  std::size_t taken = 0;
+  for (const Candidate& c : candidates) {
+    if (taken >= limit) break;
+    if (blocked[c.at]) continue;
+    blocked[c.at] = blocked[c.at - 1] = blocked[c.at + 1] = 1;
+    gone[c.at] = 1;
+    out.emplace_back(c.deviation, cells[c.at].vertex);
+    ++taken;
+  }
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!gone[i]) cells[k++] = cells[i];
+  cells.resize(k);
+}
+
+}  // namespace tinlod

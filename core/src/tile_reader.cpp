@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tinlod/tile_reader.h"
+
+#include <gdal_priv.h>
+
+#include <algorithm>
+
+#include "gdal_handles.h"
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+// Whether a missing cell lies within `reach` cells (either way, on the raster) of each cell
+// on the edge of the window, which sits at (col0, row0) in `wide`; only edge cells are
+// asked (the border lines), so the scan is the window's perimeter times the reach squared.
+std::vector<std::uint8_t> missingNearEdges(const Dem& wide, const CellWindow& w, int col0, int row0, int reach) {
+  std::vector<std::uint8_t> near(static_cast<std::size_t>(w.xsize) * w.ysize, 0);
+  auto test = [&](int r, int c) {
+    for (int dr = -reach; dr <= reach; ++dr)
+      for (int dc = -reach; dc <= reach; ++dc) {
+        const int rr = row0 + r + dr, cc = col0 + c + dc;
+        if (rr >= 0 && cc >= 0 && rr < wide.height && cc < wide.width && !wide.valid(rr, cc)) {
+          near[static_cast<std::size_t>(r) * w.xsize + c] = 1;
+          return;
+        }
+      }
+  };
+  for (int c = 0; c < w.xsize; ++c) test(0, c), test(w.ysize - 1, c);
+  for (int r = 1; r + 1 < w.ysize; ++r) test(r, 0), test(r, w.xsize - 1);
+  return near;
+}
+
+}  // namespace
+
+std::array<int, 2> rasterSize(const std::string& path) {
+  GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  if (!ds) throw Error("cannot open '" + path + "' as a raster: " + CPLGetLastErrorMsg());
+  const std::array<int, 2> size{GDALGetRasterXSize(ds), GDALGetRasterYSize(ds)};
+  GDALClose(ds);
+  return size;
+}
+
+CellWindow tileWindow(const std::array<int, 2>& raster, const TileSpec& tile) {
+  const int across = TileSpec::count(raster[0], tile.size), down = TileSpec::count(raster[1], tile.size);
+  if (tile.col < 0 || tile.row < 0 || tile.col >= across || tile.row >= down)
+    throw Error("-tile " + std::to_string(tile.col) + "," + std::to_string(tile.row) + " is outside the grid: with -tile_size " +
+                std::to_string(tile.size) + " the raster's " + std::to_string(raster[0]) + " x " + std::to_string(raster[1]) +
+                " cells make " + std::to_string(across) + " x " + std::to_string(down) + " tiles, numbered from 0,0");
+  CellWindow w;
+  w.xoff = tile.col * tile.size, w.yoff = tile.row * tile.size;
+  w.xsize = std::min(w.xoff + tile.size, raster[0] - 1) - w.xoff + 1;
+  w.ysize = std::min(w.yoff + tile.size, raster[1] - 1) - w.yoff + 1;
+  w.xsize = std::max(1, std::min(w.xsize, raster[0] - w.xoff));
+  w.ysize = std::max(1, std::min(w.ysize, raster[1] - w.yoff));
+  return w;
+}
+
+TileDem readTile(const std::string& path, int band, const TileSpec& tile, int pinning, const ProgressRange& progress,
+                 const HeightRange& valid) {
+  const std::array<int, 2> raster = rasterSize(path);
+  const CellWindow w = tileWindow(raster, tile);
+  // Read `pinning` cells more on every side the raster goes on, to see missing cells there.
+  CellWindow wide;
+  wide.xoff = std::max(0, w.xoff - pinning), wide.yoff = std::max(0, w.yoff - pinning);
+  wide.xsize = std::min(raster[0], w.xoff + w.xsize + pinning) - wide.xoff;
+  wide.ysize = std::min(raster[1], w.yoff + w.ysize + pinning) - wide.yoff;
+  TileDem t{readDemWindow(path, band, wide, progress, valid), {}};
+  t.nearNodata = missingNearEdges(t.dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff, pinning);
+  cropDem(t.dem, w.xoff - wide.xoff, w.yoff - wide.yoff, w.xsize, w.ysize);
+  const std::size_t count = t.dem.validCount();
+  if (count < 3)
+    throw EmptyTile("tile " + std::to_string(tile.col) + "," + std::to_string(tile.row) + " of '" + path + "' has " +
+                    std::to_string(count) + " valid cell(s)");
+  return t;
+}
+
+}  // namespace tinlod

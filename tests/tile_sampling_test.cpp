@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Tiles sample exactly what a run over the whole raster does: the same random cell of
+// every block and the same jitter, bit for bit, plus every valid cell of the lines they
+// share.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <map>
+#include <set>
+
+#include "test_support.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
+#include "tinlod/sample_job.h"
+#include "tinlod/sampler.h"
+#include "tinlod/tile_reader.h"
+
+namespace tinlod {
+namespace {
+
+const Feedback kQuiet;
+const ProgressRange kRange(kQuiet, 0, 1);
+using Cell = std::pair<std::int64_t, std::int64_t>;  // whole-raster row, column
+
+// A hilly DEM with a void, whose width and height are not multiples of the block.
+Dem wholeDem() {
+  Dem dem = test::makeDem(61, 47, 10, [](int r, int c) {
+    if ((r - 20) * (r - 20) + (c - 33) * (c - 33) < 30) return NAN;
+    return float(100 + 5 * std::sin(r * 0.3) + 3 * std::cos(c * 0.21) + 0.01 * r * c);
+  });
+  dem.window.fullWidth = dem.width, dem.window.fullHeight = dem.height, dem.window.fullGeotransform = dem.geotransform;
+  return dem;
+}
+
+// What readTile would read: the tile's window of `whole`.
+Dem tileOf(const Dem& whole, const TileSpec& tile) {
+  const CellWindow w = tileWindow({whole.width, whole.height}, tile);
+  Dem dem = whole;
+  cropDem(dem, w.xoff, w.yoff, w.xsize, w.ysize);
+  return dem;
+}
+
+std::vector<TileSpec> allTiles(const Dem& whole, int size) {
+  std::vector<TileSpec> tiles;
+  for (int c = 0; c < TileSpec::count(whole.width, size); ++c)
+    for (int r = 0; r < TileSpec::count(whole.height, size); ++r) tiles.push_back({size, c, r});
+  return tiles;
+}
+
+bool onSharedLine(const Dem& whole, int size, const Cell& c) {
+  return (c.first % size == 0 && c.first > 0 && c.first < whole.height - 1) ||
+         (c.second % size == 0 && c.second > 0 && c.second < whole.width - 1);
+}
+
+TEST(TileSampling, TilesSampleTheWholeRunsCellsAndEveryCellOfTheirSharedLines) {
+  const Dem whole = wholeDem();
+  for (int size : {6, 15, 30}) {
+    std::set<Cell> expected;
+    for (const SampleCell& c : sampleCells(whole, 3, 11, kRange)) expected.insert({c.row, c.col});
+    for (int r = 0; r < whole.height; ++r)
+      for (int c = 0; c < whole.width; ++c)
+        if (whole.valid(r, c) && onSharedLine(whole, size, {r, c})) expected.insert({r, c});
+    std::set<Cell> tiled;
+    for (const TileSpec& t : allTiles(whole, size)) {
+      const Dem dem = tileOf(whole, t);
+      for (const SampleCell& c : sampleCells(dem, 3, 11, kRange)) tiled.insert({dem.globalRow(c.row), dem.globalCol(c.col)});
+    }
+    EXPECT_EQ(tiled, expected) << "tile size " << size;
+  }
+}
+
+TEST(TileSampling, OtherSeedPicksOtherCells) {
+  const Dem whole = wholeDem();
+  std::set<Cell> a, b;
+  for (const SampleCell& c : sampleCells(whole, 3, 11, kRange)) a.insert({c.row, c.col});
+  for (const SampleCell& c : sampleCells(whole, 3, 12, kRange)) b.insert({c.row, c.col});
+  EXPECT_NE(a, b);
+}
+
+struct Place {
+  double x, y;
+  bool operator==(const Place& o) const { return std::memcmp(this, &o, sizeof(Place)) == 0; }
+};
+
+std::map<Cell, Place> places(const Dem& dem, const Tin& tin) {
+  std::map<Cell, Place> m;
+  for (const TinVertex& v : tin.vertices) m[{dem.globalRow(v.row), dem.globalCol(v.col)}] = {v.x, v.y};
+  return m;
+}
+
+TEST(TileSampling, VerticesLieExactlyWhereTheWholeRunPutsThemAndBorderVerticesAlikeInBothTiles) {
+  const Dem whole = wholeDem();
+  SampleOptions o;
+  o.seed = 5;
+  o.jitter = 0.9;
+  const int size = 15;
+  const std::map<Cell, Place> wholePlaces = places(whole, sampleTin(whole, o, kRange));
+  std::map<Cell, Place> border;
+  std::size_t compared = 0, shared = 0;
+  for (const TileSpec& t : allTiles(whole, size)) {
+    const Dem dem = tileOf(whole, t);
+    for (const auto& [cell, place] : places(dem, sampleTin(dem, o, kRange))) {
+      if (onSharedLine(whole, size, cell)) {
+        const auto [it, inserted] = border.emplace(cell, place);
+        if (!inserted) {
+          EXPECT_TRUE(it->second == place) << "cell " << cell.first << "," << cell.second;
+          ++shared;
+        }
+        continue;
+      }
+      const auto w = wholePlaces.find(cell);
+      ASSERT_NE(w, wholePlaces.end()) << "cell " << cell.first << "," << cell.second << " is not sampled by the whole run";
+      EXPECT_TRUE(w->second == place) << "cell " << cell.first << "," << cell.second;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 200u);
+  EXPECT_GT(shared, 50u);
+}
+
+TEST(TileWindow, TilesShareOneLineAndCoverTheRaster) {
+  EXPECT_EQ(TileSpec::count(10, 3), 3);
+  EXPECT_EQ(TileSpec::count(11, 3), 4);
+  EXPECT_EQ(TileSpec::count(1, 3), 1);
+  const CellWindow last = tileWindow({11, 7}, {3, 3, 1});
+  EXPECT_EQ(last.xoff, 9);
+  EXPECT_EQ(last.xsize, 2);
+  EXPECT_EQ(last.yoff, 3);
+  EXPECT_EQ(last.ysize, 4);
+  EXPECT_THROW(tileWindow({11, 7}, {3, 4, 0}), Error);
+}
+
+}  // namespace
+}  // namespace tinlod

@@ -1,0 +1,192 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Checks that the tiles of a tiled tinlod run fit together at every level.
+
+    tile_union.py [--whole WHOLE.gpkg] [--json OUT.json] TILE.gpkg ...
+
+For each level k, over the union of the tiles' level k:
+- every triangle is counter-clockwise with a positive area;
+- no directed edge is in two triangles (so no edge is in more than two, and no two
+  triangles overlap along an edge);
+- a vertex of one tile on a shared border line sits at exactly the same x and y in every
+  tile that has it (the same cell of the whole raster);
+- no crack: no edge on a shared border line has a vertex of the union strictly inside it
+  (a T-junction, where one tile kept a vertex the other deleted).
+With --whole (a run over the whole raster with the same options), each level's area and
+its pooled RMSE and maximum error against the DEM are compared with the whole run's.
+Exit status 1 when any tile union is not conforming.  Reads the GeoPackages with sqlite3
+and osgeo (for the metadata), nothing else.
+"""
+import argparse
+import json
+import math
+import sqlite3
+import struct
+import sys
+
+from osgeo import gdal
+
+
+def metadata(path):
+    ds = gdal.OpenEx(path, gdal.OF_VECTOR)
+    if ds is None:
+        raise SystemExit(f"cannot open {path}")
+    return ds.GetMetadata()
+
+
+def point_xy(blob):
+    """x and y of a GeoPackage point blob (header, optional envelope, WKB point)."""
+    flags = blob[3]
+    envelope = {0: 0, 1: 32, 2: 48, 3: 48, 4: 64}[(flags >> 1) & 7]
+    wkb = 8 + envelope
+    order = "<" if blob[wkb] == 1 else ">"
+    return struct.unpack_from(order + "dd", blob, wkb + 5)
+
+
+class Tile:
+    def __init__(self, path):
+        self.path = path
+        md = metadata(path)
+        xoff, yoff, xsize, ysize = (int(v) for v in md["TINLOD_TILE_WINDOW"].split(","))
+        self.window = (xoff, yoff, xsize, ysize)
+        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+        self.key = {}  # vertex id -> global (row, col)
+        self.xy = {}
+        for vid, row, col, geom in db.execute("SELECT id, row, col, geom FROM vertices"):
+            self.key[vid] = (row + yoff, col + xoff)
+            self.xy[vid] = point_xy(geom)
+        self.triangles = db.execute("SELECT v0, v1, v2, first_level, last_level FROM triangles").fetchall()
+        self.levels = {r[0]: r[1:] for r in db.execute("SELECT level, vertices, triangles, max_error, rmse, cells FROM levels")}
+        db.close()
+
+    def on_line(self, key):
+        """The shared border lines (by whole-raster column or row) a cell lies on."""
+        return key
+
+
+def level_triangles(tile, k):
+    return [t[:3] for t in tile.triangles if t[3] <= k <= t[4]]
+
+
+def check_level(tiles, k, lines_col, lines_row):
+    problems = []
+    directed = set()
+    xy_of = {}
+    area = 0.0
+    used = set()
+    line_edges = []
+    for tile in tiles:
+        for v0, v1, v2 in level_triangles(tile, k):
+            ids = (v0, v1, v2)
+            keys = [tile.key[v] for v in ids]
+            pts = [tile.xy[v] for v in ids]
+            a = 0.5 * ((pts[1][0] - pts[0][0]) * (pts[2][1] - pts[0][1]) - (pts[2][0] - pts[0][0]) * (pts[1][1] - pts[0][1]))
+            if not a > 0:
+                problems.append(f"level {k}: triangle {keys} in {tile.path} is not counter-clockwise (area {a})")
+            area += a
+            for i in range(3):
+                key, p = keys[i], pts[i]
+                used.add(key)
+                if xy_of.setdefault(key, p) != p:
+                    problems.append(f"level {k}: the vertex of cell {key} lies at {p} in {tile.path} and at {xy_of[key]} elsewhere")
+                e = (keys[i], keys[(i + 1) % 3])
+                if e in directed:
+                    problems.append(f"level {k}: edge {e} is in two triangles of the same orientation (an overlap)")
+                directed.add(e)
+    # Edges on a shared border line: none may pass over another vertex of the union.
+    on_col = {}
+    on_row = {}
+    for key in used:
+        if key[1] in lines_col:
+            on_col.setdefault(key[1], []).append(key[0])
+        if key[0] in lines_row:
+            on_row.setdefault(key[0], []).append(key[1])
+    for d in (on_col, on_row):
+        for v in d.values():
+            v.sort()
+    import bisect
+    for a, b in directed:
+        for line, idx, other, d in ((a[1], 0, 1, on_col), (a[0], 1, 0, on_row)):
+            if a[other] == b[other] and a[other] == line and line in d:
+                lo, hi = sorted((a[idx], b[idx]))
+                cells = d[line]
+                i = bisect.bisect_right(cells, lo)
+                if i < len(cells) and cells[i] < hi:
+                    problems.append(f"level {k}: edge {a}-{b} on a tile border passes over the vertex at {(cells[i], line) if idx == 0 else (line, cells[i])} (a crack)")
+    return problems, area, len(used), sum(1 for _ in directed) // 1
+
+
+def pooled(tiles, k):
+    cells = sum(t.levels[k][4] for t in tiles)
+    ss = sum(t.levels[k][3] ** 2 * t.levels[k][4] for t in tiles)
+    return math.sqrt(ss / cells) if cells else 0.0, max(t.levels[k][2] for t in tiles)
+
+
+def whole_area(path, k):
+    db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    xy = {vid: point_xy(g) for vid, g in db.execute("SELECT id, geom FROM vertices")}
+    area = 0.0
+    for v0, v1, v2 in db.execute("SELECT v0, v1, v2 FROM triangles WHERE first_level <= ? AND last_level >= ?", (k, k)):
+        p, q, r = xy[v0], xy[v1], xy[v2]
+        area += 0.5 * ((q[0] - p[0]) * (r[1] - p[1]) - (r[0] - p[0]) * (q[1] - p[1]))
+    levels = {r[0]: r[1:] for r in db.execute("SELECT level, vertices, triangles, max_error, rmse, cells FROM levels")}
+    db.close()
+    return area, levels
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--whole")
+    ap.add_argument("--json")
+    ap.add_argument("--levels", help="comma-separated levels to check (default: all)")
+    ap.add_argument("tiles", nargs="+")
+    args = ap.parse_args()
+    tiles = [Tile(p) for p in args.tiles]
+    counts = {len(t.levels) for t in tiles}
+    if len(counts) != 1:
+        print(f"FAILED: the tiles have different numbers of levels: {sorted(counts)}")
+        return 1
+    nlevels = counts.pop()
+    lines_col = {t.window[0] for t in tiles if t.window[0] > 0}
+    lines_row = {t.window[1] for t in tiles if t.window[1] > 0}
+    wanted = range(nlevels) if not args.levels else [int(x) for x in args.levels.split(",")]
+    report = []
+    failed = False
+    for k in wanted:
+        problems, area, vertices, _ = check_level(tiles, k, lines_col, lines_row)
+        rmse, maxe = pooled(tiles, k)
+        row = {"level": k, "vertices": vertices, "triangles": sum(len(level_triangles(t, k)) for t in tiles),
+               "area": area, "rmse": rmse, "max_error": maxe, "problems": len(problems)}
+        if args.whole:
+            warea, wl = whole_area(args.whole, k) if k in whole_levels_cache(args.whole) else (float("nan"), {})
+            if wl:
+                row.update({"whole_vertices": wl[k][0], "whole_area": warea, "whole_rmse": wl[k][3], "whole_max_error": wl[k][2]})
+        report.append(row)
+        for p in problems[:10]:
+            print("  " + p)
+        failed |= bool(problems)
+        line = f"level {k:2d}: {vertices} vertices, {row['triangles']} triangles, conforming={'no' if problems else 'yes'}, rmse {rmse:.3f} m, max {maxe:.2f} m"
+        if "whole_rmse" in row:
+            line += (f" | whole: {row['whole_vertices']} vertices, rmse {row['whole_rmse']:.3f} m, max {row['whole_max_error']:.2f} m,"
+                     f" area ratio {area / row['whole_area']:.6f}")
+        print(line, flush=True)
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(report, f, indent=1)
+    print("FAILED: the tiles do not fit together" if failed else "OK: every level checked is conforming")
+    return 1 if failed else 0
+
+
+_levels_cache = {}
+
+
+def whole_levels_cache(path):
+    if path not in _levels_cache:
+        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+        _levels_cache[path] = {r[0] for r in db.execute("SELECT level FROM levels")}
+        db.close()
+    return _levels_cache[path]
+
+
+if __name__ == "__main__":
+    sys.exit(main())
