@@ -12,6 +12,7 @@
 #include "layer_source.h"
 #include "layer_transform.h"
 #include "point_geometry.h"
+#include "point_surface.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_locator.h"
@@ -45,7 +46,7 @@ bool pointOf(const OGRFeature& f, const std::string& path, double& x, double& y)
   return true;
 }
 
-OGRLayer* createPointsLayer(GpkgOutput& out, OGRLayer& source) {
+OGRLayer* createPointsLayer(GpkgOutput& out, OGRLayer& source, bool tiled) {
   const OGRSpatialReference* srs = source.GetSpatialRef();
   const std::string wkt = srs ? wkt2(*srs) : std::string();
   OGRLayer* layer = out.createLayer("points", source.GetGeomType(), wkt, {});  // as the points are stored
@@ -53,10 +54,13 @@ OGRLayer* createPointsLayer(GpkgOutput& out, OGRLayer& source) {
   for (int i = 0; i < defn->GetFieldCount(); ++i)
     if (layer->CreateField(defn->GetFieldDefn(i)) != OGRERR_NONE)
       throw Error("cannot copy the field '" + std::string(defn->GetFieldDefn(i)->GetNameRef()) + "' of the points");
-  for (const char* name : {"elevation", "triangle"}) {
+  std::vector<const char*> added{"elevation", "triangle"};
+  if (tiled) added.push_back("tile");  // a catalogue's triangle ids are its tile's
+  for (const char* name : added) {
     if (defn->GetFieldIndex(name) >= 0)
       throw Error("the points already have a field '" + std::string(name) + "': rename it first");
-    OGRFieldDefn field(name, std::string(name) == "elevation" ? OFTReal : OFTInteger);
+    const std::string n = name;
+    OGRFieldDefn field(name, n == "elevation" ? OFTReal : n == "tile" ? OFTString : OFTInteger);
     layer->CreateField(&field);
   }
   return layer;
@@ -77,22 +81,22 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   OutputFiles files(overwrite, datasetFiles({hierarchyPath, pointsPath}));
   const StagedFile& staged = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
-  const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.4));
-  const Hierarchy& h = stored.hierarchy;
-  if (level == -1) level = h.coarsest(), writeOptions.metadata["TINLOD_LEVEL"] = std::to_string(level);  // as accuracy's -level
-  if (level < 0 || level > h.coarsest())
+  PointSurface surface(hierarchyPath, all.sub(0, 0.4));
+  if (level == -1) level = surface.coarsest(), writeOptions.metadata["TINLOD_LEVEL"] = std::to_string(level);  // as accuracy's -level
+  if (level < 0 || level > surface.coarsest())
     throw Error("-level " + std::to_string(level) + " does not exist: '" + hierarchyPath + "' has levels 0 to " +
-                std::to_string(h.coarsest()));
+                std::to_string(surface.coarsest()));
   const OpenLayer open = openLayer(pointsPath, "points");
   OGRLayer& source = *open.layer;
   checkPointLayer(source, "points", open.path);
-  const auto transform = transformToTin(source, h.base.crsWkt, "points ('" + pointsPath + "')", all);
-  const HierarchyLocator locator(h);
+  const auto transform = transformToTin(source, surface.crsWkt(), "points ('" + pointsPath + "')", all);
 
   GpkgOutput out(staged, writeOptions, [](const std::string& name) { return name == "points"; });
-  OGRLayer* layer = createPointsLayer(out, source);
+  OGRLayer* layer = createPointsLayer(out, source, surface.tiled());
   const int elevation = layer->GetLayerDefn()->GetFieldIndex("elevation");
   const int triangle = layer->GetLayerDefn()->GetFieldIndex("triangle");
+  const int tileField = layer->GetLayerDefn()->GetFieldIndex("tile");
+  std::string tile;
   out.begin();
   LocateSummary s;
   s.level = level;
@@ -104,11 +108,12 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
     double x, y;
     if (pointOf(*f, open.path, x, y) && (!transform || transform->Transform(1, &x, &y))) {
       const auto start = std::chrono::steady_clock::now();
-      const LocatedPoint p = locator.locate(x, y, level);
+      const LocatedPoint p = surface.locate(x, y, level, tile);
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (p.found()) {
         copy.SetField(elevation, p.z);
         copy.SetField(triangle, static_cast<GIntBig>(p.triangle) + 1);
+        if (tileField >= 0) copy.SetField(tileField, tile.c_str());
         ++s.located;
       }
     }

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "point_surface.h"
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+constexpr std::size_t kTilesKept = 4;
+
+}  // namespace
+
+PointSurface::PointSurface(const std::string& path, const ProgressRange& progress) : progress_(progress) {
+  if (isCatalogue(path)) {
+    tiles_ = readCatalogue(path);
+    const Loaded& first = load(0);
+    coarsest_ = first.stored->hierarchy.coarsest();
+    crsWkt_ = first.stored->hierarchy.base.crsWkt;
+    return;
+  }
+  loaded_.push_front({0, std::make_unique<StoredHierarchy>(readHierarchy(path, progress)), nullptr});
+  loaded_.front().locator = std::make_unique<HierarchyLocator>(loaded_.front().stored->hierarchy);
+  coarsest_ = loaded_.front().stored->hierarchy.coarsest();
+  crsWkt_ = loaded_.front().stored->hierarchy.base.crsWkt;
+}
+
+PointSurface::Loaded& PointSurface::load(std::size_t tile) {
+  for (auto it = loaded_.begin(); it != loaded_.end(); ++it)
+    if (it->tile == tile) {
+      loaded_.splice(loaded_.begin(), loaded_, it);
+      return loaded_.front();
+    }
+  if (loaded_.size() >= kTilesKept) loaded_.pop_back();
+  auto stored = std::make_unique<StoredHierarchy>(readHierarchy(tiles_[tile].file, ProgressRange(Feedback{}, 0, 1)));
+  if (!loaded_.empty() && stored->hierarchy.coarsest() != coarsest_)
+    throw Error("tile " + tiles_[tile].name + " ('" + tiles_[tile].file + "') has levels 0 to " +
+                std::to_string(stored->hierarchy.coarsest()) + ", the catalogue's other tiles 0 to " +
+                std::to_string(coarsest_) + ": they were not built by one job");
+  loaded_.push_front({tile, std::move(stored), nullptr});
+  loaded_.front().locator = std::make_unique<HierarchyLocator>(loaded_.front().stored->hierarchy);
+  return loaded_.front();
+}
+
+LocatedPoint PointSurface::locate(double x, double y, int level, std::string& tile) {
+  tile.clear();
+  if (!tiled()) return loaded_.front().locator->locate(x, y, level);
+  // Tiles share their border lines: a point there is in either, with the same height.
+  for (std::size_t t = 0; t < tiles_.size(); ++t) {
+    const auto& b = tiles_[t].box;
+    if (x < b[0] || x > b[2] || y < b[1] || y > b[3]) continue;
+    const LocatedPoint p = load(t).locator->locate(x, y, level);
+    if (p.found()) {
+      tile = tiles_[t].name;
+      return p;
+    }
+  }
+  return {};
+}
+
+}  // namespace tinlod

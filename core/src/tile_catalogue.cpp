@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "tile_catalogue.h"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+struct Closer {
+  void operator()(GDALDataset* ds) const { GDALClose(ds); }
+};
+using Dataset = std::unique_ptr<GDALDataset, Closer>;
+
+Dataset openVector(const std::string& path) {
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  CPLPopErrorHandler();
+  return Dataset(ds);
+}
+
+}  // namespace
+
+bool isCatalogue(const std::string& path) {
+  const std::filesystem::path p(path);
+  if (!std::filesystem::is_regular_file(p)) return false;
+  const Dataset ds = openVector(path);
+  const char* kind = ds ? ds->GetMetadataItem("TINLOD_KIND") : nullptr;
+  return kind && std::string(kind) == "catalogue";
+}
+
+std::vector<CatalogueTile> readCatalogue(const std::string& path) {
+  const Dataset ds = openVector(path);
+  OGRLayer* layer = ds ? ds->GetLayerByName("tiles") : nullptr;
+  if (!layer) throw Error("'" + path + "' is not a tinlod-tiles catalogue: it has no 'tiles' layer");
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::vector<CatalogueTile> tiles;
+  for (auto& f : *layer) {
+    if (std::string(f->GetFieldAsString("status")) != "done") continue;
+    const OGRGeometry* g = f->GetGeometryRef();
+    if (!g) continue;
+    OGREnvelope e;
+    g->getEnvelope(&e);
+    CatalogueTile t;
+    t.name = std::to_string(f->GetFieldAsInteger("tile_col")) + "," + std::to_string(f->GetFieldAsInteger("tile_row"));
+    const std::filesystem::path file = f->GetFieldAsString("file");
+    t.file = (file.is_absolute() ? file : folder / file).string();
+    t.box = {e.MinX, e.MinY, e.MaxX, e.MaxY};
+    tiles.push_back(std::move(t));
+  }
+  if (tiles.empty()) throw Error("the catalogue '" + path + "' has no finished tile: run tinlod tiles on it first");
+  return tiles;
+}
+
+}  // namespace tinlod

@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace tinlod {
+
+// A finished tile of a catalogue written by tinlod-tiles: its hierarchy file and extent.
+struct CatalogueTile {
+  std::string name;  // "C,R"
+  std::string file;  // resolved against the catalogue's folder
+  std::array<double, 4> box;  // min x, min y, max x, max y in the TIN's CRS
+};
+
+// Whether `path` is a tinlod-tiles catalogue (its metadata says so).
+bool isCatalogue(const std::string& path);
+
+// The catalogue's finished tiles (status 'done'). Throws Error when it has none.
+std::vector<CatalogueTile> readCatalogue(const std::string& path);
+
+}  // namespace tinlod
