@@ -79,6 +79,16 @@ def rows(catalogue):
     return found, names, dict(dataset.GetMetadata_Dict())
 
 
+def tile_box(catalogue, tile, inset):
+    """The catalogue's extent of a tile, shrunk by `inset` on every side."""
+    dataset = ogr.Open(catalogue)
+    layer = dataset.GetLayerByName("tiles")
+    layer.SetAttributeFilter("tile_col = %d AND tile_row = %d" % tile)
+    feature = layer.GetNextFeature()  # held: the geometry dies with it
+    minx, maxx, miny, maxy = feature.GetGeometryRef().GetEnvelope()
+    return minx + inset, miny + inset, maxx - inset, maxy - inset
+
+
 def level_count(path, layer_name):
     dataset = ogr.Open(path)
     return dataset.GetLayerByName(layer_name).GetFeatureCount()
@@ -196,6 +206,12 @@ def main(tinlod, tiles, standin):
         merged = run([tiles, "merge", catalogue, "-level", str(level), out])
         check("(d) merge -level %d gives one layer of the %d triangles" % (level, expected),
               merged.returncode == 0 and level_count(out, "level_%d" % level) == expected, merged.stderr)
+    box = tile_box(catalogue, (0, 0), inset=1.0)
+    corner = os.path.join(work, "corner.gpkg")
+    region = run([tiles, "merge", catalogue, "-level", "1", corner, "-te"] + ["%.3f" % v for v in box])
+    expected = level_count(os.path.join(work, "a_tiles", "tile_0_0.gpkg"), "level_1")
+    check("(d) merge -te of a box inside tile 0,0 holds that tile's %d triangles only" % expected,
+          region.returncode == 0 and level_count(corner, "level_1") == expected, region.stderr)
     beyond = run([tiles, "merge", catalogue, "-level", str(levels), os.path.join(work, "m.gpkg")])
     check("(d) merge refuses a level the tiles do not have", beyond.returncode == 1 and "-level" in beyond.stderr,
           beyond.stderr)

@@ -17,7 +17,8 @@ catalogue GeoPackage lists the tiles and their status. A rerun resumes: finished
 skipped. Each level across the tiles is one layer: <stem>_levels/level_K.vrt.
 
 Usage: tinlod-tiles DEM CATALOGUE.gpkg -tile_size N [options] [-- build options]
-       tinlod-tiles merge CATALOGUE.gpkg -level K OUT.gpkg [-overwrite] [-q]
+       tinlod-tiles merge CATALOGUE.gpkg -level K OUT.gpkg [-te xmin ymin xmax ymax]
+                          [-overwrite] [-q]
 
 Tiles:
   -tile_size N     cells per tile side, a multiple of the build's -block (default 3);
@@ -34,6 +35,9 @@ Tiles:
 
 Merge:
   -level K         merge: the level to merge, 0 to the catalogue's TINLOD_LEVELS - 1
+  -te xmin ymin xmax ymax
+                   merge: only the tiles whose extent meets this box (in the catalogue's
+                   CRS), a region of a large job
 
 General:
   -overwrite       start again: replace the catalogue, its tiles and level files
@@ -70,6 +74,7 @@ class MergeArguments:
     catalogue: str
     level: int
     out: str
+    extent: tuple = None  # (xmin, ymin, xmax, ymax): only the tiles meeting it
     overwrite: bool = False
     quiet: bool = False
 
@@ -81,16 +86,18 @@ def whole_number(text, option, least):
 
 
 def split_options(args, valued, flags):
-    """(positionals, {option: value or True}) of args, gdal-style."""
+    """(positionals, {option: value, values or True}) of args, gdal-style; `valued` maps an
+    option to the count of values it takes."""
     positionals, options = [], {}
     i = 0
     while i < len(args):
         arg = args[i]
         if arg in valued:
-            if i + 1 >= len(args):
-                raise TilesError("%s needs a value" % arg)
-            options[arg] = args[i + 1]
-            i += 2
+            count = valued[arg]
+            if i + count >= len(args):
+                raise TilesError("%s needs %d value%s" % (arg, count, "s" if count > 1 else ""))
+            options[arg] = args[i + 1] if count == 1 else args[i + 1: i + 1 + count]
+            i += 1 + count
             continue
         if arg in flags:
             options[arg] = True
@@ -104,8 +111,8 @@ def split_options(args, valued, flags):
 
 def parse_run(args):
     ours, build_options = (args[: args.index("--")], args[args.index("--") + 1:]) if "--" in args else (args, [])
-    positionals, options = split_options(ours, ("-tile_size", "-workers", "-scheduler", "-retries", "-tinlod"),
-                                         ("-overwrite", "-q"))
+    positionals, options = split_options(ours, dict.fromkeys(("-tile_size", "-workers", "-scheduler", "-retries",
+                                                              "-tinlod"), 1), ("-overwrite", "-q"))
     if len(positionals) != 2:
         raise TilesError("give the DEM and the catalogue: tinlod-tiles DEM CATALOGUE.gpkg -tile_size N")
     if "-tile_size" not in options:
@@ -193,9 +200,9 @@ def find_tinlod(given):
 
 
 def parse_merge(args):
-    positionals, options = split_options(args, ("-level",), ("-overwrite", "-q"))
+    positionals, options = split_options(args, {"-level": 1, "-te": 4}, ("-overwrite", "-q"))
     if len(positionals) != 2 or "-level" not in options:
-        raise TilesError("usage: tinlod-tiles merge CATALOGUE.gpkg -level K OUT.gpkg")
+        raise TilesError("usage: tinlod-tiles merge CATALOGUE.gpkg -level K OUT.gpkg [-te xmin ymin xmax ymax]")
     catalogue, out = positionals
     if not os.path.isfile(catalogue):
         raise TilesError("CATALOGUE %s does not exist" % catalogue)
@@ -203,4 +210,17 @@ def parse_merge(args):
     if os.path.abspath(out) == os.path.abspath(catalogue):
         raise TilesError("OUT %s is the catalogue itself: name another file" % out)
     return MergeArguments(catalogue, whole_number(options["-level"], "-level", 0), out,
+                          extent(options["-te"]) if "-te" in options else None,
                           "-overwrite" in options, "-q" in options)
+
+
+def extent(values):
+    """-te xmin ymin xmax ymax, in the catalogue's CRS."""
+    try:
+        xmin, ymin, xmax, ymax = (float(v) for v in values)
+    except ValueError:
+        raise TilesError("-te %s: give four numbers, xmin ymin xmax ymax in the catalogue's CRS"
+                         % " ".join(values)) from None
+    if not (xmin < xmax and ymin < ymax):
+        raise TilesError("-te %s: xmin must be below xmax and ymin below ymax" % " ".join(values))
+    return xmin, ymin, xmax, ymax

@@ -95,6 +95,13 @@ class Catalogue:
         """One field of one tile (None when null)."""
         return feature_values(self.feature(col, row))[name]
 
+    def tiles_meeting(self, extent):
+        """(col, row) of the tiles whose extent meets (xmin, ymin, xmax, ymax)."""
+        self.layer.SetSpatialFilterRect(*extent)
+        found = {(f["tile_col"], f["tile_row"]) for f in self.layer}
+        self.layer.SetSpatialFilter(None)
+        return found
+
     def extent_in_layer_srs(self, polygon, srs):
         """A tile's extent in the catalogue's CRS (the same, unless the core chose another)."""
         polygon = polygon.Clone()

@@ -10,12 +10,14 @@ from .catalogue import Catalogue, levels_folder
 from .errors import TilesError
 
 
-def built_tile_files(catalogue, catalogue_path):
-    """The catalogue's done tiles' files, as absolute paths, row by row."""
+def built_tile_files(catalogue, catalogue_path, extent=None):
+    """The catalogue's done tiles' files, as absolute paths, row by row; with an extent
+    (xmin, ymin, xmax, ymax), only those of the tiles meeting it."""
     base = os.path.dirname(os.path.abspath(catalogue_path))
     rows = catalogue.rows()
+    meeting = catalogue.tiles_meeting(extent) if extent else set(rows)
     return [os.path.join(base, rows[key]["file"]) for key in sorted(rows, key=lambda k: (k[1], k[0]))
-            if rows[key]["status"] == "done" and rows[key]["file"]]
+            if rows[key]["status"] == "done" and rows[key]["file"] and key in meeting]
 
 
 def union_vrt(level, files, vrt_folder=None):
@@ -51,16 +53,19 @@ def write_level_vrts(catalogue, catalogue_path, levels):
     return paths
 
 
-def merge_level(catalogue_path, level, out_path, overwrite):
-    """The tiles' level `level` merged into one layer `level_K` of a new GeoPackage."""
+def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
+    """The tiles' level `level` (of the tiles meeting `extent`, if given) merged into one
+    layer `level_K` of a new GeoPackage."""
     catalogue = Catalogue.open(catalogue_path)
     levels = int(catalogue.setting("TINLOD_LEVELS") or 0)
     if not 0 <= level < levels:
         raise TilesError("-level %d: the catalogue's tiles have levels 0 to %d" % (level, levels - 1)
                          if levels else "-level: %s has no finished tile yet; run tinlod-tiles on it first"
                          % catalogue_path)
-    files = built_tile_files(catalogue, catalogue_path)
+    files = built_tile_files(catalogue, catalogue_path, extent)
     catalogue.close()
+    if not files:
+        raise TilesError("-te: no finished tile meets %s" % " ".join("%g" % v for v in extent))
     if os.path.exists(out_path) and not overwrite:
         raise TilesError("%s exists: add -overwrite to replace it" % out_path)
     source = "/vsimem/tinlod_tiles_merge_%d.vrt" % os.getpid()
