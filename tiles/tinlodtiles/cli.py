@@ -23,6 +23,10 @@ def main(args):
     except TilesError as e:
         print("ERROR: %s" % e, file=sys.stderr)
         return 1
+    except KeyboardInterrupt:  # outside the tiles' loop: the catalogue holds what finished
+        print("ERROR: stopped before the end; the catalogue keeps the tiles finished so far: run again to "
+              "resume", file=sys.stderr)
+        return STOPPED_EXIT_CODE
     except RuntimeError as e:  # GDAL's own errors
         print("ERROR: %s" % e, file=sys.stderr)
         return 1

@@ -120,26 +120,24 @@ def pending_tiles(catalogue, tiles, catalogue_path):
 def run_tiles(catalogue, pending, arguments):
     """One task per pending tile; the catalogue follows their futures. Returns the count of
     tiles per status."""
-    import distributed  # only a run with tiles to build needs Dask
-
+    distributed = import_dask()
     outcome = {}
     progress = Progress(len(pending), arguments.quiet)
     client, cluster = start_client(distributed, arguments)
     futures = {}
     try:
-        futures = submit(client, distributed, pending, arguments)
+        futures = submit(client, pending, arguments)
         for future in distributed.as_completed(list(futures)):
             tile = futures.pop(future)
             status = record(catalogue, tile, future, arguments.catalogue)
             outcome[status] = outcome.get(status, 0) + 1
             progress.tile(tile.col, tile.row, status)
     except KeyboardInterrupt:
-        progress.end()
         client.cancel(list(futures))
+        raise TilesStopped(len(futures)) from None
+    finally:
+        progress.end()
         stop(client, cluster)
-        raise TilesStopped(len(futures))
-    progress.end()
-    stop(client, cluster)
     return outcome
 
 
@@ -147,25 +145,34 @@ class TilesStopped(Exception):
     """Ctrl-C: the tiles not yet finished stay pending in the catalogue."""
 
 
-def start_client(distributed, arguments):
+def import_dask():
+    """Only a run with tiles to build needs Dask."""
     try:
-        if arguments.scheduler:
-            return distributed.Client(arguments.scheduler, timeout="20s"), None
-        # The workers inherit Ctrl-C ignored: the terminal sends it to them too, and the
-        # driver alone should stop the run (it closes the cluster, ending their tasks).
-        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        import distributed
+    except ImportError:
+        raise TilesError("Dask is not installed: apt install python3-distributed") from None
+    return distributed
+
+
+def start_client(distributed, arguments):
+    if arguments.scheduler:
         try:
-            cluster = distributed.LocalCluster(n_workers=arguments.workers, threads_per_worker=1, processes=True,
-                                               dashboard_address=None, silence_logs=logging.ERROR)
-        finally:
-            signal.signal(signal.SIGINT, previous)
-        return distributed.Client(cluster), cluster
-    except OSError as e:
-        raise TilesError("cannot reach the Dask scheduler %s (%s): is `dask scheduler` running there?"
-                         % (arguments.scheduler, e)) from None
+            return distributed.Client(arguments.scheduler, timeout="20s"), None
+        except OSError as e:
+            raise TilesError("cannot reach the Dask scheduler %s (%s): is `dask scheduler` running there?"
+                             % (arguments.scheduler, e)) from None
+    # The workers inherit Ctrl-C ignored: the terminal sends it to them too, and the driver
+    # alone should stop the run (it closes the cluster, ending their tasks).
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        cluster = distributed.LocalCluster(n_workers=arguments.workers, threads_per_worker=1, processes=True,
+                                           dashboard_address=None, silence_logs=logging.ERROR)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    return distributed.Client(cluster), cluster
 
 
-def submit(client, distributed, pending, arguments):
+def submit(client, pending, arguments):
     """The tasks, their code shipped by value so that a remote worker needs only tinlod."""
     import cloudpickle
 
