@@ -6,7 +6,7 @@
 #     union is conforming, and its accuracy (pooled RMSE and maximum error against the DEM,
 #     from the tiles' levels tables) against a whole-raster run with the same options, at
 #     the coarsest level and at the whole run's level nearest in vertex count;
-#  2. the peak memory of one 4096 x 4096 tile (tile 0,0 of a synthetic 8193 x 8193 DEM);
+#  2. the peak memory of one tile of 4096 x 4096 cells (-tile_size 4095, tile 0,0 of a synthetic 8193 x 8193 DEM);
 #  3. with tinlod-tiles (Dask): cells per second on 1 and on 2 workers (alps_2x2, 16 tiles).
 # Usage: bash bench/tiles_bench.sh [parts...]   (parts: accuracy memory throughput; default all)
 # Environment: TINLOD (default build/core/tinlod), TINLOD_TILES (default build/tiles/tinlod-tiles),
@@ -72,9 +72,9 @@ PY
 memory_case() {
   local dem=$work/synthetic_8193.tif
   [[ -f $dem ]] || "$tinlod" makedem "$dem" -size 8193 8193 -cell 10 -q
-  echo "== one 4096 x 4096 tile (4097 x 4097 cells read) of a synthetic 8193 x 8193 DEM"
+  echo "== one tile of 4096 x 4096 cells (-tile_size 4095 and the shared line) of a synthetic 8193 x 8193 DEM"
   /usr/bin/time -f "tile 0,0: %e s, peak %M KB (target: 1 GB)" "$tinlod" build "$dem" "$work/big_tile.gpkg" \
-    -tile_size 4096 -tile 0,0 -q -overwrite
+    -tile_size 4095 -tile 0,0 -q -overwrite
 }
 
 throughput_case() {

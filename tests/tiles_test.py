@@ -62,13 +62,25 @@ def make_mosaic(dem, work):
     return path
 
 
-def tinlod_for_tiles(tinlod, standin, env):
-    """The real tinlod once it knows -tile_size, else the stand-in over it."""
-    if "-tile_size" in subprocess.run([tinlod, "build", "--help"], capture_output=True, text=True).stdout:
-        return tinlod
-    print("note: %s has no -tile_size yet; the stand-in %s cuts the tiles" % (tinlod, standin))
-    env["TINLOD_STANDIN_REAL"] = tinlod
-    return standin
+def write_points(path, points, like):
+    """Points in the CRS of the catalogue's tiles layer."""
+    srs = ogr.Open(like).GetLayerByName("tiles").GetSpatialRef()
+    out = ogr.GetDriverByName("GPKG").CreateDataSource(path)
+    layer = out.CreateLayer("points", srs, ogr.wkbPoint)
+    for x, y in points:
+        f = ogr.Feature(layer.GetLayerDefn())
+        g = ogr.Geometry(ogr.wkbPoint)
+        g.AddPoint_2D(x, y)
+        f.SetGeometry(g)
+        layer.CreateFeature(f)
+    out = None
+
+
+def point_values(path):
+    """(elevation, tile or None) of each point, in order."""
+    layer = ogr.Open(path).GetLayerByName("points")
+    has_tile = layer.GetLayerDefn().GetFieldIndex("tile") >= 0
+    return [(f["elevation"], f["tile"] if has_tile else None) for f in layer]
 
 
 def rows(catalogue):
@@ -119,7 +131,7 @@ def check_complete(catalogue, label):
     return found, metadata
 
 
-def main(tinlod, tiles, standin):
+def main(tinlod, tiles):
     try:
         import distributed  # noqa: F401
     except ImportError:
@@ -128,7 +140,7 @@ def main(tinlod, tiles, standin):
     work = tempfile.mkdtemp(prefix="tinlod_tiles_test_")
     env = dict(os.environ)
     env.pop("TINLOD_TILES_TEST_KILL", None)
-    program = tinlod_for_tiles(tinlod, standin, env)
+    program = tinlod
     dem = os.path.join(work, "dem.tif")
     make_dem(tinlod, dem)
     base = [tiles, dem]
@@ -216,6 +228,22 @@ def main(tinlod, tiles, standin):
     check("(d) merge refuses a level the tiles do not have", beyond.returncode == 1 and "-level" in beyond.stderr,
           beyond.stderr)
 
+    # (e) locate takes the catalogue: a point inside a tile gets that tile's height.
+    points = os.path.join(work, "points.gpkg")
+    box00 = tile_box(catalogue, (0, 0), inset=1.0)
+    box10 = tile_box(catalogue, (1, 0), inset=1.0)
+    centres = [((b[0] + b[2]) / 2, (b[1] + b[3]) / 2) for b in (box00, box10)]
+    write_points(points, centres, catalogue)
+    via_catalogue = run([tinlod, "locate", catalogue, points, os.path.join(work, "at_cat.gpkg"), "-level", "1", "-q"])
+    via_tiles = [run([tinlod, "locate", os.path.join(work, "a_tiles", "tile_%d_0.gpkg" % c), points,
+                      os.path.join(work, "at_%d.gpkg" % c), "-level", "1", "-q"]) for c in (0, 1)]
+    heights = point_values(os.path.join(work, "at_cat.gpkg"))
+    one = [point_values(os.path.join(work, "at_%d.gpkg" % c)) for c in (0, 1)]
+    check("(e) locate on the catalogue gives each point its tile's height and names the tile",
+          via_catalogue.returncode == 0 and all(r.returncode == 0 for r in via_tiles)
+          and heights[0] == (one[0][0][0], "0,0") and heights[1] == (one[1][1][0], "1,0")
+          and heights[0][0] is not None, (heights, one, via_catalogue.stderr))
+
     print("tiles: %d failed" % len(failures))
     if not failures:
         subprocess.run(["rm", "-rf", work])
@@ -225,4 +253,4 @@ def main(tinlod, tiles, standin):
 
 
 if __name__ == "__main__":
-    sys.exit(main(*sys.argv[1:4]))
+    sys.exit(main(*sys.argv[1:3]))
