@@ -36,6 +36,27 @@ check "their union is conforming at every level" union "$work"/syn_*.gpkg
 check "... and has 15 levels (the defaults' 14 above level 0)" test "$(grep -c 'conforming=yes' "$work/union.log")" = 15
 cp "$work/union.log" "$work/union_ok.log"
 
+# The two passes of -selection global: every tile's survey, one threshold per level for the
+# whole raster, then the tiles built with them fit together as well.
+for f in "$work"/syn_*.gpkg; do
+  t=$(basename "$f" .gpkg); t=${t#syn_}
+  "$tinlod" build "$work/dem.tif" "$work/survey_$t.json" -tile_size 120 -tile "${t/_/,}" -q -survey
+done
+thresholds=$(cd "$here/../tiles" && /usr/bin/python3 -c "
+import glob
+from tinlodtiles.thresholds import read_survey, level_thresholds
+print(','.join('%.17g' % t for t in level_thresholds([read_survey(p) for p in sorted(glob.glob('$work/survey_*.json'))], 20, 5)))")
+check "the surveys give 14 thresholds" test "$(tr ',' '\n' <<< "$thresholds" | wc -l)" = 14
+for f in "$work"/syn_*.gpkg; do
+  t=$(basename "$f" .gpkg); t=${t#syn_}
+  "$tinlod" build "$work/dem.tif" "$work/glob_$t.gpkg" -tile_size 120 -tile "${t/_/,}" -q -level_thresholds "$thresholds"
+done
+check "tiles built with the thresholds fit together at every level" union "$work"/glob_*.gpkg
+level_counts() { /usr/bin/python3 -c "import sqlite3,sys; print([r[0] for r in sqlite3.connect(sys.argv[1]).execute('select vertices from levels')])" "$1"; }
+check "... and the thresholds changed what they deleted" test "$(level_counts "$work/glob_1_1.gpkg")" != "$(level_counts "$work/syn_1_1.gpkg")"
+err=$("$tinlod" build "$work/dem.tif" "$work/x.gpkg" -tile_size 120 -tile 0,0 -level_thresholds 1,2 2>&1)
+check "too few thresholds are refused" grep -q "gives 2 thresholds for 14 levels" <<< "$err"
+
 # Tiles that do not belong together are caught: another seed moves the border vertices,
 # another delete percentage thins the border lines otherwise.
 cp "$work/syn_1_1.gpkg" "$work/keep.gpkg"

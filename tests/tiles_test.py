@@ -64,7 +64,8 @@ def make_mosaic(dem, work):
 
 def write_points(path, points, like):
     """Points in the CRS of the catalogue's tiles layer."""
-    srs = ogr.Open(like).GetLayerByName("tiles").GetSpatialRef()
+    source = ogr.Open(like)  # held: the layer and its CRS die with their dataset
+    srs = source.GetLayerByName("tiles").GetSpatialRef()
     out = ogr.GetDriverByName("GPKG").CreateDataSource(path)
     layer = out.CreateLayer("points", srs, ogr.wkbPoint)
     for x, y in points:
@@ -78,7 +79,8 @@ def write_points(path, points, like):
 
 def point_values(path):
     """(elevation, tile or None) of each point, in order."""
-    layer = ogr.Open(path).GetLayerByName("points")
+    dataset = ogr.Open(path)
+    layer = dataset.GetLayerByName("points")
     has_tile = layer.GetLayerDefn().GetFieldIndex("tile") >= 0
     return [(f["elevation"], f["tile"] if has_tile else None) for f in layer]
 
@@ -227,6 +229,21 @@ def main(tinlod, tiles):
     beyond = run([tiles, "merge", catalogue, "-level", str(levels), os.path.join(work, "m.gpkg")])
     check("(d) merge refuses a level the tiles do not have", beyond.returncode == 1 and "-level" in beyond.stderr,
           beyond.stderr)
+
+    # (f) -selection global (the default) recorded one threshold per level and left no
+    # survey behind; -selection tile makes one pass without them.
+    thresholds = (metadata.get("TINLOD_LEVEL_THRESHOLDS") or "").split(",")
+    check("(f) the catalogue holds one threshold per level above 0",
+          metadata.get("TINLOD_SELECTION") == "global" and len(thresholds) == levels - 1
+          and all(float(t) >= 0 for t in thresholds), metadata)
+    check("(f) no survey file is left", not [n for n in os.listdir(folder) if "survey" in n], os.listdir(folder))
+    by_tile = os.path.join(work, "t.gpkg")
+    one_pass = run(base + [by_tile, "-selection", "tile"] + options, env)
+    tile_metadata = rows(by_tile)[2]
+    check("(f) -selection tile runs one pass, without thresholds",
+          one_pass.returncode == 0 and tile_metadata.get("TINLOD_SELECTION") == "tile"
+          and not tile_metadata.get("TINLOD_LEVEL_THRESHOLDS") and "survey pass" not in one_pass.stdout,
+          one_pass.stdout + one_pass.stderr[-1000:])
 
     # (e) locate takes the catalogue: a point inside a tile gets that tile's height.
     points = os.path.join(work, "points.gpkg")

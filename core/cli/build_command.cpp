@@ -16,7 +16,7 @@ namespace {
 const char* const kUsage =
     "tinlod build DEM OUT.gpkg [-method degree|volume|normal|error] [-delete_pct p] [-stop_pct s] "
     "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-outline_tolerance m] [-keep_outline] "
-    "[-tile_size N -tile C,R] "
+    "[-tile_size N -tile C,R [-survey | -level_thresholds t,t,...]] "
     "[-fixed POINTS] [-fix_peaks_pits] [-levels all|L,L,...] [-no_group_outlines] [-vertex_index] "
     "[sampling options] [accuracy options] [-overwrite] [-q]";
 
@@ -68,6 +68,12 @@ One tile of a raster (tinlod tiles runs them all; see docs/cli/tiles.md):
                    both, and a rule that reads only the line thins it alike in both. Every
                    tile makes -max_levels levels, or the levels -delete_pct and -stop_pct
                    give (14 by default). Exit code 3: the tile holds no data (nothing written)
+  -survey          the first pass of one threshold per level: make the levels as usual but
+                   write OUT as JSON, each level's candidates by importance (no GeoPackage)
+  -level_thresholds t,t,...
+                   the second pass: level k deletes every independent vertex whose
+                   importance is below the k-th threshold (tinlod tiles sets them from the
+                   surveys of every tile), instead of -delete_pct of the tile's vertices
 
 What the GeoPackage holds (vertices, triangles, the groups and the levels table are always
 written: lod, locate and accuracy need them):
@@ -94,6 +100,26 @@ first_level, last_level, group_id, replaced_by, error), level_0, level_1, ... (v
 level to the map), groups (2D outline of each deleted vertex's neighbourhood), levels (counts,
 times, maximum and RMS error, cells covered and given up, outline vertices per level). `tinlod info OUT.gpkg` describes the file.
 )";
+
+std::vector<double> parseThresholds(const std::string& text) {
+  std::vector<double> values;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string part = text.substr(start, comma - start);
+    std::size_t used = 0;
+    double v = NAN;
+    try {
+      v = std::stod(part, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != part.size() || !(v >= 0))
+      throw Error("-level_thresholds: '" + part + "' is not an importance of 0 or more (give one per level, separated by commas)");
+    values.push_back(v);
+    start = comma + 1;
+  }
+  return values;
+}
 
 void parseTile(const std::string& text, TileSpec& tile) {
   const std::size_t comma = text.find(',');
@@ -140,6 +166,8 @@ int buildCommand(std::vector<std::string> args) {
   layers.levelViews = parseLevelList(a.text("-levels", "all"), "-levels");
   layers.groupOutlines = !a.flag("-no_group_outlines");
   layers.vertexIndex = a.flag("-vertex_index");
+  o.survey = a.flag("-survey");
+  o.levelThresholds = parseThresholds(a.text("-level_thresholds", ""));
   TileSpec tile;
   tile.size = a.integer("-tile_size", 0);
   if (a.given("-tile") != (tile.size > 0)) throw Error("-tile C,R and -tile_size N go together: one tile of a raster cut into N x N-cell tiles");

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "dataset_files.h"
@@ -66,12 +67,19 @@ void warnIfStoppedEarly(const Hierarchy& h, const ProgressRange& progress) {
                 formatNumber(h.options.stopPct) + " % asked for (" + std::to_string(target) + "): " + h.stopReason);
 }
 
+int tileLevels(const HierarchyOptions& o) {
+  return o.maxLevels > 0 ? o.maxLevels : tileLevelCount(o.deletePct, o.stopPct);
+}
+
 // Every tile of a job must cut the raster alike and make the same levels.
 void validateTile(const TileSpec& tile, const SampleOptions& sample, const HierarchyOptions& options) {
   if (tile.size < 2 * sample.block || tile.size % sample.block != 0)
     throw Error("-tile_size " + std::to_string(tile.size) + " must be a multiple of -block (" + std::to_string(sample.block) +
                 ") and at least two blocks: tiles are cut along block lines, e.g. -tile_size " +
                 std::to_string(std::max(2, 4096 / sample.block) * sample.block));
+  if (!options.levelThresholds.empty() && static_cast<int>(options.levelThresholds.size()) < tileLevels(options))
+    throw Error("-level_thresholds gives " + std::to_string(options.levelThresholds.size()) + " thresholds for " +
+                std::to_string(tileLevels(options)) + " levels: give one per level");
   if (options.thresholdMode && options.maxLevels == 0)
     throw Error("-threshold with -tile needs -max_levels: every tile of a job must make the same levels");
 }
@@ -97,6 +105,40 @@ Tin sampleTile(const Dem& dem, const SampleOptions& sample, const TileSpec& tile
   }
 }
 
+TileDem readInput(const std::string& demPath, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {
+  if (tile.size > 0) return readTile(demPath, sample.band, tile, pinningDistance(sample.block), progress, sample.validHeights);
+  return TileDem{readDem(demPath, sample.band, progress, sample.validHeights), {}};
+}
+
+// A survey pass of a tiled run with one threshold per level: the levels are made as usual
+// (each tile deleting its share, or as earlier thresholds say) to see what each level's
+// candidates are worth, and only that is written (LevelSurvey, as JSON): no hierarchy.
+BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
+                       const HierarchyOptions& options, bool overwrite, const Feedback& feedback, const TileSpec& tile) {
+  if (!overwrite && std::filesystem::exists(outPath))
+    throw Error("'" + outPath + "' exists: add -overwrite to replace it");
+  const ProgressRange all(feedback, 0, 1);
+  TileDem read = readInput(demPath, sample, tile, all.sub(0, 0.05));
+  Tin tin = sampleTile(read.dem, sample, tile, all.sub(0.05, 0.2));
+  TileBorders borders;
+  if (tile.size > 0) borders = tileBorders(read.dem, tin, tile, std::move(read.nearNodata), tileLevels(options));
+  const Hierarchy h = buildHierarchy(std::move(tin), read.dem, {}, options, all.sub(0.2, 0.95), {},
+                                     tile.size > 0 ? &borders : nullptr);
+  const std::string partial = outPath + ".partial";
+  {
+    std::ofstream out(partial);
+    out << surveyJson(h.survey);
+    if (!out) throw Error("cannot write '" + partial + "'");
+  }
+  std::filesystem::rename(partial, outPath);
+  all.finish("Done");
+  BuildSummary s;
+  s.levels = h.coarsest();
+  s.originalVertices = h.levels.front().vertices;
+  s.coarsestVertices = h.levels.back().vertices;
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
@@ -115,6 +157,9 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   options.validate();
   if (tile.size > 0) validateTile(tile, sample, options);
   accuracy.validate();
+  if (options.survey) return runSurvey(demPath, outPath, sample, options, overwrite, feedback, tile);
+  if (!options.levelThresholds.empty() && tile.size == 0)
+    throw Error("-level_thresholds is the second pass of a tiled run: give it with -tile_size and -tile");
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   const std::string fixedName = "-fixed (points to keep)";
@@ -124,16 +169,12 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const StagedFile& out = files.add(outPath, "output", true);
   const AccuracyFiles accuracyFiles = stageAccuracyFiles(accuracy, files);
   const ProgressRange all(feedback, 0, 1);
-  TileDem read = tile.size > 0 ? readTile(demPath, sample.band, tile, pinningDistance(sample.block), all.sub(0, 0.05),
-                                          sample.validHeights)
-                                : TileDem{readDem(demPath, sample.band, all.sub(0, 0.05), sample.validHeights), {}};
+  TileDem read = readInput(demPath, sample, tile, all.sub(0, 0.05));
   const Dem& dem = read.dem;
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
   TileBorders borders;
-  if (tile.size > 0)
-    borders = tileBorders(dem, tin, tile, std::move(read.nearNodata), options.maxLevels > 0 ? options.maxLevels
-                                                                                         : tileLevelCount(options.deletePct, options.stopPct));
+  if (tile.size > 0) borders = tileBorders(dem, tin, tile, std::move(read.nearNodata), tileLevels(options));
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
   // With accuracy outputs the last quarter of the job is theirs.

@@ -308,6 +308,7 @@ class Simplifier {
 
   bool wanted(double importance) const {
     if (!(importance < INFINITY)) return false;
+    if (!options_.levelThresholds.empty()) return importance < levelThreshold_;
     return !options_.thresholdMode || importance < options_.threshold;
   }
 
@@ -329,10 +330,13 @@ class Simplifier {
   // Each pick blocks its neighbours, so the set is independent. Returned in vertex order,
   // which is the TIN's spatial order: the plan and the mesh are then walked in cache.
   std::vector<Pick> select(std::int32_t level) {
+    const bool scheduled = !options_.levelThresholds.empty();
+    if (scheduled) levelThreshold_ = options_.levelThresholds[std::min<std::size_t>(level, options_.levelThresholds.size()) - 1];
     updateStaleImportances(level);
     sortCandidates();
     std::size_t limit = current_ > stopCount_ ? current_ - stopCount_ : 0;
-    if (!options_.thresholdMode)
+    if (scheduled) limit = current_;  // the raster's threshold, not this tile's share, says how many
+    else if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
     std::vector<Pick> picks;
     if (tile_) {
@@ -344,8 +348,10 @@ class Simplifier {
     // (an independent set rarely holds more than a quarter of the vertices): never the
     // whole run's reserve at once.
     const std::size_t expected = std::min(limit, lastPicks_ > 0 ? lastPicks_ + lastPicks_ / 10 : current_ / 4);
+    const std::size_t borderPicks = picks.size();
     runBoth([&] { pickBestFirst(limit, level, picks); },
             [&] { growHierarchy(expectedGrowth(expected), false); });
+    if (options_.survey) survey(level, picks, borderPicks);
     radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, pickScratch_);
     std::size_t fills = 0, rings = 0, links = 0;
     for (Pick& p : picks) {
@@ -358,6 +364,25 @@ class Simplifier {
     outer_.resize(rings);
     links_ = links;
     return picks;
+  }
+
+  // The level's candidates by importance, and how many of those up to the last pick it
+  // took (the candidates are sorted: the count below is two binary searches).
+  void survey(std::int32_t level, const std::vector<Pick>& picks, std::size_t borderPicks) {
+    LevelSurvey l;
+    l.level = level;
+    l.vertices = current_;
+    l.picked = picks.size() - borderPicks;
+    l.last = l.picked ? picks.back().importance : 0;
+    l.histogram.assign(kSurveyBins, 0);
+    for (const std::vector<Candidate>& half : candidates_) {
+      for (const Candidate& c : half) ++l.histogram[surveyBin(c.first)];
+      if (l.picked)
+        l.below += static_cast<std::size_t>(std::upper_bound(half.begin(), half.end(), orderedBits(l.last),
+                                                             [](std::uint64_t bits, const Candidate& c) { return bits < orderedBits(c.first); }) -
+                                            half.begin());
+    }
+    h_.survey.push_back(std::move(l));
   }
 
   // The candidates of each half of the live list (which is in id order), listed and
@@ -626,6 +651,7 @@ class Simplifier {
   double meanDegree_ = 6.0;  // of the last level's picks (a Delaunay TIN's mean degree is 6)
   std::size_t lastPicks_ = 0;
   double lastFraction_ = 0.1;
+  double levelThreshold_ = 0;  // with levelThresholds: the level's
 };
 
 }  // namespace

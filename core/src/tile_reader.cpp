@@ -34,6 +34,7 @@ std::vector<std::uint8_t> missingNearEdges(const Dem& wide, const CellWindow& w,
 }  // namespace
 
 std::array<int, 2> rasterSize(const std::string& path) {
+  GDALAllRegister();
   GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
   if (!ds) throw Error("cannot open '" + path + "' as a raster: " + CPLGetLastErrorMsg());
   const std::array<int, 2> size{GDALGetRasterXSize(ds), GDALGetRasterYSize(ds)};

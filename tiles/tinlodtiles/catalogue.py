@@ -21,7 +21,7 @@ FIELDS = (  # (name, OGR type)
     ("seconds", ogr.OFTReal), ("peak_mib", ogr.OFTReal), ("error", ogr.OFTString),
 )
 # The settings a rerun must share with the catalogue's first run.
-JOB_KEYS = ("TINLOD_SOURCE", "TINLOD_TILE_SIZE", "TINLOD_BUILD_OPTIONS", "TINLOD_RASTER_SIZE")
+JOB_KEYS = ("TINLOD_SOURCE", "TINLOD_TILE_SIZE", "TINLOD_BUILD_OPTIONS", "TINLOD_RASTER_SIZE", "TINLOD_SELECTION")
 
 
 class Catalogue:

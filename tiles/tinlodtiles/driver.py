@@ -15,7 +15,7 @@ import sys
 
 from osgeo import gdal
 
-from . import task
+from . import task, thresholds
 from .catalogue import Catalogue, levels_folder, tiles_folder
 from .errors import TilesError
 from .grid import tile_grid
@@ -41,7 +41,11 @@ def run(arguments):
         dem = None
         remove_leftovers(folder)
         pending = pending_tiles(catalogue, tiles, arguments.catalogue)
-        outcome = run_tiles(catalogue, pending, arguments) if pending else {}
+        extra = []
+        if pending and global_selection(arguments):
+            extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments)]
+            pending = pending_tiles(catalogue, tiles, arguments.catalogue)  # the surveys found empty tiles
+        outcome = run_tiles(catalogue, pending, arguments, extra) if pending else {}
         return finish(catalogue, arguments, len(tiles) - len(pending), outcome)
 
 
@@ -49,13 +53,65 @@ def job_settings(arguments, dem):
     """The catalogue's metadata: what a rerun must match."""
     return {"TINLOD_SOURCE": os.path.abspath(arguments.dem), "TINLOD_TILE_SIZE": str(arguments.tile_size),
             "TINLOD_BUILD_OPTIONS": shlex.join(arguments.build_options),
-            "TINLOD_RASTER_SIZE": "%d,%d" % (dem.RasterXSize, dem.RasterYSize)}
+            "TINLOD_RASTER_SIZE": "%d,%d" % (dem.RasterXSize, dem.RasterYSize),
+            "TINLOD_SELECTION": "global" if global_selection(arguments) else "tile"}
+
+
+def global_selection(arguments):
+    """The study's -threshold mode already deletes alike everywhere: no survey needed."""
+    return arguments.selection == "global" and "-threshold" not in arguments.build_options
+
+
+def build_option(build_options, name, default):
+    for i, option in enumerate(build_options[:-1]):
+        if option == name:
+            return float(build_options[i + 1])
+    return default
+
+
+def level_thresholds(catalogue, tiles, arguments):
+    """The job's thresholds, one per level: recorded in the catalogue once the survey pass
+    has run over every tile (a rerun reuses them), as text for -level_thresholds."""
+    recorded = catalogue.setting("TINLOD_LEVEL_THRESHOLDS")
+    if recorded:
+        return recorded
+    folder = tiles_folder(arguments.catalogue)
+    rows = catalogue.rows()
+    surveyed = [t for t in tiles if rows[(t.col, t.row)]["status"] != "empty"]
+    missing = [t for t in surveyed if not os.path.isfile(survey_path(folder, t))]
+    if missing:
+        if not arguments.quiet:
+            print("survey pass: %d tiles" % len(missing))
+        outcome = run_tiles(catalogue, missing, arguments, ["-survey"], survey=True)
+        if outcome.get("failed"):
+            raise TilesError("%d tiles failed in the survey pass (the catalogue's error field says why): "
+                             "run again to retry them" % outcome["failed"])
+    rows = catalogue.rows()
+    surveys = [thresholds.read_survey(survey_path(folder, t)) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
+    values = thresholds.level_thresholds(surveys, build_option(arguments.build_options, "-delete_pct", 20),
+                                         build_option(arguments.build_options, "-stop_pct", 5))
+    text = ",".join("%.17g" % v for v in values)
+    catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
+    for t in surveyed:
+        task.remove_if_present(survey_path(folder, t))
+    if not arguments.quiet:
+        print("build pass: one importance threshold per level for the whole raster")
+    return text
+
+
+def survey_path(folder, tile):
+    return os.path.join(folder, survey_name(tile))
+
+
+def survey_name(tile):
+    return tile.name[: -len(".gpkg")] + ".survey.json"
 
 
 def remove_job(catalogue_path):
     """-overwrite: the catalogue, its tiles and its level files go; only files tinlod-tiles
     names, so that nothing else a user keeps in those folders is lost."""
-    removable = {tiles_folder(catalogue_path): re.compile(r"tile_\d+_\d+\.(gpkg|partial\.gpkg|gpkg\.log|gpkg\.attempts)"),
+    removable = {tiles_folder(catalogue_path): re.compile(
+                     r"tile_\d+_\d+\.(gpkg|partial\.gpkg|gpkg\.log|gpkg\.attempts|survey\.json|survey\.partial\.json|survey\.json\.log|survey\.json\.attempts)"),
                  levels_folder(catalogue_path): re.compile(r"level_\d+\.vrt")}
     for folder, names in removable.items():
         if os.path.isdir(folder):
@@ -97,7 +153,8 @@ def open_catalogue(arguments, settings, srs, tiles):
 def remove_leftovers(folder):
     """What a run killed outright left: half-written tiles, logs, attempt counts."""
     for name in os.listdir(folder):
-        if name.startswith("tile_") and name.endswith((".partial.gpkg", ".gpkg.log", ".gpkg.attempts")):
+        if name.startswith("tile_") and name.endswith((".partial.gpkg", ".gpkg.log", ".gpkg.attempts", ".partial.json",
+                                                       ".survey.json.log", ".survey.json.attempts")):
             os.remove(os.path.join(folder, name))
 
 
@@ -117,19 +174,20 @@ def pending_tiles(catalogue, tiles, catalogue_path):
     return pending
 
 
-def run_tiles(catalogue, pending, arguments):
+def run_tiles(catalogue, pending, arguments, extra_options=(), survey=False):
     """One task per pending tile; the catalogue follows their futures. Returns the count of
-    tiles per status."""
+    tiles per status. With `survey`, the tasks write each tile's survey, and the catalogue
+    records only the tiles found empty (or failed)."""
     distributed = import_dask()
     outcome = {}
     progress = Progress(len(pending), arguments.quiet)
     client, cluster = start_client(distributed, arguments)
     futures = {}
     try:
-        futures = submit(client, pending, arguments)
+        futures = submit(client, pending, arguments, extra_options, survey)
         for future in distributed.as_completed(list(futures)):
             tile = futures.pop(future)
-            status = record(catalogue, tile, future, arguments.catalogue)
+            status = record_survey(catalogue, tile, future, tiles_folder(arguments.catalogue)) if survey else record(catalogue, tile, future, arguments.catalogue)
             outcome[status] = outcome.get(status, 0) + 1
             progress.tile(tile.col, tile.row, status)
     except KeyboardInterrupt:
@@ -172,7 +230,20 @@ def start_client(distributed, arguments):
     return distributed.Client(cluster), cluster
 
 
-def submit(client, pending, arguments):
+def record_survey(catalogue, tile, future, folder):
+    """A survey task's end: only an empty or failed tile changes the catalogue."""
+    attempts = read_attempts(survey_path(folder, tile))
+    task.remove_if_present(task.attempts_path(survey_path(folder, tile)))
+    if future.status != "finished":
+        catalogue.update(tile.col, tile.row, {"status": "failed", "error": failure_message(future), "attempts": attempts})
+        return "failed"
+    status = future.result()["status"]
+    if status == "empty":  # found by its survey: it is never built
+        catalogue.update(tile.col, tile.row, {"status": "empty", "attempts": attempts})
+    return "surveyed" if status == "done" else status
+
+
+def submit(client, pending, arguments, extra_options=(), survey=False):
     """The tasks, their code shipped by value so that a remote worker needs only tinlod."""
     import cloudpickle
 
@@ -181,11 +252,14 @@ def submit(client, pending, arguments):
     futures = {}
     for tile in pending:
         job = {"tinlod": arguments.tinlod, "dem": os.path.abspath(arguments.dem), "tiles_dir": folder,
-               "name": tile.name, "col": tile.col, "row": tile.row, "tile_size": arguments.tile_size,
-               "build_options": list(arguments.build_options),
+               "name": survey_name(tile) if survey else tile.name, "col": tile.col, "row": tile.row,
+               "tile_size": arguments.tile_size,
+               "build_options": list(arguments.build_options) + [o for o in extra_options if o != "-survey"],
+               "survey": survey,
                "kill_hook": os.environ.get(task.KILL_HOOK_VARIABLE)}
         futures[client.submit(task.run_tile, job, retries=arguments.retries, pure=False,
-                              key="tile-%d-%d-%s" % (tile.col, tile.row, os.urandom(4).hex()))] = tile
+                              key="%s-%d-%d-%s" % ("survey" if survey else "tile", tile.col, tile.row,
+                                                   os.urandom(4).hex()))] = tile
     return futures
 
 

@@ -30,6 +30,8 @@ def run_tile(job):
     remove_if_present(partial)
     command = [job["tinlod"], "build", job["dem"], partial, "-tile_size", str(job["tile_size"]),
                "-tile", "%d,%d" % (job["col"], job["row"])] + list(job["build_options"]) + ["-q", "-overwrite"]
+    if job.get("survey"):
+        command.append("-survey")
     kill_after = kill_hook_seconds(job, attempt)
     code, seconds, peak_mib, message = run_measured(command, final + ".log", kill_after)
     if code == EMPTY_EXIT_CODE:
@@ -43,8 +45,10 @@ def run_tile(job):
 
 
 def partial_path(final):
-    """Where tinlod writes the tile until it is complete (a .gpkg, so tinlod knows the format)."""
-    return final[: -len(".gpkg")] + ".partial.gpkg"
+    """Where tinlod writes the tile (or its survey) until it is complete, with the final name's
+    extension, so tinlod knows the format."""
+    stem, ext = os.path.splitext(final)
+    return stem + ".partial" + ext
 
 
 def attempts_path(final):

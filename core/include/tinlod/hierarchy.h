@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tinlod/hierarchy_options.h"
+#include "tinlod/level_survey.h"
 #include "tinlod/tin.h"
 
 namespace tinlod {
@@ -58,6 +59,7 @@ struct Hierarchy {
   std::vector<std::uint32_t> links;         // triangle ids of the groups' accept and reject ranges
   std::vector<VertexId> rings;              // vertex ids of the groups' outlines
   std::vector<LevelStats> levels;
+  std::vector<LevelSurvey> survey;          // with HierarchyOptions::survey, by level from 1
   HierarchyOptions options;
   // How a file that is one TIN was made ("sample", "insert"); empty for a hierarchy,
   // whose method is options.measure.

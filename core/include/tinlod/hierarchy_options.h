@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "tinlod/importance.h"
 
@@ -25,6 +26,10 @@ struct HierarchyOptions {
   double threshold = 0;               //   independent vertex with importance below `threshold`
   bool fixPeaksPits = false;          // keep strict local maxima and minima of the DEM (3 x 3)
   std::string fixedPoints;            // vector file of points to keep (snapped to the nearest vertex)
+  // A tile's second pass: level k deletes every independent vertex whose importance is below
+  // levelThresholds[k - 1] (set for the whole raster from the first pass's surveys).
+  std::vector<double> levelThresholds;
+  bool survey = false;                // record each level's LevelSurvey in the hierarchy
 
   // Throws Error naming the option when a value is out of range.
   void validate() const;

@@ -1,0 +1,54 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""One importance threshold per level for the whole raster, from every tile's survey.
+
+A tile alone deletes at each level a share of its own vertices: smooth tiles keep vertices a
+run over the whole raster would delete, rough tiles lose vertices it would keep. The surveys
+(`tinlod build -survey`) say how many candidates of each importance every tile had at each
+level and how many of those it could take (independence blocks the others); the threshold of
+a level is the importance below which the tiles' candidates, so thinned, make the delete
+percentage of all the raster's vertices, as a whole run's best-first selection would.
+"""
+import json
+
+BINS_PER_DECADE = 200
+LOWEST = 1e-12
+
+
+def bin_top(b):
+    """The smallest importance above every importance in bin b."""
+    return LOWEST if b == 0 else 10.0 ** (b / BINS_PER_DECADE - 12)
+
+
+def read_survey(path):
+    with open(path) as f:
+        survey = json.load(f)
+    if survey.get("bins_per_decade") != BINS_PER_DECADE or survey.get("lowest") != LOWEST:
+        raise ValueError("%s was written by another tinlod (bins %s): survey again" % (path, survey.get("bins_per_decade")))
+    return survey["levels"]
+
+
+def level_thresholds(surveys, delete_pct, stop_pct):
+    """The thresholds of levels 1, 2, ... from the tiles' surveys (lists of levels)."""
+    levels = max(len(s) for s in surveys)
+    original = sum(s[0]["vertices"] for s in surveys if s)
+    stop = stop_pct / 100.0 * original
+    thresholds = []
+    for k in range(levels):
+        rows = [s[k] for s in surveys if len(s) > k]
+        counts = {}
+        for r in rows:
+            for b, n in r["histogram"]:
+                counts[b] = counts.get(b, 0) + n
+        vertices = sum(r["vertices"] for r in rows)
+        picked, below = sum(r["picked"] for r in rows), sum(r["below"] for r in rows)
+        taken = picked / below if below else 1.0  # the share of candidates independence lets through
+        target = max(0.0, min(delete_pct / 100.0 * vertices, vertices - stop))
+        threshold, seen = 0.0, 0
+        if target > 0:
+            for b in sorted(counts):
+                seen += counts[b]
+                threshold = bin_top(b)
+                if taken * seen >= target:
+                    break
+        thresholds.append(threshold)
+    return thresholds
