@@ -44,8 +44,8 @@ for f in "$work"/syn_*.gpkg; do
 done
 thresholds=$(cd "$here/../tiles" && /usr/bin/python3 -c "
 import glob
-from tinlodtiles.thresholds import read_survey, level_thresholds
-print(','.join('%.17g' % t for t in level_thresholds([read_survey(p) for p in sorted(glob.glob('$work/survey_*.json'))], 20, 5)))")
+from tinlodtiles.thresholds import read_survey, level_thresholds, as_option
+print(as_option(level_thresholds([read_survey(p) for p in sorted(glob.glob('$work/survey_*.json'))], 20, 5)))")
 check "the surveys give 14 thresholds" test "$(tr ',' '\n' <<< "$thresholds" | wc -l)" = 14
 for f in "$work"/syn_*.gpkg; do
   t=$(basename "$f" .gpkg); t=${t#syn_}

@@ -235,7 +235,7 @@ def main(tinlod, tiles):
     thresholds = (metadata.get("TINLOD_LEVEL_THRESHOLDS") or "").split(",")
     check("(f) the catalogue holds one threshold per level above 0",
           metadata.get("TINLOD_SELECTION") == "global" and len(thresholds) == levels - 1
-          and all(float(t) >= 0 for t in thresholds), metadata)
+          and all(float(t.split(":")[0]) >= 0 for t in thresholds), metadata)
     check("(f) no survey file is left", not [n for n in os.listdir(folder) if "survey" in n], os.listdir(folder))
     by_tile = os.path.join(work, "t.gpkg")
     one_pass = run(base + [by_tile, "-selection", "tile"] + options, env)

@@ -16,7 +16,7 @@ namespace {
 const char* const kUsage =
     "tinlod build DEM OUT.gpkg [-method degree|volume|normal|error] [-delete_pct p] [-stop_pct s] "
     "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-outline_tolerance m] [-keep_outline] "
-    "[-tile_size N -tile C,R [-survey | -level_thresholds t,t,...]] "
+    "[-tile_size N -tile C,R [-survey | -level_thresholds t[:s],...]] "
     "[-fixed POINTS] [-fix_peaks_pits] [-levels all|L,L,...] [-no_group_outlines] [-vertex_index] "
     "[sampling options] [accuracy options] [-overwrite] [-q]";
 
@@ -73,7 +73,8 @@ One tile of a raster (tinlod tiles runs them all; see docs/cli/tiles.md):
   -level_thresholds t,t,...
                    the second pass: level k deletes every independent vertex whose
                    importance is below the k-th threshold (tinlod tiles sets them from the
-                   surveys of every tile), instead of -delete_pct of the tile's vertices
+                   surveys of every tile), instead of -delete_pct of the tile's vertices; t:s
+                   lets only the share s of the candidates in t's survey bin go (ties)
 
 What the GeoPackage holds (vertices, triangles, the groups and the levels table are always
 written: lod, locate and accuracy need them):
@@ -101,24 +102,29 @@ level to the map), groups (2D outline of each deleted vertex's neighbourhood), l
 times, maximum and RMS error, cells covered and given up, outline vertices per level). `tinlod info OUT.gpkg` describes the file.
 )";
 
-std::vector<double> parseThresholds(const std::string& text) {
-  std::vector<double> values;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string part = text.substr(start, comma - start);
+// "t" or "t:s" per level: the threshold, and the share of its bin's candidates that may go.
+void parseThresholds(const std::string& text, std::vector<double>& thresholds, std::vector<double>& shares) {
+  auto number = [](const std::string& part, double low, double high) {
     std::size_t used = 0;
     double v = NAN;
     try {
       v = std::stod(part, &used);
     } catch (const std::exception&) {
     }
-    if (used != part.size() || !(v >= 0))
-      throw Error("-level_thresholds: '" + part + "' is not an importance of 0 or more (give one per level, separated by commas)");
-    values.push_back(v);
+    if (used != part.size() || !(v >= low && v <= high))
+      throw Error("-level_thresholds: '" + part + "' is not a threshold t (0 or more) or t:s (s a share from 0 to 1); " +
+                  "give one per level, separated by commas");
+    return v;
+  };
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string part = text.substr(start, comma - start);
+    const std::size_t colon = part.find(':');
+    thresholds.push_back(number(part.substr(0, colon), 0, INFINITY));
+    shares.push_back(colon == std::string::npos ? 1.0 : number(part.substr(colon + 1), 0, 1));
     start = comma + 1;
   }
-  return values;
 }
 
 void parseTile(const std::string& text, TileSpec& tile) {
@@ -167,7 +173,7 @@ int buildCommand(std::vector<std::string> args) {
   layers.groupOutlines = !a.flag("-no_group_outlines");
   layers.vertexIndex = a.flag("-vertex_index");
   o.survey = a.flag("-survey");
-  o.levelThresholds = parseThresholds(a.text("-level_thresholds", ""));
+  parseThresholds(a.text("-level_thresholds", ""), o.levelThresholds, o.levelShares);
   TileSpec tile;
   tile.size = a.integer("-tile_size", 0);
   if (a.given("-tile") != (tile.size > 0)) throw Error("-tile C,R and -tile_size N go together: one tile of a raster cut into N x N-cell tiles");

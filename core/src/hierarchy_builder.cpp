@@ -338,6 +338,7 @@ class Simplifier {
     if (scheduled) limit = current_;  // the raster's threshold, not this tile's share, says how many
     else if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
+    considerLimit_ = scheduled ? consideredBelowThreshold(level) : SIZE_MAX;
     std::vector<Pick> picks;
     if (tile_) {
       pickBorders(level, picks);
@@ -366,22 +367,32 @@ class Simplifier {
     return picks;
   }
 
-  // The level's candidates by importance, and how many of those up to the last pick it
-  // took (the candidates are sorted: the count below is two binary searches).
+  // How many of the level's candidates (all below its threshold) may be considered: those
+  // below the threshold's survey bin, and its share of those in the bin.
+  std::size_t consideredBelowThreshold(std::int32_t level) const {
+    const std::size_t k = std::min<std::size_t>(level, options_.levelThresholds.size()) - 1;
+    const double share = k < options_.levelShares.size() ? options_.levelShares[k] : 1.0;
+    if (share >= 1) return SIZE_MAX;
+    const double bottom = surveyBinBottom(levelThreshold_);
+    std::size_t below = 0, inBin = 0;
+    for (const std::vector<Candidate>& half : candidates_)
+      for (const Candidate& c : half) (c.first < bottom ? below : inBin) += 1;
+    return below + static_cast<std::size_t>(std::floor(share * double(inBin)));
+  }
+
+  // The level's candidates by importance, and how many of them the pick went through to
+  // take its picks (the others it met were blocked by a neighbour's pick): that share is
+  // what independence lets through, whatever stopped the pick.
   void survey(std::int32_t level, const std::vector<Pick>& picks, std::size_t borderPicks) {
     LevelSurvey l;
     l.level = level;
     l.vertices = current_;
     l.picked = picks.size() - borderPicks;
     l.last = l.picked ? picks.back().importance : 0;
+    l.considered = considered_;
     l.histogram.assign(kSurveyBins, 0);
-    for (const std::vector<Candidate>& half : candidates_) {
+    for (const std::vector<Candidate>& half : candidates_)
       for (const Candidate& c : half) ++l.histogram[surveyBin(c.first)];
-      if (l.picked)
-        l.below += static_cast<std::size_t>(std::upper_bound(half.begin(), half.end(), orderedBits(l.last),
-                                                             [](std::uint64_t bits, const Candidate& c) { return bits < orderedBits(c.first); }) -
-                                            half.begin());
-    }
     h_.survey.push_back(std::move(l));
   }
 
@@ -430,7 +441,7 @@ class Simplifier {
     const std::vector<Candidate>&a = candidates_[0], &b = candidates_[1];
     std::size_t i = 0, j = 0;
     constexpr std::size_t kAhead = 16;  // the candidates lie all over the TIN: ask ahead for their lines
-    while (picks.size() < limit && (i < a.size() || j < b.size())) {
+    while (picks.size() < limit && (i < a.size() || j < b.size()) && i + j < considerLimit_) {
       if (i + kAhead < a.size()) __builtin_prefetch(&stamp_[a[i + kAhead].second]), rings_.prefetch(a[i + kAhead].second);
       if (j + kAhead < b.size()) __builtin_prefetch(&stamp_[b[j + kAhead].second]), rings_.prefetch(b[j + kAhead].second);
       const bool first = j == b.size() || (i < a.size() && orderedBits(a[i].first) <= orderedBits(b[j].first));
@@ -447,6 +458,7 @@ class Simplifier {
       }
       picks.push_back({imp, v, static_cast<std::uint32_t>(rings_.degree(v)), mesh_.open(v)});
     }
+    considered_ = i + j;
   }
 
   // Where the hierarchy's arrays would end if `picks` vertices were deleted with the
@@ -652,6 +664,8 @@ class Simplifier {
   std::size_t lastPicks_ = 0;
   double lastFraction_ = 0.1;
   double levelThreshold_ = 0;  // with levelThresholds: the level's
+  std::size_t considerLimit_ = SIZE_MAX;  //   and how many candidates it may consider
+  std::size_t considered_ = 0;            // candidates the last pick went through
 };
 
 }  // namespace

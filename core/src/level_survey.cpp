@@ -12,7 +12,7 @@ std::string surveyJson(const std::vector<LevelSurvey>& levels) {
   for (std::size_t i = 0; i < levels.size(); ++i) {
     const LevelSurvey& l = levels[i];
     out << (i ? ",\n" : "\n") << "{\"level\": " << l.level << ", \"vertices\": " << l.vertices << ", \"picked\": " << l.picked
-        << ", \"below\": " << l.below << ", \"last\": " << l.last << ", \"histogram\": [";
+        << ", \"considered\": " << l.considered << ", \"last\": " << l.last << ", \"histogram\": [";
     bool first = true;
     for (std::size_t b = 0; b < l.histogram.size(); ++b)
       if (l.histogram[b]) out << (first ? "" : ", ") << "[" << b << ", " << l.histogram[b] << "]", first = false;

@@ -3,12 +3,24 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <thread>
 #include <vector>
 
 namespace tinlod {
+
+unsigned threadCount() {
+  // A tiled run's workers share the machine: each tinlod is told its share of the cores.
+  static const unsigned count = [] {
+    const char* given = std::getenv("TINLOD_THREADS");
+    const long wanted = given ? std::strtol(given, nullptr, 10) : 0;
+    return wanted > 0 ? static_cast<unsigned>(std::min(wanted, 64L))
+                      : std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
+  }();
+  return count;
+}
 
 void forEachBlock(int count, const std::function<void(int, int)>& work, const std::function<void(double)>& progress) {
   const int block = std::max(1, std::min(4096, count / 64));
@@ -29,7 +41,7 @@ void forEachBlock(int count, const std::function<void(int, int)>& work, const st
       stop = true;
     }
   };
-  const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
+  const unsigned threads = threadCount();
   std::vector<std::thread> workers;
   for (unsigned t = 1; t < threads; ++t) workers.emplace_back(loop, false);
   loop(true);
@@ -38,6 +50,11 @@ void forEachBlock(int count, const std::function<void(int, int)>& work, const st
 }
 
 void runBoth(const std::function<void()>& first, const std::function<void()>& second) {
+  if (threadCount() == 1) {
+    first();
+    second();
+    return;
+  }
   std::exception_ptr failure;
   std::thread other([&] {
     try {

@@ -90,7 +90,7 @@ def level_thresholds(catalogue, tiles, arguments):
     surveys = [thresholds.read_survey(survey_path(folder, t)) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
     values = thresholds.level_thresholds(surveys, build_option(arguments.build_options, "-delete_pct", 20),
                                          build_option(arguments.build_options, "-stop_pct", 5))
-    text = ",".join("%.17g" % v for v in values)
+    text = thresholds.as_option(values)
     catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
     for t in surveyed:
         task.remove_if_present(survey_path(folder, t))
@@ -256,7 +256,10 @@ def submit(client, pending, arguments, extra_options=(), survey=False):
                "tile_size": arguments.tile_size,
                "build_options": list(arguments.build_options) + [o for o in extra_options if o != "-survey"],
                "survey": survey,
-               "kill_hook": os.environ.get(task.KILL_HOOK_VARIABLE)}
+               "kill_hook": os.environ.get(task.KILL_HOOK_VARIABLE),
+               # A local cluster's workers share this machine: each tinlod gets its share of
+               # the cores (a remote scheduler's workers keep their own setting).
+               "threads": None if arguments.scheduler else max(1, (os.cpu_count() or 1) // arguments.workers)}
         futures[client.submit(task.run_tile, job, retries=arguments.retries, pure=False,
                               key="%s-%d-%d-%s" % ("survey" if survey else "tile", tile.col, tile.row,
                                                    os.urandom(4).hex()))] = tile

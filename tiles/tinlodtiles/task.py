@@ -33,7 +33,7 @@ def run_tile(job):
     if job.get("survey"):
         command.append("-survey")
     kill_after = kill_hook_seconds(job, attempt)
-    code, seconds, peak_mib, message = run_measured(command, final + ".log", kill_after)
+    code, seconds, peak_mib, message = run_measured(command, final + ".log", kill_after, job.get("threads"))
     if code == EMPTY_EXIT_CODE:
         remove_if_present(partial)
         return {"status": "empty", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt}
@@ -80,15 +80,16 @@ def kill_hook_seconds(job, attempt):
     return float(seconds) if tile == "%d,%d" % (job["col"], job["row"]) else None
 
 
-def run_measured(command, log_path, kill_after=None):
+def run_measured(command, log_path, kill_after=None, threads=None):
     """Runs the command; returns (exit code, wall seconds, peak RSS in MiB, last stderr
     line). A signal gives a negative code, as in subprocess."""
     start = time.monotonic()
     with open(log_path, "wb") as log:
         # A session of its own: the terminal's Ctrl-C reaches the driver, which stops the
         # run; the parent-death signal ends tinlod if its worker dies.
+        env = dict(os.environ, TINLOD_THREADS=str(threads)) if threads else None
         process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                                   stderr=log, start_new_session=True, preexec_fn=_die_with_parent)
+                                   stderr=log, start_new_session=True, preexec_fn=_die_with_parent, env=env)
         status, usage = wait_or_kill(process.pid, start, kill_after)
     process.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
     seconds = time.monotonic() - start

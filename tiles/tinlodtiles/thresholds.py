@@ -28,7 +28,9 @@ def read_survey(path):
 
 
 def level_thresholds(surveys, delete_pct, stop_pct):
-    """The thresholds of levels 1, 2, ... from the tiles' surveys (lists of levels)."""
+    """The (threshold, share) of levels 1, 2, ... from the tiles' surveys (lists of levels):
+    the level deletes the candidates below the threshold's bin and that share of those in
+    it."""
     levels = max(len(s) for s in surveys)
     original = sum(s[0]["vertices"] for s in surveys if s)
     stop = stop_pct / 100.0 * original
@@ -40,15 +42,22 @@ def level_thresholds(surveys, delete_pct, stop_pct):
             for b, n in r["histogram"]:
                 counts[b] = counts.get(b, 0) + n
         vertices = sum(r["vertices"] for r in rows)
-        picked, below = sum(r["picked"] for r in rows), sum(r["below"] for r in rows)
-        taken = picked / below if below else 1.0  # the share of candidates independence lets through
+        picked, considered = sum(r["picked"] for r in rows), sum(r["considered"] for r in rows)
+        taken = picked / considered if considered else 1.0  # the share of candidates independence lets through
         target = max(0.0, min(delete_pct / 100.0 * vertices, vertices - stop))
-        threshold, seen = 0.0, 0
+        threshold, share, seen = 0.0, 1.0, 0
         if target > 0:
             for b in sorted(counts):
-                seen += counts[b]
                 threshold = bin_top(b)
-                if taken * seen >= target:
+                if taken * (seen + counts[b]) >= target:
+                    # Only part of this bin's candidates: a flat area's ties share the rest.
+                    share = min(1.0, max(0.0, (target / taken - seen) / counts[b]))
                     break
-        thresholds.append(threshold)
+                seen += counts[b]
+        thresholds.append((threshold, share))
     return thresholds
+
+
+def as_option(thresholds):
+    """The value of tinlod build's -level_thresholds."""
+    return ",".join("%.17g" % t if share >= 1 else "%.17g:%.6f" % (t, share) for t, share in thresholds)

@@ -29,6 +29,9 @@ struct HierarchyOptions {
   // A tile's second pass: level k deletes every independent vertex whose importance is below
   // levelThresholds[k - 1] (set for the whole raster from the first pass's surveys).
   std::vector<double> levelThresholds;
+  // Of the candidates in the survey bin just below levelThresholds[k - 1] (ties, a flat sea
+  // of zeros), only this share may go at level k (least important first); empty: all.
+  std::vector<double> levelShares;
   bool survey = false;                // record each level's LevelSurvey in the hierarchy
 
   // Throws Error naming the option when a value is out of range.

@@ -17,7 +17,7 @@ struct LevelSurvey {
   std::int32_t level = 0;
   std::size_t vertices = 0;  // before the level
   std::size_t picked = 0;    // the tile's own picks (not the border rule's)
-  std::size_t below = 0;     // candidates no more important than the last of them
+  std::size_t considered = 0;  // candidates the pick went through (picked, or blocked by a neighbour)
   double last = 0;           // the importance of the last pick
   std::vector<std::uint64_t> histogram;  // candidates by surveyBin of their importance
 };
@@ -31,8 +31,11 @@ inline int surveyBin(double importance) {
 }
 // The smallest importance above every importance in the bin.
 inline double surveyBinTop(int bin) { return bin == 0 ? 1e-12 : std::pow(10.0, bin / 200.0 - 12); }
+// The lower end of the bin whose top is `top` (a threshold from the surveys); -infinity
+// for bin 0, which holds every importance below 1e-12.
+inline double surveyBinBottom(double top) { return top <= 1e-12 ? -INFINITY : top * std::pow(10.0, -1.0 / 200); }
 
-// The survey as JSON: {"levels": [{"level", "vertices", "picked", "below", "last",
+// The survey as JSON: {"levels": [{"level", "vertices", "picked", "considered", "last",
 // "histogram": [[bin, count], ...]}, ...]} (bins with a count only).
 std::string surveyJson(const std::vector<LevelSurvey>& levels);
 
