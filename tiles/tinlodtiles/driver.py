@@ -41,11 +41,14 @@ def run(arguments):
         dem = None
         remove_leftovers(folder)
         pending = pending_tiles(catalogue, tiles, arguments.catalogue)
-        extra = []
-        if pending and global_selection(arguments):
-            extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments)]
-            pending = pending_tiles(catalogue, tiles, arguments.catalogue)  # the surveys found empty tiles
-        outcome = run_tiles(catalogue, pending, arguments, extra) if pending else {}
+        outcome = {}
+        if pending:
+            with Workers(arguments) as workers:  # one cluster for both passes
+                extra = []
+                if global_selection(arguments):
+                    extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments, workers)]
+                    pending = pending_tiles(catalogue, tiles, arguments.catalogue)  # the surveys found empty tiles
+                outcome = run_tiles(catalogue, pending, arguments, workers, extra) if pending else {}
         return finish(catalogue, arguments, len(tiles) - len(pending), outcome)
 
 
@@ -69,7 +72,7 @@ def build_option(build_options, name, default):
     return default
 
 
-def level_thresholds(catalogue, tiles, arguments):
+def level_thresholds(catalogue, tiles, arguments, workers):
     """The job's thresholds, one per level: recorded in the catalogue once the survey pass
     has run over every tile (a rerun reuses them), as text for -level_thresholds."""
     recorded = catalogue.setting("TINLOD_LEVEL_THRESHOLDS")
@@ -82,7 +85,7 @@ def level_thresholds(catalogue, tiles, arguments):
     if missing:
         if not arguments.quiet:
             print("survey pass: %d tiles" % len(missing))
-        outcome = run_tiles(catalogue, missing, arguments, ["-survey"], survey=True)
+        outcome = run_tiles(catalogue, missing, arguments, workers, ["-survey"], survey=True)
         if outcome.get("failed"):
             raise TilesError("%d tiles failed in the survey pass (the catalogue's error field says why): "
                              "run again to retry them" % outcome["failed"])
@@ -174,14 +177,29 @@ def pending_tiles(catalogue, tiles, catalogue_path):
     return pending
 
 
-def run_tiles(catalogue, pending, arguments, extra_options=(), survey=False):
+class Workers:
+    """The Dask client (and local cluster) of a run, started once for both passes and closed
+    however the run ends."""
+
+    def __init__(self, arguments):
+        self.arguments = arguments
+
+    def __enter__(self):
+        self.distributed = import_dask()
+        self.client, self.cluster = start_client(self.distributed, self.arguments)
+        return self
+
+    def __exit__(self, *_):
+        stop(self.client, self.cluster)
+
+
+def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=False):
     """One task per pending tile; the catalogue follows their futures. Returns the count of
     tiles per status. With `survey`, the tasks write each tile's survey, and the catalogue
     records only the tiles found empty (or failed)."""
-    distributed = import_dask()
+    distributed, client = workers.distributed, workers.client
     outcome = {}
     progress = Progress(len(pending), arguments.quiet)
-    client, cluster = start_client(distributed, arguments)
     futures = {}
     try:
         futures = submit(client, pending, arguments, extra_options, survey)
@@ -195,7 +213,6 @@ def run_tiles(catalogue, pending, arguments, extra_options=(), survey=False):
         raise TilesStopped(len(futures)) from None
     finally:
         progress.end()
-        stop(client, cluster)
     return outcome
 
 
@@ -230,6 +247,14 @@ def start_client(distributed, arguments):
     return distributed.Client(cluster), cluster
 
 
+def worker_threads(arguments):
+    """A local cluster's workers share this machine: each tinlod gets its share of the cores,
+    unless TINLOD_THREADS says otherwise; a remote scheduler's workers keep their own."""
+    if os.environ.get("TINLOD_THREADS"):
+        return int(os.environ["TINLOD_THREADS"])
+    return None if arguments.scheduler else max(1, (os.cpu_count() or 1) // arguments.workers)
+
+
 def record_survey(catalogue, tile, future, folder):
     """A survey task's end: only an empty or failed tile changes the catalogue."""
     attempts = read_attempts(survey_path(folder, tile))
@@ -257,9 +282,7 @@ def submit(client, pending, arguments, extra_options=(), survey=False):
                "build_options": list(arguments.build_options) + [o for o in extra_options if o != "-survey"],
                "survey": survey,
                "kill_hook": os.environ.get(task.KILL_HOOK_VARIABLE),
-               # A local cluster's workers share this machine: each tinlod gets its share of
-               # the cores (a remote scheduler's workers keep their own setting).
-               "threads": None if arguments.scheduler else max(1, (os.cpu_count() or 1) // arguments.workers)}
+               "threads": worker_threads(arguments)}
         futures[client.submit(task.run_tile, job, retries=arguments.retries, pure=False,
                               key="%s-%d-%d-%s" % ("survey" if survey else "tile", tile.col, tile.row,
                                                    os.urandom(4).hex()))] = tile
