@@ -64,8 +64,8 @@ One tile of a raster (tinlod tiles runs them all; see docs/cli/tiles.md):
   -tile_size N     cut the raster into tiles of N x N cells (N a multiple of -block), each
                    reading one more column and row, shared with the next tile
   -tile C,R        build tile C,R (from 0,0 at the raster's first column and row). Tiles
-                   fit together at every level: the cells on a shared line are vertices in
-                   both, and a rule that reads only the line thins it alike in both. Every
+                   fit together at every level: both sample the same cells of a shared line
+                   (one a block), and a rule that reads only the line thins it alike. Every
                    tile makes -max_levels levels, or the levels -delete_pct and -stop_pct
                    give (14 by default). Exit code 3: the tile holds no data (nothing written)
   -survey          the first pass of one threshold per level: make the levels as usual but

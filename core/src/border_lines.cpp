@@ -29,7 +29,7 @@ BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& til
     const int n = column ? dem.height : dem.width;
     for (int i = 0; i < n; ++i) {
       const int row = column ? i : at, col = column ? at : i;
-      if (!dem.valid(row, col)) continue;
+      if (!dem.valid(row, col) || !lineCellSampled(dem, row, col, tile.block, tile.seed)) continue;
       const auto found = vertexOf.find(cellKey(row, col));
       const VertexId v = found == vertexOf.end() ? kNoVertex : found->second;
       // The cell's place, not its vertex's: the other tile may have left the vertex out.

@@ -121,7 +121,7 @@ BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, c
   TileDem read = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(read.dem, sample, tile, all.sub(0.05, 0.2));
   TileBorders borders;
-  if (tile.size > 0) borders = tileBorders(read.dem, tin, tile, std::move(read.nearNodata), tileLevels(options));
+  if (tile.size > 0) borders = tileBorders(read.dem, tin, tile, std::move(read.nearNodata), tileLevels(options), sample.block, sample.seed);
   const Hierarchy h = buildHierarchy(std::move(tin), read.dem, {}, options, all.sub(0.2, 0.95), {},
                                      tile.size > 0 ? &borders : nullptr);
   const std::string partial = outPath + ".partial";
@@ -174,7 +174,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
   TileBorders borders;
-  if (tile.size > 0) borders = tileBorders(dem, tin, tile, std::move(read.nearNodata), tileLevels(options));
+  if (tile.size > 0) borders = tileBorders(dem, tin, tile, std::move(read.nearNodata), tileLevels(options), sample.block, sample.seed);
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
   // With accuracy outputs the last quarter of the job is theirs.

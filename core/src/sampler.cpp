@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "tinlod/cell_hash.h"
+#include "tinlod/tile_borders.h"
 
 namespace tinlod {
 namespace {
@@ -23,10 +24,14 @@ bool isOutline(const Dem& dem, int row, int col) {
   return false;
 }
 
-void markOutline(const Dem& dem, std::vector<unsigned char>& marks, const ProgressRange& progress) {
+// A tile's shared lines are sampled by their own rule (lineCellSampled), the same in both
+// tiles, not as the raster's edge is (every cell).
+void markOutline(const Dem& dem, int block, std::uint64_t seed, std::vector<unsigned char>& marks,
+                 const ProgressRange& progress) {
   for (int row = 0; row < dem.height; ++row) {
     for (int col = 0; col < dem.width; ++col)
-      if (dem.valid(row, col) && isOutline(dem, row, col))
+      if (dem.valid(row, col) && (onSharedLine(dem, row, col) ? lineCellSampled(dem, row, col, block, seed)
+                                                              : isOutline(dem, row, col)))
         marks[static_cast<std::size_t>(row) * dem.width + col] |= kOutline;
     if (row % 256 == 0) progress.report(double(row) / dem.height, "Finding the outline");
   }
@@ -53,7 +58,9 @@ void markRandom(const Dem& dem, int block, std::uint64_t seed, std::vector<unsig
       int pick = static_cast<int>(h % static_cast<std::uint64_t>(count));
       for (int r = r0; r < r1 && pick >= 0; ++r)
         for (int c = c0; c < c1 && pick >= 0; ++c)
-          if (dem.valid(r, c) && pick-- == 0) marks[static_cast<std::size_t>(r) * dem.width + c] |= kRandom;
+          // A pick on a shared line is the line's to decide: the other tile would not have it.
+          if (dem.valid(r, c) && pick-- == 0 && !onSharedLine(dem, r, c))
+            marks[static_cast<std::size_t>(r) * dem.width + c] |= kRandom;
     }
     if ((r0 / block) % 64 == 0) progress.report(double(r1) / dem.height, "Sampling cells");
   }
@@ -64,7 +71,7 @@ void markRandom(const Dem& dem, int block, std::uint64_t seed, std::vector<unsig
 std::vector<SampleCell> sampleCells(const Dem& dem, int block, std::uint64_t seed,
                                     const ProgressRange& progress) {
   std::vector<unsigned char> marks(static_cast<std::size_t>(dem.width) * dem.height, kNone);
-  markOutline(dem, marks, progress.sub(0, 0.5));
+  markOutline(dem, block, seed, marks, progress.sub(0, 0.5));
   markRandom(dem, block, seed, marks, progress.sub(0.5, 1));
   std::vector<SampleCell> cells;
   for (int row = 0; row < dem.height; ++row)

@@ -69,6 +69,7 @@ TileDem readTile(const std::string& path, int band, const TileSpec& tile, int pi
   TileDem t{readDemWindow(path, band, wide, progress, valid), {}};
   t.nearNodata = missingNearEdges(t.dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff, pinning);
   cropDem(t.dem, w.xoff - wide.xoff, w.yoff - wide.yoff, w.xsize, w.ysize);
+  t.dem.nearNodata = t.nearNodata;  // the sampler's rule for the shared lines reads it
   const std::size_t count = t.dem.validCount();
   if (count < 3)
     throw EmptyTile("tile " + std::to_string(tile.col) + "," + std::to_string(tile.row) + " of '" + path + "' has " +

@@ -35,6 +35,9 @@ struct Dem {
   std::string crsWkt;  // empty when the file has no CRS
   std::vector<float> z;
   RasterWindow window;  // set by readDem: the whole raster when no window was asked for
+  // A tile's: by cell, whether a missing cell of the whole raster lies near it (set on the
+  // lines it shares, read beyond the tile); empty for a whole raster.
+  std::vector<std::uint8_t> nearNodata;
 
   float at(int row, int col) const { return z[static_cast<std::size_t>(row) * width + col]; }
   bool valid(int row, int col) const {

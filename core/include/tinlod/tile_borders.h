@@ -38,11 +38,22 @@ struct TileBorders {
   std::vector<std::int8_t> side;     // by vertex: the shared side it lies on, or -1
   std::vector<std::uint8_t> pinned;  // by vertex: a border vertex that never goes
   std::vector<std::uint8_t> nearNodata;  // by cell of the tile: a missing cell of the whole raster is near
+  int block = 3;                         // the sampling's, for lineCellSampled
+  std::uint64_t seed = 1;
 };
 
 // How near (in cells) a missing cell pins a border vertex: a level-0 triangle reaches about
 // two blocks from its vertices, and the nodata filter drops those over missing cells.
 inline int pinningDistance(int block) { return 3 * block; }
+
+// Whether a cell of a tile lies on a line it shares with a neighbouring tile.
+bool onSharedLine(const Dem& dem, int row, int col);
+
+// Whether a valid cell of a shared line is a vertex: the tile's corners, cells near nodata
+// (Dem::nearNodata), and one valid cell per block of the line, chosen by a hash of the seed
+// and the block's place in the whole raster: the same cells in both tiles, about as dense
+// as the interior's samples.
+bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t seed);
 
 // Levels that a whole run with these percentages makes when nothing stops it early.
 int tileLevelCount(double deletePct, double stopPct);
@@ -53,6 +64,6 @@ int tileLevelCount(double deletePct, double stopPct);
 // near nodata, how a tile's level 0 meets its border depends on cells the other tile
 // does not read.
 TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, std::vector<std::uint8_t> nearNodata,
-                        int levels);
+                        int levels, int block, std::uint64_t seed);
 
 }  // namespace tinlod
