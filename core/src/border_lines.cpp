@@ -14,18 +14,15 @@ std::uint64_t cellKey(int row, int col) { return (std::uint64_t(std::uint32_t(ro
 }  // namespace
 
 BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& tile) {
-  const std::vector<std::uint8_t>& nearNodata = tile.nearNodata;
-  std::unordered_map<std::uint64_t, VertexId> vertexOf;
+  std::unordered_map<std::uint64_t, VertexId> vertexOf;  // the vertices on the shared lines, by cell
   for (VertexId v = 0; v < base.vertices.size(); ++v)
-    if (tile.side[v] >= 0 || base.vertices[v].row == 0 || base.vertices[v].col == 0 ||
-        base.vertices[v].row == dem.height - 1 || base.vertices[v].col == dem.width - 1)
-      vertexOf.emplace(cellKey(base.vertices[v].row, base.vertices[v].col), v);
+    if (tile.side[v] >= 0) vertexOf.emplace(cellKey(base.vertices[v].row, base.vertices[v].col), v);
   for (int s = 0; s < 4; ++s) {
     if (tile.lineClass[s] < 0) continue;
     Line line;
     line.lineClass = tile.lineClass[s];
     const bool column = s == kFirstCol || s == kLastCol;  // a column of cells, ordered by row
-    const int at = s == kFirstCol || s == kFirstRow ? 0 : column ? dem.width - 1 : dem.height - 1;
+    const int at = sidePosition(dem, s);
     const int n = column ? dem.height : dem.width;
     for (int i = 0; i < n; ++i) {
       const int row = column ? i : at, col = column ? at : i;
@@ -34,8 +31,7 @@ BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& til
       const VertexId v = found == vertexOf.end() ? kNoVertex : found->second;
       // The cell's place, not its vertex's: the other tile may have left the vertex out.
       const double along = column ? double(dem.globalRow(row)) : double(dem.globalCol(col));
-      const bool corner = i == 0 || i == n - 1;
-      line.cells.push_back({v, dem.at(row, col), along, corner || nearNodata[std::size_t(row) * dem.width + col] != 0});
+      line.cells.push_back({v, dem.at(row, col), along, pinnedOnLine(dem, row, col)});
     }
     lines_.push_back(std::move(line));
   }

@@ -105,9 +105,9 @@ Tin sampleTile(const Dem& dem, const SampleOptions& sample, const TileSpec& tile
   }
 }
 
-TileDem readInput(const std::string& demPath, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {
+Dem readInput(const std::string& demPath, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {
   if (tile.size > 0) return readTile(demPath, sample.band, tile, pinningDistance(sample.block), progress, sample.validHeights);
-  return TileDem{readDem(demPath, sample.band, progress, sample.validHeights), {}};
+  return readDem(demPath, sample.band, progress, sample.validHeights);
 }
 
 // A survey pass of a tiled run with one threshold per level: the levels are made as usual
@@ -118,11 +118,11 @@ BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, c
   if (!overwrite && std::filesystem::exists(outPath))
     throw Error("'" + outPath + "' exists: add -overwrite to replace it");
   const ProgressRange all(feedback, 0, 1);
-  TileDem read = readInput(demPath, sample, tile, all.sub(0, 0.05));
-  Tin tin = sampleTile(read.dem, sample, tile, all.sub(0.05, 0.2));
+  const Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
+  Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   TileBorders borders;
-  if (tile.size > 0) borders = tileBorders(read.dem, tin, tile, std::move(read.nearNodata), tileLevels(options), sample.block, sample.seed);
-  const Hierarchy h = buildHierarchy(std::move(tin), read.dem, {}, options, all.sub(0.2, 0.95), {},
+  if (tile.size > 0) borders = tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed);
+  const Hierarchy h = buildHierarchy(std::move(tin), dem, {}, options, all.sub(0.2, 0.95), {},
                                      tile.size > 0 ? &borders : nullptr);
   const std::string partial = outPath + ".partial";
   {
@@ -169,12 +169,11 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const StagedFile& out = files.add(outPath, "output", true);
   const AccuracyFiles accuracyFiles = stageAccuracyFiles(accuracy, files);
   const ProgressRange all(feedback, 0, 1);
-  TileDem read = readInput(demPath, sample, tile, all.sub(0, 0.05));
-  const Dem& dem = read.dem;
+  const Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
   TileBorders borders;
-  if (tile.size > 0) borders = tileBorders(dem, tin, tile, std::move(read.nearNodata), tileLevels(options), sample.block, sample.seed);
+  if (tile.size > 0) borders = tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed);
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
   // With accuracy outputs the last quarter of the job is theirs.

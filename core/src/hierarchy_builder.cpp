@@ -153,13 +153,7 @@ class Simplifier {
   bool onOneBorderLine(VertexId a, VertexId b) const {
     if (!tile_) return false;
     const TinVertex &p = h_.base.vertices[a], &q = h_.base.vertices[b];
-    const int at[4] = {0, dem_.width - 1, 0, dem_.height - 1};
-    for (int s = 0; s < 4; ++s) {
-      if (tile_->lineClass[s] < 0) continue;
-      const bool column = s == kFirstCol || s == kLastCol;
-      if ((column ? p.col : p.row) == at[s] && (column ? q.col : q.row) == at[s]) return true;
-    }
-    return false;
+    return onOneSharedLine(dem_, p.row, p.col, q.row, q.col);
   }
 
   // Every triangle of level 0 against the DEM, on every core.

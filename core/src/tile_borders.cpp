@@ -7,16 +7,48 @@
 
 namespace tinlod {
 
+std::array<bool, 4> sharedSides(const Dem& dem) {
+  return {dem.window.colOffset > 0, dem.sharesLastCol(), dem.window.rowOffset > 0, dem.sharesLastRow()};
+}
+
+int sidePosition(const Dem& dem, int side) {
+  return side == kFirstCol || side == kFirstRow ? 0 : side == kLastCol ? dem.width - 1 : dem.height - 1;
+}
+
+namespace {
+
+// Whether the cell lies on a shared side's line: a column for kFirstCol and kLastCol.
+bool onSide(const Dem& dem, int side, int row, int col) {
+  return (side == kFirstCol || side == kLastCol ? col : row) == sidePosition(dem, side);
+}
+
+}  // namespace
+
 bool onSharedLine(const Dem& dem, int row, int col) {
-  return (col == 0 && dem.window.colOffset > 0) || (col == dem.width - 1 && dem.sharesLastCol()) ||
-         (row == 0 && dem.window.rowOffset > 0) || (row == dem.height - 1 && dem.sharesLastRow());
+  const std::array<bool, 4> shared = sharedSides(dem);
+  for (int s = 0; s < 4; ++s)
+    if (shared[s] && onSide(dem, s, row, col)) return true;
+  return false;
+}
+
+bool onOneSharedLine(const Dem& dem, int rowA, int colA, int rowB, int colB) {
+  const std::array<bool, 4> shared = sharedSides(dem);
+  for (int s = 0; s < 4; ++s)
+    if (shared[s] && onSide(dem, s, rowA, colA) && onSide(dem, s, rowB, colB)) return true;
+  return false;
+}
+
+bool pinnedOnLine(const Dem& dem, int row, int col) {
+  const bool corner = (col == 0 || col == dem.width - 1) && (row == 0 || row == dem.height - 1);
+  return corner || (!dem.nearNodata.empty() && dem.nearNodata[std::size_t(row) * dem.width + col]);
 }
 
 bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t seed) {
-  const bool firstCol = col == 0 && dem.window.colOffset > 0, lastCol = col == dem.width - 1 && dem.sharesLastCol();
-  const bool column = firstCol || lastCol;  // on a vertical line: its blocks run down it
-  const bool corner = (col == 0 || col == dem.width - 1) && (row == 0 || row == dem.height - 1);
-  if (corner || (!dem.nearNodata.empty() && dem.nearNodata[std::size_t(row) * dem.width + col])) return true;
+  if (pinnedOnLine(dem, row, col)) return true;
+  const std::array<bool, 4> shared = sharedSides(dem);
+  // On a vertical line its blocks run down it.
+  const bool column = (shared[kFirstCol] && onSide(dem, kFirstCol, row, col)) ||
+                      (shared[kLastCol] && onSide(dem, kLastCol, row, col));
   // The line's block holding the cell, by the whole raster's block grid; a tile's window
   // starts on a block line, so a block of a line lies whole in both tiles that share it.
   const int along = column ? row : col, offset = column ? dem.window.rowOffset : dem.window.colOffset;
@@ -38,15 +70,13 @@ int tileLevelCount(double deletePct, double stopPct) {
   return std::max(1, static_cast<int>(std::ceil(std::log(stopPct / 100.0) / std::log(1.0 - deletePct / 100.0) - 1e-9)));
 }
 
-TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, std::vector<std::uint8_t> nearNodata,
-                        int levels, int block, std::uint64_t seed) {
+TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed) {
   TileBorders b;
   b.block = block, b.seed = seed;
-  b.nearNodata = std::move(nearNodata);
   b.levels = levels;
   // A line's class from its index among the raster's lines of its direction: the same for
   // the two tiles that share it.
-  const bool shared[4] = {dem.window.colOffset > 0, dem.sharesLastCol(), dem.window.rowOffset > 0, dem.sharesLastRow()};
+  const std::array<bool, 4> shared = sharedSides(dem);
   const int lineIndex[4] = {tile.col, tile.col + 1, tile.row, tile.row + 1};
   for (int s = 0; s < 4; ++s)
     if (shared[s]) b.lineClass[s] = (s < 2 ? 0 : 2) + lineIndex[s] % 2;
@@ -54,15 +84,9 @@ TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, st
   b.pinned.assign(tin.vertices.size(), 0);
   for (std::size_t i = 0; i < tin.vertices.size(); ++i) {
     const TinVertex& v = tin.vertices[i];
-    const bool on[4] = {v.col == 0, v.col == dem.width - 1, v.row == 0, v.row == dem.height - 1};
-    int sides = 0, sharedSide = -1;
-    for (int s = 0; s < 4; ++s) {
-      sides += on[s];
-      if (on[s] && shared[s]) sharedSide = s;
-    }
-    if (sharedSide < 0) continue;
-    b.side[i] = static_cast<std::int8_t>(sharedSide);
-    b.pinned[i] = sides > 1 || b.nearNodata[static_cast<std::size_t>(v.row) * dem.width + v.col];
+    for (int s = 0; s < 4; ++s)
+      if (shared[s] && onSide(dem, s, v.row, v.col)) b.side[i] = static_cast<std::int8_t>(s);
+    if (b.side[i] >= 0) b.pinned[i] = pinnedOnLine(dem, v.row, v.col);
   }
   return b;
 }

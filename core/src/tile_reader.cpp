@@ -34,12 +34,9 @@ std::vector<std::uint8_t> missingNearEdges(const Dem& wide, const CellWindow& w,
 }  // namespace
 
 std::array<int, 2> rasterSize(const std::string& path) {
-  GDALAllRegister();
-  GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
-  if (!ds) throw Error("cannot open '" + path + "' as a raster: " + CPLGetLastErrorMsg());
-  const std::array<int, 2> size{GDALGetRasterXSize(ds), GDALGetRasterYSize(ds)};
-  GDALClose(ds);
-  return size;
+  const DatasetPtr ds = openReadOnly(path, GDAL_OF_RASTER);
+  if (!ds) throw Error("cannot open '" + path + "' as a raster");
+  return {ds->GetRasterXSize(), ds->GetRasterYSize()};
 }
 
 CellWindow tileWindow(const std::array<int, 2>& raster, const TileSpec& tile) {
@@ -57,8 +54,8 @@ CellWindow tileWindow(const std::array<int, 2>& raster, const TileSpec& tile) {
   return w;
 }
 
-TileDem readTile(const std::string& path, int band, const TileSpec& tile, int pinning, const ProgressRange& progress,
-                 const HeightRange& valid) {
+Dem readTile(const std::string& path, int band, const TileSpec& tile, int pinning, const ProgressRange& progress,
+             const HeightRange& valid) {
   const std::array<int, 2> raster = rasterSize(path);
   const CellWindow w = tileWindow(raster, tile);
   // Read `pinning` cells more on every side the raster goes on, to see missing cells there.
@@ -66,15 +63,15 @@ TileDem readTile(const std::string& path, int band, const TileSpec& tile, int pi
   wide.xoff = std::max(0, w.xoff - pinning), wide.yoff = std::max(0, w.yoff - pinning);
   wide.xsize = std::min(raster[0], w.xoff + w.xsize + pinning) - wide.xoff;
   wide.ysize = std::min(raster[1], w.yoff + w.ysize + pinning) - wide.yoff;
-  TileDem t{readDemWindow(path, band, wide, progress, valid), {}};
-  t.nearNodata = missingNearEdges(t.dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff, pinning);
-  cropDem(t.dem, w.xoff - wide.xoff, w.yoff - wide.yoff, w.xsize, w.ysize);
-  t.dem.nearNodata = t.nearNodata;  // the sampler's rule for the shared lines reads it
-  const std::size_t count = t.dem.validCount();
+  Dem dem = readDemWindow(path, band, wide, progress, valid);
+  std::vector<std::uint8_t> near = missingNearEdges(dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff, pinning);
+  cropDem(dem, w.xoff - wide.xoff, w.yoff - wide.yoff, w.xsize, w.ysize);
+  dem.nearNodata = std::move(near);  // by cell of the tile, as cropped
+  const std::size_t count = dem.validCount();
   if (count < 3)
     throw EmptyTile("tile " + std::to_string(tile.col) + "," + std::to_string(tile.row) + " of '" + path + "' has " +
                     std::to_string(count) + " valid cell(s)");
-  return t;
+  return dem;
 }
 
 }  // namespace tinlod

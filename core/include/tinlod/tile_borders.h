@@ -36,9 +36,8 @@ struct TileBorders {
   // side is the raster's own edge, simplified as in a whole run.
   std::array<int, 4> lineClass{-1, -1, -1, -1};
   std::vector<std::int8_t> side;     // by vertex: the shared side it lies on, or -1
-  std::vector<std::uint8_t> pinned;  // by vertex: a border vertex that never goes
-  std::vector<std::uint8_t> nearNodata;  // by cell of the tile: a missing cell of the whole raster is near
-  int block = 3;                         // the sampling's, for lineCellSampled
+  std::vector<std::uint8_t> pinned;  // by vertex: a border vertex that never goes (pinnedOnLine)
+  int block = 3;                     // the sampling's, for lineCellSampled
   std::uint64_t seed = 1;
 };
 
@@ -46,11 +45,25 @@ struct TileBorders {
 // two blocks from its vertices, and the nodata filter drops those over missing cells.
 inline int pinningDistance(int block) { return 3 * block; }
 
+// By side (TileSide): whether the tile shares it with a neighbouring tile.
+std::array<bool, 4> sharedSides(const Dem& dem);
+
+// The column (kFirstCol, kLastCol) or row (kFirstRow, kLastRow) of the tile a side lies on.
+int sidePosition(const Dem& dem, int side);
+
 // Whether a cell of a tile lies on a line it shares with a neighbouring tile.
 bool onSharedLine(const Dem& dem, int row, int col);
 
-// Whether a valid cell of a shared line is a vertex: the tile's corners, cells near nodata
-// (Dem::nearNodata), and one valid cell per block of the line, chosen by a hash of the seed
+// Whether two cells of a tile lie on one line it shares with a neighbouring tile.
+bool onOneSharedLine(const Dem& dem, int rowA, int colA, int rowB, int colB);
+
+// Whether a cell of a shared line never goes: a tile corner, or a cell near nodata
+// (Dem::nearNodata), where how a tile's level 0 meets its line depends on cells the other
+// tile does not read. Always sampled.
+bool pinnedOnLine(const Dem& dem, int row, int col);
+
+// Whether a valid cell of a shared line is a vertex: the pinned cells, and one valid cell
+// per block of the line, chosen by a hash of the seed
 // and the block's place in the whole raster: the same cells in both tiles, about as dense
 // as the interior's samples.
 bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t seed);
@@ -58,12 +71,7 @@ bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t 
 // Levels that a whole run with these percentages makes when nothing stops it early.
 int tileLevelCount(double deletePct, double stopPct);
 
-// The tile of `dem`, a window of its raster read with `nearNodata` (by cell of the DEM:
-// some cell of the whole raster within the pinning distance is missing), for `tin`.
-// Vertices at the window's corners, and border vertices near missing cells, are pinned:
-// near nodata, how a tile's level 0 meets its border depends on cells the other tile
-// does not read.
-TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, std::vector<std::uint8_t> nearNodata,
-                        int levels, int block, std::uint64_t seed);
+// The tile of `dem` (a window of its raster, as readTile gives it) for `tin`.
+TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed);
 
 }  // namespace tinlod

@@ -13,13 +13,6 @@
 
 namespace tinlod {
 
-// A tile of a raster, and by each of its cells whether a missing cell of the whole raster
-// lies within `pinningDistance` (read from beyond the tile, so both tiles on a line agree).
-struct TileDem {
-  Dem dem;
-  std::vector<std::uint8_t> nearNodata;
-};
-
 // Width and height of a raster, in cells.
 std::array<int, 2> rasterSize(const std::string& path);
 
@@ -27,8 +20,10 @@ std::array<int, 2> rasterSize(const std::string& path);
 // the next tile (which the two share). Throws Error naming -tile when it is outside the grid.
 CellWindow tileWindow(const std::array<int, 2>& raster, const TileSpec& tile);
 
-// Reads the tile. Throws EmptyTile when it holds fewer than 3 valid cells.
-TileDem readTile(const std::string& path, int band, const TileSpec& tile, int pinning, const ProgressRange& progress,
-                 const HeightRange& valid);
+// Reads the tile, with Dem::nearNodata set on its edges: whether a missing cell of the
+// whole raster lies within `pinning` cells (read from beyond the tile, so both tiles on a
+// line agree). Throws EmptyTile when it holds fewer than 3 valid cells.
+Dem readTile(const std::string& path, int band, const TileSpec& tile, int pinning, const ProgressRange& progress,
+             const HeightRange& valid);
 
 }  // namespace tinlod
