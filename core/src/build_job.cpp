@@ -97,10 +97,7 @@ Tin sampleTile(const Dem& dem, const SampleOptions& sample, const TileSpec& tile
   if (tile.size == 0) return sampleTin(dem, sample, progress);
   try {
     return sampleTin(dem, sample, progress);
-  } catch (const Cancelled&) {
-    throw;
-  } catch (const Error& e) {
-    if (std::string(e.what()).find("gives no triangle") == std::string::npos) throw;
+  } catch (const NoTriangle&) {
     throw EmptyTile("tile " + std::to_string(tile.col) + "," + std::to_string(tile.row) + " holds no triangle");
   }
 }

@@ -143,7 +143,7 @@ Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange&
     progress.inform(std::to_string(isolated) + " sampled cells are in no triangle (isolated valid cells, or slivers "
                     "along a straight edge) and were left out");
   if (tin.triangles.empty())
-    throw Error("'" + dem.path + "' gives no triangle: its valid cells are isolated or in a line");
+    throw NoTriangle("'" + dem.path + "' gives no triangle: its valid cells are isolated or in a line");
   orderSpatially(tin);
   return tin;
 }

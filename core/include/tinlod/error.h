@@ -19,6 +19,12 @@ class Cancelled : public Error {
   Cancelled() : Error("cancelled by the user") {}
 };
 
+// Thrown when a DEM's valid cells make no triangle (isolated, or in a line).
+class NoTriangle : public Error {
+ public:
+  explicit NoTriangle(const std::string& message) : Error(message) {}
+};
+
 // Thrown for a tile of a raster that holds too little data for a TIN: nothing is
 // written, and a tiled run records the tile as empty rather than failed.
 class EmptyTile : public Error {
