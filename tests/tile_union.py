@@ -18,6 +18,7 @@ Exit status 1 when any tile union is not conforming.  Reads the GeoPackages with
 and osgeo (for the metadata), nothing else.
 """
 import argparse
+import bisect
 import json
 import math
 import sqlite3
@@ -43,29 +44,40 @@ def point_xy(blob):
     return struct.unpack_from(order + "dd", blob, wkb + 5)
 
 
-class Tile:
-    def __init__(self, path):
+def signed_area(p, q, r):
+    return 0.5 * ((q[0] - p[0]) * (r[1] - p[1]) - (r[0] - p[0]) * (q[1] - p[1]))
+
+
+class Hierarchy:
+    """A hierarchy GeoPackage, read once: each vertex's cell and place, the triangles with
+    their levels, the levels table. `offset` (column, row) turns its cells into the whole
+    raster's."""
+
+    def __init__(self, path, offset=(0, 0)):
         self.path = path
-        md = metadata(path)
-        xoff, yoff, xsize, ysize = (int(v) for v in md["TINLOD_TILE_WINDOW"].split(","))
-        self.window = (xoff, yoff, xsize, ysize)
         db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
-        self.key = {}  # vertex id -> global (row, col)
+        self.key = {}  # vertex id -> whole-raster (row, col)
         self.xy = {}
         for vid, row, col, geom in db.execute("SELECT id, row, col, geom FROM vertices"):
-            self.key[vid] = (row + yoff, col + xoff)
+            self.key[vid] = (row + offset[1], col + offset[0])
             self.xy[vid] = point_xy(geom)
         self.triangles = db.execute("SELECT v0, v1, v2, first_level, last_level FROM triangles").fetchall()
         self.levels = {r[0]: r[1:] for r in db.execute("SELECT level, vertices, triangles, max_error, rmse, cells FROM levels")}
         db.close()
 
-    def on_line(self, key):
-        """The shared border lines (by whole-raster column or row) a cell lies on."""
-        return key
+    def area(self, k):
+        return sum(signed_area(self.xy[a], self.xy[b], self.xy[c]) for a, b, c in level_triangles(self, k))
 
 
-def level_triangles(tile, k):
-    return [t[:3] for t in tile.triangles if t[3] <= k <= t[4]]
+class Tile(Hierarchy):
+    def __init__(self, path):
+        xoff, yoff, xsize, ysize = (int(v) for v in metadata(path)["TINLOD_TILE_WINDOW"].split(","))
+        self.window = (xoff, yoff, xsize, ysize)
+        super().__init__(path, (xoff, yoff))
+
+
+def level_triangles(tin, k):
+    return [t[:3] for t in tin.triangles if t[3] <= k <= t[4]]
 
 
 def check_level(tiles, k, lines_col, lines_row):
@@ -80,7 +92,7 @@ def check_level(tiles, k, lines_col, lines_row):
             ids = (v0, v1, v2)
             keys = [tile.key[v] for v in ids]
             pts = [tile.xy[v] for v in ids]
-            a = 0.5 * ((pts[1][0] - pts[0][0]) * (pts[2][1] - pts[0][1]) - (pts[2][0] - pts[0][0]) * (pts[1][1] - pts[0][1]))
+            a = signed_area(*pts)
             if not a > 0:
                 problems.append(f"level {k}: triangle {keys} in {tile.path} is not counter-clockwise (area {a})")
             area += a
@@ -104,7 +116,6 @@ def check_level(tiles, k, lines_col, lines_row):
     for d in (on_col, on_row):
         for v in d.values():
             v.sort()
-    import bisect
     for a, b in directed:
         for line, idx, other, d in ((a[1], 0, 1, on_col), (a[0], 1, 0, on_row)):
             if a[other] == b[other] and a[other] == line and line in d:
@@ -113,25 +124,13 @@ def check_level(tiles, k, lines_col, lines_row):
                 i = bisect.bisect_right(cells, lo)
                 if i < len(cells) and cells[i] < hi:
                     problems.append(f"level {k}: edge {a}-{b} on a tile border passes over the vertex at {(cells[i], line) if idx == 0 else (line, cells[i])} (a crack)")
-    return problems, area, len(used), sum(1 for _ in directed) // 1
+    return problems, area, len(used)
 
 
 def pooled(tiles, k):
     cells = sum(t.levels[k][4] for t in tiles)
     ss = sum(t.levels[k][3] ** 2 * t.levels[k][4] for t in tiles)
     return math.sqrt(ss / cells) if cells else 0.0, max(t.levels[k][2] for t in tiles)
-
-
-def whole_area(path, k):
-    db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
-    xy = {vid: point_xy(g) for vid, g in db.execute("SELECT id, geom FROM vertices")}
-    area = 0.0
-    for v0, v1, v2 in db.execute("SELECT v0, v1, v2 FROM triangles WHERE first_level <= ? AND last_level >= ?", (k, k)):
-        p, q, r = xy[v0], xy[v1], xy[v2]
-        area += 0.5 * ((q[0] - p[0]) * (r[1] - p[1]) - (r[0] - p[0]) * (q[1] - p[1]))
-    levels = {r[0]: r[1:] for r in db.execute("SELECT level, vertices, triangles, max_error, rmse, cells FROM levels")}
-    db.close()
-    return area, levels
 
 
 def main():
@@ -150,17 +149,17 @@ def main():
     lines_col = {t.window[0] for t in tiles if t.window[0] > 0}
     lines_row = {t.window[1] for t in tiles if t.window[1] > 0}
     wanted = range(nlevels) if not args.levels else [int(x) for x in args.levels.split(",")]
+    whole = Hierarchy(args.whole) if args.whole else None
     report = []
     failed = False
     for k in wanted:
-        problems, area, vertices, _ = check_level(tiles, k, lines_col, lines_row)
+        problems, area, vertices = check_level(tiles, k, lines_col, lines_row)
         rmse, maxe = pooled(tiles, k)
         row = {"level": k, "vertices": vertices, "triangles": sum(len(level_triangles(t, k)) for t in tiles),
                "area": area, "rmse": rmse, "max_error": maxe, "problems": len(problems)}
-        if args.whole:
-            warea, wl = whole_area(args.whole, k) if k in whole_levels_cache(args.whole) else (float("nan"), {})
-            if wl:
-                row.update({"whole_vertices": wl[k][0], "whole_area": warea, "whole_rmse": wl[k][3], "whole_max_error": wl[k][2]})
+        if whole and k in whole.levels:
+            wl = whole.levels[k]
+            row.update({"whole_vertices": wl[0], "whole_area": whole.area(k), "whole_rmse": wl[3], "whole_max_error": wl[2]})
         report.append(row)
         for p in problems[:10]:
             print("  " + p)
@@ -175,17 +174,6 @@ def main():
             json.dump(report, f, indent=1)
     print("FAILED: the tiles do not fit together" if failed else "OK: every level checked is conforming")
     return 1 if failed else 0
-
-
-_levels_cache = {}
-
-
-def whole_levels_cache(path):
-    if path not in _levels_cache:
-        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
-        _levels_cache[path] = {r[0] for r in db.execute("SELECT level FROM levels")}
-        db.close()
-    return _levels_cache[path]
 
 
 if __name__ == "__main__":
