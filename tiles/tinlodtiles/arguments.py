@@ -159,12 +159,19 @@ def check_run(arguments):
     check_output(arguments.catalogue, "CATALOGUE")
 
 
+def build_option(build_options, name):
+    """The value given to one of the build options: None when it is not there, "" when it
+    ends them without a value."""
+    for i, option in enumerate(build_options):
+        if option == name:
+            return build_options[i + 1] if i + 1 < len(build_options) else ""
+    return None
+
+
 def build_block(build_options):
     """The build's -block (default 3), which a tile side must be a multiple of."""
-    for i, option in enumerate(build_options):
-        if option == "-block":
-            return whole_number(build_options[i + 1] if i + 1 < len(build_options) else "", "-block", 1)
-    return 3
+    value = build_option(build_options, "-block")
+    return 3 if value is None else whole_number(value, "-block", 1)
 
 
 def check_dem(path):

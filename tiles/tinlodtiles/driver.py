@@ -16,6 +16,7 @@ import sys
 from osgeo import gdal
 
 from . import task, thresholds
+from .arguments import build_option
 from .catalogue import Catalogue, levels_folder, tiles_folder
 from .errors import TilesError
 from .grid import tile_grid
@@ -65,13 +66,6 @@ def global_selection(arguments):
     return arguments.selection == "global" and "-threshold" not in arguments.build_options
 
 
-def build_option(build_options, name, default):
-    for i, option in enumerate(build_options[:-1]):
-        if option == name:
-            return float(build_options[i + 1])
-    return default
-
-
 def level_thresholds(catalogue, tiles, arguments, workers):
     """The job's thresholds, one per level: recorded in the catalogue once the survey pass
     has run over every tile (a rerun reuses them), as text for -level_thresholds."""
@@ -91,8 +85,10 @@ def level_thresholds(catalogue, tiles, arguments, workers):
                              "run again to retry them" % outcome["failed"])
     rows = catalogue.rows()
     surveys = [thresholds.read_survey(survey_path(folder, t)) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
-    values = thresholds.level_thresholds(surveys, build_option(arguments.build_options, "-delete_pct", 20),
-                                         build_option(arguments.build_options, "-stop_pct", 5))
+    def percent(name, default):
+        return float(build_option(arguments.build_options, name) or default)
+
+    values = thresholds.level_thresholds(surveys, percent("-delete_pct", 20), percent("-stop_pct", 5))
     text = thresholds.as_option(values)
     catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
     for t in surveyed:
