@@ -291,6 +291,9 @@ class Simplifier {
     for (VertexId v : live_)
       if ((stale_[v] || mesh_.open(v)) && eligible(v)) stale.push_back(v);
     const std::string phase = "Selecting level " + std::to_string(level);
+    // Named before the work: the calling thread reports between its own blocks, and on a
+    // busy machine the other threads may take them all.
+    progress_.report(lastFraction_, phase);
     forEachBlock(static_cast<int>(stale.size()), [&](int begin, int end) {
       StarScratch scratch;
       for (int i = begin; i < end; ++i) {
