@@ -44,6 +44,8 @@ QString ExtractLodAlgorithm::shortHelpString() const {
       "valid cell centre under them (level 0's own triangles are as fine as it gets), plus the error growth (metres per metre) times its distance to the nearest centre.\n"
       "- Region: every vertex inside the polygons comes back: full detail there.\n"
       "A vertex that a restored vertex needs comes back as well, so the tests hold everywhere.\n\n"
+      "Hierarchy: a GeoPackage of 'Build TIN hierarchy from DEM', or the catalogue GeoPackage of tinlod tiles: "
+      "its finished tiles are then one hierarchy and the output one TIN across them, without a crack.\n\n"
       "Output: a GeoPackage TIN ('vertices' and 'triangles' with each triangle's first and last level) in the "
       "hierarchy's CRS.");
 }

@@ -6,6 +6,7 @@ again, and each level across the tiles (VRT and merge) holds every tile's triang
 Usage: tiles_test.py TINLOD_CLI TINLOD_TILES STANDIN
 Skipped (exit 77) where python3-distributed is absent. A tinlod without -tile_size (the core
 before tiles) is stood in for by STANDIN, which cuts the tile's window itself."""
+import json
 import os
 import re
 import struct
@@ -27,7 +28,7 @@ failures = []
 
 
 def check(what, ok, detail=""):
-    print(("ok: " if ok else "FAILED: ") + what + ("" if ok else "  (%s)" % detail))
+    print(("ok: " if ok else "FAILED: ") + what + ("" if ok else "  (%s)" % (detail,)))
     if not ok:
         failures.append(what)
 
@@ -131,6 +132,43 @@ def check_complete(catalogue, label):
           and metadata.get("TINLOD_RASTER_SIZE") == "400,300" and int(metadata.get("TINLOD_LEVELS", 0)) > 1,
           metadata)
     return found, metadata
+
+
+def lod_and_accuracy(tinlod, catalogue, dem, work):
+    """(g) lod and accuracy take the catalogue: its tiles as one hierarchy."""
+    box = tile_box(catalogue, (0, 0), inset=0.0)
+    out = os.path.join(work, "lod.gpkg")
+    lod = run([tinlod, "lod", catalogue, out, "-center", str(box[2]), str(box[1]), "-dropoff", "40", "-q"])
+    check("(g) lod on the catalogue succeeds", lod.returncode == 0, lod.stderr[-2000:])
+    if lod.returncode != 0:
+        return
+    source = ogr.Open(out)
+    places = [(f.GetGeometryRef().GetX(), f.GetGeometryRef().GetY()) for f in source.GetLayerByName("vertices")]
+    check("(g) a vertex of a line two tiles share is one vertex of the output", len(places) == len(set(places)),
+          len(places) - len(set(places)))
+    raster = gdal.Open(dem)  # held: the band dies with its dataset
+    band = raster.GetRasterBand(1).ReadAsArray()
+    wrong = [f["id"] for f in source.GetLayerByName("vertices")
+             if abs(band[f["row"], f["col"]] - f.GetGeometryRef().GetZ()) > 1e-3]
+    check("(g) rows and columns are the whole raster's (each vertex has its cell's height)", not wrong, wrong[:5])
+    levels = {f["first_level"] for f in source.GetLayerByName("triangles")}
+    check("(g) fine near the centre, coarse far away", 0 in levels and max(levels) >= 8, sorted(levels))
+    report = os.path.join(work, "accuracy.json")
+    accuracy = run([tinlod, "accuracy", dem, catalogue, "-reference", "dem", "-report", report, "-q"])
+    check("(g) accuracy on the catalogue succeeds", accuracy.returncode == 0, accuracy.stderr[-2000:])
+    if accuracy.returncode == 0:
+        with open(report) as f:
+            rows = json.load(f)["runs"][0]["levels"]
+        distinct = set()
+        for name in os.listdir(os.path.join(work, "a_tiles")):
+            if name.endswith(".gpkg"):
+                tile = ogr.Open(os.path.join(work, "a_tiles", name))
+                distinct |= {(f.GetGeometryRef().GetX(), f.GetGeometryRef().GetY()) for f in tile.GetLayerByName("vertices")}
+        check("(g) accuracy reports every level, level 0 with the tiles' distinct vertices",
+              len(rows) == 15 and rows[0]["vertices"] == len(distinct), (len(rows), rows[0].get("vertices"), len(distinct)))
+        check("(g) ... each level's largest error at the cells is the build's certified one",
+              all(abs(r["max_abs_error_m"] - r["certified_error_m"]) < 1e-6 for r in rows),
+              [(r["max_abs_error_m"], r["certified_error_m"]) for r in rows])
 
 
 def main(tinlod, tiles):
@@ -260,6 +298,8 @@ def main(tinlod, tiles):
           via_catalogue.returncode == 0 and all(r.returncode == 0 for r in via_tiles)
           and heights[0] == (one[0][0][0], "0,0") and heights[1] == (one[1][1][0], "1,0")
           and heights[0][0] is not None, (heights, one, via_catalogue.stderr))
+
+    lod_and_accuracy(tinlod, catalogue, dem, work)
 
     print("tiles: %d failed" % len(failures))
     if not failures:

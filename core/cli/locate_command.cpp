@@ -17,7 +17,8 @@ the level asked for) and the height of the containing triangle is interpolated.
 
 Usage: tinlod locate HIER.gpkg POINTS OUT.gpkg [options]
 
-  HIER.gpkg      a hierarchy written by tinlod build (or a TIN of tinlod sample/insert)
+  HIER.gpkg      a hierarchy written by tinlod build (or a TIN of tinlod sample/insert),
+                 or the catalogue of tinlod tiles
   POINTS         a point layer GDAL reads (its first layer); other CRSs are transformed;
                  a multipoint of one point counts, lines, polygons and multipoints of
                  several points are refused (one elevation per feature)

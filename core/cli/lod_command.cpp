@@ -20,7 +20,8 @@ conforming TIN (de Berg and Dobrindt's traversal of the hierarchy).
 
 Usage: tinlod lod HIER.gpkg OUT.gpkg [tests] [options]
 
-  HIER.gpkg          a hierarchy written by tinlod build
+  HIER.gpkg          a hierarchy written by tinlod build, or the catalogue of tinlod tiles
+                     (its finished tiles as one hierarchy, one TIN across them)
   OUT.gpkg           GeoPackage TIN: 'vertices' (PointZ: id, row, col, outline, level) and
                      'triangles' (PolygonZ: id, v0, v1, v2, first_level, last_level), in
                      the hierarchy's CRS

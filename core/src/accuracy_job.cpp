@@ -10,7 +10,7 @@
 #include "insertion_levels.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
-#include "tinlod/hierarchy_reader.h"
+#include "catalogue_hierarchy.h"
 #include "tinlod/version.h"
 
 namespace tinlod {
@@ -122,7 +122,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   OutputFiles files(outputs.overwrite, datasetFiles({demPath, hierarchyPath}));
   const AccuracyFiles staged = stageAccuracyFiles(outputs, files);
   const ProgressRange all(feedback, 0, 1);
-  const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.15));
+  const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.15));
   if (band == 0) band = sampledBand(stored);
   const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), validHeights ? *validHeights : recordedRange(stored.info.metadata));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS

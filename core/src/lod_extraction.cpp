@@ -49,19 +49,30 @@ bool accepted(const Hierarchy& h, const LodOptions& o, const Group& g) {
 }
 
 // The groups to refine: those the tests accept, and every coarser group whose accept
-// triangles hold a reject triangle of one of them (finer groups first, so that the need
-// climbs all the way up).
+// triangles hold a reject triangle of one of them (finer levels first, so that the need
+// climbs all the way up). Groups deleting one vertex (the tiles of a catalogue each have
+// their own group for a vertex of the line they share, at the same level) go together,
+// so that both tiles bring the vertex back and their sides of the line stay the same.
 std::vector<bool> groupsToRefine(const Hierarchy& h, const LodOptions& o) {
   std::vector<std::uint32_t> order(h.groups.size());
   for (std::uint32_t g = 0; g < order.size(); ++g) order[g] = g;
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return h.groups[a].level < h.groups[b].level; });
   std::vector<bool> refine(h.groups.size(), false);
-  for (std::uint32_t g : order) {
-    if (!refine[g] && !accepted(h, o, h.groups[g])) continue;
-    refine[g] = true;
-    const auto [begin, end] = h.reject(h.groups[g]);
-    for (const std::uint32_t* r = begin; r != end; ++r)
-      if (h.triangles[*r].replacedBy != kNoGroup) refine[h.triangles[*r].replacedBy] = true;
+  std::vector<std::uint8_t> vertexBack(h.base.vertices.size(), 0);
+  for (std::size_t begin = 0, end = 0; begin < order.size(); begin = end) {
+    for (end = begin; end < order.size() && h.groups[order[end]].level == h.groups[order[begin]].level; ++end) {
+      const std::uint32_t g = order[end];
+      refine[g] = refine[g] || accepted(h, o, h.groups[g]);
+      vertexBack[h.groups[g].vertex] |= refine[g];
+    }
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t g = order[i];
+      if (!vertexBack[h.groups[g].vertex]) continue;
+      refine[g] = true;
+      const auto [rb, re] = h.reject(h.groups[g]);
+      for (const std::uint32_t* r = rb; r != re; ++r)
+        if (h.triangles[*r].replacedBy != kNoGroup) refine[h.triangles[*r].replacedBy] = true;
+    }
   }
   return refine;
 }

@@ -13,7 +13,7 @@
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 #include "tinlod/gpkg_writer.h"
-#include "tinlod/hierarchy_reader.h"
+#include "catalogue_hierarchy.h"
 #include "tinlod/point_reader.h"
 #include "tinlod/version.h"
 
@@ -71,7 +71,7 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   OutputFiles files(overwrite, datasetFiles({hierarchyPath, options.centresPath, options.regionPath}));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
-  const StoredHierarchy stored = readHierarchy(hierarchyPath, all.sub(0, 0.5));
+  const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.5));
   if (stored.info.kind != "hierarchy")
     throw Error("'" + hierarchyPath + "' is a single TIN (" + stored.info.kind + "), not a hierarchy: make one with tinlod build");
   const Hierarchy& h = stored.hierarchy;

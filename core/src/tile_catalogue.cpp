@@ -52,6 +52,7 @@ std::vector<CatalogueTile> readCatalogue(const std::string& path) {
     const std::filesystem::path file = f->GetFieldAsString("file");
     t.file = (file.is_absolute() ? file : folder / file).string();
     t.box = {e.MinX, e.MinY, e.MaxX, e.MaxY};
+    t.xoff = f->GetFieldAsInteger("xoff"), t.yoff = f->GetFieldAsInteger("yoff");
     tiles.push_back(std::move(t));
   }
   if (tiles.empty()) throw Error("the catalogue '" + path + "' has no finished tile: run tinlod tiles on it first");

@@ -12,6 +12,7 @@ struct CatalogueTile {
   std::string name;  // "C,R"
   std::string file;  // resolved against the catalogue's folder
   std::array<double, 4> box;  // min x, min y, max x, max y in the TIN's CRS
+  int xoff = 0, yoff = 0;     // the tile's first column and row in the raster
 };
 
 // Whether `path` is a tinlod-tiles catalogue (its metadata says so).

@@ -1,0 +1,190 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "catalogue_hierarchy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <unordered_map>
+
+#include "tile_catalogue.h"
+#include "tinlod/error.h"
+
+namespace tinlod {
+namespace {
+
+// A vertex's place, bit for bit: tiles put a shared vertex at the very same x and y.
+struct Place {
+  std::uint64_t x, y;
+  bool operator==(const Place& o) const { return x == o.x && y == o.y; }
+};
+struct PlaceHash {
+  std::size_t operator()(const Place& p) const { return std::hash<std::uint64_t>()(p.x * 0x9E3779B97F4A7C15ull ^ p.y); }
+};
+Place placeOf(const TinVertex& v) {
+  Place p;
+  std::memcpy(&p.x, &v.x, sizeof p.x);
+  std::memcpy(&p.y, &v.y, sizeof p.y);
+  return p;
+}
+
+std::string notOneJob(const CatalogueTile& tile, const std::string& what) {
+  return "tile " + tile.name + " ('" + tile.file + "') " + what + ": the catalogue's tiles were not built by one job";
+}
+
+// Appends tiles to one hierarchy, one vertex for each place.
+class TileMerger {
+ public:
+  void add(const CatalogueTile& tile, const Hierarchy& h);
+  Hierarchy finish();
+
+ private:
+  void checkSameJob(const CatalogueTile& tile, const Hierarchy& h) const;
+  void addLevels(const Hierarchy& h);
+  std::vector<VertexId> addVertices(const CatalogueTile& tile, const Hierarchy& h);
+  void addTriangles(const Hierarchy& h, const std::vector<VertexId>& id);
+
+  Hierarchy all_;
+  std::vector<double> squares_;  // per level, the sum of squared errors over the tiles' cells
+  std::unordered_map<Place, VertexId, PlaceHash> places_;
+  bool first_ = true;
+};
+
+void TileMerger::checkSameJob(const CatalogueTile& tile, const Hierarchy& h) const {
+  if (h.coarsest() != all_.coarsest())
+    throw Error(notOneJob(tile, "has levels 0 to " + std::to_string(h.coarsest()) + ", the tiles before it 0 to " +
+                                    std::to_string(all_.coarsest())));
+  if (h.base.crsWkt != all_.base.crsWkt) throw Error(notOneJob(tile, "has another CRS than the tiles before it"));
+  if (h.options.measure != all_.options.measure || h.options.deletePct != all_.options.deletePct ||
+      h.options.stopPct != all_.options.stopPct || h.tinMethod != all_.tinMethod)
+    throw Error(notOneJob(tile, "was simplified with other options than the tiles before it"));
+}
+
+void TileMerger::addLevels(const Hierarchy& h) {
+  if (first_) all_.levels = h.levels, squares_.assign(h.levels.size(), 0);
+  for (std::size_t L = 0; L < h.levels.size(); ++L) {
+    const LevelStats& s = h.levels[L];
+    LevelStats& m = all_.levels[L];
+    if (!first_) {
+      m.triangles += s.triangles, m.cells += s.cells;
+      m.selectSeconds += s.selectSeconds, m.deleteSeconds += s.deleteSeconds;
+      m.maxError = std::max(m.maxError, s.maxError);
+    }
+    squares_[L] += s.rmse * s.rmse * double(s.cells);
+  }
+}
+
+std::vector<VertexId> TileMerger::addVertices(const CatalogueTile& tile, const Hierarchy& h) {
+  std::vector<VertexId> id(h.base.vertices.size());
+  for (std::size_t v = 0; v < id.size(); ++v) {
+    TinVertex vertex = h.base.vertices[v];
+    vertex.row += tile.yoff, vertex.col += tile.xoff;  // the tile's cell, in the whole raster
+    const bool fixed = !h.fixed.empty() && h.fixed[v];
+    const auto [it, added] = places_.try_emplace(placeOf(vertex), static_cast<VertexId>(all_.base.vertices.size()));
+    id[v] = it->second;
+    if (added) {
+      all_.base.vertices.push_back(vertex);
+      all_.vertexLevel.push_back(h.vertexLevel[v]);
+      all_.fixed.push_back(fixed);
+      continue;
+    }
+    // A vertex of a line this tile shares with one read before.
+    if (all_.base.vertices[id[v]].z != vertex.z || all_.vertexLevel[id[v]] != h.vertexLevel[v])
+      throw Error(notOneJob(tile, "and a tile before it have a vertex at x " + std::to_string(vertex.x) + ", y " +
+                                      std::to_string(vertex.y) + " with another height or level"));
+    all_.fixed[id[v]] = all_.fixed[id[v]] || fixed;
+  }
+  return id;
+}
+
+void TileMerger::addTriangles(const Hierarchy& h, const std::vector<VertexId>& id) {
+  const auto remap = [&](Triangle t) { return Triangle{id[t[0]], id[t[1]], id[t[2]]}; };
+  const auto groupOffset = static_cast<std::int32_t>(all_.groups.size());
+  const auto triangleOffset = static_cast<std::uint32_t>(all_.triangles.size());
+  const auto linkOffset = static_cast<std::uint32_t>(all_.links.size());
+  for (const Triangle& t : h.base.triangles) all_.base.triangles.push_back(remap(t));
+  for (HierarchyTriangle t : h.triangles) {
+    t.v = remap(t.v);
+    if (t.group != kNoGroup) t.group += groupOffset;
+    if (t.replacedBy != kNoGroup) t.replacedBy += groupOffset;
+    all_.triangles.push_back(t);
+  }
+  for (Group g : h.groups) {
+    g.vertex = id[g.vertex];
+    g.acceptBegin += linkOffset, g.acceptEnd += linkOffset, g.rejectBegin += linkOffset, g.rejectEnd += linkOffset;
+    g.ringBegin = g.ringEnd = 0;  // a stored hierarchy has no rings
+    all_.groups.push_back(g);
+  }
+  for (std::uint32_t t : h.links) all_.links.push_back(t + triangleOffset);
+  if (all_.triangles.size() > UINT32_MAX || all_.groups.size() > std::size_t(INT32_MAX))
+    throw Error("the catalogue's tiles hold more triangles than one hierarchy can: use fewer tiles (tinlod tiles merge -te)");
+}
+
+void TileMerger::add(const CatalogueTile& tile, const Hierarchy& h) {
+  if (first_) {
+    all_.base.crsWkt = h.base.crsWkt, all_.base.crsName = h.base.crsName;
+    all_.options = h.options, all_.tinMethod = h.tinMethod;
+  } else {
+    checkSameJob(tile, h);
+  }
+  addLevels(h);
+  addTriangles(h, addVertices(tile, h));
+  if (!h.stopReason.empty() && all_.stopReason.empty()) all_.stopReason = "tile " + tile.name + ": " + h.stopReason;
+  first_ = false;
+}
+
+// On the outline: on an edge of level 0 that only one triangle has (tiles' shared lines
+// are no longer outline once the tiles are put together).
+std::vector<bool> outlineVertices(const Tin& tin) {
+  std::unordered_map<std::uint64_t, int> edges;
+  const auto key = [](VertexId a, VertexId b) { return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b); };
+  for (const Triangle& t : tin.triangles)
+    for (int k = 0; k < 3; ++k) ++edges[key(t[k], t[(k + 1) % 3])];
+  std::vector<bool> outline(tin.vertices.size(), false);
+  for (const auto& [edge, count] : edges)
+    if (count == 1) outline[edge >> 32] = outline[edge & 0xffffffffu] = true;
+  return outline;
+}
+
+Hierarchy TileMerger::finish() {
+  const std::vector<bool> outline = outlineVertices(all_.base);
+  for (std::size_t v = 0; v < outline.size(); ++v) all_.base.vertices[v].outline = outline[v];
+  for (std::size_t L = 0; L < all_.levels.size(); ++L) {
+    LevelStats& s = all_.levels[L];
+    s.vertices = s.deleted = s.outlineVertices = 0;
+    for (std::size_t v = 0; v < all_.vertexLevel.size(); ++v) {
+      s.vertices += all_.vertexLevel[v] >= std::int32_t(L);
+      s.deleted += L > 0 && all_.vertexLevel[v] == std::int32_t(L) - 1;
+      s.outlineVertices += outline[v] && all_.vertexLevel[v] >= std::int32_t(L);
+    }
+    s.rmse = s.cells > 0 ? std::sqrt(squares_[L] / double(s.cells)) : 0;
+  }
+  return std::move(all_);
+}
+
+}  // namespace
+
+StoredHierarchy readCatalogueHierarchy(const std::string& path, const ProgressRange& progress) {
+  const std::vector<CatalogueTile> tiles = readCatalogue(path);
+  TileMerger merger;
+  StoredHierarchy out;
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    const ProgressRange part = progress.sub(double(i) / tiles.size(), double(i + 1) / tiles.size());
+    part.report(0, "Reading tile " + tiles[i].name + " (" + std::to_string(i + 1) + " of " + std::to_string(tiles.size()) + ")");
+    StoredHierarchy tile = readHierarchy(tiles[i].file, part);
+    if (tile.info.kind != "hierarchy")
+      throw Error("tile " + tiles[i].name + " ('" + tiles[i].file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
+    merger.add(tiles[i], tile.hierarchy);
+    if (i == 0) out.info = std::move(tile.info);
+    else out.info.bytes += tile.info.bytes;
+  }
+  out.hierarchy = merger.finish();
+  out.info.path = path;
+  out.info.levels = out.hierarchy.levels;
+  return out;
+}
+
+StoredHierarchy readHierarchyOrCatalogue(const std::string& path, const ProgressRange& progress) {
+  return isCatalogue(path) ? readCatalogueHierarchy(path, progress) : readHierarchy(path, progress);
+}
+
+}  // namespace tinlod

@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Private: the tiles of a tinlod-tiles catalogue read as one hierarchy, for the jobs that
+// need a whole hierarchy at once (lod, accuracy).
+#pragma once
+
+#include <string>
+
+#include "tinlod/feedback.h"
+#include "tinlod/hierarchy_reader.h"
+
+namespace tinlod {
+
+// Every finished tile of the catalogue at `path`, as one hierarchy. A vertex on a line two
+// tiles share is one vertex; each tile keeps its own group for it (the half of its star on
+// that tile's side), at the same level in both, so `Group::vertex` may repeat. A vertex's
+// row and column are the whole raster's (the catalogue's tile offsets added). Level
+// statistics: vertex and outline counts of the distinct vertices, triangle counts summed,
+// the largest error the largest of any tile, RMSE and cells pooled over the tiles (the
+// cells on a shared line counted in both tiles). Throws Error when the tiles were not made
+// by one job (other levels, CRS or options, or a shared vertex with two heights or levels).
+// Memory is that of a whole run over the tiles' extent.
+StoredHierarchy readCatalogueHierarchy(const std::string& path, const ProgressRange& progress);
+
+// A hierarchy GeoPackage as readHierarchy reads it, or a catalogue as above.
+StoredHierarchy readHierarchyOrCatalogue(const std::string& path, const ProgressRange& progress);
+
+}  // namespace tinlod
