@@ -128,6 +128,58 @@ assert all(f.GetField("elevation") is not None for f in points)
 print("  %s points located on level 3" % outputs["LOCATED"])
 PY
 
+# The catalogue of a tiled run as the hierarchy: 2 x 2 tiles of a small DEM built one by one
+# and listed as tinlod-tiles lists them (its own catalogue module, without Dask).
+"$tinlod_cli" makedem "$work/small.tif" -size 200 150 -q
+mkdir -p "$work/cat_tiles"
+for tile in 0,0 1,0 0,1 1,1; do
+  "$tinlod_cli" build "$work/small.tif" "$work/cat_tiles/tile_${tile/,/_}.gpkg" -tile_size 102 -tile "$tile" -q
+done
+PYTHONPATH=$here/../tiles /usr/bin/python3 - "$work/small.tif" "$work/cat.gpkg" <<'PY'
+import sys
+from osgeo import gdal, ogr
+from tinlodtiles.catalogue import Catalogue
+from tinlodtiles.grid import tile_grid
+dem, path = gdal.Open(sys.argv[1]), sys.argv[2]
+tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, 102)
+catalogue = Catalogue.create(path, {"TINLOD_TILE_SIZE": "102"}, None, tiles)
+for t in tiles:
+    source = ogr.Open("%s/cat_tiles/%s" % (path.rsplit("/", 1)[0], t.name))
+    minx, maxx, miny, maxy = source.GetLayerByName("triangles").GetExtent()
+    box = ogr.CreateGeometryFromWkt("POLYGON((%r %r,%r %r,%r %r,%r %r,%r %r))" % (minx, miny, maxx, miny, maxx, maxy, minx, maxy, minx, miny))
+    catalogue.update(t.col, t.row, {"file": "cat_tiles/" + t.name, "status": "done"}, box)
+catalogue.close()
+PY
+"$qp" --json run tinlod:extractlod --HIERARCHY="$work/cat.gpkg" --MAX_ERROR=5 --OUTPUT="$work/cat_lod.gpkg" > "$work/cat_lod.json" 2> "$work/cat_lod.err" || true
+check "qgis_process --json run tinlod:extractlod takes a catalogue: one TIN across its tiles" /usr/bin/python3 - "$work/cat_lod.json" "$work/cat_lod.gpkg" <<'PY'
+import json, sys
+from osgeo import ogr
+outputs = json.load(open(sys.argv[1]))["results"]
+ds = ogr.Open(sys.argv[2])  # a layer lives only as long as its dataset
+places = [(f.GetGeometryRef().GetX(), f.GetGeometryRef().GetY()) for f in ds.GetLayerByName("vertices")]
+assert int(outputs["TRIANGLES"]) == ds.GetLayerByName("triangles").GetFeatureCount() > 100, outputs
+assert len(places) == len(set(places)), "a vertex of a shared line twice"
+print("  %s triangles over 4 tiles" % outputs["TRIANGLES"])
+PY
+"$qp" --json run tinlod:locate --INPUT="$work/cat_lod.gpkg|layername=vertices" --HIERARCHY="$work/cat.gpkg" --LEVEL=0 --OUTPUT="$work/cat_loc.gpkg" > "$work/cat_loc.json" 2> "$work/cat_loc.err" || true
+check "qgis_process --json run tinlod:locate takes a catalogue: each vertex its own height on level 0" /usr/bin/python3 - "$work/cat_loc.gpkg" <<'PY'
+import sys
+from osgeo import ogr
+ds = ogr.Open(sys.argv[1])  # a layer lives only as long as its dataset
+points = list(ds.GetLayerByName("points"))
+assert len(points) > 100 and all(p["tile"] for p in points), len(points)
+wrong = [p.GetFID() for p in points if p["elevation"] is None or abs(p["elevation"] - p.GetGeometryRef().GetZ()) > 1e-6]
+assert not wrong, wrong[:5]
+PY
+"$qp" --json run tinlod:accuracy --INPUT="$work/small.tif" --HIERARCHY="$work/cat.gpkg" --REFERENCE=1 --REPORT="$work/cat.json" > "$work/cat_acc.json" 2> "$work/cat_acc.err" || true
+check "qgis_process --json run tinlod:accuracy takes a catalogue: every level of its tiles" /usr/bin/python3 - "$work/cat.json" <<'PY'
+import json, sys
+rows = json.load(open(sys.argv[1]))["runs"][0]["levels"]
+assert len(rows) == 15 and rows[-1]["vertices"] < rows[0]["vertices"] / 10, [r["vertices"] for r in rows]
+assert all(abs(r["max_abs_error_m"] - r["certified_error_m"]) < 1e-6 for r in rows)
+print("  levels 0-14, %d to %d vertices" % (rows[0]["vertices"], rows[-1]["vertices"]))
+PY
+
 gdal_contour -q -a elev -i 100 "$dem" "$work/contours.gpkg"
 "$qp" --json run tinlod:dpvalues --INPUT="$work/contours.gpkg" --THRESHOLD=50 --OUTPUT="$work/dp.gpkg" > "$work/dp.json" 2> "$work/dp.err" || true
 check "qgis_process --json run tinlod:dpvalues on contours of the DEM" /usr/bin/python3 - "$work/dp.json" "$work/dp.gpkg" <<'PY'
