@@ -19,6 +19,7 @@
 #include "tinlod/build_job.h"
 #include "tinlod/error.h"
 #include "tinlod/lod_extraction.h"
+#include "tinlod/lod_job.h"
 
 namespace tinlod {
 namespace {
@@ -229,6 +230,20 @@ TEST(CatalogueHierarchy, TilesOfTwoJobsAreRefused) {
     EXPECT_TRUE(test::contains(e.what(), "tile 1,1")) << e.what();
     EXPECT_TRUE(test::contains(e.what(), "not built by one job")) << e.what();
   }
+}
+
+TEST(CatalogueHierarchy, NoOutputReplacesATileOfTheCatalogue) {
+  const std::string tile = builtTiles().files[4];
+  const auto before = std::filesystem::last_write_time(tile);
+  LodJobOptions o;
+  o.lod.dropoff = 0, o.lod.centres = {{0, 0}};
+  try {
+    runLodJob(builtTiles().catalogue, tile, o, true, kQuiet);
+    FAIL() << "lod wrote over a tile of its catalogue";
+  } catch (const Error& e) {
+    EXPECT_TRUE(test::contains(e.what(), "an input of this run")) << e.what();
+  }
+  EXPECT_EQ(std::filesystem::last_write_time(tile), before);
 }
 
 }  // namespace

@@ -119,7 +119,9 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
                               int band, const std::string& sourceSrs, const Feedback& feedback,
                               const std::optional<HeightRange>& validHeights) {
   outputs.validate();
-  OutputFiles files(outputs.overwrite, datasetFiles({demPath, hierarchyPath}));
+  std::vector<std::string> inputs = hierarchyInputs(hierarchyPath);
+  inputs.push_back(demPath);
+  OutputFiles files(outputs.overwrite, datasetFiles(inputs));
   const AccuracyFiles staged = stageAccuracyFiles(outputs, files);
   const ProgressRange all(feedback, 0, 1);
   const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.15));

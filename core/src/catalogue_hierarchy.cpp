@@ -183,6 +183,13 @@ StoredHierarchy readCatalogueHierarchy(const std::string& path, const ProgressRa
   return out;
 }
 
+std::vector<std::string> hierarchyInputs(const std::string& path) {
+  std::vector<std::string> files{path};
+  if (isCatalogue(path))
+    for (const CatalogueTile& tile : readCatalogue(path)) files.push_back(tile.file);
+  return files;
+}
+
 StoredHierarchy readHierarchyOrCatalogue(const std::string& path, const ProgressRange& progress) {
   return isCatalogue(path) ? readCatalogueHierarchy(path, progress) : readHierarchy(path, progress);
 }

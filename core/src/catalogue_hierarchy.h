@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "tinlod/feedback.h"
 #include "tinlod/hierarchy_reader.h"
@@ -23,5 +24,9 @@ StoredHierarchy readCatalogueHierarchy(const std::string& path, const ProgressRa
 
 // A hierarchy GeoPackage as readHierarchy reads it, or a catalogue as above.
 StoredHierarchy readHierarchyOrCatalogue(const std::string& path, const ProgressRange& progress);
+
+// The files read for `path`: the file itself, and a catalogue's finished tiles (which no
+// output may replace).
+std::vector<std::string> hierarchyInputs(const std::string& path);
 
 }  // namespace tinlod

@@ -68,7 +68,9 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   checkOptions(options);
   GpkgWriteOptions writeOptions{overwrite, jobMetadata(hierarchyPath, options)};
   checkOutputPath(outPath, writeOptions);
-  OutputFiles files(overwrite, datasetFiles({hierarchyPath, options.centresPath, options.regionPath}));
+  std::vector<std::string> inputs = hierarchyInputs(hierarchyPath);
+  inputs.insert(inputs.end(), {options.centresPath, options.regionPath});
+  OutputFiles files(overwrite, datasetFiles(inputs));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.5));
