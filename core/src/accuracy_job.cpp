@@ -6,11 +6,11 @@
 #include <charconv>
 #include <filesystem>
 
+#include "catalogue_hierarchy.h"
 #include "dataset_files.h"
 #include "insertion_levels.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
-#include "catalogue_hierarchy.h"
 #include "tinlod/version.h"
 
 namespace tinlod {

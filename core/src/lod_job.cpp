@@ -8,12 +8,12 @@
 #include <map>
 #include <memory>
 
+#include "catalogue_hierarchy.h"
 #include "layer_source.h"
 #include "polygon_region.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 #include "tinlod/gpkg_writer.h"
-#include "catalogue_hierarchy.h"
 #include "tinlod/point_reader.h"
 #include "tinlod/version.h"
 
