@@ -13,7 +13,7 @@ std::uint64_t cellKey(int row, int col) { return (std::uint64_t(std::uint32_t(ro
 
 }  // namespace
 
-BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& tile) {
+BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& tile) : cellArea_(tile.cellArea) {
   std::unordered_map<std::uint64_t, VertexId> vertexOf;  // the vertices on the shared lines, by cell
   for (VertexId v = 0; v < base.vertices.size(); ++v)
     if (tile.side[v] >= 0) vertexOf.emplace(cellKey(base.vertices[v].row, base.vertices[v].col), v);
@@ -37,19 +37,19 @@ BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& til
   }
 }
 
-std::vector<std::pair<double, VertexId>> BorderLines::take(int level, double share) {
+std::vector<std::pair<double, VertexId>> BorderLines::take(int level, double share, double below) {
   std::vector<std::pair<double, VertexId>> out;
   for (Line& line : lines_)
-    if ((level - 1) % 4 == line.lineClass) takeFromLine(line, share, out);
+    if ((level - 1) % 4 == line.lineClass) takeFromLine(line, share, below, out);
   return out;
 }
 
-void BorderLines::takeFromLine(Line& line, double share, std::vector<std::pair<double, VertexId>>& out) const {
+void BorderLines::takeFromLine(Line& line, double share, double below, std::vector<std::pair<double, VertexId>>& out) const {
   std::vector<Cell>& cells = line.cells;
   const std::size_t n = cells.size();
   if (n < 3) return;
   struct Candidate {
-    double deviation;
+    double importance;  // the deviation, or the volume when one bounds it
     std::size_t at;
   };
   std::vector<Candidate> candidates;
@@ -57,11 +57,17 @@ void BorderLines::takeFromLine(Line& line, double share, std::vector<std::pair<d
     if (cells[i].pinned) continue;
     const Cell &a = cells[i - 1], &b = cells[i + 1];
     const double f = (cells[i].along - a.along) / (b.along - a.along);
-    candidates.push_back({std::fabs(cells[i].z - (a.z + f * (b.z - a.z))), i});
+    const double deviation = std::fabs(cells[i].z - (a.z + f * (b.z - a.z)));
+    // The volume measure's estimate from the line alone: a cone of that height over a star
+    // reaching the line neighbours, as far across the line as along it (a rhombus whose
+    // diagonals are both `span`). The other tile, which shares the line, finds the same.
+    const double span = b.along - a.along;
+    const double volume = deviation * span * span * cellArea_ / 6;
+    if (volume < below) candidates.push_back({std::isfinite(below) ? volume : deviation, i});
   }
   // Ties go to the cell first along the line: nothing but the line decides.
   std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.deviation < b.deviation; });
+                   [](const Candidate& a, const Candidate& b) { return a.importance < b.importance; });
   const std::size_t limit = static_cast<std::size_t>(std::floor(share * double(n - 2)));
   std::vector<std::uint8_t> blocked(n, 0), gone(n, 0);
   std::size_t taken = 0;
@@ -70,7 +76,7 @@ void BorderLines::takeFromLine(Line& line, double share, std::vector<std::pair<d
     if (blocked[c.at]) continue;
     blocked[c.at] = blocked[c.at - 1] = blocked[c.at + 1] = 1;
     gone[c.at] = 1;
-    out.emplace_back(c.deviation, cells[c.at].vertex);
+    out.emplace_back(c.importance, cells[c.at].vertex);
     ++taken;
   }
   std::size_t k = 0;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -28,7 +29,10 @@ class BorderLines {
   // those whose height is nearest the line between their neighbours first, at most `share`
   // of a line's cells. Each comes with its deviation (metres) and its vertex in this tile
   // (kNoVertex where this tile's level 0 left it out: only the other tile deletes it).
-  std::vector<std::pair<double, VertexId>> take(int level, double share);
+  // With a finite `below` (a volume in the TIN's area units times metres: the level's
+  // threshold), only cells whose volume estimate is below it go, smallest first, each with
+  // that estimate: a line stays dense where the terrain is rough, as the interior does.
+  std::vector<std::pair<double, VertexId>> take(int level, double share, double below = INFINITY);
 
  private:
   struct Cell {
@@ -40,7 +44,8 @@ class BorderLines {
     int lineClass = 0;
     std::vector<Cell> cells;
   };
-  void takeFromLine(Line& line, double share, std::vector<std::pair<double, VertexId>>& out) const;
+  void takeFromLine(Line& line, double share, double below, std::vector<std::pair<double, VertexId>>& out) const;
+  double cellArea_ = 1;  // of one cell of the whole raster, in the TIN's area units
 
   std::vector<Line> lines_;
 };

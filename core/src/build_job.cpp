@@ -9,6 +9,7 @@
 
 #include "dataset_files.h"
 #include "text_and_paths.h"
+#include "tinlod/crs_transform.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/hierarchy_builder.h"
 #include "tinlod/hierarchy_writer.h"
@@ -102,6 +103,28 @@ Tin sampleTile(const Dem& dem, const SampleOptions& sample, const TileSpec& tile
   }
 }
 
+// One cell of the whole raster, at its centre, in the TIN's CRS: the same in every tile.
+double cellAreaInTin(const Dem& dem, const SampleOptions& sample) {
+  const CrsTransform toTin = CrsTransform::forDem(dem, sample.sourceSrs, sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
+  const std::array<double, 6>& g = dem.wholeGeotransform();
+  const double col = 0.5 * dem.wholeWidth(), row = 0.5 * dem.wholeHeight();
+  std::vector<double> x, y;
+  for (const auto& [dc, dr] : {std::pair{0.0, 0.0}, std::pair{1.0, 0.0}, std::pair{0.0, 1.0}}) {
+    x.push_back(g[0] + (col + dc) * g[1] + (row + dr) * g[2]);
+    y.push_back(g[3] + (col + dc) * g[4] + (row + dr) * g[5]);
+  }
+  toTin.apply(x, y);
+  const double area = std::fabs((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+  return std::isfinite(area) && area > 0 ? area : std::fabs(g[1] * g[5]);
+}
+
+TileBorders bordersOf(const Dem& dem, const Tin& tin, const TileSpec& tile, const SampleOptions& sample,
+                      const HierarchyOptions& options) {
+  TileBorders borders = tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed);
+  borders.cellArea = cellAreaInTin(dem, sample);
+  return borders;
+}
+
 Dem readInput(const std::string& demPath, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {
   if (tile.size > 0) return readTile(demPath, sample.band, tile, pinningDistance(sample.block), progress, sample.validHeights);
   return readDem(demPath, sample.band, progress, sample.validHeights);
@@ -117,8 +140,7 @@ BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, c
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
-  TileBorders borders;
-  if (tile.size > 0) borders = tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed);
+  const TileBorders borders = tile.size > 0 ? bordersOf(dem, tin, tile, sample, options) : TileBorders{};
   const Hierarchy h = buildHierarchy(std::move(tin), dem, {}, options, all.sub(0.2, 0.95), {},
                                      tile.size > 0 ? &borders : nullptr);
   const std::string partial = outPath + ".partial";
@@ -169,8 +191,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
-  TileBorders borders;
-  if (tile.size > 0) borders = tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed);
+  const TileBorders borders = tile.size > 0 ? bordersOf(dem, tin, tile, sample, options) : TileBorders{};
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
   // With accuracy outputs the last quarter of the job is theirs.

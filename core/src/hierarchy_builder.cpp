@@ -416,7 +416,10 @@ class Simplifier {
     const double share = 1 - std::pow(1 - options_.deletePct / 100.0, 4);  // a line is thinned every fourth level
     const bool bounded = options_.measure == Measure::Error && std::isfinite(options_.maxError);
     if (bounded) return;  // the bound holds at cells only this tile sees: the border stays
-    for (const auto& [deviation, v] : borders_.take(level, share)) {
+    // With the raster's volume threshold for the level, a line keeps its vertices where the
+    // terrain needs them, as the interior does; otherwise it thins by count.
+    const bool volumes = options_.measure == Measure::Volume && !options_.levelThresholds.empty();
+    for (const auto& [importance, v] : borders_.take(level, share, volumes ? levelThreshold_ : INFINITY)) {
       if (v == BorderLines::kNoVertex) continue;  // left out of this tile's level 0
       if (!mesh_.open(v) || !mesh_.deletableOpen(v) || stamp_[v] == level)
         throw Error("tile border vertex at cell (row " + std::to_string(dem_.globalRow(h_.base.vertices[v].row)) +
@@ -427,7 +430,7 @@ class Simplifier {
       mesh_.eachAround(v, [&](std::int32_t slot, int k) {
         stamp_[mesh_.corner(slot, (k + 1) % 3)] = stamp_[mesh_.corner(slot, (k + 2) % 3)] = level;
       });
-      picks.push_back({deviation, v, static_cast<std::uint32_t>(mesh_.degree(v)), true});
+      picks.push_back({importance, v, static_cast<std::uint32_t>(mesh_.degree(v)), true});
     }
   }
 

@@ -39,6 +39,9 @@ struct TileBorders {
   std::vector<std::uint8_t> pinned;  // by vertex: a border vertex that never goes (pinnedOnLine)
   int block = 3;                     // the sampling's, for lineCellSampled
   std::uint64_t seed = 1;
+  // One cell's area in the TIN's CRS (at the whole raster's centre): the border rule's
+  // estimate of a line vertex's volume is in the units of the volume measure.
+  double cellArea = 1;
 };
 
 // How near (in cells) a missing cell pins a border vertex: a level-0 triangle reaches about

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The border rule with the raster's volume threshold: a shared line loses only the cells
+// whose volume estimate (the deviation from the line between their neighbours, as a cone
+// over a span x span rhombus) is below the level's threshold, as both tiles on the line
+// compute it alike.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "border_lines.h"
+#include "test_support.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/sample_job.h"
+#include "tinlod/tile_reader.h"
+
+namespace tinlod {
+namespace {
+
+const Feedback kQuiet;
+const ProgressRange kRange(kQuiet, 0, 1);
+constexpr int kSize = 60, kLineCol = 60, kBlock = 3;
+constexpr std::uint64_t kSeed = 7;
+constexpr double kCellArea = 2;
+
+// The left tile's window of `whole`, as readTile reads it.
+Dem leftTile(const Dem& whole) {
+  const CellWindow w = tileWindow({whole.width, whole.height}, {kSize, 0, 0});
+  Dem dem = whole;
+  cropDem(dem, w.xoff, w.yoff, w.xsize, w.ysize);
+  return dem;
+}
+
+// The rows of the line's sampled cells, in order (its ends included): the line the rule reads.
+std::vector<int> lineRows(const Dem& whole) {
+  const Dem left = leftTile(whole);
+  std::vector<int> rows;
+  for (int r = 0; r < left.height; ++r)
+    if (lineCellSampled(left, r, kLineCol, kBlock, kSeed)) rows.push_back(int(left.globalRow(r)));
+  return rows;
+}
+
+// A plane, but for two spikes on the line: 10 m at its 6th sampled cell, 20 m at its 12th.
+Dem wholeDem() {
+  Dem flat = test::makeDem(2 * kSize + 1, kSize + 1, 10, [](int, int) { return 0.f; });
+  flat.window.fullWidth = flat.width, flat.window.fullHeight = flat.height, flat.window.fullGeotransform = flat.geotransform;
+  const std::vector<int> rows = lineRows(flat);
+  const std::map<int, double> spikes{{rows.at(5), 10.0}, {rows.at(11), 20.0}};
+  Dem dem = test::makeDem(2 * kSize + 1, kSize + 1, 10, [&](int r, int c) {
+    return float(100 + 0.5 * r + 0.25 * c + (c == kLineCol && spikes.count(r) ? spikes.at(r) : 0));
+  });
+  dem.window = flat.window;
+  return dem;
+}
+
+struct TileLine {
+  Dem dem;
+  Tin tin;
+  TileBorders borders;
+};
+
+TileLine tile(const Dem& whole, int col) {
+  const TileSpec spec{kSize, col, 0};
+  const CellWindow w = tileWindow({whole.width, whole.height}, spec);
+  TileLine t{whole, {}, {}};
+  cropDem(t.dem, w.xoff, w.yoff, w.xsize, w.ysize);
+  SampleOptions o;
+  o.block = kBlock;
+  o.seed = kSeed;
+  t.tin = sampleTin(t.dem, o, kRange);
+  t.borders = tileBorders(t.dem, t.tin, spec, 10, kBlock, kSeed);
+  t.borders.cellArea = kCellArea;
+  return t;
+}
+
+// What the line's first thinning takes below `below`: whole-raster row -> importance.
+std::map<int, double> taken(const TileLine& t, double below) {
+  const int side = t.dem.window.colOffset == 0 ? kLastCol : kFirstCol;
+  BorderLines lines(t.tin, t.dem, t.borders);
+  std::map<int, double> out;
+  for (const auto& [importance, v] : lines.take(1 + t.borders.lineClass[side], 0.5, below)) {
+    EXPECT_NE(v, BorderLines::kNoVertex);
+    if (v != BorderLines::kNoVertex) out[int(t.dem.globalRow(t.tin.vertices[v].row))] = importance;
+  }
+  return out;
+}
+
+// The estimate of the cell at `i` of the line, by hand.
+double volumeAt(const Dem& whole, const std::vector<int>& rows, std::size_t i) {
+  auto z = [&](std::size_t k) { return double(whole.at(rows[k], kLineCol)); };
+  const double f = double(rows[i] - rows[i - 1]) / (rows[i + 1] - rows[i - 1]);
+  const double deviation = std::fabs(z(i) - (z(i - 1) + f * (z(i + 1) - z(i - 1))));
+  const double span = rows[i + 1] - rows[i - 1];
+  return deviation * span * span * kCellArea / 6;
+}
+
+TEST(BorderLines, BelowTheThresholdOnlyCellsOfLittleVolumeGoAndTheSpikesStay) {
+  const Dem whole = wholeDem();
+  const std::vector<int> rows = lineRows(whole);
+  ASSERT_GE(rows.size(), 15u);
+  const std::map<int, double> gone = taken(tile(whole, 0), 1e-6);
+  EXPECT_GE(gone.size(), 4u);
+  // Cells 4 to 6 and 10 to 12 deviate (the spikes and their neighbours); none of them goes.
+  for (std::size_t i : {4, 5, 6, 10, 11, 12}) EXPECT_EQ(gone.count(rows[i]), 0u) << "cell " << i;
+  for (const auto& [row, importance] : gone) EXPECT_LT(importance, 1e-6) << "row " << row;
+}
+
+TEST(BorderLines, ImportanceIsTheVolumeEstimateAndTheThresholdCutsBetweenTheSpikes) {
+  const Dem whole = wholeDem();
+  const std::vector<int> rows = lineRows(whole);
+  const double spike5 = volumeAt(whole, rows, 5), spike11 = volumeAt(whole, rows, 11);
+  ASSERT_GT(spike5, 0);
+  const std::map<int, double> all = taken(tile(whole, 0), 1e12);
+  ASSERT_GE(all.size(), 5u);
+  for (const auto& [row, importance] : all) {
+    const std::size_t i = std::find(rows.begin(), rows.end(), row) - rows.begin();
+    ASSERT_LT(i + 1, rows.size());
+    EXPECT_NEAR(importance, volumeAt(whole, rows, i), 1e-9 * (1 + importance)) << "row " << row;
+  }
+  // A threshold between the two spikes' estimates lets the smaller go, never the larger.
+  ASSERT_LT(spike5, spike11);
+  const std::map<int, double> gone = taken(tile(whole, 0), 0.5 * (spike5 + spike11));
+  EXPECT_EQ(gone.count(rows[11]), 0u);
+  EXPECT_EQ(gone.count(rows[5]), 1u);
+}
+
+TEST(BorderLines, BothTilesOnTheLineTakeTheSameCells) {
+  const Dem whole = wholeDem();
+  for (double below : {1e-6, 50.0, 1e12}) {
+    const std::map<int, double> left = taken(tile(whole, 0), below), right = taken(tile(whole, 1), below);
+    EXPECT_FALSE(left.empty());
+    EXPECT_EQ(left, right) << "below " << below;
+  }
+}
+
+}  // namespace
+}  // namespace tinlod
