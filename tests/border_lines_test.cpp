@@ -22,9 +22,9 @@ constexpr int kSize = 60, kLineCol = 60, kBlock = 3;
 constexpr std::uint64_t kSeed = 7;
 constexpr double kCellArea = 2;
 
-// The left tile's window of `whole`, as readTile reads it.
-Dem leftTile(const Dem& whole) {
-  const CellWindow w = tileWindow({whole.width, whole.height}, {kSize, 0, 0});
+// Tile `col`'s window of `whole`, as readTile reads it.
+Dem tileDem(const Dem& whole, int col) {
+  const CellWindow w = tileWindow({whole.width, whole.height}, {kSize, col, 0});
   Dem dem = whole;
   cropDem(dem, w.xoff, w.yoff, w.xsize, w.ysize);
   return dem;
@@ -32,7 +32,7 @@ Dem leftTile(const Dem& whole) {
 
 // The rows of the line's sampled cells, in order (its ends included): the line the rule reads.
 std::vector<int> lineRows(const Dem& whole) {
-  const Dem left = leftTile(whole);
+  const Dem left = tileDem(whole, 0);
   std::vector<int> rows;
   for (int r = 0; r < left.height; ++r)
     if (lineCellSampled(left, r, kLineCol, kBlock, kSeed)) rows.push_back(int(left.globalRow(r)));
@@ -59,15 +59,12 @@ struct TileLine {
 };
 
 TileLine tile(const Dem& whole, int col) {
-  const TileSpec spec{kSize, col, 0};
-  const CellWindow w = tileWindow({whole.width, whole.height}, spec);
-  TileLine t{whole, {}, {}};
-  cropDem(t.dem, w.xoff, w.yoff, w.xsize, w.ysize);
+  TileLine t{tileDem(whole, col), {}, {}};
   SampleOptions o;
   o.block = kBlock;
   o.seed = kSeed;
   t.tin = sampleTin(t.dem, o, kRange);
-  t.borders = tileBorders(t.dem, t.tin, spec, 10, kBlock, kSeed);
+  t.borders = tileBorders(t.dem, t.tin, {kSize, col, 0}, 10, kBlock, kSeed);
   t.borders.cellArea = kCellArea;
   return t;
 }
