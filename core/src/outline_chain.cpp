@@ -26,13 +26,18 @@ bool inClosed(const K::Point_2& a, const K::Point_2& b, const K::Point_2& c, con
 
 OutlineChain::OutlineChain(const SimplificationMesh& mesh, const Tin& tin, const Dem& dem)
     : tin_(&tin), dem_(&dem), before_(tin.vertices.size()), after_(tin.vertices.size()),
-      vertexAt_(static_cast<std::size_t>(dem.width) * dem.height, -1) {
+      rowStart_(static_cast<std::size_t>(dem.height) + 1, 0) {
+  auto onDem = [&](const TinVertex& p) { return p.row >= 0 && p.col >= 0 && p.row < dem.height && p.col < dem.width; };
   for (VertexId v = 0; v < tin.vertices.size(); ++v) {
     if (mesh.deletableOpen(v)) before_[v] = mesh.outlineBefore(v), after_[v] = mesh.outlineAfter(v);
-    const TinVertex& p = tin.vertices[v];
-    if (p.row >= 0 && p.col >= 0 && p.row < dem.height && p.col < dem.width)
-      vertexAt_[static_cast<std::size_t>(p.row) * dem.width + p.col] = static_cast<std::int32_t>(v);
+    if (onDem(tin.vertices[v])) ++rowStart_[tin.vertices[v].row + 1];
   }
+  for (std::size_t r = 1; r < rowStart_.size(); ++r) rowStart_[r] += rowStart_[r - 1];
+  rowCells_.resize(rowStart_.back());
+  std::vector<std::size_t> next(rowStart_.begin(), rowStart_.end() - 1);
+  for (VertexId v = 0; v < tin.vertices.size(); ++v)
+    if (const TinVertex& p = tin.vertices[v]; onDem(p)) rowCells_[next[p.row]++] = {p.col, v};
+  for (int r = 0; r < dem.height; ++r) std::sort(rowCells_.begin() + rowStart_[r], rowCells_.begin() + rowStart_[r + 1]);
 }
 
 bool OutlineChain::rasterCorner(VertexId v) const {
