@@ -5,10 +5,7 @@
 
 namespace tinlod {
 
-CellErrors::CellErrors(const Dem& dem, const Tin& tin) : dem_(&dem) {
-  corners_.reserve(tin.vertices.size());
-  for (std::size_t v = 0; v < tin.vertices.size(); ++v) corners_.push_back(cellCorner(tin.vertices[v], VertexId(v)));
-}
+CellErrors::CellErrors(const Dem& dem, const Tin& tin) : dem_(&dem), tin_(&tin) {}
 
 void CellErrors::bound(double maxError) {
   maxError_ = maxError;
@@ -17,7 +14,8 @@ void CellErrors::bound(double maxError) {
 
 TriangleCells CellErrors::measure(VertexId a, VertexId b, VertexId c, const bool (&outline)[3], bool recordLevelZero) {
   TriangleCells out;
-  const CellCorner p[3] = {corners_[a], corners_[b], corners_[c]};
+  const std::vector<TinVertex>& v = tin_->vertices;
+  const CellCorner p[3] = {cellCorner(v[a], a), cellCorner(v[b], b), cellCorner(v[c], c)};
   const float* z = dem_->z.data();
   const int width = dem_->width;
   const bool bounded = this->bounded();
@@ -37,7 +35,8 @@ TriangleCells CellErrors::measure(VertexId a, VertexId b, VertexId c, const bool
       zero[cell] = f;
     }
     const double allowed = std::max(maxError_, double(zero[cell]));
-    out.excess = std::max(out.excess, d - allowed);
+    // Rounded away from zero, so that the sign survives the float.
+    if (const double e = d - allowed; e > out.excess) out.excess = e > 0 ? std::nextafter(static_cast<float>(e), INFINITY) : static_cast<float>(e);
   });
   return out;
 }

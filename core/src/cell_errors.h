@@ -22,18 +22,22 @@ struct TriangleCells {
   double maxError = 0;
   double sumSquares = 0;
   std::uint32_t cells = 0;
-  double excess = -std::numeric_limits<double>::infinity();
+  // Only its sign decides; a float keeps the struct at 24 bytes (one for each triangle of
+  // the level and of its plan).
+  float excess = -std::numeric_limits<float>::infinity();
 
   void add(const TriangleCells& o) {
     maxError = std::max(maxError, o.maxError), sumSquares += o.sumSquares, cells += o.cells;
     excess = std::max(excess, o.excess);
   }
 };
+static_assert(sizeof(TriangleCells) == 24, "one for each triangle of a level and of its plan: keep it small");
 
 class CellErrors {
  public:
   CellErrors() = default;
-  // `dem` must outlive this; `tin`'s vertices say where each vertex lies in its grid.
+  // `dem` and `tin` must outlive this; `tin`'s vertices say where each vertex lies in its
+  // grid (read where they are, not copied: a copy would cost 32 bytes a vertex).
   CellErrors(const Dem& dem, const Tin& tin);
 
   // With a bound of `maxError` metres: a cell's bound is max(maxError, level 0's own
@@ -45,11 +49,10 @@ class CellErrors {
   // the edge opposite corner k as an outline edge. With recordLevelZero, each cell's
   // distance is kept as level 0's (for bounded runs).
   TriangleCells measure(VertexId a, VertexId b, VertexId c, const bool (&outline)[3], bool recordLevelZero = false);
-  const CellCorner& corner(VertexId v) const { return corners_[v]; }
 
  private:
   const Dem* dem_ = nullptr;
-  std::vector<CellCorner> corners_;  // by TIN id
+  const Tin* tin_ = nullptr;
   double maxError_ = INFINITY;
   std::vector<float> levelZero_;     // by cell: level 0's distance (bounded runs only)
 };
