@@ -257,8 +257,9 @@ void SimplificationMesh::beginRound() {
 
 // Ordered by smallest vertex again, as level 0 was: new triangles left where their stars
 // were drift from the order the vertices are visited in. Each triangle is copied once,
-// on every core, into the array the previous compaction left (the arrays only shrink,
-// so no fresh memory is faulted in).
+// on every core, into a new array; the old one is freed at once: kept for the next
+// compaction, it would hold a second copy of the mesh through the level while the
+// hierarchy grows (faulting the new one in costs no measurable time).
 const Compaction& SimplificationMesh::planCompaction() {
   Compaction& c = compaction_;
   orderBySmallestVertex(triangles_.size(), points_.size(), [&](std::size_t t) {
@@ -270,8 +271,7 @@ const Compaction& SimplificationMesh::planCompaction() {
 
 void SimplificationMesh::applyCompaction() {
   const Compaction& c = compaction_;
-  std::vector<MeshTriangle>& compacted = spare_;
-  compacted.resize(c.oldOf.size());
+  std::vector<MeshTriangle> compacted(c.oldOf.size());
   forEachBlock(static_cast<int>(c.oldOf.size()), [&](int begin, int end) {
     for (int slot = begin; slot < end; ++slot) {
       MeshTriangle tri = triangles_[c.oldOf[slot]];

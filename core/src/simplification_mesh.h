@@ -180,7 +180,6 @@ class SimplificationMesh {
   bool linkedFromNeighbours_ = false;
   // Compaction's own arrays, kept from level to level.
   Compaction compaction_;
-  std::vector<MeshTriangle> spare_;
   VertexTallies tallies_;
   std::vector<std::int32_t> scratch_;
 };
