@@ -111,7 +111,7 @@ TEST(LodExtraction, ErrorTestKeepsEveryTriangleWithinTheTolerance) {
     expectConforming(h, out);
     double worst = 0;  // level 0's triangles are as fine as the hierarchy goes
     for (std::uint32_t t : out)
-      if (h.triangles[t].group != kNoGroup) worst = std::max(worst, h.triangles[t].error);
+      if (h.triangles[t].group != kNoGroup) worst = std::max(worst, double(h.triangles[t].error));
     EXPECT_LE(worst, tolerance);
   }
   // A tolerance growing with distance: coarser far away.

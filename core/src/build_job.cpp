@@ -188,7 +188,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const StagedFile& out = files.add(outPath, "output", true);
   const AccuracyFiles accuracyFiles = stageAccuracyFiles(accuracy, files);
   const ProgressRange all(feedback, 0, 1);
-  const Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
+  Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
   const TileBorders borders = tile.size > 0 ? bordersOf(dem, tin, tile, sample, options) : TileBorders{};
@@ -199,6 +199,9 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,
                                      tile.size > 0 ? &borders : nullptr);
   if (tile.size == 0) warnIfStoppedEarly(h, all);
+  // Only the accuracy outputs read the heights again; freed, they leave the writing room
+  // (68 MB for a 4096 x 4096 tile). The DEM's size and window stay for the metadata.
+  if (!accuracy.wanted()) dem.z = {}, dem.nearNodata = {};
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
   if (tile.size > 0) addTileMetadata(dem, tile, writeOptions.metadata);
   writeOptions.metadata["TINLOD_LEVEL_VIEWS"] = levelListText(layers.levelViews);

@@ -37,7 +37,7 @@ struct Pick {
   VertexId id;
   std::uint32_t degree;  // ring vertices
   bool open = false;     // on the outline: degree - 1 triangles around it, not degree
-  std::size_t fill = 0;  // its degree - 2 new triangles, in fill_, fillCells_ and new triangle ids
+  std::size_t fill = 0;  // its degree - 2 new triangles, in fill_ and new triangle ids
   std::size_t ring = 0;  // its degree ring vertices, slots and outer triangles
   std::size_t link = 0;  // its accept and reject triangles' ids in the level's links
   std::uint32_t triangles() const { return open ? degree - 1 : degree; }
@@ -147,6 +147,9 @@ class Simplifier {
     for (const TriangleCells& c : slotCells_) covered += c.cells;
     cellSize_ = covered > 0 ? std::sqrt(totalArea(h_.base) / double(covered)) : 0;
     tolerance_ = std::isnan(options_.outlineTolerance) ? cellSize_ : options_.outlineTolerance;
+    // Level 0's triangles are also the hierarchy's first ones (and the mesh's): held once
+    // while the simplification runs, they are put back when it is done.
+    h_.base.triangles = {};
   }
 
   bool onBorder(VertexId v) const { return tile_ && tile_->side[v] >= 0; }
@@ -167,7 +170,7 @@ class Simplifier {
         const bool outline[3] = {mesh_.across(slot, 0) == kNoTriangle, mesh_.across(slot, 1) == kNoTriangle,
                                  mesh_.across(slot, 2) == kNoTriangle};
         slotCells_[slot] = cells_.measure(mesh_.corner(slot, 0), mesh_.corner(slot, 1), mesh_.corner(slot, 2), outline, true);
-        h_.triangles[mesh_.triangleId(slot)].error = slotCells_[slot].maxError;
+        h_.triangles[mesh_.triangleId(slot)].error = roundedUpError(slotCells_[slot].maxError);
       }
     }, [&](double f) { progress_.report(0.1 * f, "Measuring level 0 against the DEM"); });
   }
@@ -355,6 +358,7 @@ class Simplifier {
     runBoth([&] { pickBestFirst(limit, level, picks); },
             [&] { growHierarchy(expectedGrowth(expected), false); });
     if (options_.survey) survey(level, picks, borderPicks);
+
     std::vector<Pick> scratch;
     radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, scratch);
     std::size_t fills = 0, rings = 0, links = 0;
@@ -362,7 +366,7 @@ class Simplifier {
       p.fill = fills, p.ring = rings, p.link = links;
       fills += p.degree - 2, rings += p.degree, links += p.triangles() + p.degree - 2;
     }
-    fitted(fill_, fills), fitted(fillCells_, fills), fitted(slots_, rings), fitted(outer_, rings);
+    fitted(fill_, fills), fitted(slots_, rings), fitted(outer_, rings);
     links_ = links;
     return picks;
   }
@@ -522,6 +526,7 @@ class Simplifier {
       triangles_ -= p.open ? 1 : 2;
       outlineLeft_ -= p.open;
     }
+    releaseFreedMemory();  // what the level's selection left: the compaction's peak is the level's
     compact();
     releaseFreedMemory();
   }
@@ -543,7 +548,8 @@ class Simplifier {
   // The first pass, for one pick: its star, its retriangulation, how far each new
   // triangle is from the DEM, and its group. Reads the mesh and writes only entries that
   // are the pick's own: its ranges of the level's arrays and of the hierarchy's, its
-  // star's triangles, its slots' retirement.
+  // star's triangles, its slots' retirement and figures (the new triangles take the
+  // first slots in the second pass; no one reads a slot's figures meanwhile).
   void plan(const Pick& pick, std::int32_t level, const Ranges& at, Star& star,
             std::vector<LocalTriangle>& fill) {
     VertexId* ring = h_.rings.data() + at.rings + pick.ring;
@@ -553,8 +559,10 @@ class Simplifier {
       throw Error("internal error: deleting a vertex of degree " + std::to_string(star.ring.size()) + " made " +
                   std::to_string(fill.size()) + " triangles");
     std::copy(fill.begin(), fill.end(), fill_.begin() + pick.fill);
+    const std::int32_t* slots = slots_.data() + pick.ring;
     for (std::size_t j = 0; j < fill.size(); ++j)
-      fillCells_[pick.fill + j] = measureFill(ring, outer, static_cast<int>(pick.degree), fill[j]);
+      slotCells_[slots[j]] = measureFill(ring, outer, static_cast<int>(pick.degree), fill[j]);
+    for (std::uint32_t k = static_cast<std::uint32_t>(fill.size()); k < pick.triangles(); ++k) slotCells_[slots[k]] = TriangleCells{};
     thread_local std::vector<int> onEdge;  // by ring edge: the new triangle on it
     onEdge.resize(pick.degree);
     ringEdgeTriangles(fill.data(), static_cast<int>(pick.degree), onEdge.data());
@@ -591,27 +599,24 @@ class Simplifier {
       ht.firstLevel = level;
       ht.lastLevel = kOpenLevel;
       ht.group = g;
-      ht.error = fillCells_[pick.fill + j].maxError;
+      const double error = slotCells_[slots_[pick.ring + j]].maxError;
+      ht.error = roundedUpError(error);
       h_.links[group.rejectBegin + j] = static_cast<std::uint32_t>(t);
-      group.error = std::max(group.error, ht.error);
+      group.error = std::max(group.error, error);  // exact: the error measure's importance
     }
     h_.vertexLevel[pick.id] = level - 1;
   }
 
-  // The second pass, for one pick: the new triangles go into the mesh (the samples moved
-  // in the first pass and are sorted into their slots when the mesh is compacted). Writes
-  // the pick's own slots, and the links back to them.
+  // The second pass, for one pick: the new triangles go into the mesh (their figures went
+  // into their slots in the first pass). Writes the pick's own slots, and the links back
+  // to them.
   void replace(const Pick& pick, std::size_t triangles, std::size_t rings) {
     const StarView star = view(pick, rings);
     std::int32_t ids[kSmallStar];
     std::vector<std::int32_t> many;
     std::int32_t* id = ids;
     if (star.degree - 2 > kSmallStar) many.resize(star.degree - 2), id = many.data();
-    for (int j = 0; j + 2 < star.degree; ++j) {
-      id[j] = static_cast<std::int32_t>(triangles + pick.fill + j);
-      slotCells_[star.slots[j]] = fillCells_[pick.fill + j];
-    }
-    for (int k = star.degree - 2; k < star.triangles(); ++k) slotCells_[star.slots[k]] = TriangleCells{};
+    for (int j = 0; j + 2 < star.degree; ++j) id[j] = static_cast<std::int32_t>(triangles + pick.fill + j);
     mesh_.replaceStar(star, fill_.data() + pick.fill, id);
   }
 
@@ -680,7 +685,6 @@ class Simplifier {
   using Candidate = std::pair<double, VertexId>;
   std::vector<Candidate> candidates_[2];     // the level's, by importance, in two halves
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
-  std::vector<TriangleCells> fillCells_;     //   and their figures against the DEM
   std::size_t links_ = 0;                    //   and how many accept and reject links in all
   std::vector<std::int32_t> slots_;          //   and each pick's star slots
   std::vector<std::int32_t> outer_;          //   and the triangles beyond its ring
@@ -699,7 +703,13 @@ class Simplifier {
 Hierarchy buildHierarchy(Tin base, const Dem& dem, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
                          const ProgressRange& progress, const std::vector<PointXY>& keep, const TileBorders* tile) {
   options.validate();
-  return Simplifier(std::move(base), dem, std::move(fixed), options, progress, tile).run(keep);
+  Hierarchy h = Simplifier(std::move(base), dem, std::move(fixed), options, progress, tile).run(keep);
+  // Level 0's triangles, which the simplifier dropped from the TIN (their ids are their
+  // places in it), once its own arrays are freed.
+  const std::size_t levelZero = h.levels.front().triangles;
+  h.base.triangles.reserve(levelZero);
+  for (std::size_t t = 0; t < levelZero; ++t) h.base.triangles.push_back(h.triangles[t].v);
+  return h;
 }
 
 }  // namespace tinlod

@@ -75,7 +75,7 @@ HierarchyTriangle levelledTriangle(const StoredRow& row, const TriangleColumns& 
   t.group = groupIdOf(row, c.group, h);
   t.replacedBy = groupIdOf(row, c.replacedBy, h);
   checkLinks(row, t, h);
-  t.error = row.nonNegative(c.error);
+  t.error = roundedUpError(row.nonNegative(c.error));
   return t;
 }
 
