@@ -242,6 +242,17 @@ TEST(Hierarchy, RecordedFiguresAreTheDemsAtEveryCellAndLevel) {
   }
 }
 
+// A triangle keeps its error as a float: the nearest one not below the distance, so that a
+// bound read from the stored errors still holds.
+TEST(Hierarchy, StoredTriangleErrorIsTheSmallestFloatNotBelowTheDistance) {
+  for (double d : {0.0, 0.1, 1.0 / 3.0, 2.5, 12345.678, 1e-40, 8848.86, 0.962344123456789}) {
+    const float f = roundedUpError(d);
+    EXPECT_GE(double(f), d) << d;
+    EXPECT_LT(double(std::nextafter(f, -INFINITY)), d) << d;  // the next float down is below
+  }
+  EXPECT_EQ(roundedUpError(2.5), 2.5f);  // exact when the float holds it
+}
+
 TEST(Hierarchy, MaxErrorBoundsEveryLevel) {
   const Dem dem = test::smallSyntheticDem();
   HierarchyOptions o;
