@@ -5,11 +5,13 @@
 // compute it alike.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 
 #include "border_lines.h"
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/tile_reader.h"
 
@@ -58,14 +60,17 @@ struct TileLine {
   TileBorders borders;
 };
 
-TileLine tile(const Dem& whole, int col) {
-  TileLine t{tileDem(whole, col), {}, {}};
+Tin sampled(const Dem& dem) {
   SampleOptions o;
   o.block = kBlock;
   o.seed = kSeed;
-  t.tin = sampleTin(t.dem, o, kRange);
-  t.borders = tileBorders(t.dem, t.tin, {kSize, col, 0}, 10, kBlock, kSeed);
-  t.borders.cellArea = kCellArea;
+  return sampleTin(dem, o, kRange);
+}
+
+TileLine tile(const Dem& whole, int col) {
+  TileLine t{tileDem(whole, col), {}, {}};
+  t.tin = sampled(t.dem);
+  t.borders = tileBorders(t.dem, t.tin, {kSize, col, 0}, 10, kBlock, kSeed, kCellArea);
   return t;
 }
 
@@ -127,6 +132,16 @@ TEST(BorderLines, BothTilesOnTheLineTakeTheSameCells) {
     EXPECT_FALSE(left.empty());
     EXPECT_EQ(left, right) << "below " << below;
   }
+}
+
+// The volume estimate is in the TIN's area units: a tile made without them would thin its
+// lines by a wrong estimate, silently.
+TEST(BorderLines, ATileNeedsItsCellArea) {
+  const Dem dem = tileDem(wholeDem(), 0);
+  const Tin tin = sampled(dem);
+  for (double bad : {0.0, -1.0, double(NAN), double(INFINITY)})
+    EXPECT_THROW(tileBorders(dem, tin, {kSize, 0, 0}, 10, kBlock, kSeed, bad), Error) << bad;
+  EXPECT_EQ(tileBorders(dem, tin, {kSize, 0, 0}, 10, kBlock, kSeed, kCellArea).cellArea, kCellArea);
 }
 
 }  // namespace

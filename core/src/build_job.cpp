@@ -120,9 +120,7 @@ double cellAreaInTin(const Dem& dem, const SampleOptions& sample) {
 
 TileBorders bordersOf(const Dem& dem, const Tin& tin, const TileSpec& tile, const SampleOptions& sample,
                       const HierarchyOptions& options) {
-  TileBorders borders = tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed);
-  borders.cellArea = cellAreaInTin(dem, sample);
-  return borders;
+  return tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample));
 }
 
 Dem readInput(const std::string& demPath, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {

@@ -2,8 +2,11 @@
 #include "tinlod/tile_borders.h"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "tinlod/cell_hash.h"
+#include "tinlod/error.h"
 
 namespace tinlod {
 
@@ -70,9 +73,12 @@ int tileLevelCount(double deletePct, double stopPct) {
   return std::max(1, static_cast<int>(std::ceil(std::log(stopPct / 100.0) / std::log(1.0 - deletePct / 100.0) - 1e-9)));
 }
 
-TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed) {
+TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed,
+                        double cellArea) {
+  if (!(cellArea > 0) || !std::isfinite(cellArea))
+    throw Error("internal error: a tile's cell area must be positive, not " + std::to_string(cellArea));
   TileBorders b;
-  b.block = block, b.seed = seed;
+  b.block = block, b.seed = seed, b.cellArea = cellArea;
   b.levels = levels;
   // A line's class from its index among the raster's lines of its direction: the same for
   // the two tiles that share it.

@@ -41,7 +41,7 @@ struct TileBorders {
   std::uint64_t seed = 1;
   // One cell's area in the TIN's CRS (at the whole raster's centre): the border rule's
   // estimate of a line vertex's volume is in the units of the volume measure.
-  double cellArea = 1;
+  double cellArea = 0;
 };
 
 // How near (in cells) a missing cell pins a border vertex: a level-0 triangle reaches about
@@ -74,7 +74,9 @@ bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t 
 // Levels that a whole run with these percentages makes when nothing stops it early.
 int tileLevelCount(double deletePct, double stopPct);
 
-// The tile of `dem` (a window of its raster, as readTile gives it) for `tin`.
-TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed);
+// The tile of `dem` (a window of its raster, as readTile gives it) for `tin`; `cellArea` as
+// TileBorders::cellArea (throws Error unless it is positive and finite).
+TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed,
+                        double cellArea);
 
 }  // namespace tinlod
