@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "tinlod/hierarchy.h"
+
 namespace tinlod {
 
 CellErrors::CellErrors(const Dem& dem, const Tin& tin) : dem_(&dem), tin_(&tin) {}
@@ -29,14 +31,10 @@ TriangleCells CellErrors::measure(VertexId a, VertexId b, VertexId c, const bool
     out.sumSquares += d * d;
     ++out.cells;
     if (!bounded) return;
-    if (recordLevelZero) {
-      float f = static_cast<float>(d);
-      if (double(f) < d) f = std::nextafter(f, INFINITY);  // rounded up: never a tighter bound than level 0's
-      zero[cell] = f;
-    }
+    if (recordLevelZero) zero[cell] = roundedUpError(d);  // never a tighter bound than level 0's
     const double allowed = std::max(maxError_, double(zero[cell]));
-    // Rounded away from zero, so that the sign survives the float.
-    if (const double e = d - allowed; e > out.excess) out.excess = e > 0 ? std::nextafter(static_cast<float>(e), INFINITY) : static_cast<float>(e);
+    // Rounded up, a passing cell's excess stays above 0 in the float.
+    out.excess = std::max(out.excess, roundedUpError(d - allowed));
   });
   return out;
 }

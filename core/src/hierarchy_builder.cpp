@@ -358,7 +358,6 @@ class Simplifier {
     runBoth([&] { pickBestFirst(limit, level, picks); },
             [&] { growHierarchy(expectedGrowth(expected), false); });
     if (options_.survey) survey(level, picks, borderPicks);
-
     std::vector<Pick> scratch;
     radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, scratch);
     std::size_t fills = 0, rings = 0, links = 0;

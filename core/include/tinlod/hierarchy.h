@@ -30,7 +30,8 @@ struct HierarchyTriangle {
 };
 static_assert(sizeof(HierarchyTriangle) == 32, "the hierarchy's largest array: keep it small");
 
-// A distance as a HierarchyTriangle keeps it: the nearest float not below it.
+// A distance as a HierarchyTriangle keeps it: the nearest float not below it (the
+// simplifier's bounds on the DEM's cells are kept so too).
 inline float roundedUpError(double d) {
   float f = static_cast<float>(d);
   if (double(f) < d) f = std::nextafter(f, INFINITY);
