@@ -13,6 +13,7 @@
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
+#include "tinlod/greedy_inserter.h"
 #include "tinlod/grid.h"
 #include "tinlod/insert_job.h"
 #include "tinlod/sample_job.h"
@@ -121,10 +122,35 @@ TEST(GreedyInsertion, ToleranceHoldsAtEveryCellByBruteForce) {
     EXPECT_LE(b.maxError, tol + kRounding) << tol;
     EXPECT_NEAR(b.maxError, out.summary.measuredMaxError, 1e-9);
     EXPECT_LE(out.summary.maxError, tol);
+    // The largest error left, though triangles below the tolerance are never queued.
+    EXPECT_NEAR(out.summary.maxError, b.maxError, 1e-9) << tol;
     EXPECT_EQ(test::delaunayViolations(out.tin), 0u);
     EXPECT_EQ(test::clockwiseTriangles(out.tin), 0u);
     EXPECT_EQ(out.tin.triangles.size(), out.summary.triangles);
   }
+}
+
+// A run at a finer tolerance than the one before goes on as one run at that tolerance
+// would have: the triangles the coarser run left out of its queue are queued again.
+TEST(GreedyInsertion, AFinerRunAfterACoarserOneIsOneFineRun) {
+  const Dem dem = hills(200, 150);
+  InsertGrid grid;
+  grid.cols = dem.width, grid.rows = dem.height, grid.z = dem.z.data();
+  GreedyInserter twice(grid, kQuiet), once(grid, kQuiet);
+  twice.run({10, 0, 0}, kQuiet);
+  const std::size_t coarse = twice.vertexCount();
+  EXPECT_LE(twice.maxError(), 10);
+  EXPECT_GT(twice.maxError(), 5);
+  twice.run({1, 0, 0}, kQuiet);
+  once.run({1, 0, 0}, kQuiet);
+  EXPECT_GT(twice.vertexCount(), 2 * coarse);
+  ASSERT_EQ(twice.inserted().size(), once.inserted().size());
+  for (std::size_t i = 0; i < once.inserted().size(); ++i) {
+    ASSERT_EQ(twice.inserted()[i].candidate, once.inserted()[i].candidate) << i;
+    ASSERT_TRUE(twice.inserted()[i].errorBefore == once.inserted()[i].errorBefore ||
+                std::isnan(once.inserted()[i].errorBefore)) << i;
+  }
+  EXPECT_EQ(twice.maxError(), once.maxError());
 }
 
 TEST(GreedyInsertion, LastRowAndColumnAreCandidatesToo) {
