@@ -11,7 +11,15 @@
 
 namespace tinlod {
 
+namespace {
+thread_local bool tAlone = false;
+}  // namespace
+
+ThisThreadAlone::ThisThreadAlone() : before_(tAlone) { tAlone = true; }
+ThisThreadAlone::~ThisThreadAlone() { tAlone = before_; }
+
 unsigned threadCount() {
+  if (tAlone) return 1;
   // A tiled run's workers share the machine: each tinlod is told its share of the cores.
   static const unsigned count = [] {
     const char* given = std::getenv("TINLOD_THREADS");

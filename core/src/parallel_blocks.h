@@ -11,6 +11,20 @@ namespace tinlod {
 // of its workers a share of the cores), else the machine's cores, at most 8.
 unsigned threadCount();
 
+// While one lives, forEachBlock and runBoth called from its thread use that thread alone:
+// for background work beside a busy thread (the independent check of a greedy insertion
+// while the main thread writes the file), which more threads would only slow down.
+class ThisThreadAlone {
+ public:
+  ThisThreadAlone();
+  ~ThisThreadAlone();
+  ThisThreadAlone(const ThisThreadAlone&) = delete;
+  ThisThreadAlone& operator=(const ThisThreadAlone&) = delete;
+
+ private:
+  bool before_;
+};
+
 // Calls work(begin, end) for blocks covering [0, count), on threadCount() threads. The
 // calling thread works too and calls progress(fraction done) between its blocks, so a
 // progress callback that throws (cancellation) stops every thread promptly; the first
