@@ -59,6 +59,23 @@ fs::path keepOld(const fs::path& target, const fs::path& backup) {
   return backup;
 }
 
+// Puts staged at target; returns where the file it replaced is kept (empty: none was
+// there). Where the file system can, the two names are exchanged: ext4 writes out a file
+// renamed over another before the rename returns (auto_da_alloc; 50 ms for 230 MB), and
+// an exchange leaves that to the kernel's writeback, as for a new file. The old file is
+// then at the staged name, in the staging folder, until the commit is complete.
+fs::path replaceKeepingOld(const fs::path& staged, const fs::path& target, const fs::path& backup) {
+  std::error_code ec;
+  if (fs::exists(fs::symlink_status(target, ec))) {
+    if (renameat2(AT_FDCWD, staged.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) return staged;
+    if (errno != EINVAL && errno != ENOSYS && errno != EOPNOTSUPP)
+      throw fs::filesystem_error("cannot move", staged, target, std::error_code(errno, std::generic_category()));
+  }
+  const fs::path old = keepOld(target, backup);
+  fs::rename(staged, target);
+  return old;
+}
+
 void takeBack(const std::vector<Moved>& moved) {
   std::error_code ignored;
   for (auto m = moved.rbegin(); m != moved.rend(); ++m) {
@@ -130,9 +147,7 @@ void OutputFiles::commit() {
           if (fs::is_directory(fs::symlink_status(target)))
             throw Error(file.option + ": '" + shown(file, target) + "' is now a folder: nothing was written");
           if (overwrite_) {
-            const fs::path backup = keepOld(target, folders_[i]->backupFor(staged.filename()));
-            fs::rename(staged, target);
-            moved.push_back({target, backup});
+            moved.push_back({target, replaceKeepingOld(staged, target, folders_[i]->backupFor(staged.filename()))});
           } else if (moveWithoutReplacing(staged, target)) {
             moved.push_back({target, {}});
           } else {
