@@ -6,8 +6,6 @@
 #include <cstring>
 #include <numeric>
 
-#include "radix_sort.h"
-
 namespace tinlod {
 namespace {
 
@@ -39,43 +37,31 @@ void putFloat(unsigned char* at, float value) {
   putBigEndian(at, bits, 4);
 }
 
-// Bits of a float that sort as the float does (negative values included).
-std::uint32_t orderedBits(float value) {
-  if (value == 0) value = 0;  // -0 sorts with 0, as it compares
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits >> 31 ? ~bits : bits | (std::uint32_t{1} << 31);
-}
-
-// Sorts order[begin, end) by the centres (doubled: min + max) along one axis, ties by
-// index. Each item's key is taken once, beside its index, so the sort's
-// passes run over memory in order instead of reading a box at random per comparison.
-void sortByCentre(const std::vector<RtreeBox>& boxes, std::vector<std::uint32_t>& order, std::size_t begin,
-                  std::size_t end, bool alongY, std::vector<std::uint64_t>& keyed, std::vector<std::uint64_t>& scratch) {
-  keyed.resize(end - begin);
-  for (std::size_t i = begin; i < end; ++i) {
-    const RtreeBox& b = boxes[order[i]];
-    const float centre = alongY ? b.minY + b.maxY : b.minX + b.maxX;
-    keyed[i - begin] = std::uint64_t(orderedBits(centre)) << 32 | order[i];
-  }
-  radixSort(keyed, [](std::uint64_t k) { return k; }, scratch);
-  for (std::size_t i = begin; i < end; ++i) order[i] = static_cast<std::uint32_t>(keyed[i - begin]);
-}
-
 // Sort-tile-recursive: sorted by x into vertical slices of whole nodes, each slice
-// sorted by y and cut into nodes. Returns the items in node order. Ties are broken by
-// index, so the tree is the same on every machine.
+// sorted by y and cut into nodes. Returns the items in node order.
 std::vector<std::uint32_t> strOrder(const std::vector<RtreeBox>& boxes, std::size_t capacity) {
   const std::size_t n = boxes.size();
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  std::vector<std::uint64_t> keyed, scratch;
-  sortByCentre(boxes, order, 0, n, false, keyed, scratch);
+  // Centres doubled (min + max) are computed in the comparisons, not stored: the boxes
+  // of a big layer are already the packing's largest use of memory. Ties are broken by
+  // index so the tree is the same on every machine.
+  auto byX = [&](std::uint32_t a, std::uint32_t b) {
+    const float ca = boxes[a].minX + boxes[a].maxX, cb = boxes[b].minX + boxes[b].maxX;
+    return ca < cb || (ca == cb && a < b);
+  };
+  auto byY = [&](std::uint32_t a, std::uint32_t b) {
+    const float ca = boxes[a].minY + boxes[a].maxY, cb = boxes[b].minY + boxes[b].maxY;
+    return ca < cb || (ca == cb && a < b);
+  };
+  std::sort(order.begin(), order.end(), byX);
   const std::size_t nodes = (n + capacity - 1) / capacity;
   const auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(nodes))));
   const std::size_t sliceItems = slices * capacity;
-  for (std::size_t begin = 0; begin < n; begin += sliceItems)
-    sortByCentre(boxes, order, begin, std::min(n, begin + sliceItems), true, keyed, scratch);
+  for (std::size_t begin = 0; begin < n; begin += sliceItems) {
+    const std::size_t end = std::min(n, begin + sliceItems);
+    std::sort(order.begin() + begin, order.begin() + end, byY);
+  }
   return order;
 }
 
