@@ -36,44 +36,41 @@ struct Moved {
   fs::path backup;  // empty: nothing was there before
 };
 
+fs::filesystem_error moveError(const fs::path& from, const fs::path& to) {
+  return fs::filesystem_error("cannot move", from, to, std::error_code(errno, std::generic_category()));
+}
+
 // Without overwrite the move must not replace a file that appeared since the job's
 // checks (another run): RENAME_NOREPLACE, or link() where a file system lacks it.
 bool moveWithoutReplacing(const fs::path& from, const fs::path& to) {
   if (renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) return true;
   if (errno == EEXIST) return false;
-  if (errno != EINVAL && errno != ENOSYS) throw fs::filesystem_error("cannot move", from, to, std::error_code(errno, std::generic_category()));
+  if (errno != EINVAL && errno != ENOSYS) throw moveError(from, to);
   if (link(from.c_str(), to.c_str()) != 0) {
     if (errno == EEXIST) return false;
-    throw fs::filesystem_error("cannot move", from, to, std::error_code(errno, std::generic_category()));
+    throw moveError(from, to);
   }
   unlink(from.c_str());
   return true;
 }
 
-// The old file stays reachable in the staging folder until the commit is complete, so a
-// later failure can put it back.
-fs::path keepOld(const fs::path& target, const fs::path& backup) {
-  std::error_code ec;
-  if (!fs::exists(fs::symlink_status(target, ec))) return {};
-  if (link(target.c_str(), backup.c_str()) != 0) fs::rename(target, backup);
-  return backup;
-}
-
 // Puts staged at target; returns where the file it replaced is kept (empty: none was
-// there). Where the file system can, the two names are exchanged: ext4 writes out a file
-// renamed over another before the rename returns (auto_da_alloc; 50 ms for 230 MB), and
-// an exchange leaves that to the kernel's writeback, as for a new file. The old file is
-// then at the staged name, in the staging folder, until the commit is complete.
+// there), reachable in the staging folder until the commit is complete so that a later
+// failure can put it back. Where the file system can, the two names are exchanged (the
+// old file is then at the staged name): ext4 writes out a file renamed over another
+// before the rename returns (auto_da_alloc; 50 ms for 230 MB), and an exchange leaves
+// that to the kernel's writeback, as for a new file.
 fs::path replaceKeepingOld(const fs::path& staged, const fs::path& target, const fs::path& backup) {
   std::error_code ec;
-  if (fs::exists(fs::symlink_status(target, ec))) {
-    if (renameat2(AT_FDCWD, staged.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) return staged;
-    if (errno != EINVAL && errno != ENOSYS && errno != EOPNOTSUPP)
-      throw fs::filesystem_error("cannot move", staged, target, std::error_code(errno, std::generic_category()));
+  if (!fs::exists(fs::symlink_status(target, ec))) {
+    fs::rename(staged, target);
+    return {};
   }
-  const fs::path old = keepOld(target, backup);
+  if (renameat2(AT_FDCWD, staged.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) return staged;
+  if (errno != EINVAL && errno != ENOSYS && errno != EOPNOTSUPP) throw moveError(staged, target);
+  if (link(target.c_str(), backup.c_str()) != 0) fs::rename(target, backup);
   fs::rename(staged, target);
-  return old;
+  return backup;
 }
 
 void takeBack(const std::vector<Moved>& moved) {
