@@ -91,12 +91,9 @@ struct GreedyInserter::Impl {
 
   // A run at a finer tolerance than any before queues the triangles left out until now.
   void lowerFloor(double tolerance) {
-    if (!(tolerance < floor)) {
-      floor = std::max(floor, tolerance);
-      return;
-    }
-    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
-      if (f->info().error > tolerance && f->info().error <= floor) queue.push({f->info().error, f->info().stamp, f});
+    if (tolerance < floor)
+      for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+        if (f->info().error > tolerance && f->info().error <= floor) queue.push({f->info().error, f->info().stamp, f});
     floor = tolerance;
   }
 
