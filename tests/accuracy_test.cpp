@@ -62,6 +62,24 @@ TEST(TinRasterizer, PointsOnSharedEdgesAndVerticesAreNeverMissed) {
   for (double v : g.values) EXPECT_FALSE(std::isnan(v));
 }
 
+// A sliver whose near-horizontal edge lies a hair across row 0 (as a geographic DEM's
+// transformed corners do): the edge's tolerance takes the points along it on that row,
+// though the row meets the other two edges near one end only.
+TEST(TinRasterizer, PointsWithinToleranceOfANearlyHorizontalEdgeAreFilled) {
+  const std::vector<std::array<double, 2>> pos{
+      {68.005793268800616, -1.2313483566117611e-12}, {71.000901066284214, 1.9969538147631805}, {71.00644036148951, 7.2951644725094411e-12}};
+  std::vector<double> z;
+  for (const auto& p : pos) z.push_back(2 * p[0] - 3 * p[1] + 10);
+  const Grid g = rasterizeTin(pos, z, {{0, 1, 2}}, 80, 4, kQuiet);
+  for (int c = 69; c <= 71; ++c) {
+    ASSERT_TRUE(g.valid(c, 0)) << c;
+    EXPECT_NEAR(g.at(c, 0), 2 * c + 10, 1e-6) << c;
+  }
+  EXPECT_TRUE(g.valid(71, 1));
+  EXPECT_FALSE(g.valid(68, 0));
+  EXPECT_FALSE(g.valid(72, 0));
+}
+
 // Corners far beyond the range of int (a vertex a CRS could not transform, or a crafted
 // file's) fill only the points they cover, and leave the others; the sanitizer build sees
 // that no conversion to int overflows on the way.

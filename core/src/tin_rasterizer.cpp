@@ -28,19 +28,42 @@ double edge(const Pos& p, const Pos& q, double x, double y) { return (q[0] - p[0
 // undefined beyond the range of int.
 int clampedIndex(double v, int lo, int hi) { return static_cast<int>(std::clamp(v, double(lo), double(hi))); }
 
+// The columns of row r that fillTriangle's test can accept, a column wider each way for
+// rounding, within [c0, c1]: along a row each edge's test is linear, so each edge bounds
+// the row on one side, tolerance included. The test still decides; a thin triangle just
+// no longer costs its whole bounding box. An edge within a thousandth of a row of
+// horizontal is left out: its bound would be swamped by rounding.
+void rowSpan(const Plane& t, double tol, int r, int& c0, int& c1) {
+  double lo = c0, hi = c1;
+  const std::array<const Pos*, 2> edges[3] = {{&t.b, &t.c}, {&t.c, &t.a}, {&t.a, &t.b}};
+  for (const auto& [p, q] : edges) {
+    const double dy = (*q)[1] - (*p)[1];
+    if (std::fabs(dy) < 1e-3) continue;
+    // Where edge(p, q, x, r) reaches -tol (a counter-clockwise triangle) or tol (clockwise).
+    const double x = (*p)[0] + (((*q)[0] - (*p)[0]) * (r - (*p)[1]) + (t.area > 0 ? tol : -tol)) / dy;
+    if ((t.area > 0) == (dy > 0)) hi = std::min(hi, x);
+    else lo = std::max(lo, x);
+  }
+  c0 = clampedIndex(std::floor(lo) - 1, c0, c1 + 1);
+  c1 = clampedIndex(std::ceil(hi) + 1, c0 - 1, c1);
+}
+
 // Fills the points of rows [rowBegin, rowEnd) inside one triangle.
 void fillTriangle(const Plane& t, int rowBegin, int rowEnd, Grid& out) {
   const double tol = kEdgeTolerance * std::fabs(t.area);
   const int r0 = clampedIndex(std::ceil(t.top), rowBegin, rowEnd);
   const int r1 = clampedIndex(std::floor(t.bottom), rowBegin - 1, rowEnd - 1);
-  const int c0 = clampedIndex(std::ceil(std::min({t.a[0], t.b[0], t.c[0]})), 0, out.cols);
-  const int c1 = clampedIndex(std::floor(std::max({t.a[0], t.b[0], t.c[0]})), -1, out.cols - 1);
-  for (int r = r0; r <= r1; ++r)
+  const int boxC0 = clampedIndex(std::ceil(std::min({t.a[0], t.b[0], t.c[0]})), 0, out.cols);
+  const int boxC1 = clampedIndex(std::floor(std::max({t.a[0], t.b[0], t.c[0]})), -1, out.cols - 1);
+  for (int r = r0; r <= r1; ++r) {
+    int c0 = boxC0, c1 = boxC1;
+    rowSpan(t, tol, r, c0, c1);
     for (int c = c0; c <= c1; ++c) {
       const double wa = edge(t.b, t.c, c, r), wb = edge(t.c, t.a, c, r), wc = edge(t.a, t.b, c, r);
       const bool inside = t.area > 0 ? (wa >= -tol && wb >= -tol && wc >= -tol) : (wa <= tol && wb <= tol && wc <= tol);
       if (inside) out.at(c, r) = (wa * t.za + wb * t.zb + wc * t.zc) / t.area;
     }
+  }
 }
 
 int topRow(const Plane& p, int rows) { return clampedIndex(std::floor(p.top), 0, rows); }
