@@ -321,6 +321,35 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   EXPECT_FALSE(fs::exists(dir + "/bad.gpkg"));
 }
 
+// How many spatial indexes a GeoPackage's vertices layer has (0 or 1); -1 when the file
+// cannot be read, so that no answer comes from a failure.
+int vertexIndexes(const std::string& gpkg) {
+  GDALAllRegister();
+  GDALDatasetUniquePtr ds(GDALDataset::Open(gpkg.c_str(), GDAL_OF_VECTOR));
+  if (!ds) return -1;
+  OGRLayer* r = ds->ExecuteSQL("SELECT count(*) FROM sqlite_master WHERE name = 'rtree_vertices_geom'", nullptr, nullptr);
+  if (!r) return -1;
+  OGRFeatureUniquePtr f(r->GetNextFeature());
+  const int count = f ? f->GetFieldAsInteger(0) : -1;
+  ds->ReleaseResultSet(r);
+  return count;
+}
+
+TEST(Cli, VertexIndexOnlyWithTheOption) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const std::vector<std::pair<std::string, std::string>> runs{
+      {"sample -q " + defaultDem(), "sample"},
+      {"insert -q -max_error 5 " + defaultDem(), "insert"},
+      {"lod -q -center 404500 5203750 -dropoff 200 " + dir + "/h.gpkg", "lod"}};
+  for (const auto& [command, name] : runs) {
+    ASSERT_EQ(tinlod(command + " " + dir + "/" + name + ".gpkg").exitCode, 0) << command;
+    ASSERT_EQ(tinlod(command + " -vertex_index " + dir + "/" + name + "_indexed.gpkg").exitCode, 0) << command;
+    EXPECT_EQ(vertexIndexes(dir + "/" + name + ".gpkg"), 0) << name;
+    EXPECT_EQ(vertexIndexes(dir + "/" + name + "_indexed.gpkg"), 1) << name;
+  }
+}
+
 TEST(Cli, LocateAddsTheElevationOfTheChosenLevelToEveryPoint) {
   const std::string dir = test::tempDir();
   ASSERT_EQ(tinlod("build -q " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);

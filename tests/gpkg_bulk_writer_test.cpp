@@ -286,6 +286,26 @@ TEST(GpkgBulkWriter, PackedIndexesAnswerAsRowByRowOnes) {
   EXPECT_LT(some, static_cast<GIntBig>(built().h.triangles.size()));
 }
 
+// A single TIN's vertices are indexed only when asked (sample, insert and lod's
+// -vertex_index); its triangles always are.
+TEST(GpkgBulkWriter, TinVerticesIndexedOnlyWhenAsked) {
+  const Tin& tin = built().h.base;
+  for (bool vertexIndex : {false, true}) {
+    const std::string path = test::tempDir() + "/tin_index.gpkg";
+    fs::remove(path);
+    GpkgWriteOptions options{false, {}};
+    options.vertexIndex = vertexIndex;
+    writeTinGpkg(tin, path, options, ProgressRange(Feedback{}, 0, 1));
+    {
+      Sqlite db(path);
+      EXPECT_EQ(db.column("SELECT count(*) FROM sqlite_master WHERE name = 'rtree_vertices_geom'")[0], vertexIndex ? 1 : 0);
+      EXPECT_EQ(db.column("SELECT count(*) FROM gpkg_extensions WHERE table_name = 'vertices'")[0], vertexIndex ? 1 : 0);
+    }
+    expectIndexAsRowByRow(path, "triangles");
+    if (vertexIndex) expectIndexAsRowByRow(path, "vertices");
+  }
+}
+
 TEST(GpkgBulkWriter, ValidatesAsAGeoPackage) {
   const char* validator = "/usr/lib/python3/dist-packages/osgeo_utils/samples/validate_gpkg.py";
   if (!fs::exists(validator)) GTEST_SKIP() << "GDAL's validate_gpkg.py is not installed (python3-gdal)";

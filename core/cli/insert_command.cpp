@@ -16,7 +16,7 @@ namespace {
 
 const char* const kUsage =
     "tinlod insert DEM OUT.gpkg [-max_error m] [-max_vertices n] [-max_triangles n] [-candidates cells|samples] [-delaunay ground|grid] "
-    "[-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-valid_range min max] [-overwrite] [-q]";
+    "[-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-valid_range min max] [-vertex_index] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Greedy insertion (Garland and Heckbert): a TIN from a DEM by inserting, again and
 again, the point of largest vertical error, until every point is within a tolerance.
@@ -56,6 +56,8 @@ Options:
   -t_srs srs     metric CRS of the TIN (default: the DEM's own if in metres, else UTM)
   -block k, -jitter m, -seed n   sampling of the 'samples' candidates (as 'tinlod sample');
                  not used with 'cells'
+  -vertex_index  also give the vertices layer a spatial index (about 37 bytes a vertex),
+                 for drawing it zoomed in; nothing in tinlod reads the vertices by place
   -overwrite     replace tinlod's layers of an existing GeoPackage; its other layers are kept
   -q             quiet: no progress or information, warnings only
 
@@ -114,11 +116,12 @@ int insertCommand(std::vector<std::string> args) {
     return 0;
   }
   const InsertOptions options = insertOptions(a);
+  const bool vertexIndex = a.flag("-vertex_index");
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
 
-  const InsertSummary s = runInsertJob(files[0], files[1], options, overwrite, terminalFeedback(quiet));
+  const InsertSummary s = runInsertJob(files[0], files[1], options, overwrite, terminalFeedback(quiet), vertexIndex);
   if (!quiet) printSummary(s, options, files[1]);
   return 0;
 }

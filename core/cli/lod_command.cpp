@@ -12,7 +12,7 @@ namespace {
 
 const char* const kUsage =
     "tinlod lod HIER.gpkg OUT.gpkg [-center X Y]... [-centers POINTS] [-dropoff D] [-max_error E] [-error_growth G] "
-    "[-region POLYGONS] [-overwrite] [-q]";
+    "[-region POLYGONS] [-vertex_index] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Extracts a TIN of varying level of detail from a hierarchy (tinlod build): fine near
 the centres of detail, in a region or where the terrain needs it, coarse elsewhere; one
@@ -41,6 +41,8 @@ Centres of detail (in the hierarchy's CRS; other CRSs of a file are transformed)
   -centers POINTS    every point of this vector file is a centre (each point of a
                      multipoint too; lines and polygons are refused)
 
+  -vertex_index      also give the vertices layer a spatial index (about 37 bytes a
+                     vertex), for drawing it zoomed in
   -overwrite         replace tinlod's layers of an existing GeoPackage
   -q                 quiet: no progress or information, warnings only
 
@@ -65,10 +67,11 @@ int lodCommand(std::vector<std::string> args) {
   o.lod.dropoff = a.number("-dropoff", nan);
   o.lod.maxError = a.number("-max_error", nan);
   o.lod.errorGrowth = a.number("-error_growth", 0);
+  const bool vertexIndex = a.flag("-vertex_index");
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
-  const LodSummary s = runLodJob(files[0], files[1], o, overwrite, terminalFeedback(quiet));
+  const LodSummary s = runLodJob(files[0], files[1], o, overwrite, terminalFeedback(quiet), vertexIndex);
   if (!quiet) {
     std::cout << "Wrote " << s.triangles << " triangles and " << s.vertices << " vertices (level 0 has "
               << s.levelZeroTriangles << " triangles; extracted in " << s.seconds << " s) in " << s.crsName << " to "

@@ -10,7 +10,7 @@
 namespace tinlod::cli {
 namespace {
 
-const char* const kUsage = "tinlod sample DEM OUT.gpkg [-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-valid_range min max] [-overwrite] [-q]";
+const char* const kUsage = "tinlod sample DEM OUT.gpkg [-b band] [-s_srs srs] [-t_srs srs] [-block k] [-jitter m] [-seed n] [-valid_range min max] [-vertex_index] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Samples a DEM into a Delaunay TIN and writes it to a GeoPackage.
 
@@ -37,6 +37,8 @@ Options:
                  heights outside min..max metres are nodata, counted in one warning
                  (default -12000 9000, the Earth's range: undeclared fill values such as
                  1e30, -32768 or infinity never become vertices)
+  -vertex_index  also give the vertices layer a spatial index (about 37 bytes a vertex),
+                 for drawing it zoomed in; nothing in tinlod reads the vertices by place
   -overwrite     replace the 'vertices' and 'triangles' layers of an existing GeoPackage;
                  its other layers are kept
   -q             quiet: no progress or information, warnings only
@@ -56,11 +58,12 @@ int sampleCommand(std::vector<std::string> args) {
     return 0;
   }
   const SampleOptions options = sampleOptions(a);
+  const bool vertexIndex = a.flag("-vertex_index");
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
 
-  const SampleSummary s = runSampleJob(files[0], files[1], options, overwrite, terminalFeedback(quiet));
+  const SampleSummary s = runSampleJob(files[0], files[1], options, overwrite, terminalFeedback(quiet), vertexIndex);
   if (!quiet)
     std::cout << "Wrote " << s.vertices << " vertices and " << s.triangles << " triangles ("
               << s.outlineVertices << " vertices on the outline) covering " << s.area / 1e6

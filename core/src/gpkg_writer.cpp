@@ -51,7 +51,7 @@ void writeTinGpkg(const Tin& tin, const StagedFile& file, const GpkgWriteOptions
   out.createLayer("vertices", wkbPoint25D, tin.crsWkt, vfields, true);
   out.createLayer("triangles", wkbPolygon25D, tin.crsWkt, tfields, true);
   SqliteDatabase& db = out.database();
-  out.indexLater("vertices", [&tin] { return vertexBoxes(tin); });
+  if (options.vertexIndex) out.indexLater("vertices", [&tin] { return vertexBoxes(tin); });
   const TriangleAt triangle = [&tin](std::size_t i) -> const Triangle& { return tin.triangles[i]; };
   out.indexLater("triangles", [&tin, triangle] { return triangleBoxes(tin, tin.triangles.size(), triangle); });
   const double rows = 0.8, share = double(tin.vertices.size()) / (tin.vertices.size() + 2.0 * tin.triangles.size());

@@ -205,9 +205,10 @@ std::map<std::string, std::string> measuredMetadata(const InsertSummary& s) {
 }  // namespace
 
 InsertSummary runInsertJob(const std::string& demPath, const std::string& outPath, const InsertOptions& options,
-                           bool overwrite, const Feedback& feedback) {
+                           bool overwrite, const Feedback& feedback, bool vertexIndex) {
   options.validate();
   GpkgWriteOptions writeOptions{overwrite, {}};
+  writeOptions.vertexIndex = vertexIndex;
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   OutputFiles files(overwrite, datasetFiles(demPath));
   const StagedFile& out = files.add(outPath, "output", true);

@@ -64,9 +64,10 @@ std::map<std::string, std::string> jobMetadata(const std::string& source, const 
 }  // namespace
 
 LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPath, const LodJobOptions& options,
-                     bool overwrite, const Feedback& feedback) {
+                     bool overwrite, const Feedback& feedback, bool vertexIndex) {
   checkOptions(options);
   GpkgWriteOptions writeOptions{overwrite, jobMetadata(hierarchyPath, options)};
+  writeOptions.vertexIndex = vertexIndex;
   checkOutputPath(outPath, writeOptions);
   std::vector<std::string> inputs = hierarchyInputs(hierarchyPath);
   inputs.insert(inputs.end(), {options.centresPath, options.regionPath});

@@ -160,9 +160,11 @@ SampleSummary summarize(const Tin& tin, std::size_t validCells) {
 }
 
 SampleSummary runSampleJob(const std::string& demPath, const std::string& outPath,
-                           const SampleOptions& options, bool overwrite, const Feedback& feedback) {
+                           const SampleOptions& options, bool overwrite, const Feedback& feedback,
+                           bool vertexIndex) {
   options.validate();
   GpkgWriteOptions writeOptions{overwrite, jobMetadata(demPath, options)};
+  writeOptions.vertexIndex = vertexIndex;
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   OutputFiles files(overwrite, datasetFiles(demPath));
   const StagedFile& out = files.add(outPath, "output", true);

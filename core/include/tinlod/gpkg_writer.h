@@ -24,6 +24,10 @@ struct GpkgWriteOptions {
   // More items known only once the rows are written (a check run alongside the writing):
   // asked for when the file is finished.
   std::function<std::map<std::string, std::string>()> lateMetadata;
+  // writeTinGpkg: a spatial index on the vertices layer too (the triangles always have
+  // one). Off by default, as for a hierarchy: nothing in tinlod reads vertices by place,
+  // and on alps_2x2 the index is a third of the index writing.
+  bool vertexIndex = false;
 };
 
 // Throws Error when `path` exists and overwrite is off, or its folder is missing.

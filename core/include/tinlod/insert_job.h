@@ -53,8 +53,9 @@ InsertedTin insertedTin(const Dem& dem, const InsertOptions& options, const Prog
 InsertSummary measureInsertedTin(const Dem& dem, const InsertedTin& tin, const ProgressRange& progress);
 
 // The whole `tinlod insert` job: read, insert, measure, write the GeoPackage (the layers
-// of `tinlod sample`, the vertices with their insertion order).
+// of `tinlod sample`, the vertices with their insertion order; a spatial index on the
+// vertices too when vertexIndex is set).
 InsertSummary runInsertJob(const std::string& demPath, const std::string& outPath, const InsertOptions& options,
-                           bool overwrite, const Feedback& feedback);
+                           bool overwrite, const Feedback& feedback, bool vertexIndex = false);
 
 }  // namespace tinlod

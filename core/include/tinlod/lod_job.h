@@ -27,8 +27,9 @@ struct LodSummary {
 
 // Reads a hierarchy GeoPackage (tinlod build), extracts the varying level-of-detail TIN
 // and writes it as a GeoPackage TIN ('vertices', and 'triangles' with each triangle's
-// first and last level) in the hierarchy's CRS. Fails before the long work on bad options.
+// first and last level) in the hierarchy's CRS; a spatial index on the vertices too when
+// vertexIndex is set. Fails before the long work on bad options.
 LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPath, const LodJobOptions& options,
-                     bool overwrite, const Feedback& feedback);
+                     bool overwrite, const Feedback& feedback, bool vertexIndex = false);
 
 }  // namespace tinlod

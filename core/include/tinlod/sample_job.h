@@ -25,9 +25,11 @@ struct SampleSummary {
 // cut out nodata holes.
 Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange& progress);
 
-// The whole `tinlod sample` job: read, sample, triangulate, write the GeoPackage.
+// The whole `tinlod sample` job: read, sample, triangulate, write the GeoPackage (with a
+// spatial index on the vertices too when vertexIndex is set).
 SampleSummary runSampleJob(const std::string& demPath, const std::string& outPath,
-                           const SampleOptions& options, bool overwrite, const Feedback& feedback);
+                           const SampleOptions& options, bool overwrite, const Feedback& feedback,
+                           bool vertexIndex = false);
 
 SampleSummary summarize(const Tin& tin, std::size_t validCells);
 
