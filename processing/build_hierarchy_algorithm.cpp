@@ -15,6 +15,7 @@
 #include "source_file.h"
 #include "tin_layer_style.h"
 #include "tinlod/build_job.h"
+#include "vertex_index_parameter.h"
 
 namespace tinlod::qgis {
 namespace {
@@ -103,8 +104,7 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
                                                         QStringLiteral("all"))));
   addParameter(advanced(new QgsProcessingParameterBoolean(QStringLiteral("GROUP_OUTLINES"),
                                                          QStringLiteral("Write the groups' outline polygons"), true)));
-  addParameter(advanced(new QgsProcessingParameterBoolean(QStringLiteral("VERTEX_INDEX"),
-                                                         QStringLiteral("Spatial index on the vertices layer"), false)));
+  addParameter(vertexIndexParameter());
   addParameter(new QgsProcessingParameterBoolean(QStringLiteral("LOAD_LEVELS"), QStringLiteral("Load the level layers as a group"), true));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Hierarchy GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));

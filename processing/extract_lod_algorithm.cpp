@@ -16,6 +16,7 @@
 #include "processing_feedback.h"
 #include "source_file.h"
 #include "tin_layer_style.h"
+#include "vertex_index_parameter.h"
 
 namespace tinlod::qgis {
 QString ExtractLodAlgorithm::name() const { return QStringLiteral("extractlod"); }
@@ -69,6 +70,7 @@ void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
                                                 QgsProcessingParameterNumber::Double, 0, false, 0)));
   addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("REGION"), QStringLiteral("Region of full detail (polygons)"),
                                                      QList<int>() << QgsProcessing::TypeVectorPolygon, QVariant(), true));
+  addParameter(vertexIndexParameter());
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("TIN GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("TRIANGLES"), QStringLiteral("Triangles")));
@@ -106,8 +108,10 @@ bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsPro
 QVariantMap ExtractLodAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
                                                   QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
-  const LodSummary s = translateErrors(
-      [&] { return runLodJob(hierarchy_, output.toStdString(), options_, true, processingFeedback(feedback)); });
+  const bool vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
+  const LodSummary s = translateErrors([&] {
+    return runLodJob(hierarchy_, output.toStdString(), options_, true, processingFeedback(feedback), vertexIndex);
+  });
   feedback->pushInfo(QStringLiteral("%1 triangles (level 0 has %2) and %3 vertices in %4")
                          .arg(s.triangles).arg(s.levelZeroTriangles).arg(s.vertices).arg(QString::fromStdString(s.crsName)));
   loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"),

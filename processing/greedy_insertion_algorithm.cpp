@@ -10,6 +10,7 @@
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
 #include "tinlod/insert_job.h"
+#include "vertex_index_parameter.h"
 
 namespace tinlod::qgis {
 namespace {
@@ -70,6 +71,7 @@ void GreedyInsertionAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(new QgsProcessingParameterEnum(QStringLiteral("CANDIDATES"), QStringLiteral("Candidates"), kCandidates, false, 0));
   addParameter(advanced(new QgsProcessingParameterEnum(QStringLiteral("DELAUNAY"), QStringLiteral("Delaunay criterion"),
                                                        kDelaunay, false, 0)));
+  addParameter(vertexIndexParameter());
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("TIN GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
@@ -108,8 +110,9 @@ QVariantMap GreedyInsertionAlgorithm::processAlgorithm(const QVariantMap& parame
                                                        QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   // QGIS asks before overwriting a file; the core then keeps the file's other layers.
+  const bool vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
   const InsertSummary s = translateErrors([&] {
-    return runInsertJob(demSource_, output.toStdString(), insert_, true, processingFeedback(feedback));
+    return runInsertJob(demSource_, output.toStdString(), insert_, true, processingFeedback(feedback), vertexIndex);
   });
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3; maximum error %4 m, RMSE %5 m over %6 cells")
                          .arg(s.vertices).arg(s.triangles).arg(QString::fromStdString(s.crsName))

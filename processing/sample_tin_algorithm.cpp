@@ -9,6 +9,7 @@
 #include "processing_feedback.h"
 #include "tin_layer_style.h"
 #include "tinlod/sample_job.h"
+#include "vertex_index_parameter.h"
 
 namespace tinlod::qgis {
 
@@ -42,6 +43,7 @@ SampleTinAlgorithm* SampleTinAlgorithm::createInstance() const { return new Samp
 
 void SampleTinAlgorithm::initAlgorithm(const QVariantMap&) {
   addDemAndSamplingParameters();
+  addParameter(vertexIndexParameter());
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("TIN GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
@@ -58,8 +60,9 @@ QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, 
                                                  QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   // QGIS asks before overwriting a file; the core then keeps the file's other layers.
+  const bool vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
   const SampleSummary summary = translateErrors([&] {
-    return runSampleJob(demSource_, output.toStdString(), sample_, true, processingFeedback(feedback));
+    return runSampleJob(demSource_, output.toStdString(), sample_, true, processingFeedback(feedback), vertexIndex);
   });
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3")
                          .arg(summary.vertices).arg(summary.triangles).arg(QString::fromStdString(summary.crsName)));

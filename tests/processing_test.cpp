@@ -704,6 +704,16 @@ TEST(Processing, GreedyInsertionMatchesTheCoreAndNamesBadParameters) {
                                                                             {"OUTPUT", counted}});
   ASSERT_TRUE(c.ok) << c.error.toStdString();
   EXPECT_EQ(c.outputs.value("VERTICES").toLongLong(), 777);
+  // The vertices' spatial index only when VERTEX_INDEX asks for it.
+  const std::string indexQuery = "SELECT count(*) FROM sqlite_master WHERE name = 'rtree_vertices_geom'";
+  EXPECT_EQ(sqlCount(out.toStdString(), indexQuery), 0);
+  const QString indexed = QString::fromStdString(test::tempDir() + "/indexed.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:greedyinsertion"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                       {"MAX_ERROR", 2.5},
+                                                                       {"VERTEX_INDEX", true},
+                                                                       {"OUTPUT", indexed}})
+                  .ok);
+  EXPECT_EQ(sqlCount(indexed.toStdString(), indexQuery), 1);
 
   const Result text = runAlgorithm(QStringLiteral("tinlod:greedyinsertion"), {{"INPUT", QString::fromStdString(defaultDem())},
                                                                                {"MAX_ERROR", QStringLiteral("abc")},
