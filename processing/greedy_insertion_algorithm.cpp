@@ -109,8 +109,8 @@ bool GreedyInsertionAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Q
 QVariantMap GreedyInsertionAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
                                                        QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
-  // QGIS asks before overwriting a file; the core then keeps the file's other layers.
   const bool vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
+  // QGIS asks before overwriting a file; the core then keeps the file's other layers.
   const InsertSummary s = translateErrors([&] {
     return runInsertJob(demSource_, output.toStdString(), insert_, true, processingFeedback(feedback), vertexIndex);
   });

@@ -59,8 +59,8 @@ bool SampleTinAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProc
 QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
                                                  QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
-  // QGIS asks before overwriting a file; the core then keeps the file's other layers.
   const bool vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
+  // QGIS asks before overwriting a file; the core then keeps the file's other layers.
   const SampleSummary summary = translateErrors([&] {
     return runSampleJob(demSource_, output.toStdString(), sample_, true, processingFeedback(feedback), vertexIndex);
   });
