@@ -130,6 +130,29 @@ TEST(GreedyInsertion, ToleranceHoldsAtEveryCellByBruteForce) {
   }
 }
 
+// The triangles come out in blocks of 16 x 16 cells, block row by block row, not in the
+// order CGAL made them (all over the grid): neighbours in the list are neighbours on the map.
+TEST(GreedyInsertion, TrianglesComeOutAreaByArea) {
+  const Dem dem = hills(300, 220);
+  const InsertedTin out = insert(dem, 0.5);
+  ASSERT_GT(out.tin.triangles.size(), 5000u);
+  const auto centre = [&out](const Triangle& t, bool row) {
+    double sum = 0;
+    for (VertexId v : t) sum += row ? out.tin.vertices[v].row : out.tin.vertices[v].col;
+    return sum / 3;
+  };
+  double step = 0, rowsBack = 0;
+  for (std::size_t i = 1; i < out.tin.triangles.size(); ++i) {
+    const Triangle &a = out.tin.triangles[i - 1], &b = out.tin.triangles[i];
+    step += std::hypot(centre(b, false) - centre(a, false), centre(b, true) - centre(a, true));
+    rowsBack = std::max(rowsBack, centre(a, true) - centre(b, true));
+  }
+  // In the order of making, a step is a third of the grid on average (about 100 cells).
+  EXPECT_LT(step / double(out.tin.triangles.size() - 1), 8.0);
+  // Never back more than a block and the triangles' reach above it.
+  EXPECT_LT(rowsBack, 40.0);
+}
+
 // A run at a finer tolerance than the one before goes on as one run at that tolerance
 // would have: the triangles the coarser run left out of its queue are queued again.
 TEST(GreedyInsertion, AFinerRunAfterACoarserOneIsOneFineRun) {
