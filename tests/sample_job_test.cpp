@@ -125,6 +125,24 @@ TEST(SampleJob, ExistingOutputNeedsOverwriteAndKeepsOtherLayers) {
   EXPECT_EQ(layerInfo(out, "triangles").features, (long long)s.triangles);
 }
 
+// An output that is not a GeoPackage is neither replaced nor half updated: the error says
+// so, and the file and its folder are as they were.
+TEST(SampleJob, AnOutputThatIsNotAGeoPackageIsLeftAlone) {
+  const std::string dir = test::tempDir();
+  const std::string out = dir + "/tin.gpkg";
+  {
+    std::ofstream(out) << "a note saved under the wrong name";
+  }
+  try {
+    runSampleJob(defaultDem(), out, {}, true, {});
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("exists but is not a GeoPackage GDAL can update"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(test::readFile(out), "a note saved under the wrong name");
+  EXPECT_EQ(filesIn(dir), 1u);
+}
+
 TEST(SampleJob, CancelLeavesNothingBehindInEveryPhase) {
   // Reading, sampling, triangulating, writing vertices, writing triangles, and the
   // last check before GDAL builds the spatial index (at 0.6 + 0.4 * 0.7 = 0.88).

@@ -81,34 +81,34 @@ void writeFeature(OGRLayer& layer, OGRFeature& feature) {
 GpkgOutput::GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options,
                        std::function<bool(const std::string&)> ours)
     : file_(file), options_(options) {
-  const bool fromCopy = fs::exists(file_.staging);  // OutputFiles copied the existing output
-  ds_ = openOrCreate(file_.staging, fromCopy);
+  // A file of ours alone is replaced by a new one: faster than copying it, dropping its
+  // layers and compacting what they leave (a rewrite of the whole file without a word of
+  // progress). One with other content is copied and updated.
+  const bool update = file_.existed && file_.keepContent && !holdsOnly(file_.target, ours);
+  if (update) copyForUpdate(file_);
+  ds_ = openOrCreate(file_.staging, update);
   if (!ds_)
-    throw Error(fromCopy ? "'" + file_.path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name"
-                         : "cannot create GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
-  if (fromCopy && holdsOnly(ours)) {
-    // Replacing a file of ours alone: a new file is faster than dropping its layers and
-    // compacting what they leave, which would rewrite the whole file without a word of progress.
-    GDALClose(ds_);
-    ds_ = nullptr;
-    fs::remove(file_.staging);
-    ds_ = openOrCreate(file_.staging, false);
-    if (!ds_) throw Error("cannot create GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
-    return;
-  }
-  dropOurs(ours);
+    throw Error(update ? "'" + file_.path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name"
+                       : "cannot create GeoPackage '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
+  if (update) dropOurs(ours);
 }
 
-bool GpkgOutput::holdsOnly(const std::function<bool(const std::string&)>& ours) {
+bool GpkgOutput::holdsOnly(const fs::path& path, const std::function<bool(const std::string&)>& ours) {
+  GDALAllRegister();
+  const char* const gpkgOnly[] = {"GPKG", nullptr};
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, gpkgOnly));
+  CPLPopErrorHandler();
+  if (!ds) return false;  // not a GeoPackage: the update says so
   // Every table and view, registered or not (QGIS keeps projects in a plain table), must be
   // the GeoPackage's own, an index's, or the job's; and the metadata only the job's items.
   std::vector<std::string> names;
-  if (OGRLayer* r = ds_->ExecuteSQL("SELECT name FROM sqlite_master WHERE type IN ('table', 'view') "
-                                    "UNION ALL SELECT 'metadata:' || count(*) FROM gpkg_metadata "
-                                    "UNION ALL SELECT 'domains:' || count(*) FROM gpkg_metadata WHERE metadata LIKE '%domain=%'",
-                                    nullptr, nullptr)) {
+  if (OGRLayer* r = ds->ExecuteSQL("SELECT name FROM sqlite_master WHERE type IN ('table', 'view') "
+                                   "UNION ALL SELECT 'metadata:' || count(*) FROM gpkg_metadata "
+                                   "UNION ALL SELECT 'domains:' || count(*) FROM gpkg_metadata WHERE metadata LIKE '%domain=%'",
+                                   nullptr, nullptr)) {
     for (auto& f : *r) names.push_back(f->GetFieldAsString(0));
-    ds_->ReleaseResultSet(r);
+    ds->ReleaseResultSet(r);
   }
   if (names.empty()) return false;  // no gpkg_metadata table, or unreadable: keep what is there
   const auto infrastructure = [](const std::string& name) {
@@ -119,7 +119,7 @@ bool GpkgOutput::holdsOnly(const std::function<bool(const std::string&)>& ours) 
     if (name.rfind("metadata:", 0) == 0 || name.rfind("domains:", 0) == 0) return false;
     if (!infrastructure(name) && !ours(name)) return false;
   }
-  for (char** item = ds_->GetMetadata(); item && *item; ++item)
+  for (char** item = ds->GetMetadata(); item && *item; ++item)
     if (std::string(*item).rfind("TINLOD_", 0) != 0) return false;
   return true;
 }

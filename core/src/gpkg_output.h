@@ -67,7 +67,7 @@ class GpkgOutput {
   };
   void dropOurs(const std::function<bool(const std::string&)>& ours);
   // True when every layer and metadata item of the file is the job's own.
-  bool holdsOnly(const std::function<bool(const std::string&)>& ours);
+  static bool holdsOnly(const std::filesystem::path& path, const std::function<bool(const std::string&)>& ours);
   void writeMetadata(bool withLate);
   void closeGdal();
   // What dropping the job's old layers left free is given back (GDAL's part only: the

@@ -121,14 +121,17 @@ const StagedFile& OutputFiles::add(const std::string& path, const std::string& o
   if (existed && !overwrite_) throw Error(option + ": '" + path + "' exists: add -overwrite to replace it");
   StagingFolder::removeStale(target);
   auto folder = std::make_unique<StagingFolder>(target);
-  auto file = std::make_unique<StagedFile>(StagedFile{path, option, target, folder->path() / target.filename(), existed});
-  if (keepContent && existed) {
-    fs::copy_file(target, file->staging, fs::copy_options::overwrite_existing, ec);
-    if (ec) throw Error(option + ": cannot copy '" + path + "' to update it: " + ec.message());
-  }
+  auto file = std::make_unique<StagedFile>(
+      StagedFile{path, option, target, folder->path() / target.filename(), existed, keepContent});
   folders_.push_back(std::move(folder));
   files_.push_back(std::move(file));
   return *files_.back();
+}
+
+void copyForUpdate(const StagedFile& file) {
+  std::error_code ec;
+  fs::copy_file(file.target, file.staging, fs::copy_options::overwrite_existing, ec);
+  if (ec) throw Error(file.option + ": cannot copy '" + file.path + "' to update it: " + ec.message());
 }
 
 void OutputFiles::commit() {

@@ -19,6 +19,7 @@ struct StagedFile {
   std::filesystem::path target;   // `path`, or the file a symbolic link there points to
   std::filesystem::path staging;
   bool existed = false;           // the output existed when the job started
+  bool keepContent = false;       // its writer keeps what else an existing file holds
 };
 
 // Every file one job writes. Each is checked when added, before the long work (it is
@@ -34,8 +35,9 @@ class OutputFiles {
   OutputFiles(const OutputFiles&) = delete;
   OutputFiles& operator=(const OutputFiles&) = delete;
 
-  // With `keepContent`, an existing output is copied into the staging folder first, so a
-  // GeoPackage's other layers survive.
+  // With `keepContent`, the writer keeps what else an existing output holds (a
+  // GeoPackage's other layers): it copies the file into the staging folder when it has
+  // such content (copyForUpdate), and starts a new file when it has none.
   const StagedFile& add(const std::string& path, const std::string& option, bool keepContent = false);
   // Moves every staged file (and its sidecars) into place. Without overwrite a file that
   // appeared meanwhile is not replaced: the error names it and every output moved so far
@@ -49,6 +51,9 @@ class OutputFiles {
   std::vector<std::unique_ptr<StagingFolder>> folders_;
   std::vector<std::unique_ptr<StagedFile>> files_;
 };
+
+// Copies an existing output into its staging file, for a writer that updates it.
+void copyForUpdate(const StagedFile& file);
 
 // Removes every staging folder this process still holds. For a front end that must stop
 // at once (a second Ctrl-C, a cancel the work does not answer in time): waits while a
