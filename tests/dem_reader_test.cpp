@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "parallel_blocks.h"
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
@@ -64,6 +65,48 @@ TEST(DemReader, ReadsHeightsGeoreferencingAndCrs) {
   EXPECT_DOUBLE_EQ(dem.centreY(0), 4999995.0);
   EXPECT_NE(dem.crsWkt.find("32632"), std::string::npos);
   EXPECT_EQ(dem.validCount(), 30u);
+}
+
+// The heights are decoded on a handle of their own beside the CRS lookup, unless one
+// thread is all there is: both ways read the same DEM, and a cancel while the heights are
+// read stops the reading either way.
+TEST(DemReader, ReadingBesideTheCrsLookupReadsWhatReadingInTurnReads) {
+  GDALAllRegister();
+  const std::string path = test::tempDir() + "/tiled.tif";
+  const char* const options[] = {"TILED=YES", "BLOCKXSIZE=64", "BLOCKYSIZE=64", "COMPRESS=DEFLATE", nullptr};
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), 300, 200, 1, GDT_Float32,
+                                                                            const_cast<char**>(options));
+  const double gt[6] = {7.0, 0.001, 0, 47.0, 0, -0.001};
+  ds->SetGeoTransform(const_cast<double*>(gt));
+  ds->SetProjection("EPSG:4326");
+  std::vector<float> v(300 * 200);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = i % 97 == 0 ? -9999.f : float(i % 1013) * 0.5f;
+  ds->GetRasterBand(1)->SetNoDataValue(-9999);
+  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 300, 200, v.data(), 300, 200, GDT_Float32, 0, 0), CE_None);
+  GDALClose(ds);
+
+  const Dem beside = readDem(path, 1, kRange);
+  Dem inTurn;
+  {
+    ThisThreadAlone alone;
+    inTurn = readDem(path, 1, kRange);
+  }
+  EXPECT_NE(beside.crsWkt.find("4326"), std::string::npos);
+  EXPECT_EQ(beside.crsWkt, inTurn.crsWkt);
+  ASSERT_EQ(beside.z.size(), v.size());
+  ASSERT_EQ(inTurn.z.size(), v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    EXPECT_EQ(std::isnan(beside.z[i]), v[i] == -9999.f) << i;
+    if (v[i] != -9999.f) EXPECT_EQ(beside.z[i], v[i]) << i;
+    EXPECT_EQ(std::isnan(inTurn.z[i]), std::isnan(beside.z[i])) << i;
+    if (!std::isnan(beside.z[i])) EXPECT_EQ(inTurn.z[i], beside.z[i]) << i;
+  }
+
+  Feedback cancelling;
+  cancelling.progress = [](double, const std::string&) { return false; };
+  EXPECT_THROW(readDem(path, 1, ProgressRange(cancelling, 0, 1)), Cancelled);
+  ThisThreadAlone alone;
+  EXPECT_THROW(readDem(path, 1, ProgressRange(cancelling, 0, 1)), Cancelled);
 }
 
 TEST(DemReader, DeclaredNodataBecomesMissing) {

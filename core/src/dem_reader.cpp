@@ -6,21 +6,33 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <future>
 #include <memory>
+#include <optional>
 
 #include "gdal_handles.h"
+#include "parallel_blocks.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
 namespace {
 
+// GDAL's drivers that can decode blocks on several threads (GeoTIFF, since 3.6) do so
+// when told at opening; a user's own GDAL_NUM_THREADS is kept.
+GDALDataset* openWithDecodingThreads(const std::string& path) {
+  const bool given = CPLGetConfigOption("GDAL_NUM_THREADS", nullptr) != nullptr;
+  if (!given) CPLSetThreadLocalConfigOption("GDAL_NUM_THREADS", std::to_string(threadCount()).c_str());
+  auto* ds = static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  if (!given) CPLSetThreadLocalConfigOption("GDAL_NUM_THREADS", nullptr);
+  return ds;
+}
+
 DatasetPtr openRaster(const std::string& path) {
   GDALAllRegister();
   if (plainPathMissing(path)) throw Error("DEM '" + path + "' does not exist");
   CPLPushErrorHandler(CPLQuietErrorHandler);
-  auto* ds = static_cast<GDALDataset*>(
-      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  GDALDataset* ds = openWithDecodingThreads(path);
   const std::string gdalMessage = CPLGetLastErrorMsg();
   CPLPopErrorHandler();
   if (!ds) {
@@ -49,12 +61,17 @@ void readGeoreferencing(GDALDataset& ds, Dem& dem, const ProgressRange& progress
   } else {
     progress.warn("'" + dem.path + "' has no geotransform: cells are taken as 1 x 1 metre");
   }
+}
+
+std::string crsWkt(GDALDataset& ds) {
+  std::string out;
   if (const OGRSpatialReference* srs = ds.GetSpatialRef()) {
     char* wkt = nullptr;
     srs->exportToWkt(&wkt);
-    dem.crsWkt = wkt ? wkt : "";
+    out = wkt ? wkt : "";
     CPLFree(wkt);
   }
+  return out;
 }
 
 // Marks missing cells as NaN. Declared nodata is compared as float, the type the
@@ -155,6 +172,33 @@ void checkValidCells(const Dem& dem, const HeightRange& valid) {
 
 namespace {
 
+// The heights from a handle of their own (a GDAL handle serves one thread at a time),
+// decoded on other cores, while this thread takes the CRS from `ds`: a GeoTIFF's comes
+// from PROJ's database, 10-20 ms when cold, and PROJ's caches are per thread, so this
+// thread, which makes the transform to the TIN's CRS next, is the one to warm them.
+// In turn when the file cannot be opened twice (a stream) or one core is all there is.
+void readHeightsBesideCrs(GDALDataset& ds, int bandNumber, Dem& dem, const ProgressRange& progress) {
+  DatasetPtr second;
+  if (threadCount() > 1) {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    second.reset(openWithDecodingThreads(dem.path));
+    CPLPopErrorHandler();
+  }
+  if (!second) {
+    readHeights(*ds.GetRasterBand(bandNumber), dem, progress);
+    dem.crsWkt = crsWkt(ds);
+    return;
+  }
+  std::future<void> heights = std::async(std::launch::async, [&] { readHeights(*second->GetRasterBand(bandNumber), dem, progress); });
+  try {
+    dem.crsWkt = crsWkt(ds);
+  } catch (...) {
+    heights.wait();
+    throw;
+  }
+  heights.get();
+}
+
 Dem readBand(const std::string& path, int bandNumber, const CellWindow* window, const ProgressRange& progress,
              const HeightRange& valid) {
   valid.validate();
@@ -184,7 +228,7 @@ Dem readBand(const std::string& path, int bandNumber, const CellWindow* window, 
     dem.geotransform[0] += window->xoff * dem.geotransform[1];
     dem.geotransform[3] += window->yoff * dem.geotransform[5];
   }
-  readHeights(*band, dem, progress);
+  readHeightsBesideCrs(*ds, bandNumber, dem, progress);
   applyMask(*band, dem);  // on the stored values, where declared nodata applies
   toMetres(*band, dem, progress);
   dropImplausibleHeights(dem, valid, progress);  // in metres, as the range is given
