@@ -29,8 +29,13 @@ struct FaceState {
   std::int32_t index = -1;      // its number when the triangulation is handed out
   bool overHole = false;
 };
-// A vertex knows its place in the insertion order.
-using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
+// A vertex knows its place in the insertion order, and its candidate: the scans read it
+// where they read the vertex, not from the insertion list (a cache miss a corner).
+struct VertexState {
+  std::uint32_t order = 0;
+  std::uint32_t candidate = 0;
+};
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<VertexState, Kernel>;
 using FaceBase = CGAL::Triangulation_face_base_with_info_2<FaceState, Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
@@ -70,6 +75,7 @@ struct GreedyInserter::Impl {
   double floor = 0;
   std::vector<InsertedVertex> inserted;
   std::uint32_t stamp = 0;
+  std::vector<FaceHandle> stack;  // flipToDelaunay's, kept from one insertion to the next
 
   std::array<double, 2> scale;  // whole numbers: see delaunayScales
 
@@ -83,8 +89,8 @@ struct GreedyInserter::Impl {
   }
 
   void scan(FaceHandle f) {
-    const ScanResult r = scanner.scan({inserted[f->vertex(0)->info()].candidate, inserted[f->vertex(1)->info()].candidate,
-                                       inserted[f->vertex(2)->info()].candidate});
+    const ScanResult r =
+        scanner.scan({f->vertex(0)->info().candidate, f->vertex(1)->info().candidate, f->vertex(2)->info().candidate});
     f->info() = {r.error, ++stamp, r.candidate, -1, r.overHole};
     if (r.error > floor) queue.push({r.error, stamp, f});
   }
@@ -122,7 +128,7 @@ struct GreedyInserter::Impl {
     const Delaunay::Vertex_handle v = dt.Triangulation::insert(metric(candidate), hint);
     if (dt.number_of_vertices() == before) return Delaunay::Vertex_handle();
     if (dt.dimension() == 2) flipToDelaunay(v);
-    v->info() = std::uint32_t(inserted.size());
+    v->info() = {std::uint32_t(inserted.size()), candidate};
     inserted.push_back({candidate, errorBefore});
     return v;
   }
@@ -130,7 +136,7 @@ struct GreedyInserter::Impl {
   // Flips each edge opposite the new vertex whose far corner is strictly inside the
   // circle (CGAL's exact predicate, unperturbed), as Lawson's insertion does.
   void flipToDelaunay(Delaunay::Vertex_handle v) {
-    std::vector<FaceHandle> stack;
+    stack.clear();
     auto f = dt.incident_faces(v), done = f;
     do stack.push_back(f);
     while (++f != done);
@@ -278,7 +284,7 @@ Triangulation GreedyInserter::triangulation() const {
   out.triangles.reserve(faces.size());
   out.neighbours.reserve(faces.size());
   for (const FaceHandle& f : faces) {
-    out.triangles.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+    out.triangles.push_back({f->vertex(0)->info().order, f->vertex(1)->info().order, f->vertex(2)->info().order});
     std::array<std::int32_t, 3> n;
     for (int k = 0; k < 3; ++k) n[k] = dt.is_infinite(f->neighbor(k)) ? kNoNeighbour : f->neighbor(k)->info().index;
     out.neighbours.push_back(n);
