@@ -13,6 +13,7 @@
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
+#include "tinlod/gpkg_writer.h"
 #include "tinlod/greedy_inserter.h"
 #include "tinlod/grid.h"
 #include "tinlod/insert_job.h"
@@ -417,6 +418,86 @@ TEST(InsertJob, WritesTheTinWithInsertionOrderAndLeavesNothingWhenCancelled) {
   EXPECT_TRUE(writing);
   EXPECT_FALSE(fs::exists(cancelled));
   EXPECT_THROW(runInsertJob(test::smallSyntheticDemFile(), out, o, false, Feedback{}), Error);  // exists
+}
+
+// Every feature of a layer, fid order: its fields as text and its geometry's WKB.
+std::vector<std::string> featuresOf(const std::string& path, const char* layerName) {
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+  EXPECT_TRUE(ds);
+  std::vector<std::string> out;
+  if (!ds) return out;
+  OGRLayer* layer = ds->GetLayerByName(layerName);
+  EXPECT_NE(layer, nullptr);
+  if (!layer) return out;
+  for (auto& f : *layer) {
+    std::string row = std::to_string(f->GetFID());
+    for (int i = 0; i < f->GetFieldCount(); ++i) row += std::string("|") + (f->IsFieldNull(i) ? "null" : f->GetFieldAsString(i));
+    if (const OGRGeometry* g = f->GetGeometryRef()) {
+      std::string wkb(std::size_t(g->WkbSize()), '\0');
+      g->exportToWkb(wkbNDR, reinterpret_cast<unsigned char*>(wkb.data()), wkbVariantIso);
+      row += "|" + wkb;
+    }
+    out.push_back(row);
+  }
+  return out;
+}
+
+// Without nodata, with every cell a candidate, the job writes the vertex rows on the other
+// core while the insertion runs: the file is the one written after it, feature for
+// feature, metadata included; a cancel during the insertion leaves nothing.
+TEST(InsertJob, VertexRowsWrittenDuringTheInsertionAreThoseWrittenAfterIt) {
+  const std::string dir = test::tempDir();
+  Dem dem = test::makeGeographicDem(300, 220, 7.0, 47.0);  // transformed to UTM: PROJ on both paths
+  const Dem shape = hills(300, 220);
+  dem.z = shape.z;
+  const std::string demPath = dir + "/hills.tif";
+  writeDemGeoTiff(dem, demPath);
+  InsertOptions o;
+  o.maxError = 0.5;
+  const std::string during = dir + "/during.gpkg", after = dir + "/after.gpkg";
+  const InsertSummary s = runInsertJob(demPath, during, o, false, Feedback{});
+  EXPECT_GT(s.vertices, 2000u);
+
+  const Dem read = readDem(demPath, 1, kQuiet);
+  const InsertedTin t = greedyInsertionTin(read, o, kQuiet);
+  std::vector<ExtraField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
+  extra[0].values.assign(t.insertion.begin(), t.insertion.end());
+  extra[1].values = t.errorBefore;
+  writeTinGpkg(t.tin, after, GpkgWriteOptions{}, kQuiet, extra);
+
+  for (const char* layer : {"vertices", "triangles"}) {
+    const std::vector<std::string> a = featuresOf(during, layer), b = featuresOf(after, layer);
+    ASSERT_EQ(a.size(), b.size()) << layer;
+    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << layer << " feature " << i + 1;
+  }
+  EXPECT_EQ(featuresOf(during, "vertices").size(), s.vertices);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(during.c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(ds);
+  OGRLayer* vertices = ds->GetLayerByName("vertices");
+  OGREnvelope extent;
+  ASSERT_EQ(vertices->GetExtent(&extent, false), OGRERR_NONE);  // from gpkg_contents, as QGIS reads it
+  GDALDatasetUniquePtr ref(GDALDataset::Open(after.c_str(), GDAL_OF_VECTOR));
+  OGREnvelope refExtent;
+  ASSERT_EQ(ref->GetLayerByName("vertices")->GetExtent(&refExtent, false), OGRERR_NONE);
+  EXPECT_EQ(extent.MinX, refExtent.MinX);
+  EXPECT_EQ(extent.MaxY, refExtent.MaxY);
+  EXPECT_EQ(vertices->GetFeatureCount(false), GIntBig(s.vertices));
+  ASSERT_NE(ds->GetMetadataItem("TINLOD_MAX_ERROR"), nullptr);
+  EXPECT_LE(std::stod(ds->GetMetadataItem("TINLOD_MAX_ERROR")), 0.5);
+  EXPECT_STREQ(ds->GetMetadataItem("TINLOD_CRS"), "WGS 84 / UTM zone 32N (EPSG:32632)");
+  EXPECT_STREQ(ds->GetMetadataItem("TINLOD_UNCOVERED_CELLS"), "0");
+  ds.reset();
+
+  const std::string cancelled = dir + "/cancelled.gpkg";
+  Feedback stop;
+  stop.progress = [](double f, const std::string& phase) { return !(phase == "Inserting points" && f > 0.4); };
+  EXPECT_THROW(runInsertJob(demPath, cancelled, o, false, stop), Cancelled);
+  EXPECT_FALSE(fs::exists(cancelled));
+  std::size_t left = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) left += entry.path().filename() != "hills.tif" &&
+                                                               entry.path().filename() != "during.gpkg" &&
+                                                               entry.path().filename() != "after.gpkg";
+  EXPECT_EQ(left, 0u);
 }
 
 TEST(GreedyInsertionRealDems, ToleranceHoldsOnRealDems) {

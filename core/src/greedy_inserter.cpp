@@ -249,7 +249,7 @@ class RunProgress {
 
 }  // namespace
 
-void GreedyInserter::run(const InsertStop& stop, const ProgressRange& progress) {
+void GreedyInserter::run(const InsertStop& stop, const ProgressRange& progress, const std::function<void()>& every) {
   Impl& m = *impl_;
   m.lowerFloor(std::max(0.0, stop.maxError));
   RunProgress fraction(stop, vertexCount(), maxError());
@@ -261,12 +261,14 @@ void GreedyInserter::run(const InsertStop& stop, const ProgressRange& progress) 
     const Delaunay::Vertex_handle v = m.addVertex(top.face->info().candidate, top.error, top.face);
     if (v == Delaunay::Vertex_handle()) continue;  // distinct candidates never coincide; never loop on one that did
     m.rescanAround(v);
+    if ((step & 1023) != 0) continue;
+    if (every) every();
     // CGAL counts the finite triangles by walking the hull: only when a limit needs it.
-    if ((step & 1023) == 0)
-      progress.report(fraction.fraction(vertexCount(), stop.maxTriangles ? triangleCount() : 0,
-                                        m.queue.empty() ? 0 : m.queue.top().error),
-                      "Inserting points");
+    progress.report(fraction.fraction(vertexCount(), stop.maxTriangles ? triangleCount() : 0,
+                                      m.queue.empty() ? 0 : m.queue.top().error),
+                    "Inserting points");
   }
+  if (every) every();
 }
 
 std::size_t GreedyInserter::vertexCount() const { return impl_->dt.number_of_vertices(); }

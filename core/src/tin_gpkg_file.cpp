@@ -32,12 +32,17 @@ MoreFields extraSetter(const std::vector<ExtraField>& extra, int common) {
 TinGpkgFile::TinGpkgFile(const StagedFile& file, const GpkgWriteOptions& options, const std::string& crsWkt,
                          const std::vector<ExtraField>& vertexExtra, const std::vector<ExtraField>& triangleExtra)
     : out_(file, options, isTinlodLayer), vertexIndex_(options.vertexIndex),
-      triangleFields_(withExtra(triangleFields(), triangleExtra)) {
-  const std::vector<FieldSpec> vfields = withExtra(vertexFields(), vertexExtra);
-  out_.createLayer("vertices", wkbPoint25D, crsWkt, vfields, true);
+      vertexFields_(withExtra(vertexFields(), vertexExtra)), triangleFields_(withExtra(triangleFields(), triangleExtra)) {
+  out_.createLayer("vertices", wkbPoint25D, crsWkt, vertexFields_, true);
   out_.createLayer("triangles", wkbPolygon25D, crsWkt, triangleFields_, true);
   srsId_ = out_.srsId("vertices");
-  vertexRows_.emplace(out_.database(), "vertices", fieldNames(vfields));
+  vertexRows_.emplace(out_.database(), "vertices", fieldNames(vertexFields_));
+}
+
+void TinGpkgFile::clearVertexRows() {
+  vertexRows_.reset();
+  vertexRows_.emplace(out_.database(), "vertices", fieldNames(vertexFields_));  // sets GDAL's count triggers aside
+  out_.database().execute("DELETE FROM vertices");
 }
 
 void TinGpkgFile::indexLater(const Tin& tin) {

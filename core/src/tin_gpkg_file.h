@@ -29,6 +29,9 @@ class TinGpkgFile {
   GpkgFeatureRows& vertexRows() { return *vertexRows_; }
   std::int32_t srsId() const { return srsId_; }
   SqliteDatabase& database() { return out_.database(); }
+  // Empties the vertices layer for its rows to be written again (rows of vertices that
+  // turned out not to be the TIN's).
+  void clearVertexRows();
   // Packs the triangles' R-tree (and the vertices' when asked) on another core while the
   // rows are written.
   void indexLater(const Tin& tin);
@@ -39,7 +42,7 @@ class TinGpkgFile {
  private:
   GpkgOutput out_;
   bool vertexIndex_;
-  std::vector<FieldSpec> triangleFields_;
+  std::vector<FieldSpec> vertexFields_, triangleFields_;
   std::optional<GpkgFeatureRows> vertexRows_;
   std::int32_t srsId_ = 0;
 };

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -75,7 +76,9 @@ class GreedyInserter {
   GreedyInserter& operator=(const GreedyInserter&) = delete;
 
   // Inserts until every candidate is within stop.maxError or a count limit is reached.
-  void run(const InsertStop& stop, const ProgressRange& progress);
+  // Now and then (every thousand or so insertions, and at the end) `every` is called,
+  // on this thread: for whoever takes the vertices as they come.
+  void run(const InsertStop& stop, const ProgressRange& progress, const std::function<void()>& every = {});
 
   std::size_t vertexCount() const;
   std::size_t triangleCount() const;  // of the whole triangulation, holes included
