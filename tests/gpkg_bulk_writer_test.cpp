@@ -15,6 +15,7 @@
 #include "gdal_metadata_xml.h"
 #include "packed_rtree.h"
 #include "test_support.h"
+#include "tin_gpkg_file.h"
 #include "tinlod/error.h"
 #include "tinlod/gpkg_writer.h"
 #include "tinlod/hierarchy_builder.h"
@@ -234,6 +235,48 @@ TEST(GpkgBulkWriter, TinWithExtraFieldsReadsBackAsWritten) {
   for (const TinVertex& v : tin.vertices) minX = std::min(minX, v.x), maxX = std::max(maxX, v.x);
   EXPECT_EQ(extent.MinX, minX);
   EXPECT_EQ(extent.MaxX, maxX);
+}
+
+// A TIN's file written in steps, whose first vertex rows turned out wrong (a writer that
+// wrote rows ahead of time for vertices the TIN then dropped): cleared and written again,
+// the file holds only the second rows, counted and bounded as the TIN's; the extra
+// fields' names outlive the caller's list.
+TEST(GpkgBulkWriter, VertexRowsClearedAndWrittenAgainAreTheOnlyOnes) {
+  const Tin& tin = built().h.base;
+  const std::string dir = test::tempDir();
+  OutputFiles files(false);
+  const StagedFile& staged = files.add(dir + "/steps.gpkg", "output", true);
+  {
+    TinGpkgFile file(staged, GpkgWriteOptions{}, tin.crsWkt, std::vector<ExtraField>{{"insertion", {}, true}}, {});
+    Tin wrong = tin;
+    for (TinVertex& v : wrong.vertices) v.x += 1000, v.row += 7;
+    wrong.vertices.push_back(wrong.vertices.front());  // one vertex too many
+    std::vector<ExtraField> none{{"insertion", std::vector<double>(wrong.vertices.size(), 5), true}};
+    writeVertices(wrong, file.vertexRows(), file.srsId(), extraSetter(none, int(vertexFields().size())),
+                  ProgressRange(Feedback{}, 0, 1));
+    file.clearVertexRows();
+    std::vector<ExtraField> order{{"insertion", {}, true}};
+    for (std::size_t i = 0; i < tin.vertices.size(); ++i) order[0].values.push_back(double(i + 1));
+    writeVertices(tin, file.vertexRows(), file.srsId(), extraSetter(order, int(vertexFields().size())),
+                  ProgressRange(Feedback{}, 0, 1));
+    file.indexLater(tin);
+    file.finish(tin, {}, ProgressRange(Feedback{}, 0, 0.8), ProgressRange(Feedback{}, 0.8, 1));
+  }
+  files.commit();
+  Dataset d(dir + "/steps.gpkg");
+  expectTinLayers(*d.ds, tin, tin.triangles);
+  for (auto& f : *d.ds->GetLayerByName("vertices")) ASSERT_EQ(f->GetFieldAsInteger64("insertion"), f->GetFID());
+  OGREnvelope extent;
+  ASSERT_EQ(d.ds->GetLayerByName("vertices")->GetExtent(&extent, false), OGRERR_NONE);
+  double maxX = -INFINITY;
+  for (const TinVertex& v : tin.vertices) maxX = std::max(maxX, v.x);
+  EXPECT_EQ(extent.MaxX, maxX);
+  Sqlite db(dir + "/steps.gpkg");
+  EXPECT_EQ(db.column("SELECT feature_count FROM gpkg_ogr_contents WHERE table_name = 'vertices'"),
+            std::vector<long long>{(long long)tin.vertices.size()});
+  // GDAL's count triggers are back: a row added later is counted.
+  EXPECT_EQ(db.column("SELECT count(*) FROM sqlite_master WHERE name LIKE 'trigger_%_feature_count_vertices'"),
+            std::vector<long long>{2});
 }
 
 // The packed index against SQLite's own, filled row by row from OGR's envelopes.

@@ -183,6 +183,10 @@ void readHeightsBesideCrs(GDALDataset& ds, int bandNumber, Dem& dem, const Progr
     CPLPushErrorHandler(CPLQuietErrorHandler);
     second.reset(openWithDecodingThreads(dem.path));
     CPLPopErrorHandler();
+    // The same raster, or the first handle alone (a file replaced between the two opens).
+    if (second && (second->GetRasterCount() < bandNumber || second->GetRasterXSize() != ds.GetRasterXSize() ||
+                   second->GetRasterYSize() != ds.GetRasterYSize()))
+      second.reset();
   }
   if (!second) {
     readHeights(*ds.GetRasterBand(bandNumber), dem, progress);

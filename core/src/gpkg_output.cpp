@@ -84,7 +84,7 @@ GpkgOutput::GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options,
   // A file of ours alone is replaced by a new one: faster than copying it, dropping its
   // layers and compacting what they leave (a rewrite of the whole file without a word of
   // progress). One with other content is copied and updated.
-  const bool update = file_.existed && file_.keepContent && !holdsOnly(file_.target, ours);
+  const bool update = file_.existed && file_.keepContent && fs::exists(file_.target) && !holdsOnly(file_.target, ours);
   if (update) copyForUpdate(file_);
   ds_ = openOrCreate(file_.staging, update);
   if (!ds_)

@@ -320,9 +320,13 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
     else
       writeTinGpkg(result.tin, out, writeOptions, all.sub(0.85, 1), extra);
   } catch (...) {
-    late->check.wait();  // the check reads `result` and `dem`: it ends before they go
+    // The file's R-tree packing and the check read `result` and `dem`: they end before
+    // those go (the file's threads with it).
+    vertexRows.reset();
+    late->check.wait();
     throw;
   }
+  vertexRows.reset();
   const InsertSummary summary = late->check.get();
   warnIfHolesOpen(summary, all);
   files.commit();

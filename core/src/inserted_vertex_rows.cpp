@@ -22,6 +22,7 @@ void InsertedVertexRows::add(const std::vector<InsertedVertex>& inserted) {
   queued_ = inserted.size();
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (failure_) std::rethrow_exception(failure_);  // at once, not after the whole insertion
     pending_.push_back(std::move(batch));
   }
   wake_.notify_one();
@@ -44,6 +45,7 @@ void InsertedVertexRows::run(const StagedFile& file, const GpkgWriteOptions& opt
     }
     file_->vertexRows().finish();
   } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex_);
     failure_ = std::current_exception();
   }
 }

@@ -31,17 +31,19 @@ MoreFields extraSetter(const std::vector<ExtraField>& extra, int common) {
 
 TinGpkgFile::TinGpkgFile(const StagedFile& file, const GpkgWriteOptions& options, const std::string& crsWkt,
                          const std::vector<ExtraField>& vertexExtra, const std::vector<ExtraField>& triangleExtra)
-    : out_(file, options, isTinlodLayer), vertexIndex_(options.vertexIndex),
-      vertexFields_(withExtra(vertexFields(), vertexExtra)), triangleFields_(withExtra(triangleFields(), triangleExtra)) {
-  out_.createLayer("vertices", wkbPoint25D, crsWkt, vertexFields_, true);
-  out_.createLayer("triangles", wkbPolygon25D, crsWkt, triangleFields_, true);
+    : out_(file, options, isTinlodLayer), vertexIndex_(options.vertexIndex) {
+  const std::vector<FieldSpec> vfields = withExtra(vertexFields(), vertexExtra);
+  const std::vector<FieldSpec> tfields = withExtra(triangleFields(), triangleExtra);
+  vertexNames_ = fieldNames(vfields), triangleNames_ = fieldNames(tfields);  // the specs point into the callers' names
+  out_.createLayer("vertices", wkbPoint25D, crsWkt, vfields, true);
+  out_.createLayer("triangles", wkbPolygon25D, crsWkt, tfields, true);
   srsId_ = out_.srsId("vertices");
-  vertexRows_.emplace(out_.database(), "vertices", fieldNames(vertexFields_));
+  vertexRows_.emplace(out_.database(), "vertices", vertexNames_);
 }
 
 void TinGpkgFile::clearVertexRows() {
   vertexRows_.reset();
-  vertexRows_.emplace(out_.database(), "vertices", fieldNames(vertexFields_));  // sets GDAL's count triggers aside
+  vertexRows_.emplace(out_.database(), "vertices", vertexNames_);  // sets GDAL's count triggers aside
   out_.database().execute("DELETE FROM vertices");
 }
 
@@ -55,7 +57,7 @@ void TinGpkgFile::indexLater(const Tin& tin) {
 void TinGpkgFile::finish(const Tin& tin, const std::vector<ExtraField>& triangleExtra, const ProgressRange& rows,
                          const ProgressRange& rest) {
   const TriangleAt triangle = [&tin](std::size_t i) -> const Triangle& { return tin.triangles[i]; };
-  GpkgFeatureRows triangleRows(out_.database(), "triangles", fieldNames(triangleFields_));
+  GpkgFeatureRows triangleRows(out_.database(), "triangles", triangleNames_);
   writeTriangles(tin, tin.triangles.size(), triangle, triangleRows, out_.srsId("triangles"),
                  extraSetter(triangleExtra, int(triangleFields().size())), rows);
   out_.finish(rest);

@@ -42,7 +42,7 @@ class TinGpkgFile {
  private:
   GpkgOutput out_;
   bool vertexIndex_;
-  std::vector<FieldSpec> vertexFields_, triangleFields_;
+  std::vector<std::string> vertexNames_, triangleNames_;  // the layers' fields, as made
   std::optional<GpkgFeatureRows> vertexRows_;
   std::int32_t srsId_ = 0;
 };
