@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <set>
 
 #include "test_support.h"
 #include "tinlod/build_job.h"
@@ -13,6 +16,7 @@
 #include "tinlod/hierarchy_info.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/synthetic_dem.h"
+#include "tinlod/tile_borders.h"
 
 namespace fs = std::filesystem;
 
@@ -139,6 +143,74 @@ TEST(BuildJob, PeaksPitsAndPointsToKeepAreFixed) {
   const long long top = s.levels;
   EXPECT_EQ(count(out, "SELECT COUNT(*) FROM vertices WHERE fixed = 1 AND level < " + std::to_string(top)), 0);
   EXPECT_GT(count(out, "SELECT COUNT(*) FROM vertices WHERE fixed = 1 AND outline = 0"), 10);
+}
+
+// Every vertex of a tile's file: where it is, whether it is fixed, the highest level it is in.
+struct StoredVertex {
+  double x, y;
+  bool fixed;
+  int level;
+};
+std::vector<StoredVertex> verticesOf(const std::string& gpkg) {
+  std::vector<StoredVertex> out;
+  GDALDatasetUniquePtr ds(GDALDataset::Open(gpkg.c_str(), GDAL_OF_VECTOR));
+  if (!ds) return out;
+  for (auto& f : *ds->GetLayerByName("vertices")) {
+    const OGRPoint* p = f->GetGeometryRef()->toPoint();
+    out.push_back({p->getX(), p->getY(), f->GetFieldAsInteger("fixed") == 1, f->GetFieldAsInteger("level")});
+  }
+  return out;
+}
+
+// In tiles, a point to keep holds its nearest vertex off the tile's shared lines: one on a
+// line goes or stays by the border rule alone, alike in both tiles, which the points do
+// not change. Points right beside a line, nearest to its vertices, still keep a vertex
+// within a block of them up to the top level, and the two tiles' lines stay the same.
+TEST(BuildJob, TilesHoldPointsToKeepOffTheirSharedLines) {
+  const std::string dir = test::tempDir();
+  GDALDatasetUniquePtr dem(GDALDataset::Open(smallDem().c_str(), GDAL_OF_RASTER));
+  double gt[6];
+  ASSERT_EQ(dem->GetGeoTransform(gt), CE_None);
+  const int size = 60;  // tiles (0,0) and (1,0) share the column of cells 60
+  const double lineX = gt[0] + 60.5 * gt[1];
+  std::vector<std::array<double, 2>> points;
+  std::ofstream keep(dir + "/keep.geojson");
+  keep << R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32632"}},"features":[)";
+  for (int row = 4; row < 58; row += 6) {
+    points.push_back({lineX - 0.2 * gt[1], gt[3] + (row + 0.5) * gt[5]});
+    keep << (row > 4 ? "," : "") << R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[)"
+         << std::setprecision(12) << points.back()[0] << "," << points.back()[1] << "]}}";
+  }
+  keep << "]}";
+  keep.close();
+  HierarchyOptions o;
+  o.fixedPoints = dir + "/keep.geojson";
+  std::vector<std::vector<StoredVertex>> tiles;
+  for (int col : {0, 1}) {
+    test::RecordingFeedback fb;
+    const std::string out = dir + "/tile_" + std::to_string(col) + ".gpkg";
+    runBuildJob(smallDem(), out, {}, o, false, fb.feedback(), AccuracyOutputs(), HierarchyLayers(), TileSpec{size, col, 0});
+    EXPECT_FALSE(fb.warned("points to keep")) << "tile " << col;  // the other tile's points are not off the data
+    tiles.push_back(verticesOf(out));
+  }
+  int top = 0;
+  for (const StoredVertex& v : tiles[0]) top = std::max(top, v.level);
+  ASSERT_GE(top, 10);
+  for (const auto& p : points) {
+    double nearest = INFINITY;
+    for (const StoredVertex& v : tiles[0])
+      if (v.fixed && v.level == top && v.x < lineX) nearest = std::min(nearest, std::hypot(v.x - p[0], v.y - p[1]));
+    EXPECT_LT(nearest, 3 * std::fabs(gt[1]) * std::sqrt(2.0)) << "point at " << p[0] << ", " << p[1];
+  }
+  // The line's vertices, level by level, are the same in both tiles.
+  for (int level = 0; level <= top; ++level) {
+    std::vector<std::multiset<double>> onLine(2);
+    for (int t = 0; t < 2; ++t)
+      for (const StoredVertex& v : tiles[t])
+        if (std::fabs(v.x - lineX) < 1e-6 && v.level >= level) onLine[t].insert(v.y);
+    EXPECT_FALSE(onLine[0].empty()) << level;
+    EXPECT_EQ(onLine[0], onLine[1]) << "level " << level;
+  }
 }
 
 TEST(BuildJob, BadOptionsFailBeforeAnyWork) {

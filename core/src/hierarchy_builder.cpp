@@ -191,12 +191,28 @@ class Simplifier {
   }
 
   // Each point keeps the vertex nearest to it, if it falls on the TIN's data.
+  // In a tile, a point holds its nearest vertex off the tile's shared lines: the border
+  // rule alone, which both tiles apply alike, decides the vertices on them. A point beyond
+  // the tile's vertices is another tile's, not off the data.
   void fixNearest(const std::vector<PointXY>& keep) {
+    std::vector<PointXY> mine = keep;
+    std::vector<std::uint8_t> onLines;
+    if (tile_) {
+      onLines.assign(h_.base.vertices.size(), 0);
+      for (VertexId v = 0; v < onLines.size(); ++v) onLines[v] = onBorder(v);
+      double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+      for (const TinVertex& v : h_.base.vertices) {
+        x0 = std::min(x0, v.x), y0 = std::min(y0, v.y);
+        x1 = std::max(x1, v.x), y1 = std::max(y1, v.y);
+      }
+      const auto beyond = [&](const PointXY& p) { return p[0] < x0 || p[0] > x1 || p[1] < y0 || p[1] > y1; };
+      mine.erase(std::remove_if(mine.begin(), mine.end(), beyond), mine.end());
+    }
     std::size_t off = 0;
-    for (VertexId v : nearestVerticesOnData(h_.base, keep, off, progress_.sub(0, 0.1))) h_.fixed[v] = 1;
+    for (VertexId v : nearestVerticesOnData(h_.base, mine, off, progress_.sub(0, 0.1), onLines)) h_.fixed[v] = 1;
     if (off > 0)
-      progress_.warn(std::to_string(off) + " of the " + std::to_string(keep.size()) +
-                     " points to keep fall outside the TIN's data and were ignored");
+      progress_.warn(std::to_string(off) + " of the " + std::to_string(mine.size()) + " points to keep" +
+                     (tile_ ? " within the tile's extent" : "") + " fall outside the TIN's data and were ignored");
   }
 
   bool eligible(VertexId v) const {

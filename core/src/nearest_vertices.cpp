@@ -31,13 +31,18 @@ BoxGrid triangleGrid(const Tin& tin) {
 // The triangles say whether a point is on the data; the Delaunay triangulation of all
 // the vertices finds the nearest one, which may lie across a hole.
 std::vector<VertexId> nearestVerticesOnData(const Tin& tin, const std::vector<std::array<double, 2>>& points,
-                                            std::size_t& off, const ProgressRange& progress) {
+                                            std::size_t& off, const ProgressRange& progress,
+                                            const std::vector<std::uint8_t>& excluded) {
   off = 0;
   std::vector<VertexId> nearest;
   if (points.empty()) return nearest;
   const BoxGrid grid = triangleGrid(tin);
+  std::vector<TinVertex> allowed;
+  std::vector<VertexId> idOf;  // of each allowed vertex, in the TIN
+  for (VertexId v = 0; v < tin.vertices.size(); ++v)
+    if (excluded.empty() || !excluded[v]) allowed.push_back(tin.vertices[v]), idOf.push_back(v);
   cgal::Delaunay dt;
-  cgal::insertVertices(dt, tin.vertices, progress);
+  cgal::insertVertices(dt, allowed, progress);
   cgal::FaceHandle hint;
   for (const auto& p : points) {
     const cgal::Point q(p[0], p[1], 0);
@@ -46,8 +51,9 @@ std::vector<VertexId> nearestVerticesOnData(const Tin& tin, const std::vector<st
       ++off;
       continue;
     }
+    if (dt.number_of_vertices() == 0) continue;  // nothing it may hold
     hint = dt.locate(q, hint);
-    nearest.push_back(dt.nearest_vertex(q, hint)->info().id);
+    nearest.push_back(idOf[dt.nearest_vertex(q, hint)->info().id]);
   }
   return nearest;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "tinlod/feedback.h"
@@ -11,9 +12,10 @@
 namespace tinlod {
 
 // For each point (x, y in the TIN's CRS) that falls on one of the TIN's triangles, the
-// vertex nearest to it; points off the triangles (outside, or in a hole) are left out and
-// counted in `off`.
+// vertex nearest to it, among those `excluded` does not mark (by vertex; empty: all);
+// points off the triangles (outside, or in a hole) are left out and counted in `off`.
 std::vector<VertexId> nearestVerticesOnData(const Tin& tin, const std::vector<std::array<double, 2>>& points,
-                                            std::size_t& off, const ProgressRange& progress);
+                                            std::size_t& off, const ProgressRange& progress,
+                                            const std::vector<std::uint8_t>& excluded = {});
 
 }  // namespace tinlod
