@@ -500,6 +500,33 @@ TEST(InsertJob, VertexRowsWrittenDuringTheInsertionAreThoseWrittenAfterIt) {
   EXPECT_EQ(left, 0u);
 }
 
+// On real DEMs without nodata (LiDAR in UTM, SRTM in longitude/latitude), the job's file,
+// its vertex rows written during the insertion, is the one written after it.
+TEST(GreedyInsertionRealDems, VertexRowsWrittenDuringTheInsertionAreThoseWrittenAfterIt) {
+  const std::string data = test::dataDir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent: real-DEM tests skipped";
+  const std::string dir = test::tempDir();
+  for (const auto& [name, tol] : {std::pair{"gabilan_mesa_lidar1m.tif", 0.5}, std::pair{"dead_sea_N31E035.tif", 20.0}}) {
+    const std::string demPath = data + "/" + name;
+    const Dem dem = readDem(demPath, 1, kQuiet);
+    ASSERT_EQ(dem.validCount(), dem.z.size()) << name << " has nodata: the rows would not be written ahead";
+    InsertOptions o;
+    o.maxError = tol;
+    const std::string during = dir + "/during_" + name + ".gpkg", after = dir + "/after_" + name + ".gpkg";
+    runInsertJob(demPath, during, o, false, Feedback{});
+    const InsertedTin t = greedyInsertionTin(dem, o, kQuiet);
+    std::vector<ExtraField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
+    extra[0].values.assign(t.insertion.begin(), t.insertion.end());
+    extra[1].values = t.errorBefore;
+    writeTinGpkg(t.tin, after, GpkgWriteOptions{}, kQuiet, extra);
+    for (const char* layer : {"vertices", "triangles"}) {
+      const std::vector<std::string> a = featuresOf(during, layer), b = featuresOf(after, layer);
+      ASSERT_EQ(a.size(), b.size()) << name << " " << layer;
+      for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << name << " " << layer << " feature " << i + 1;
+    }
+  }
+}
+
 TEST(GreedyInsertionRealDems, ToleranceHoldsOnRealDems) {
   const std::string data = test::dataDir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent: real-DEM tests skipped";
