@@ -55,14 +55,6 @@ std::vector<CandidatePoint> samplePositions(const Dem& dem, const CrsTransform& 
   return points;
 }
 
-// Cell centres on the map, in the TIN's CRS.
-void placeOnMap(const Dem& dem, const CrsTransform& toTin, std::vector<TinVertex>& vertices) {
-  std::vector<double> x(vertices.size()), y(vertices.size());
-  for (std::size_t i = 0; i < x.size(); ++i) x[i] = dem.centreX(vertices[i].col), y[i] = dem.centreY(vertices[i].row);
-  toTin.apply(x, y);
-  for (std::size_t i = 0; i < x.size(); ++i) vertices[i].x = x[i], vertices[i].y = y[i];
-}
-
 // Counter-clockwise on the map, whichever way the DEM's rows run.
 void orientTriangles(Tin& tin) {
   for (Triangle& t : tin.triangles)

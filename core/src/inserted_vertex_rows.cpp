@@ -8,6 +8,13 @@
 
 namespace tinlod {
 
+void placeOnMap(const Dem& dem, const CrsTransform& toTin, std::vector<TinVertex>& vertices) {
+  std::vector<double> x(vertices.size()), y(vertices.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = dem.centreX(vertices[i].col), y[i] = dem.centreY(vertices[i].row);
+  toTin.apply(x, y);
+  for (std::size_t i = 0; i < x.size(); ++i) vertices[i].x = x[i], vertices[i].y = y[i];
+}
+
 std::vector<ExtraField> InsertedVertexRows::fields() { return {{"insertion", {}, true}, {"error_before", {}, false}}; }
 
 InsertedVertexRows::InsertedVertexRows(const StagedFile& file, const GpkgWriteOptions& options, const Dem& dem,
@@ -52,30 +59,21 @@ void InsertedVertexRows::run(const StagedFile& file, const GpkgWriteOptions& opt
 
 void InsertedVertexRows::write(const Batch& batch) {
   const std::size_t n = batch.vertices.size();
-  std::vector<double> x(n), y(n);
-  std::vector<std::uint32_t> row(n), col(n);
+  std::vector<TinVertex> vertices(n);
+  std::vector<ExtraField> extra = fields();
+  extra[0].values.resize(n), extra[1].values.resize(n);
   const auto width = std::uint32_t(dem_.width);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t c = batch.vertices[i].candidate;
-    row[i] = c / width, col[i] = c % width;
-    x[i] = dem_.centreX(int(col[i])), y[i] = dem_.centreY(int(row[i]));
+    vertices[i].z = dem_.z[c];  // at its cell's centre; the outline is set at the end
+    vertices[i].row = std::int32_t(c / width), vertices[i].col = std::int32_t(c % width);
+    extra[0].values[i] = double(batch.first + i + 1);
+    extra[1].values[i] = batch.vertices[i].errorBefore;
   }
-  toTin_.apply(x, y);
-  GpkgFeatureRows& rows = file_->vertexRows();
-  GpkgGeometryBlob point(file_->srsId());
-  const int extra = int(vertexFields().size());
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto id = std::int64_t(batch.first + i) + 1;
-    rows.set(0, id);
-    rows.set(1, row[i]);
-    rows.set(2, col[i]);
-    rows.set(3, 0);  // the outline is set at the end
-    rows.set(extra, id);
-    rows.setReal(extra + 1, batch.vertices[i].errorBefore);  // NaN for the starting hull: null
-    point.pointZ(x[i], y[i], dem_.z[batch.vertices[i].candidate]);
-    rows.insert(id, point);
-    places_.push_back({x[i], y[i]});
-  }
+  placeOnMap(dem_, toTin_, vertices);
+  writeVertexRows(vertices, std::int64_t(batch.first) + 1, file_->vertexRows(), file_->srsId(),
+                  extraSetter(extra, int(vertexFields().size())), ProgressRange(Feedback{}, 0, 1));
+  for (const TinVertex& v : vertices) places_.push_back({v.x, v.y});
 }
 
 std::vector<std::array<double, 2>> InsertedVertexRows::finish() {

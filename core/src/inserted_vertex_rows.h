@@ -21,6 +21,9 @@
 
 namespace tinlod {
 
+// Vertices at their cells' centres, on the map in the TIN's CRS (x and y set).
+void placeOnMap(const Dem& dem, const CrsTransform& toTin, std::vector<TinVertex>& vertices);
+
 class InsertedVertexRows {
  public:
   // The extra vertex fields the rows carry: `insertion` and `error_before`.

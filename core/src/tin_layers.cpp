@@ -17,19 +17,25 @@ std::vector<std::string> fieldNames(const std::vector<FieldSpec>& fields) {
 
 void writeVertices(const Tin& tin, GpkgFeatureRows& rows, std::int32_t srsId, const MoreFields& more,
                    const ProgressRange& progress) {
+  writeVertexRows(tin.vertices, 1, rows, srsId, more, progress);
+  rows.finish();
+}
+
+void writeVertexRows(const std::vector<TinVertex>& vertices, std::int64_t firstId, GpkgFeatureRows& rows,
+                     std::int32_t srsId, const MoreFields& more, const ProgressRange& progress) {
   GpkgGeometryBlob point(srsId);
-  for (std::size_t i = 0; i < tin.vertices.size(); ++i) {
-    const TinVertex& v = tin.vertices[i];
-    rows.set(0, static_cast<std::int64_t>(i) + 1);
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const TinVertex& v = vertices[i];
+    const std::int64_t id = firstId + static_cast<std::int64_t>(i);
+    rows.set(0, id);
     rows.set(1, v.row);
     rows.set(2, v.col);
     rows.set(3, v.outline ? 1 : 0);
     if (more) more(rows, i);
     point.pointZ(v.x, v.y, v.z);
-    rows.insert(static_cast<std::int64_t>(i) + 1, point);
-    if ((i & 0x3FFF) == 0) progress.report(double(i) / tin.vertices.size(), "Writing vertices");
+    rows.insert(id, point);
+    if ((i & 0x3FFF) == 0) progress.report(double(i) / vertices.size(), "Writing vertices");
   }
-  rows.finish();
 }
 
 void writeTriangles(const Tin& tin, std::size_t count, const TriangleAt& triangle, GpkgFeatureRows& rows,

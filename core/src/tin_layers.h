@@ -24,6 +24,10 @@ using MoreFields = std::function<void(GpkgFeatureRows&, std::size_t)>;
 
 void writeVertices(const Tin& tin, GpkgFeatureRows& rows, std::int32_t srsId, const MoreFields& more,
                    const ProgressRange& progress);
+// The rows alone, ids from `firstId` on, the layer left unfinished: for a writer that has
+// the vertices a batch at a time (`more` is given the index in `vertices`).
+void writeVertexRows(const std::vector<TinVertex>& vertices, std::int64_t firstId, GpkgFeatureRows& rows,
+                     std::int32_t srsId, const MoreFields& more, const ProgressRange& progress);
 // Corners of triangle i: the hierarchy's triangles are written without a copy of them.
 using TriangleAt = std::function<const Triangle&(std::size_t)>;
 
