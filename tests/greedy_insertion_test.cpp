@@ -442,6 +442,22 @@ std::vector<std::string> featuresOf(const std::string& path, const char* layerNa
   return out;
 }
 
+// Writes at `after` the file of `dem`'s insertion the way a TIN is written once it is
+// made, and expects the job's file `during` to hold the same features, field for field.
+void expectTheFileWrittenAfterTheInsertion(const Dem& dem, const InsertOptions& o, const std::string& during,
+                                           const std::string& after, const std::string& label) {
+  const InsertedTin t = greedyInsertionTin(dem, o, kQuiet);
+  std::vector<ExtraField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
+  extra[0].values.assign(t.insertion.begin(), t.insertion.end());
+  extra[1].values = t.errorBefore;
+  writeTinGpkg(t.tin, after, GpkgWriteOptions{}, kQuiet, extra);
+  for (const char* layer : {"vertices", "triangles"}) {
+    const std::vector<std::string> a = featuresOf(during, layer), b = featuresOf(after, layer);
+    ASSERT_EQ(a.size(), b.size()) << label << " " << layer;
+    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << label << " " << layer << " feature " << i + 1;
+  }
+}
+
 // Without nodata, with every cell a candidate, the job writes the vertex rows on the other
 // core while the insertion runs: the file is the one written after it, feature for
 // feature, metadata included; a cancel during the insertion leaves nothing.
@@ -458,18 +474,8 @@ TEST(InsertJob, VertexRowsWrittenDuringTheInsertionAreThoseWrittenAfterIt) {
   const InsertSummary s = runInsertJob(demPath, during, o, false, Feedback{});
   EXPECT_GT(s.vertices, 2000u);
 
-  const Dem read = readDem(demPath, 1, kQuiet);
-  const InsertedTin t = greedyInsertionTin(read, o, kQuiet);
-  std::vector<ExtraField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
-  extra[0].values.assign(t.insertion.begin(), t.insertion.end());
-  extra[1].values = t.errorBefore;
-  writeTinGpkg(t.tin, after, GpkgWriteOptions{}, kQuiet, extra);
-
-  for (const char* layer : {"vertices", "triangles"}) {
-    const std::vector<std::string> a = featuresOf(during, layer), b = featuresOf(after, layer);
-    ASSERT_EQ(a.size(), b.size()) << layer;
-    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << layer << " feature " << i + 1;
-  }
+  expectTheFileWrittenAfterTheInsertion(readDem(demPath, 1, kQuiet), o, during, after, "hills");
+  if (HasFatalFailure()) return;
   EXPECT_EQ(featuresOf(during, "vertices").size(), s.vertices);
   GDALDatasetUniquePtr ds(GDALDataset::Open(during.c_str(), GDAL_OF_VECTOR));
   ASSERT_TRUE(ds);
@@ -514,16 +520,8 @@ TEST(GreedyInsertionRealDems, VertexRowsWrittenDuringTheInsertionAreThoseWritten
     o.maxError = tol;
     const std::string during = dir + "/during_" + name + ".gpkg", after = dir + "/after_" + name + ".gpkg";
     runInsertJob(demPath, during, o, false, Feedback{});
-    const InsertedTin t = greedyInsertionTin(dem, o, kQuiet);
-    std::vector<ExtraField> extra{{"insertion", {}, true}, {"error_before", {}, false}};
-    extra[0].values.assign(t.insertion.begin(), t.insertion.end());
-    extra[1].values = t.errorBefore;
-    writeTinGpkg(t.tin, after, GpkgWriteOptions{}, kQuiet, extra);
-    for (const char* layer : {"vertices", "triangles"}) {
-      const std::vector<std::string> a = featuresOf(during, layer), b = featuresOf(after, layer);
-      ASSERT_EQ(a.size(), b.size()) << name << " " << layer;
-      for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << name << " " << layer << " feature " << i + 1;
-    }
+    expectTheFileWrittenAfterTheInsertion(dem, o, during, after, name);
+    if (HasFatalFailure()) return;
   }
 }
 
