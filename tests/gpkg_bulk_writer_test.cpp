@@ -149,6 +149,26 @@ TEST(PackedRtree, EveryEntryInOneLeafAndEveryBoxInsideItsParent) {
   }
 }
 
+// The writer frees the entries' boxes once the nodes are written, before the rowid table:
+// what it then reads of the tree must not change.
+TEST(PackedRtree, LeavesAndParentsOutliveTheEntriesBoxes) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> at(-1000, 1000);
+  std::vector<RtreeBox> boxes;
+  for (int i = 0; i < 5000; ++i) {
+    const double x = at(random), y = at(random);
+    boxes.push_back(outwardBox({x, x + 1, y, y + 1}));
+  }
+  PackedRtree tree(boxes, 51);
+  const std::vector<std::uint32_t> leaves = tree.leaves(), parents = tree.parents();
+  const std::size_t nodes = tree.nodes();
+  tree.dropEntryBoxes();
+  EXPECT_EQ(tree.entries(), 5000u);
+  EXPECT_EQ(tree.nodes(), nodes);
+  EXPECT_EQ(tree.leaves(), leaves);
+  EXPECT_EQ(tree.parents(), parents);
+}
+
 TEST(PackedRtree, RoundsOutwardAsSqlite) {
   // 0.1 is no float: the box must still hold it, on both sides of zero.
   const RtreeBox b = outwardBox({0.1, 0.1, -0.1, -0.1});

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "dataset_files.h"
+#include "release_memory.h"
 #include "text_and_paths.h"
 #include "tinlod/crs_transform.h"
 #include "tinlod/dem_reader.h"
@@ -199,7 +200,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   if (tile.size == 0) warnIfStoppedEarly(h, all);
   // Only the accuracy outputs read the heights again; freed, they leave the writing room
   // (68 MB for a 4096 x 4096 tile). The DEM's size and window stay for the metadata.
-  if (!accuracy.wanted()) dem.z = {}, dem.nearNodata = {};
+  if (!accuracy.wanted()) releaseMemory(dem.z), releaseMemory(dem.nearNodata);
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
   if (tile.size > 0) addTileMetadata(dem, tile, writeOptions.metadata);
   writeOptions.metadata["TINLOD_LEVEL_VIEWS"] = levelListText(layers.levelViews);

@@ -223,13 +223,15 @@ std::int32_t GpkgOutput::srsId(const std::string& table) {
 
 void GpkgOutput::indexLater(const std::string& table, std::function<std::vector<RtreeBox>()> boxes) {
   const int capacity = gpkgRtreeCapacity(database());
-  std::shared_future<PackedRtree> previous;
+  std::shared_future<std::shared_ptr<PackedRtree>> previous;
   if (!indexes_.empty()) previous = indexes_.back().tree;
   // One packing at a time, in the order asked: the caller's thread writes rows on the
-  // other core, and only one layer's boxes are held at once.
-  auto pack = [previous, boxes = std::move(boxes), capacity]() {
+  // other core, and only one layer's boxes are held at once. The wait done, the previous
+  // tree is let go, or it would live as long as this one.
+  auto pack = [previous, boxes = std::move(boxes), capacity]() mutable {
     if (previous.valid()) previous.wait();
-    return PackedRtree(boxes(), capacity);
+    previous = {};
+    return std::make_shared<PackedRtree>(boxes(), capacity);
   };
   indexes_.push_back({table, std::async(std::launch::async, std::move(pack)).share()});
 }
@@ -283,14 +285,15 @@ void GpkgOutput::closeGdal() {
 
 void GpkgOutput::finishDatabase(const ProgressRange& progress) {
   double total = 0, done = 0;
-  for (const PendingIndex& index : indexes_) total += double(index.tree.get().entries()) + 1;
-  for (const PendingIndex& index : indexes_) {
-    const PackedRtree& tree = index.tree.get();
+  for (const PendingIndex& index : indexes_) total += double(index.tree.get()->entries()) + 1;
+  for (PendingIndex& index : indexes_) {
+    // Each tree's memory goes back as soon as it is written, before the next one's.
+    PackedRtree& tree = *index.tree.get();
     const double share = (double(tree.entries()) + 1) / total;
-    writeGpkgSpatialIndex(*db_, index.table, tree, progress.sub(0.95 * done, 0.95 * (done + share)));
+    writeGpkgSpatialIndex(*db_, index.table, std::move(tree), progress.sub(0.95 * done, 0.95 * (done + share)));
     done += share;
   }
-  indexes_.clear();  // the packed trees' memory goes back before the commit
+  indexes_.clear();
   const bool lateWritten = options_.lateMetadata && setGdalMetadataItems(*db_, options_.lateMetadata());
   db_->execute("COMMIT");
   if (vacuum_) compactIfWasteful(*db_);

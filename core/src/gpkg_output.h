@@ -63,7 +63,9 @@ class GpkgOutput {
  private:
   struct PendingIndex {
     std::string table;
-    std::shared_future<PackedRtree> tree;
+    // Shared so that the next packing can wait for it; held by pointer so that writing can
+    // take it and free it table by table.
+    std::shared_future<std::shared_ptr<PackedRtree>> tree;
   };
   void dropOurs(const std::function<bool(const std::string&)>& ours);
   // True when every layer and metadata item of the file is the job's own.

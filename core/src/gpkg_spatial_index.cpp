@@ -82,7 +82,7 @@ int gpkgRtreeCapacity(SqliteDatabase& db) {
   return rtreeNodeCapacity(static_cast<int>(db.integer("PRAGMA page_size", 4096)));
 }
 
-void writeGpkgSpatialIndex(SqliteDatabase& db, const std::string& table, const PackedRtree& tree,
+void writeGpkgSpatialIndex(SqliteDatabase& db, const std::string& table, PackedRtree tree,
                            const ProgressRange& progress) {
   const std::string rtree = "rtree_" + table + "_geom";
   db.execute("CREATE VIRTUAL TABLE " + sqlName(rtree) + " USING rtree(id, minx, maxx, miny, maxy)");
@@ -92,6 +92,7 @@ void writeGpkgSpatialIndex(SqliteDatabase& db, const std::string& table, const P
   if (tree.entries() > 0) {
     const double nodeShare = double(tree.nodes()) / (tree.nodes() + tree.entries() / 8.0);
     writeNodes(db, rtree, tree, nodeBytes, progress.sub(0, nodeShare));
+    tree.dropEntryBoxes();
     writeRowids(db, rtree, tree, progress.sub(nodeShare, 1));
   }
   createTriggers(db, table, rtree);

@@ -12,8 +12,9 @@
 namespace tinlod {
 
 // Creates rtree_<table>_geom and fills its node, parent and rowid tables from `tree`,
-// whose entries are the table's fids 1..n.
-void writeGpkgSpatialIndex(SqliteDatabase& db, const std::string& table, const PackedRtree& tree,
+// whose entries are the table's fids 1..n. The tree is taken, and its entries' boxes freed
+// once the nodes are written, before the rowid table's lookup is made.
+void writeGpkgSpatialIndex(SqliteDatabase& db, const std::string& table, PackedRtree tree,
                            const ProgressRange& progress);
 
 // The node capacity SQLite will give a new rtree in this database.

@@ -16,6 +16,7 @@
 #include "outline_chain.h"
 #include "parallel_blocks.h"
 #include "radix_sort.h"
+#include "release_memory.h"
 #include "simplification_mesh.h"
 #include "text_and_paths.h"
 #include "vertex_rings.h"
@@ -62,7 +63,7 @@ class Simplifier {
     // The other core writes the simplifier's own arrays meanwhile: first touching their
     // memory (80 MB on alps_2x2) takes a core some hundredths of a second.
     runBoth([&] { mesh_ = SimplificationMesh(h_.base); }, [&] { allocate(); });
-    h_.base.neighbours = {};  // the mesh has them now
+    releaseMemory(h_.base.neighbours);  // the mesh has them now
     if (tile_) borders_ = BorderLines(h_.base, dem_, *tile_);
   }
 
@@ -149,7 +150,7 @@ class Simplifier {
     tolerance_ = std::isnan(options_.outlineTolerance) ? cellSize_ : options_.outlineTolerance;
     // Level 0's triangles are also the hierarchy's first ones (and the mesh's): held once
     // while the simplification runs, they are put back when it is done.
-    h_.base.triangles = {};
+    releaseMemory(h_.base.triangles);
   }
 
   bool onBorder(VertexId v) const { return tile_ && tile_->side[v] >= 0; }
@@ -344,6 +345,7 @@ class Simplifier {
       for (int slot = begin; slot < end; ++slot) cells[slot] = slotCells_[slots.oldOf[slot]];
     }, {});
     slotCells_.swap(cells);
+    mesh_.endCompaction();
   }
 
   // Best first, ties broken by vertex id (the candidates are listed by id and the sort is
@@ -374,6 +376,9 @@ class Simplifier {
     runBoth([&] { pickBestFirst(limit, level, picks); },
             [&] { growHierarchy(expectedGrowth(expected), false); });
     if (options_.survey) survey(level, picks, borderPicks);
+    // Made anew next level: held through the deletion, they would add to its peak (30 MB
+    // at level 1 of a 4096 x 4096 tile).
+    releaseMemory(candidates_[0]), releaseMemory(candidates_[1]);
     std::vector<Pick> scratch;
     radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, scratch);
     std::size_t fills = 0, rings = 0, links = 0;
@@ -381,14 +386,13 @@ class Simplifier {
       p.fill = fills, p.ring = rings, p.link = links;
       fills += p.degree - 2, rings += p.degree, links += p.triangles() + p.degree - 2;
     }
-    fitted(fill_, fills), fitted(slots_, rings), fitted(outer_, rings);
+    fill_.resize(fills), slots_.resize(rings), outer_.resize(rings);
     links_ = links;
     return picks;
   }
 
-  // Resizes a level's array, giving back its memory when it has shrunk to under two
-  // thirds of it: the levels get smaller, and what the first ones held would otherwise
-  // stay allocated while the hierarchy's arrays grow to their largest.
+  // Resizes an array, giving back its memory when it uses under two thirds of it (as
+  // growing by doubling may leave it) while the hierarchy's arrays grow.
   template <class T>
   static void fitted(std::vector<T>& v, std::size_t n) {
     v.resize(n);
@@ -541,7 +545,9 @@ class Simplifier {
       triangles_ -= p.open ? 1 : 2;
       outlineLeft_ -= p.open;
     }
-    releaseFreedMemory();  // what the level's selection left: the compaction's peak is the level's
+    // The plan is carried out: its arrays go before the compaction, the level's peak.
+    releaseMemory(fill_), releaseMemory(slots_), releaseMemory(outer_);
+    releaseFreedMemory();  // what the level's selection left
     compact();
     releaseFreedMemory();
   }

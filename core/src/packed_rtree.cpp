@@ -6,6 +6,8 @@
 #include <cstring>
 #include <numeric>
 
+#include "release_memory.h"
+
 namespace tinlod {
 namespace {
 
@@ -80,7 +82,7 @@ int rtreeNodeCapacity(int pageSize) {
 }
 
 PackedRtree::PackedRtree(std::vector<RtreeBox> boxes, int nodeCapacity)
-    : entryBoxes_(std::move(boxes)), capacity_(nodeCapacity) {
+    : entryBoxes_(std::move(boxes)), entries_(entryBoxes_.size()), capacity_(nodeCapacity) {
   const auto m = static_cast<std::size_t>(capacity_);
   do {
     const std::vector<RtreeBox>& below = levels_.empty() ? entryBoxes_ : levels_.back().boxes;
@@ -139,6 +141,8 @@ std::vector<std::uint32_t> PackedRtree::parents() const {
   }
   return parent;
 }
+
+void PackedRtree::dropEntryBoxes() { releaseMemory(entryBoxes_); }
 
 std::vector<std::uint32_t> PackedRtree::leaves() const {
   std::vector<std::uint32_t> leaf(entries());

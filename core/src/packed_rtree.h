@@ -29,7 +29,7 @@ class PackedRtree {
   // Entry i has id i + 1 (the features' fids) and box boxes[i].
   PackedRtree(std::vector<RtreeBox> boxes, int nodeCapacity);
 
-  std::size_t entries() const { return entryBoxes_.size(); }
+  std::size_t entries() const { return entries_; }
   // Nodes are numbered from 1, the root, level by level down to the leaves.
   std::size_t nodes() const;
   // SQLite's depth of the tree: 0 when the root is a leaf.
@@ -40,6 +40,9 @@ class PackedRtree {
   std::vector<std::uint32_t> parents() const;
   // The leaf node that holds each entry, indexed by entry (id - 1).
   std::vector<std::uint32_t> leaves() const;
+  // Frees the entries' boxes, the tree's largest part, once every node blob is written:
+  // leaves() and parents() do not need them, nodeBlob() does.
+  void dropEntryBoxes();
 
  private:
   // Level 0 holds the leaves. Node j of a level has as children the items
@@ -52,6 +55,7 @@ class PackedRtree {
   const std::vector<RtreeBox>& childBoxes(std::size_t level) const;
   std::size_t nodeCount(std::size_t level) const { return levels_[level].boxes.size(); }
   std::vector<RtreeBox> entryBoxes_;
+  std::size_t entries_ = 0;
   std::vector<Level> levels_;
   int capacity_;
 };

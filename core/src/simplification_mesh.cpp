@@ -7,6 +7,7 @@
 #include <atomic>
 
 #include "parallel_blocks.h"
+#include "release_memory.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -21,13 +22,12 @@ const char* kNotSampled = "the level-0 TIN is not a Delaunay triangulation: it w
 }  // namespace
 
 SimplificationMesh::SimplificationMesh(const Tin& base) {
-  points_.reserve(base.vertices.size());
-  for (const TinVertex& v : base.vertices) points_.push_back({v.x, v.y, v.z});
+  vertices_ = base.vertices.data(), vertexCount_ = base.vertices.size();
   for (const Triangle& tri : base.triangles)
     for (VertexId v : tri)
-      if (v >= points_.size()) throw Error("internal error: a triangle names a vertex the TIN does not have");
+      if (v >= vertexCount_) throw Error("internal error: a triangle names a vertex the TIN does not have");
   Compaction& order = compaction_;
-  orderBySmallestVertex(base.triangles.size(), points_.size(), [&](std::size_t t) {
+  orderBySmallestVertex(base.triangles.size(), vertexCount_, [&](std::size_t t) {
     return static_cast<std::int32_t>(*std::min_element(base.triangles[t].begin(), base.triangles[t].end()));
   }, order, tallies_);
   linkedFromNeighbours_ = fill(base) && checkDelaunay();
@@ -37,6 +37,7 @@ SimplificationMesh::SimplificationMesh(const Tin& base) {
     if (!checkDelaunay()) throw Error(kNotSampled);
   }
   indexVertices();
+  endCompaction();
 }
 
 // The triangles in their new order, on every core; linked as the triangulation's own
@@ -70,7 +71,7 @@ bool SimplificationMesh::fill(const Tin& base) {
 // Each edge a -> b finds its twin b -> a among the half-edges leaving b, listed per
 // vertex by counting: linear in the TIN's size, and the lists are compact to scan.
 void SimplificationMesh::link() {
-  const std::size_t nv = points_.size();
+  const std::size_t nv = vertexCount_;
   const int count = static_cast<int>(triangles_.size());
   struct HalfEdge {
     std::int32_t head, corner;  // corner: slot * 3 + the corner opposite the edge
@@ -107,9 +108,8 @@ void SimplificationMesh::link() {
 // fans meeting at a vertex would be deleted as one star. An open vertex whose triangles
 // make one fan of two or more may be deleted; one where fans meet may not.
 void SimplificationMesh::indexVertices() {
-  const std::size_t nv = points_.size();
-  std::vector<std::int32_t>& triangles = scratch_;
-  triangles.assign(nv, 0);
+  const std::size_t nv = vertexCount_;
+  std::vector<std::int32_t> triangles(nv, 0);
   start_.assign(nv, kNoTriangle);
   open_.assign(nv, kClosed);
   for (std::size_t t = 0; t < triangles_.size(); ++t)
@@ -146,12 +146,12 @@ bool SimplificationMesh::checkDelaunay() const {
       int twin[3];
       for (int k = 0; k < 3; ++k)
         if (tri.n[k] != kNoTriangle && (twin[k] = twinCorner(t, k)) < 0) return void(linked = false);
-      const K::Point_2 a = xy(points_[tri.v[0]]), b = xy(points_[tri.v[1]]), c = xy(points_[tri.v[2]]);
+      const K::Point_2 a = xy(point(tri.v[0])), b = xy(point(tri.v[1])), c = xy(point(tri.v[2]));
       if (CGAL::orientation(a, b, c) != CGAL::LEFT_TURN) throw Error(kNotSampled);
       for (int k = 0; k < 3; ++k) {
         const std::int32_t u = tri.n[k];
         if (u == kNoTriangle || u < t) continue;  // each shared edge's in-circle test once
-        if (CGAL::side_of_oriented_circle(a, b, c, xy(points_[triangles_[u].v[twin[k]]])) == CGAL::ON_POSITIVE_SIDE)
+        if (CGAL::side_of_oriented_circle(a, b, c, xy(point(triangles_[u].v[twin[k]]))) == CGAL::ON_POSITIVE_SIDE)
           throw Error(kNotSampled);
       }
     }
@@ -198,7 +198,7 @@ void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots,
   auto visit = [&](std::int32_t t, int k) {
     const MeshTriangle& tri = triangles_[t];
     ring[i] = static_cast<VertexId>(tri.v[(k + 1) % 3]);
-    geometry.ring.push_back(points_[tri.v[(k + 1) % 3]]);
+    geometry.ring.push_back(point(tri.v[(k + 1) % 3]));
     slots[i] = t;
     outer[i++] = tri.n[k];
   };
@@ -206,7 +206,7 @@ void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots,
   std::int32_t last = kNoTriangle;
   aroundOpen(static_cast<std::int32_t>(v), [&](std::int32_t t, int k) { visit(t, k), last = triangles_[t].v[(k + 2) % 3]; });
   ring[i] = static_cast<VertexId>(last);
-  geometry.ring.push_back(points_[last]);
+  geometry.ring.push_back(point(last));
   slots[i] = kNoTriangle;
   outer[i] = kNoTriangle;
 }
@@ -216,7 +216,7 @@ void SimplificationMesh::starOf(VertexId v, VertexId* ring, std::int32_t* slots,
 int SimplificationMesh::geometryOf(VertexId v, Star& star, VertexId* ids, int capacity) const {
   std::int32_t ring[kSmallStar];
   int d = 0;
-  star.centre = points_[v];
+  star.centre = point(v);
   star.ring.clear();
   star.open = open_[v] != kClosed;
   if (star.open) {
@@ -224,12 +224,12 @@ int SimplificationMesh::geometryOf(VertexId v, Star& star, VertexId* ids, int ca
     aroundOpen(static_cast<std::int32_t>(v), [&](std::int32_t t, int k) {
       const MeshTriangle& tri = triangles_[t];
       if (d < capacity) ids[d] = static_cast<VertexId>(tri.v[(k + 1) % 3]);
-      star.ring.push_back(points_[tri.v[(k + 1) % 3]]);
+      star.ring.push_back(point(tri.v[(k + 1) % 3]));
       last = tri.v[(k + 2) % 3];
       ++d;
     });
     if (d < capacity) ids[d] = static_cast<VertexId>(last);
-    star.ring.push_back(points_[last]);
+    star.ring.push_back(point(last));
     return d + 1;
   }
   eachAround(v, [&](std::int32_t t, int k) {
@@ -237,12 +237,12 @@ int SimplificationMesh::geometryOf(VertexId v, Star& star, VertexId* ids, int ca
     ++d;
   });
   if (d > kSmallStar) {
-    canonicalWalk(v, [&](std::int32_t t, int k) { star.ring.push_back(points_[triangles_[t].v[(k + 1) % 3]]); });
+    canonicalWalk(v, [&](std::int32_t t, int k) { star.ring.push_back(point(triangles_[t].v[(k + 1) % 3])); });
     return d;
   }
   const int first = static_cast<int>(std::min_element(ring, ring + d) - ring);
   star.ring.resize(d);
-  for (int i = 0; i < d; ++i) star.ring[i] = points_[ring[(first + i) % d]];
+  for (int i = 0; i < d; ++i) star.ring[i] = point(ring[(first + i) % d]);
   if (d <= capacity)
     for (int i = 0; i < d; ++i) ids[i] = static_cast<VertexId>(ring[(first + i) % d]);
   return d;
@@ -262,7 +262,7 @@ void SimplificationMesh::beginRound() {
 // hierarchy grows (faulting the new one in costs no measurable time).
 const Compaction& SimplificationMesh::planCompaction() {
   Compaction& c = compaction_;
-  orderBySmallestVertex(triangles_.size(), points_.size(), [&](std::size_t t) {
+  orderBySmallestVertex(triangles_.size(), vertexCount_, [&](std::size_t t) {
     const MeshTriangle& tri = triangles_[t];
     return tri.v[0] < 0 ? -1 : std::min({tri.v[0], tri.v[1], tri.v[2]});
   }, c, tallies_);
@@ -283,6 +283,11 @@ void SimplificationMesh::applyCompaction() {
   triangles_.swap(compacted);
   for (std::size_t t = 0; t < triangles_.size(); ++t)
     for (std::int32_t v : triangles_[t].v) start_[v] = static_cast<std::int32_t>(t);
+}
+
+void SimplificationMesh::endCompaction() {
+  releaseMemory(compaction_.oldOf), releaseMemory(compaction_.newOf);
+  releaseMemory(tallies_[0]), releaseMemory(tallies_[1]);
 }
 
 std::size_t SimplificationMesh::liveTriangles() const {

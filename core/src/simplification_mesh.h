@@ -49,12 +49,17 @@ class SimplificationMesh {
   // Level 0: the TIN's triangles, whose index becomes their id. Throws Error when a
   // triangle is not counter-clockwise, an edge has more than two triangles, or an edge is
   // not locally Delaunay (exact in-circle): such a TIN was not made by tinlod sample.
+  // `base` must outlive the mesh: its vertices are read where they are (a copy of their
+  // positions would cost 24 bytes a vertex, 45 MB on a 4096 x 4096 tile).
   explicit SimplificationMesh(const Tin& base);
   SimplificationMesh() = default;  // no triangles
 
   // Vertices are named by their TIN ids throughout: deleted ones simply drop out of the
   // triangles. (Numbering the vertices left densely at each level saved no time.)
-  const Point3& point(VertexId v) const { return points_[v]; }
+  Point3 point(VertexId v) const {
+    const TinVertex& p = vertices_[v];
+    return {p.x, p.y, p.z};
+  }
   std::int32_t triangleId(std::int32_t slot) const { return triangles_[slot].id; }
   VertexId corner(std::int32_t slot, int k) const { return static_cast<VertexId>(triangles_[slot].v[k]); }
   // The triangle across the edge opposite corner k, or kNoTriangle on the outline.
@@ -93,7 +98,7 @@ class SimplificationMesh {
     if (i + far < end) __builtin_prefetch(&start_[vertexAt(i + far)]);
     if (i + near < end) {
       const VertexId v = vertexAt(i + near);
-      __builtin_prefetch(&triangles_[start_[v]]), __builtin_prefetch(&points_[v]);
+      __builtin_prefetch(&triangles_[start_[v]]), __builtin_prefetch(&vertices_[v]);
     }
   }
   // Writes the star of a vertex (interior, or open of one fan) into arrays of degree(v)
@@ -115,10 +120,14 @@ class SimplificationMesh {
   void replaceStar(const StarView& star, const LocalTriangle* fill, const std::int32_t* ids);
   // Drops the dead slots and orders the rest by smallest vertex again, so that the stars
   // of the vertices still there stay side by side in memory as the TIN thins out:
-  // planCompaction() numbers them anew (the result is valid until the next compaction,
+  // planCompaction() numbers them anew (the result is valid until endCompaction(),
   // and others may use it while) applyCompaction() moves them.
   const Compaction& planCompaction();
   void applyCompaction();
+  // Frees the numbering and its sort's tallies (by slot and by vertex: 45 MB after level 1
+  // of a 4096 x 4096 tile), held otherwise through the next level while the hierarchy
+  // grows; the next compaction makes them anew.
+  void endCompaction();
 
   // The live triangles, and how many of their links are wrong (a neighbour that does not
   // share the edge or does not link back): for the tests.
@@ -170,7 +179,8 @@ class SimplificationMesh {
   }
   enum : std::uint8_t { kClosed = 0, kOpen = 1, kOneFan = 2 };
 
-  std::vector<Point3> points_;           // by TIN id
+  const TinVertex* vertices_ = nullptr;  // the base TIN's, by TIN id
+  std::size_t vertexCount_ = 0;
   std::vector<MeshTriangle> triangles_;
   std::vector<std::int32_t> start_;      // by TIN id: one triangle around it
   std::vector<std::uint8_t> open_;       // by TIN id: kClosed, kOpen or kOneFan
@@ -178,10 +188,9 @@ class SimplificationMesh {
   std::vector<std::uint32_t> retired_;   // by slot: the round that retired it
   std::uint32_t round_ = 0;
   bool linkedFromNeighbours_ = false;
-  // Compaction's own arrays, kept from level to level.
+  // The last compaction's arrays (and level 0's order), until endCompaction().
   Compaction compaction_;
   VertexTallies tallies_;
-  std::vector<std::int32_t> scratch_;
 };
 
 }  // namespace tinlod
