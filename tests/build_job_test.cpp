@@ -224,6 +224,18 @@ TEST(BuildJob, BadOptionsFailBeforeAnyWork) {
   HierarchyOptions missing;
   missing.fixedPoints = test::tempDir() + "/none.shp";
   EXPECT_THROW(runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, missing, false, {}), Error);
+  // A tile makes every level its delete and stop percentages imply; a hierarchy holds at
+  // most kMaxLevel + 1 of them (200,000 here).
+  HierarchyOptions tooMany;
+  tooMany.deletePct = 0.01, tooMany.stopPct = 0.0001;
+  try {
+    runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, tooMany, false, counting, AccuracyOutputs(),
+                HierarchyLayers(), TileSpec{60, 0, 0});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("-max_levels"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(calls, 0);
 }
 
 TEST(BuildJob, CancelLeavesNothingBehind) {

@@ -343,6 +343,16 @@ TEST(Hierarchy, BadOptionsNameTheOption) {
     EXPECT_NE(std::string(e.what()).find("-method error"), std::string::npos);
   }
   EXPECT_THROW(parseMeasure("curvature"), Error);
+  o = {};
+  o.maxLevels = kMaxLevel + 1;  // a triangle keeps its levels in 16 bits
+  try {
+    o.validate();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("max_levels"), std::string::npos) << e.what();
+  }
+  o.maxLevels = kMaxLevel;
+  EXPECT_NO_THROW(o.validate());
 }
 
 // What the simplifier held only while it ran goes with it: level 0's neighbours were once

@@ -82,6 +82,10 @@ void validateTile(const TileSpec& tile, const SampleOptions& sample, const Hiera
   if (!options.levelThresholds.empty() && static_cast<int>(options.levelThresholds.size()) < tileLevels(options))
     throw Error("-level_thresholds gives " + std::to_string(options.levelThresholds.size()) + " thresholds for " +
                 std::to_string(tileLevels(options)) + " levels: give one per level");
+  if (tileLevels(options) > kMaxLevel)
+    throw Error("-delete_pct " + formatNumber(options.deletePct) + " and -stop_pct " + formatNumber(options.stopPct) +
+                " make " + std::to_string(tileLevels(options)) + " levels in every tile, more than the " +
+                std::to_string(kMaxLevel) + " a hierarchy holds: raise -delete_pct or -stop_pct, or give -max_levels");
   if (options.thresholdMode && options.maxLevels == 0)
     throw Error("-threshold with -tile needs -max_levels: every tile of a job must make the same levels");
 }

@@ -27,7 +27,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr std::int32_t kOpenLevel = std::numeric_limits<std::int32_t>::max();
+// Not yet replaced (a triangle) or deleted (a vertex): above every level there may be.
+constexpr std::int32_t kOpenLevel = std::numeric_limits<std::int16_t>::max();
+static_assert(kOpenLevel > kMaxLevel, "an open level must lie above every level");
 constexpr std::size_t kMinLevelShare = 100;  // a level must delete at least 1 / 100 of its vertices
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
@@ -75,6 +77,10 @@ class Simplifier {
     while (tile_ ? h_.coarsest() < tile_->levels : current_ > stopCount_) {
       if (!tile_ && options_.maxLevels > 0 && h_.coarsest() >= options_.maxLevels) {
         h_.stopReason = "-max_levels " + std::to_string(options_.maxLevels) + " reached";
+        break;
+      }
+      if (h_.coarsest() >= kMaxLevel) {
+        h_.stopReason = "a hierarchy holds at most " + std::to_string(kMaxLevel + 1) + " levels";
         break;
       }
       const std::int32_t level = h_.coarsest() + 1;

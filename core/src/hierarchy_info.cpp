@@ -55,6 +55,9 @@ std::vector<LevelStats> readLevelTable(const std::string& path, OGRLayer& layer)
   }
   table.checkFullyRead();
   if (byLevel.empty()) table.damaged("has no rows");
+  if (byLevel.rbegin()->first > kMaxLevel)
+    table.damaged("has level " + std::to_string(byLevel.rbegin()->first) + ", above the " + std::to_string(kMaxLevel) +
+                  " a hierarchy may have");
   std::vector<LevelStats> levels;
   for (const auto& [level, l] : byLevel) {
     if (level != static_cast<std::int32_t>(levels.size()))

@@ -13,7 +13,9 @@ void HierarchyOptions::validate() const {
     throw Error("delete_pct must be more than 0 and at most 100 (got " + formatNumber(deletePct) + "); the study used 10 and 20");
   if (!(stopPct >= 0 && stopPct < 100))
     throw Error("stop_pct must be from 0 to less than 100 (got " + formatNumber(stopPct) + "); the study used 5");
-  if (maxLevels < 0) throw Error("max_levels must be 0 (no limit) or more (got " + std::to_string(maxLevels) + ")");
+  if (maxLevels < 0 || maxLevels > kMaxLevel)
+    throw Error("max_levels must be 0 (no limit) or from 1 to " + std::to_string(kMaxLevel) + " (got " +
+                std::to_string(maxLevels) + ")");
   if (maxDegree < 3) throw Error("max_degree must be 3 or more (got " + std::to_string(maxDegree) + "); Kirkpatrick used 11");
   if (!(maxError > 0)) throw Error("max_error must be more than 0 metres");
   if (thresholdMode && !(threshold > 0))

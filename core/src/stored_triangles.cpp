@@ -70,8 +70,9 @@ void checkLinks(const StoredRow& row, const HierarchyTriangle& t, const Hierarch
 HierarchyTriangle levelledTriangle(const StoredRow& row, const TriangleColumns& c, const Hierarchy& h) {
   HierarchyTriangle t;
   t.v = cornersOf(row, c, h.base.vertices.size());
-  t.firstLevel = static_cast<std::int32_t>(row.integer(c.first, 0, h.coarsest(), "levels"));
-  t.lastLevel = static_cast<std::int32_t>(row.integer(c.last, 0, h.coarsest(), "levels"));
+  // The levels table said there are at most kMaxLevel + 1 levels.
+  t.firstLevel = static_cast<std::int16_t>(row.integer(c.first, 0, h.coarsest(), "levels"));
+  t.lastLevel = static_cast<std::int16_t>(row.integer(c.last, 0, h.coarsest(), "levels"));
   t.group = groupIdOf(row, c.group, h);
   t.replacedBy = groupIdOf(row, c.replacedBy, h);
   checkLinks(row, t, h);

@@ -9,6 +9,10 @@
 
 namespace tinlod {
 
+// The finest level is 0, the coarsest at most kMaxLevel: a hierarchy's triangles keep
+// their levels in 16 bits.
+constexpr int kMaxLevel = 32766;
+
 // Options of the delete simplification, shared by `tinlod build` and the QGIS algorithm.
 struct HierarchyOptions {
   Measure measure = Measure::Volume;  // how importance is measured
