@@ -96,6 +96,10 @@ TEST(StoredHierarchy, LevelsOutOfOrderAreRefused) {
   EXPECT_EQ(errorOf([&] { readHierarchyInfo(repeated); }), damage(repeated, "levels row 6 repeats level 5"));
   const std::string gap = test::alteredCopy(hierarchy(), "DELETE FROM levels WHERE level = 3");
   EXPECT_EQ(readError(gap), damage(gap, "its levels table has no row for level 3 but one for level 4"));
+  // A triangle keeps its levels in 16 bits: a level beyond them is not read, whatever
+  // else the file says.
+  const std::string beyond = test::alteredCopy(hierarchy(), "UPDATE levels SET level = 40000 WHERE level = 0");
+  EXPECT_EQ(readError(beyond), damage(beyond, "its levels table has level 40000, above the 32766 a hierarchy may have"));
 }
 
 TEST(StoredHierarchy, ReplacedByLinksThatWouldMakeACycleAreRefused) {
