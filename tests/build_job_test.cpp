@@ -12,6 +12,7 @@
 
 #include "test_support.h"
 #include "tinlod/build_job.h"
+#include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_info.h"
 #include "tinlod/sample_job.h"
@@ -209,6 +210,54 @@ TEST(BuildJob, TilesHoldPointsToKeepOffTheirSharedLines) {
       for (const StoredVertex& v : tiles[t])
         if (std::fabs(v.x - lineX) < 1e-6 && v.level >= level) onLine[t].insert(v.y);
     EXPECT_FALSE(onLine[0].empty()) << level;
+    EXPECT_EQ(onLine[0], onLine[1]) << "level " << level;
+  }
+}
+
+// With -fix_peaks_pits, a peak or pit on a shared line stays in both tiles at every level:
+// its 3 x 3 cells cross the line, and each tile reads those beyond its window alike.
+TEST(BuildJob, TilesKeepPeaksAndPitsOnTheirSharedLines) {
+  const std::string dir = test::tempDir();
+  const int line = 60;  // tiles (0,0) and (1,0) share the column of cells 60
+  // A ridge along the line that rises and falls every few cells: peaks and pits on it.
+  const std::string path = dir + "/ridge.tif";
+  writeDemGeoTiff(test::makeDem(121, 61, 25, [&](int r, int c) {
+    return float(100 + 20 * std::sin(1.1 * r) * std::cos(0.9 * (c - line)) + 0.05 * c);
+  }), path);
+  const Dem whole = readDem(path, 1, ProgressRange(Feedback{}, 0, 1));
+  const double lineX = whole.geotransform[0] + (line + 0.5) * whole.geotransform[1];
+  HierarchyOptions o;
+  o.fixPeaksPits = true;
+  std::vector<std::vector<StoredVertex>> tiles;
+  for (int col : {0, 1}) {
+    const std::string out = dir + "/peaks_" + std::to_string(col) + ".gpkg";
+    runBuildJob(path, out, {}, o, false, {}, AccuracyOutputs(), HierarchyLayers(), TileSpec{line, col, 0});
+    tiles.push_back(verticesOf(out));
+  }
+  int top = 0;
+  for (const StoredVertex& v : tiles[0]) top = std::max(top, v.level);
+  ASSERT_GE(top, 10);
+  for (int t = 0; t < 2; ++t) {
+    int peaksAndPits = 0, gone = 0;
+    for (const StoredVertex& v : tiles[t]) {
+      if (std::fabs(v.x - lineX) > 1e-6) continue;
+      const int row = static_cast<int>(std::floor((v.y - whole.geotransform[3]) / whole.geotransform[5]));
+      if (strictPeakOrPit(whole, row, line)) {
+        ++peaksAndPits;
+        EXPECT_TRUE(v.fixed) << "tile " << t << ", row " << row;
+        EXPECT_EQ(v.level, top) << "tile " << t << ", row " << row;
+      } else {
+        gone += v.level < top;
+      }
+    }
+    EXPECT_GE(peaksAndPits, 3) << "tile " << t;
+    EXPECT_GT(gone, 3) << "tile " << t;  // the line still thins elsewhere
+  }
+  for (int level = 0; level <= top; ++level) {
+    std::vector<std::multiset<double>> onLine(2);
+    for (int t = 0; t < 2; ++t)
+      for (const StoredVertex& v : tiles[t])
+        if (std::fabs(v.x - lineX) < 1e-6 && v.level >= level) onLine[t].insert(v.y);
     EXPECT_EQ(onLine[0], onLine[1]) << "level " << level;
   }
 }

@@ -4,6 +4,7 @@
 // tiles sample the same cells, about one a block.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <set>
@@ -13,6 +14,7 @@
 #include "tinlod/error.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/sampler.h"
+#include "tinlod/synthetic_dem.h"
 #include "tinlod/tile_reader.h"
 
 namespace tinlod {
@@ -131,6 +133,43 @@ TEST(TileSampling, VerticesLieExactlyWhereTheWholeRunPutsThemAndBorderVerticesAl
   }
   EXPECT_GT(compared, 200u);
   EXPECT_GT(shared, 30u);
+}
+
+// A tile lists the cells of its edges near a missing cell of the whole raster, beyond the
+// tile included, and those that are peaks or pits of the whole raster, and no others: the
+// border rule pins them alike in both tiles.
+TEST(TileReader, EdgeCellsNearAMissingCellAndPeaksAndPitsAreThoseOfTheWholeRaster) {
+  const Dem whole = wholeDem();  // its void is around row 20, column 33
+  const std::string path = test::tempDir() + "/tile_reader_near.tif";
+  writeDemGeoTiff(whole, path);
+  const int reach = 4;
+  std::size_t anyNear = 0, anyExtreme = 0;
+  for (const TileSpec& tile : allTiles(whole, 30)) {
+    const Dem dem = readTile(path, 1, tile, reach, kRange, {});
+    const CellWindow w = tileWindow({whole.width, whole.height}, tile);
+    ASSERT_TRUE(std::is_sorted(dem.nearNodata.begin(), dem.nearNodata.end()));
+    std::size_t listed = 0, extremes = 0;
+    for (int r = 0; r < dem.height; ++r)
+      for (int c = 0; c < dem.width; ++c) {
+        const bool edge = r == 0 || c == 0 || r == dem.height - 1 || c == dem.width - 1;
+        bool near = false;
+        for (int dr = -reach; dr <= reach && edge; ++dr)
+          for (int dc = -reach; dc <= reach; ++dc) {
+            const int rr = w.yoff + r + dr, cc = w.xoff + c + dc;
+            near = near || (rr >= 0 && cc >= 0 && rr < whole.height && cc < whole.width && !whole.valid(rr, cc));
+          }
+        EXPECT_EQ(dem.nearNodataAt(r, c), near) << "tile " << tile.col << "," << tile.row << " cell " << r << "," << c;
+        listed += near;
+        const bool extreme = edge && strictPeakOrPit(whole, w.yoff + r, w.xoff + c);
+        EXPECT_EQ(dem.edgePeakOrPitAt(r, c), extreme) << "tile " << tile.col << "," << tile.row << " cell " << r << "," << c;
+        extremes += extreme;
+      }
+    EXPECT_EQ(std::set<std::size_t>(dem.nearNodata.begin(), dem.nearNodata.end()).size(), listed);
+    EXPECT_EQ(dem.edgePeaksAndPits.size(), extremes);
+    anyNear += listed, anyExtreme += extremes;
+  }
+  EXPECT_GT(anyNear, 0u);
+  EXPECT_GT(anyExtreme, 0u);
 }
 
 TEST(TileWindow, TilesShareOneLineAndCoverTheRaster) {

@@ -31,7 +31,7 @@ BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& til
       const VertexId v = found == vertexOf.end() ? kNoVertex : found->second;
       // The cell's place, not its vertex's: the other tile may have left the vertex out.
       const double along = column ? double(dem.globalRow(row)) : double(dem.globalCol(col));
-      line.cells.push_back({v, dem.at(row, col), along, pinnedOnLine(dem, row, col)});
+      line.cells.push_back({v, dem.at(row, col), along, pinnedBorderCell(dem, tile, row, col)});
     }
     lines_.push_back(std::move(line));
   }

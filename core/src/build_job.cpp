@@ -23,19 +23,6 @@
 namespace tinlod {
 namespace {
 
-bool strictExtreme(const Dem& dem, int row, int col, bool maximum) {
-  const float z = dem.at(row, col);
-  int neighbours = 0;
-  for (int dr = -1; dr <= 1; ++dr)
-    for (int dc = -1; dc <= 1; ++dc) {
-      if ((!dr && !dc) || !dem.valid(row + dr, col + dc)) continue;
-      const float n = dem.at(row + dr, col + dc);
-      if (maximum ? n >= z : n <= z) return false;
-      ++neighbours;
-    }
-  return neighbours > 0;
-}
-
 std::map<std::string, std::string> buildMetadata(const std::string& demPath, const SampleOptions& s,
                                                  const HierarchyOptions& o, const std::string& crsName) {
   return {{"TINLOD_VERSION", kVersion},
@@ -125,7 +112,8 @@ double cellAreaInTin(const Dem& dem, const SampleOptions& sample) {
 
 TileBorders bordersOf(const Dem& dem, const Tin& tin, const TileSpec& tile, const SampleOptions& sample,
                       const HierarchyOptions& options) {
-  return tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample));
+  return tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample),
+                     options.fixPeaksPits);
 }
 
 Dem readInput(const std::string& demPath, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {
@@ -167,7 +155,7 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
   std::vector<std::uint8_t> fixed(tin.vertices.size(), 0);
   for (std::size_t i = 0; i < tin.vertices.size(); ++i) {
     const TinVertex& v = tin.vertices[i];
-    fixed[i] = strictExtreme(dem, v.row, v.col, true) || strictExtreme(dem, v.row, v.col, false);
+    fixed[i] = strictPeakOrPit(dem, v.row, v.col);
   }
   return fixed;
 }

@@ -140,7 +140,8 @@ class Simplifier {
     for (VertexId v = 0; v < nv; ++v) {
       if (onBorder(v)) {
         // Only the border rule, which both tiles apply alike, says whether a border vertex
-        // stays: not this tile's peaks, pits or points to keep.
+        // stays (a line's peaks and pits among its pinned cells, read beyond the tile):
+        // not the peaks, pits or points to keep this tile sees alone.
         h_.fixed[v] = tile_->pinned[v];
       } else if (mesh_.open(v) && (options_.keepOutline || !mesh_.deletableOpen(v) || outline_.rasterCorner(v))) {
         h_.fixed[v] = 1;

@@ -43,7 +43,7 @@ bool onOneSharedLine(const Dem& dem, int rowA, int colA, int rowB, int colB) {
 
 bool pinnedOnLine(const Dem& dem, int row, int col) {
   const bool corner = (col == 0 || col == dem.width - 1) && (row == 0 || row == dem.height - 1);
-  return corner || (!dem.nearNodata.empty() && dem.nearNodata[std::size_t(row) * dem.width + col]);
+  return corner || dem.nearNodataAt(row, col);
 }
 
 bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t seed) {
@@ -73,12 +73,16 @@ int tileLevelCount(double deletePct, double stopPct) {
   return std::max(1, static_cast<int>(std::ceil(std::log(stopPct / 100.0) / std::log(1.0 - deletePct / 100.0) - 1e-9)));
 }
 
+bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int col) {
+  return pinnedOnLine(dem, row, col) || (borders.pinPeaksAndPits && dem.edgePeakOrPitAt(row, col));
+}
+
 TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed,
-                        double cellArea) {
+                        double cellArea, bool pinPeaksAndPits) {
   if (!(cellArea > 0) || !std::isfinite(cellArea))
     throw Error("internal error: a tile's cell area must be positive, not " + std::to_string(cellArea));
   TileBorders b;
-  b.block = block, b.seed = seed, b.cellArea = cellArea;
+  b.block = block, b.seed = seed, b.cellArea = cellArea, b.pinPeaksAndPits = pinPeaksAndPits;
   b.levels = levels;
   // A line's class from its index among the raster's lines of its direction: the same for
   // the two tiles that share it.
@@ -92,7 +96,7 @@ TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, in
     const TinVertex& v = tin.vertices[i];
     for (int s = 0; s < 4; ++s)
       if (shared[s] && onSide(dem, s, v.row, v.col)) b.side[i] = static_cast<std::int8_t>(s);
-    if (b.side[i] >= 0) b.pinned[i] = pinnedOnLine(dem, v.row, v.col);
+    if (b.side[i] >= 0) b.pinned[i] = pinnedBorderCell(dem, b, v.row, v.col);
   }
   return b;
 }

@@ -11,24 +11,45 @@
 namespace tinlod {
 namespace {
 
-// Whether a missing cell lies within `reach` cells (either way, on the raster) of each cell
-// on the edge of the window, which sits at (col0, row0) in `wide`; only edge cells are
-// asked (the border lines), so the scan is the window's perimeter times the reach squared.
-std::vector<std::uint8_t> missingNearEdges(const Dem& wide, const CellWindow& w, int col0, int row0, int reach) {
-  std::vector<std::uint8_t> near(static_cast<std::size_t>(w.xsize) * w.ysize, 0);
+// The cells on the edge of the window, which sits at (col0, row0) in `wide`, within
+// `reach` cells (either way, on the raster) of a missing cell, as Dem::nearNodata lists
+// them; only edge cells are asked (the border lines), so the scan is the window's
+// perimeter times the reach squared.
+std::vector<std::size_t> missingNearEdges(const Dem& wide, const CellWindow& w, int col0, int row0, int reach) {
+  std::vector<std::size_t> near;
   auto test = [&](int r, int c) {
     for (int dr = -reach; dr <= reach; ++dr)
       for (int dc = -reach; dc <= reach; ++dc) {
         const int rr = row0 + r + dr, cc = col0 + c + dc;
         if (rr >= 0 && cc >= 0 && rr < wide.height && cc < wide.width && !wide.valid(rr, cc)) {
-          near[static_cast<std::size_t>(r) * w.xsize + c] = 1;
+          near.push_back(static_cast<std::size_t>(r) * w.xsize + c);
           return;
         }
       }
   };
-  for (int c = 0; c < w.xsize; ++c) test(0, c), test(w.ysize - 1, c);
+  for (int c = 0; c < w.xsize; ++c) test(0, c);
   for (int r = 1; r + 1 < w.ysize; ++r) test(r, 0), test(r, w.xsize - 1);
+  if (w.ysize > 1)
+    for (int c = 0; c < w.xsize; ++c) test(w.ysize - 1, c);
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
   return near;
+}
+
+// The cells on the edge of the window that are strict peaks or pits of the whole raster
+// around them, as Dem::edgePeaksAndPits lists them.
+std::vector<std::size_t> edgePeaksAndPits(const Dem& wide, const CellWindow& w, int col0, int row0) {
+  std::vector<std::size_t> cells;
+  auto test = [&](int r, int c) {
+    if (strictPeakOrPit(wide, row0 + r, col0 + c)) cells.push_back(static_cast<std::size_t>(r) * w.xsize + c);
+  };
+  for (int c = 0; c < w.xsize; ++c) test(0, c);
+  for (int r = 1; r + 1 < w.ysize; ++r) test(r, 0), test(r, w.xsize - 1);
+  if (w.ysize > 1)
+    for (int c = 0; c < w.xsize; ++c) test(w.ysize - 1, c);
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  return cells;
 }
 
 }  // namespace
@@ -64,9 +85,11 @@ Dem readTile(const std::string& path, int band, const TileSpec& tile, int pinnin
   wide.xsize = std::min(raster[0], w.xoff + w.xsize + pinning) - wide.xoff;
   wide.ysize = std::min(raster[1], w.yoff + w.ysize + pinning) - wide.yoff;
   Dem dem = readDemWindow(path, band, wide, progress, valid);
-  std::vector<std::uint8_t> near = missingNearEdges(dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff, pinning);
+  std::vector<std::size_t> near = missingNearEdges(dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff, pinning);
+  std::vector<std::size_t> extremes = edgePeaksAndPits(dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff);
   cropDem(dem, w.xoff - wide.xoff, w.yoff - wide.yoff, w.xsize, w.ysize);
   dem.nearNodata = std::move(near);  // by cell of the tile, as cropped
+  dem.edgePeaksAndPits = std::move(extremes);
   const std::size_t count = dem.validCount();
   if (count < 3)
     throw EmptyTile("tile " + std::to_string(tile.col) + "," + std::to_string(tile.row) + " of '" + path + "' has " +

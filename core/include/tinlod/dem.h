@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -35,11 +36,18 @@ struct Dem {
   std::string crsWkt;  // empty when the file has no CRS
   std::vector<float> z;
   RasterWindow window;  // set by readDem: the whole raster when no window was asked for
-  // A tile's: by cell, whether a missing cell of the whole raster lies near it (set on the
-  // lines it shares, read beyond the tile); empty for a whole raster.
-  std::vector<std::uint8_t> nearNodata;
+  // A tile's: the cells (row * width + col, ascending) of its edges near which a missing
+  // cell of the whole raster lies, read beyond the tile; empty for a whole raster. Only the
+  // edges are asked about, so only they are listed, not a flag for every cell (17 MB for a
+  // 4096 x 4096 tile).
+  std::vector<std::size_t> nearNodata;
+  // A tile's: the cells of its edges that are strict peaks or pits of the whole raster
+  // (strictPeakOrPit, their 3 x 3 cells read beyond the tile), listed as nearNodata is.
+  std::vector<std::size_t> edgePeaksAndPits;
 
   float at(int row, int col) const { return z[static_cast<std::size_t>(row) * width + col]; }
+  bool nearNodataAt(int row, int col) const { return listed(nearNodata, row, col); }
+  bool edgePeakOrPitAt(int row, int col) const { return listed(edgePeaksAndPits, row, col); }
   bool valid(int row, int col) const {
     return row >= 0 && col >= 0 && row < height && col < width && !std::isnan(at(row, col));
   }
@@ -58,6 +66,14 @@ struct Dem {
   int wholeHeight() const { return window.fullHeight > 0 ? window.fullHeight : height; }
   bool sharesLastCol() const { return window.colOffset + width < window.fullWidth; }
   bool sharesLastRow() const { return window.rowOffset + height < window.fullHeight; }
+
+ private:
+  bool listed(const std::vector<std::size_t>& cells, int row, int col) const {
+    return std::binary_search(cells.begin(), cells.end(), static_cast<std::size_t>(row) * width + col);
+  }
 };
+
+// Whether a valid cell is higher (or lower) than every valid cell around it, and has one.
+bool strictPeakOrPit(const Dem& dem, int row, int col);
 
 }  // namespace tinlod

@@ -36,7 +36,10 @@ struct TileBorders {
   // side is the raster's own edge, simplified as in a whole run.
   std::array<int, 4> lineClass{-1, -1, -1, -1};
   std::vector<std::int8_t> side;     // by vertex: the shared side it lies on, or -1
-  std::vector<std::uint8_t> pinned;  // by vertex: a border vertex that never goes (pinnedOnLine)
+  std::vector<std::uint8_t> pinned;  // by vertex: a border vertex that never goes (pinnedBorderCell)
+  // With -fix_peaks_pits: a line cell that is a strict peak or pit of the whole raster
+  // (Dem::edgePeaksAndPits, which both tiles read alike) never goes either.
+  bool pinPeaksAndPits = false;
   int block = 3;                     // the sampling's, for lineCellSampled
   std::uint64_t seed = 1;
   // One cell's area in the TIN's CRS (at the whole raster's centre): the border rule's
@@ -65,6 +68,10 @@ bool onOneSharedLine(const Dem& dem, int rowA, int colA, int rowB, int colB);
 // tile does not read. Always sampled.
 bool pinnedOnLine(const Dem& dem, int row, int col);
 
+// Whether a cell of a shared line never goes in this job: pinnedOnLine, or a peak or pit
+// kept by -fix_peaks_pits.
+bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int col);
+
 // Whether a valid cell of a shared line is a vertex: the pinned cells, and one valid cell
 // per block of the line, chosen by a hash of the seed
 // and the block's place in the whole raster: the same cells in both tiles, about as dense
@@ -75,8 +82,9 @@ bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t 
 int tileLevelCount(double deletePct, double stopPct);
 
 // The tile of `dem` (a window of its raster, as readTile gives it) for `tin`; `cellArea` as
-// TileBorders::cellArea (throws Error unless it is positive and finite).
+// TileBorders::cellArea (throws Error unless it is positive and finite), and
+// `pinPeaksAndPits` as TileBorders::pinPeaksAndPits.
 TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed,
-                        double cellArea);
+                        double cellArea, bool pinPeaksAndPits = false);
 
 }  // namespace tinlod
