@@ -85,7 +85,7 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
                                                        {QgsProcessing::TypeVectorPoint}, QVariant(), true));
   addParameter(new QgsProcessingParameterBoolean(QStringLiteral("FIX_PEAKS_PITS"), QStringLiteral("Keep peaks and pits"), false));
   addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("MAX_LEVELS"), QStringLiteral("Maximum levels (0: no limit)"),
-                                                         QgsProcessingParameterNumber::Integer, d.maxLevels, false, 0)));
+                                                         QgsProcessingParameterNumber::Integer, d.maxLevels, false, 0, kMaxLevel)));
   addParameter(advanced(new QgsProcessingParameterNumber(QStringLiteral("MAX_DEGREE"), QStringLiteral("Maximum degree (degree method)"),
                                                          QgsProcessingParameterNumber::Integer, d.maxDegree, false, 3)));
   addParameter(advanced(decimals(2, new QgsProcessingParameterNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error, metres (error method)"),

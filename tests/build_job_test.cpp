@@ -274,7 +274,7 @@ TEST(BuildJob, BadOptionsFailBeforeAnyWork) {
   missing.fixedPoints = test::tempDir() + "/none.shp";
   EXPECT_THROW(runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, missing, false, {}), Error);
   // A tile makes every level its delete and stop percentages imply; a hierarchy holds at
-  // most kMaxLevel + 1 of them (200,000 here).
+  // most kMaxLevel + 1 of them (about 138,000 here).
   HierarchyOptions tooMany;
   tooMany.deletePct = 0.01, tooMany.stopPct = 0.0001;
   try {
@@ -283,6 +283,13 @@ TEST(BuildJob, BadOptionsFailBeforeAnyWork) {
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("-max_levels"), std::string::npos) << e.what();
+  }
+  for (const double deletePct : {1e-8, 1e-15}) {  // more levels than an int holds; 1 - d rounds to 1
+    tooMany.deletePct = deletePct;
+    EXPECT_THROW(runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, tooMany, false, counting, AccuracyOutputs(),
+                             HierarchyLayers(), TileSpec{60, 0, 0}),
+                 Error)
+        << deletePct;
   }
   EXPECT_EQ(calls, 0);
 }

@@ -226,11 +226,9 @@ void GpkgOutput::indexLater(const std::string& table, std::function<std::vector<
   std::shared_future<std::shared_ptr<PackedRtree>> previous;
   if (!indexes_.empty()) previous = indexes_.back().tree;
   // One packing at a time, in the order asked: the caller's thread writes rows on the
-  // other core, and only one layer's boxes are held at once. The wait done, the previous
-  // tree is let go, or it would live as long as this one.
-  auto pack = [previous, boxes = std::move(boxes), capacity]() mutable {
+  // other core, and only one layer's boxes are held at once.
+  auto pack = [previous, boxes = std::move(boxes), capacity]() {
     if (previous.valid()) previous.wait();
-    previous = {};
     return std::make_shared<PackedRtree>(boxes(), capacity);
   };
   indexes_.push_back({table, std::async(std::launch::async, std::move(pack)).share()});

@@ -5,8 +5,8 @@
 namespace tinlod {
 
 // Empties `c` and frees its memory. `c = {}` would not: for a vector it assigns an empty
-// list and keeps the capacity, which is how a 4096 x 4096 tile once held its heights
-// (84 MB) and level 0's neighbours (45 MB) to the end after "freeing" them.
+// list and keeps the capacity, which is how a 4096 x 4096 tile once held its heights and
+// nodata flags (84 MB) and level 0's neighbours (45 MB) to the end after "freeing" them.
 template <class Container>
 void releaseMemory(Container& c) {
   Container().swap(c);

@@ -18,8 +18,8 @@ struct Compaction {
   std::vector<std::int32_t> oldOf, newOf;
 };
 
-// The counting sort's tallies by vertex, one array for each half of the triangles; the
-// caller keeps them from call to call so that their memory is reused.
+// The counting sort's tallies by vertex, one array for each half of the triangles; a
+// caller may keep them from call to call to reuse their memory.
 using VertexTallies = std::array<std::vector<std::int32_t>, 2>;
 
 // A stable counting sort of `count` triangles by the smallest of their vertices

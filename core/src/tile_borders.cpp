@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "tinlod/cell_hash.h"
@@ -70,7 +71,14 @@ bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t 
 
 int tileLevelCount(double deletePct, double stopPct) {
   if (deletePct <= 0 || deletePct >= 100 || stopPct <= 0) return 1;
-  return std::max(1, static_cast<int>(std::ceil(std::log(stopPct / 100.0) / std::log(1.0 - deletePct / 100.0) - 1e-9)));
+  // A tiny delete percentage gives more levels than an int holds, or infinitely many
+  // (1 - deletePct / 100 rounding to 1): the most, which the caller refuses.
+  const int most = std::numeric_limits<int>::max();
+  const double perLevel = std::log(1.0 - deletePct / 100.0);
+  if (!(perLevel < 0)) return most;
+  const double levels = std::ceil(std::log(stopPct / 100.0) / perLevel - 1e-9);
+  if (!(levels < double(most))) return most;
+  return std::max(1, static_cast<int>(levels));
 }
 
 bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int col) {

@@ -28,8 +28,8 @@ struct HierarchyTriangle {
   std::int16_t lastLevel = 0;       // the coarsest level for triangles never replaced
 };
 // The hierarchy holds about five triangles a vertex, its largest array: 28 bytes each (the
-// error as a float, the levels in 16 bits) is 20 bytes a vertex less than 32-bit levels,
-// 40 MB of a 4096 x 4096 tile's peak.
+// error as a float, the levels in 16 bits) is 20 bytes a vertex less than 32-bit levels:
+// 40 MB for the 10 M triangles of a 4096 x 4096 tile.
 static_assert(sizeof(HierarchyTriangle) == 28, "the hierarchy's largest array: keep it small");
 
 // A distance as a HierarchyTriangle keeps it: the nearest float not below it (the

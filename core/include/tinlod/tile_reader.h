@@ -20,9 +20,10 @@ std::array<int, 2> rasterSize(const std::string& path);
 // the next tile (which the two share). Throws Error naming -tile when it is outside the grid.
 CellWindow tileWindow(const std::array<int, 2>& raster, const TileSpec& tile);
 
-// Reads the tile, with Dem::nearNodata set on its edges: whether a missing cell of the
-// whole raster lies within `pinning` cells (read from beyond the tile, so both tiles on a
-// line agree). Throws EmptyTile when it holds fewer than 3 valid cells.
+// Reads the tile, with Dem::nearNodata listing its edge cells within `pinning` cells of a
+// missing cell of the whole raster, and Dem::edgePeaksAndPits its edge cells that are
+// strict peaks or pits of it: both read from beyond the tile (`pinning` of at least 1), so
+// both tiles on a line agree. Throws EmptyTile when it holds fewer than 3 valid cells.
 Dem readTile(const std::string& path, int band, const TileSpec& tile, int pinning, const ProgressRange& progress,
              const HeightRange& valid);
 
