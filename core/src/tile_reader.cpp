@@ -11,37 +11,14 @@
 namespace tinlod {
 namespace {
 
-// The cells on the edge of the window, which sits at (col0, row0) in `wide`, within
-// `reach` cells (either way, on the raster) of a missing cell, as Dem::nearNodata lists
-// them; only edge cells are asked (the border lines), so the scan is the window's
-// perimeter times the reach squared.
-std::vector<std::size_t> missingNearEdges(const Dem& wide, const CellWindow& w, int col0, int row0, int reach) {
-  std::vector<std::size_t> near;
-  auto test = [&](int r, int c) {
-    for (int dr = -reach; dr <= reach; ++dr)
-      for (int dc = -reach; dc <= reach; ++dc) {
-        const int rr = row0 + r + dr, cc = col0 + c + dc;
-        if (rr >= 0 && cc >= 0 && rr < wide.height && cc < wide.width && !wide.valid(rr, cc)) {
-          near.push_back(static_cast<std::size_t>(r) * w.xsize + c);
-          return;
-        }
-      }
-  };
-  for (int c = 0; c < w.xsize; ++c) test(0, c);
-  for (int r = 1; r + 1 < w.ysize; ++r) test(r, 0), test(r, w.xsize - 1);
-  if (w.ysize > 1)
-    for (int c = 0; c < w.xsize; ++c) test(w.ysize - 1, c);
-  std::sort(near.begin(), near.end());
-  near.erase(std::unique(near.begin(), near.end()), near.end());
-  return near;
-}
-
-// The cells on the edge of the window that are strict peaks or pits of the whole raster
-// around them, as Dem::edgePeaksAndPits lists them.
-std::vector<std::size_t> edgePeaksAndPits(const Dem& wide, const CellWindow& w, int col0, int row0) {
+// The cells on the edge of the window (as Dem's lists of a tile hold them: row * width +
+// col, ascending) for which `wanted(row, col)` holds: only the edges are asked about (the
+// border lines), so a scan costs the window's perimeter.
+template <class Wanted>
+std::vector<std::size_t> edgeCellsWhere(const CellWindow& w, Wanted wanted) {
   std::vector<std::size_t> cells;
   auto test = [&](int r, int c) {
-    if (strictPeakOrPit(wide, row0 + r, col0 + c)) cells.push_back(static_cast<std::size_t>(r) * w.xsize + c);
+    if (wanted(r, c)) cells.push_back(static_cast<std::size_t>(r) * w.xsize + c);
   };
   for (int c = 0; c < w.xsize; ++c) test(0, c);
   for (int r = 1; r + 1 < w.ysize; ++r) test(r, 0), test(r, w.xsize - 1);
@@ -50,6 +27,25 @@ std::vector<std::size_t> edgePeaksAndPits(const Dem& wide, const CellWindow& w, 
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
   return cells;
+}
+
+// Dem::nearNodata of the window, which sits at (col0, row0) in `wide`: its edge cells within
+// `reach` cells (either way, on the raster) of a missing cell.
+std::vector<std::size_t> missingNearEdges(const Dem& wide, const CellWindow& w, int col0, int row0, int reach) {
+  return edgeCellsWhere(w, [&](int r, int c) {
+    for (int dr = -reach; dr <= reach; ++dr)
+      for (int dc = -reach; dc <= reach; ++dc) {
+        const int rr = row0 + r + dr, cc = col0 + c + dc;
+        if (rr >= 0 && cc >= 0 && rr < wide.height && cc < wide.width && !wide.valid(rr, cc)) return true;
+      }
+    return false;
+  });
+}
+
+// Dem::edgePeaksAndPits of the window: its edge cells that are strict peaks or pits of the
+// whole raster around them.
+std::vector<std::size_t> edgePeaksAndPits(const Dem& wide, const CellWindow& w, int col0, int row0) {
+  return edgeCellsWhere(w, [&](int r, int c) { return strictPeakOrPit(wide, row0 + r, col0 + c); });
 }
 
 }  // namespace
