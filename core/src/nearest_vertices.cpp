@@ -37,12 +37,15 @@ std::vector<VertexId> nearestVerticesOnData(const Tin& tin, const std::vector<st
   std::vector<VertexId> nearest;
   if (points.empty()) return nearest;
   const BoxGrid grid = triangleGrid(tin);
+  // The allowed vertices are copied only when some are left out (a tile's lines): the
+  // whole TIN's would be a second copy of every vertex.
   std::vector<TinVertex> allowed;
   std::vector<VertexId> idOf;  // of each allowed vertex, in the TIN
-  for (VertexId v = 0; v < tin.vertices.size(); ++v)
-    if (excluded.empty() || !excluded[v]) allowed.push_back(tin.vertices[v]), idOf.push_back(v);
+  if (!excluded.empty())
+    for (VertexId v = 0; v < tin.vertices.size(); ++v)
+      if (!excluded[v]) allowed.push_back(tin.vertices[v]), idOf.push_back(v);
   cgal::Delaunay dt;
-  cgal::insertVertices(dt, allowed, progress);
+  cgal::insertVertices(dt, excluded.empty() ? tin.vertices : allowed, progress);
   cgal::FaceHandle hint;
   for (const auto& p : points) {
     const cgal::Point q(p[0], p[1], 0);
@@ -53,7 +56,8 @@ std::vector<VertexId> nearestVerticesOnData(const Tin& tin, const std::vector<st
     }
     if (dt.number_of_vertices() == 0) continue;  // nothing it may hold
     hint = dt.locate(q, hint);
-    nearest.push_back(idOf[dt.nearest_vertex(q, hint)->info().id]);
+    const VertexId v = dt.nearest_vertex(q, hint)->info().id;
+    nearest.push_back(excluded.empty() ? v : idOf[v]);
   }
   return nearest;
 }
