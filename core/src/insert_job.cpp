@@ -286,9 +286,8 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   VertexRowsStart startRows;
   if (rowsAsInserted(dem, options))
     startRows = [&](const CrsTransform& toTin) {
-      GpkgWriteOptions early = writeOptions;
-      early.metadata = jobMetadata(demPath, options, toTin.targetName());
-      vertexRows = std::make_unique<InsertedVertexRows>(out, early, dem, toTin);
+      writeOptions.metadata = jobMetadata(demPath, options, toTin.targetName());
+      vertexRows = std::make_unique<InsertedVertexRows>(out, writeOptions, dem, toTin);
       return vertexRows.get();
     };
   const InsertedTin result = insertedTinWith(dem, options, all.sub(0.1, 0.85), startRows);
@@ -302,7 +301,7 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
     if (longWrite) alone.emplace();
     return measureInsertedTin(dem, result, ProgressRange(Feedback{}, 0, 1));
   }).share();
-  writeOptions.metadata = jobMetadata(demPath, options, result.summary.crsName);
+  if (!vertexRows) writeOptions.metadata = jobMetadata(demPath, options, result.summary.crsName);
   std::vector<ExtraField> extra = InsertedVertexRows::fields();
   extra[0].values.assign(result.insertion.begin(), result.insertion.end());
   extra[1].values = result.errorBefore;
