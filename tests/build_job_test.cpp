@@ -163,6 +163,19 @@ std::vector<StoredVertex> verticesOf(const std::string& gpkg) {
   return out;
 }
 
+// The vertices of the column line at lineX, level by level, are the same in both tiles,
+// and there are some at every level.
+void expectTheSameLine(const std::vector<std::vector<StoredVertex>>& tiles, double lineX, int top) {
+  for (int level = 0; level <= top; ++level) {
+    std::vector<std::multiset<double>> onLine(2);
+    for (int t = 0; t < 2; ++t)
+      for (const StoredVertex& v : tiles[t])
+        if (std::fabs(v.x - lineX) < 1e-6 && v.level >= level) onLine[t].insert(v.y);
+    EXPECT_FALSE(onLine[0].empty()) << level;
+    EXPECT_EQ(onLine[0], onLine[1]) << "level " << level;
+  }
+}
+
 // In tiles, a point to keep holds its nearest vertex off the tile's shared lines: one on a
 // line goes or stays by the border rule alone, alike in both tiles, which the points do
 // not change. Points right beside a line, nearest to its vertices, still keep a vertex
@@ -203,15 +216,7 @@ TEST(BuildJob, TilesHoldPointsToKeepOffTheirSharedLines) {
       if (v.fixed && v.level == top && v.x < lineX) nearest = std::min(nearest, std::hypot(v.x - p[0], v.y - p[1]));
     EXPECT_LT(nearest, 3 * std::fabs(gt[1]) * std::sqrt(2.0)) << "point at " << p[0] << ", " << p[1];
   }
-  // The line's vertices, level by level, are the same in both tiles.
-  for (int level = 0; level <= top; ++level) {
-    std::vector<std::multiset<double>> onLine(2);
-    for (int t = 0; t < 2; ++t)
-      for (const StoredVertex& v : tiles[t])
-        if (std::fabs(v.x - lineX) < 1e-6 && v.level >= level) onLine[t].insert(v.y);
-    EXPECT_FALSE(onLine[0].empty()) << level;
-    EXPECT_EQ(onLine[0], onLine[1]) << "level " << level;
-  }
+  expectTheSameLine(tiles, lineX, top);
 }
 
 // With -fix_peaks_pits, a peak or pit on a shared line stays in both tiles at every level:
@@ -253,13 +258,7 @@ TEST(BuildJob, TilesKeepPeaksAndPitsOnTheirSharedLines) {
     EXPECT_GE(peaksAndPits, 3) << "tile " << t;
     EXPECT_GT(gone, 3) << "tile " << t;  // the line still thins elsewhere
   }
-  for (int level = 0; level <= top; ++level) {
-    std::vector<std::multiset<double>> onLine(2);
-    for (int t = 0; t < 2; ++t)
-      for (const StoredVertex& v : tiles[t])
-        if (std::fabs(v.x - lineX) < 1e-6 && v.level >= level) onLine[t].insert(v.y);
-    EXPECT_EQ(onLine[0], onLine[1]) << "level " << level;
-  }
+  expectTheSameLine(tiles, lineX, top);
 }
 
 TEST(BuildJob, BadOptionsFailBeforeAnyWork) {
