@@ -389,6 +389,55 @@ TEST(MoransI, MatchesTheDefinitionWithRandomHoles) {
   EXPECT_LT(std::fabs(i), 0.2);  // noise: no autocorrelation
 }
 
+// Moran's I summed over pieces of a grid, each adding its own points and the pairs with its
+// right and lower neighbours, as the tiles of a catalogue do.
+double moransIByPieces(const Grid& g, int pieceCols, int pieceRows) {
+  MoranAccumulator total;
+  for (int r0 = 0; r0 < g.rows; r0 += pieceRows)
+    for (int c0 = 0; c0 < g.cols; c0 += pieceCols) {
+      MoranAccumulator piece;
+      for (int r = r0; r < std::min(g.rows, r0 + pieceRows); ++r)
+        for (int c = c0; c < std::min(g.cols, c0 + pieceCols); ++c) {
+          if (!g.valid(c, r)) continue;
+          piece.addPoint(g.at(c, r));
+          if (c + 1 < g.cols && g.valid(c + 1, r)) piece.addPair(g.at(c, r), g.at(c + 1, r));
+          if (r + 1 < g.rows && g.valid(c, r + 1)) piece.addPair(g.at(c, r), g.at(c, r + 1));
+        }
+      total.merge(piece);
+    }
+  return total.value();
+}
+
+TEST(MoranAccumulator, PiecesMergedAreTheWholeGridsMoransI) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> value(-5, 5);
+  Grid noise(37, 23), smooth(37, 23);
+  for (double& v : noise.values) v = value(rng) < -3 ? kNaN : value(rng);
+  for (int r = 0; r < 23; ++r)
+    for (int c = 0; c < 37; ++c) smooth.at(c, r) = std::sin(c / 5.0) + 0.1 * r + (c * r % 7 == 0 ? kNaN : 0);
+  for (const Grid* g : {&noise, &smooth})
+    for (const auto& [cols, rows] : {std::pair{37, 23}, std::pair{10, 7}, std::pair{1, 1}, std::pair{5, 23}})
+      EXPECT_NEAR(moransIByPieces(*g, cols, rows), directMoransI(*g), 1e-12) << cols << " x " << rows;
+  EXPECT_GT(moransIByPieces(smooth, 10, 7), 0.8);
+}
+
+TEST(MoranAccumulator, CheckerboardIsMinusOneAndUndefinedCasesAreNaN) {
+  Grid checkerboard(6, 5);
+  for (int r = 0; r < 5; ++r)
+    for (int c = 0; c < 6; ++c) checkerboard.at(c, r) = (r + c) % 2 ? 1 : -1;
+  EXPECT_NEAR(moransIByPieces(checkerboard, 4, 2), -1, 1e-12);
+  EXPECT_TRUE(std::isnan(MoranAccumulator().value()));
+  EXPECT_TRUE(std::isnan(moransIByPieces(Grid(4, 3, 0.1), 2, 2)));                      // constant
+  EXPECT_TRUE(std::isnan(moransIByPieces(gridOf(2, 2, {0.1, kNaN, 0.1, 0.1}), 1, 1)));  // constant with a hole
+  EXPECT_TRUE(std::isnan(moransIByPieces(gridOf(2, 2, {1, kNaN, kNaN, 2}), 1, 1)));     // no neighbours
+  MoranAccumulator one;
+  one.addPoint(3);
+  MoranAccumulator merged;
+  merged.merge(MoranAccumulator());  // an empty piece changes nothing
+  merged.merge(one);
+  EXPECT_TRUE(std::isnan(merged.value()));  // one point
+}
+
 TEST(MoransI, UndefinedCasesAreNaN) {
   EXPECT_TRUE(std::isnan(moransI(Grid())));
   EXPECT_TRUE(std::isnan(moransI(Grid(4, 3, 0.1))));                     // constant

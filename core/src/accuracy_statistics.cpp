@@ -233,4 +233,37 @@ double moransI(const Grid& field) {
   return double(m.count) / double(pairs) * cross / squares;
 }
 
+void MoranAccumulator::addPoint(double value) {
+  min_ = count_ ? std::min(min_, value) : value;
+  max_ = count_ ? std::max(max_, value) : value;
+  ++count_;
+  sum_.add(value);
+  squares_.add(value * value);
+}
+
+void MoranAccumulator::addPair(double a, double b) {
+  ++pairs_;
+  products_.add(a * b);
+  pairSums_.add(a + b);
+}
+
+void MoranAccumulator::merge(const MoranAccumulator& other) {
+  if (other.count_ == 0) return;
+  min_ = count_ ? std::min(min_, other.min_) : other.min_;
+  max_ = count_ ? std::max(max_, other.max_) : other.max_;
+  count_ += other.count_, pairs_ += other.pairs_;
+  sum_.merge(other.sum_), squares_.merge(other.squares_);
+  products_.merge(other.products_), pairSums_.merge(other.pairSums_);
+}
+
+double MoranAccumulator::value() const {
+  if (count_ < 2 || min_ == max_ || pairs_ == 0) return kNaN;
+  const double n = double(count_), mean = sum_.value() / n;
+  // sum (e - m)^2 = sum e^2 - n m^2; over the pairs, sum (a - m)(b - m) = sum ab - m sum (a + b) + pairs m^2.
+  const double squares = squares_.value() - sum_.value() * mean;
+  const double cross = products_.value() - mean * pairSums_.value() + double(pairs_) * mean * mean;
+  if (!(squares > 0)) return kNaN;
+  return n / double(pairs_) * cross / squares;
+}
+
 }  // namespace tinlod
