@@ -1,10 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/accuracy_evaluator.h"
 
-#include <algorithm>
-#include <mutex>
-
-#include "parallel_blocks.h"
+#include "surface_comparison.h"
 #include "tinlod/accuracy_statistics.h"
 #include "tinlod/error.h"
 #include "tinlod/terrain_measures.h"
@@ -26,46 +23,6 @@ void AccuracyOptions::validate() const {
     throw Error("-control must be 1 or more (B-spline control points every control-th test point), not " +
                 std::to_string(controlSpacing));
 }
-
-namespace {
-
-// The compared variables, in report order; aspect is an angle and compared as one.
-const char* const kVariables[] = {"elevation", "slope", "aspect", "mean_curvature", "gaussian_curvature",
-                                  "profile_curvature", "plan_curvature"};
-constexpr int kAspect = 2;
-constexpr int kVariableCount = 7;
-
-std::array<double, kVariableCount> variables(const TerrainMeasures& m) {
-  return {m.z, m.slope, m.aspect, m.meanCurvature, m.gaussianCurvature, m.profileCurvature, m.planCurvature};
-}
-
-struct Comparison {
-  std::array<PairStatistics, kVariableCount> linear;
-  CircularPairStatistics aspect;
-
-  void add(const TerrainMeasures& ref, const TerrainMeasures& simp) {
-    const auto a = variables(ref), b = variables(simp);
-    for (int k = 0; k < kVariableCount; ++k)
-      if (k != kAspect) linear[k].add(a[k], b[k]);
-    aspect.add(a[kAspect], b[kAspect]);
-  }
-  void merge(const Comparison& other) {
-    for (int k = 0; k < kVariableCount; ++k) linear[k].merge(other.linear[k]);
-    aspect.merge(other.aspect);
-  }
-  template <class S>
-  static VariableComparison describe(const char* name, const S& s) {
-    return {name, s.count(), s.correlation(), s.meanA(), s.meanB(), s.stdA(), s.stdB()};
-  }
-  std::vector<VariableComparison> describe() const {
-    std::vector<VariableComparison> out;
-    for (int k = 0; k < kVariableCount; ++k)
-      out.push_back(k == kAspect ? describe(kVariables[k], aspect) : describe(kVariables[k], linear[k]));
-    return out;
-  }
-};
-
-}  // namespace
 
 struct AccuracyEvaluator::Impl {
   AccuracyOptions options;
@@ -95,35 +52,10 @@ struct AccuracyEvaluator::Impl {
     row.moransI = moransI(error);
   }
 
-  // Fits the simplified heights and compares both surfaces point by point, on all cores.
-  Comparison compareSurfaces(const Grid& simplified, AccuracyBands* bands, const ProgressRange& progress) const {
+  // Fits the simplified heights and compares both surfaces point by point.
+  SurfaceComparison compare(const Grid& simplified, AccuracyBands* bands, const ProgressRange& progress) const {
     const BsplineSurface surface(simplified, options.controlSpacing, grid.cellWidth, grid.cellHeight);
-    std::vector<std::pair<int, Comparison>> blocks;  // merged in row order: the same sums on any core count
-    std::mutex mutex;
-    auto work = [&](int rowBegin, int rowEnd) {
-      Comparison local;
-      std::vector<SurfacePoint> refRow, simpRow;
-      for (int r = rowBegin; r < rowEnd; ++r) {
-        referenceSurface->evaluateRow(r, refRow);
-        surface.evaluateRow(r, simpRow);
-        for (int c = 0; c < grid.cols; ++c) {
-          const TerrainMeasures a = terrainMeasures(refRow[c]), b = terrainMeasures(simpRow[c]);
-          local.add(a, b);
-          if (bands) {
-            bands->meanCurvatureReference.at(c, r) = a.meanCurvature;
-            bands->meanCurvatureSimplified.at(c, r) = b.meanCurvature;
-            bands->meanCurvatureDifference.at(c, r) = b.meanCurvature - a.meanCurvature;
-          }
-        }
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      blocks.emplace_back(rowBegin, local);
-    };
-    forEachBlock(grid.rows, work, [&](double f) { progress.report(f, "Comparing curvature"); });
-    std::sort(blocks.begin(), blocks.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    Comparison total;
-    for (const auto& block : blocks) total.merge(block.second);
-    return total;
+    return compareSurfaces(*referenceSurface, surface, TestRect{0, 0, grid.cols, grid.rows}, bands, progress);
   }
 };
 
@@ -165,7 +97,7 @@ void AccuracyEvaluator::evaluate(const std::vector<double>& heights, const std::
     const Grid empty(m.grid.cols, m.grid.rows);
     bands->meanCurvatureDifference = bands->meanCurvatureReference = bands->meanCurvatureSimplified = empty;
   }
-  row.variables = m.compareSurfaces(simplified, bands, progress.sub(0.35, 1)).describe();
+  row.variables = m.compare(simplified, bands, progress.sub(0.35, 1)).describe();
   if (bands) bands->elevationDifference = std::move(error);
 }
 
