@@ -66,7 +66,24 @@ void fillTriangle(const Plane& t, int rowBegin, int rowEnd, Grid& out) {
   }
 }
 
-int topRow(const Plane& p, int rows) { return clampedIndex(std::floor(p.top), 0, rows); }
+// The rows planes are ordered by: their top rows, those above the grid included (a window
+// of a larger grid), so that the planes of one row keep one order whatever window they are
+// rasterized in; where they overlap (a point on a shared edge, which may round differently
+// from each side) the later plane's value stays. Rows far above are bounded: only a
+// damaged file's triangle reaches there.
+struct RowOrder {
+  int lowest = 0, rows = 0;
+  int of(const Plane& p) const { return clampedIndex(std::floor(p.top), lowest, rows); }
+  std::size_t slot(const Plane& p) const { return static_cast<std::size_t>(of(p) - lowest); }
+};
+
+RowOrder rowOrder(const std::vector<Pos>& positions, int rows) {
+  double top = 0;
+  for (const Pos& p : positions)
+    if (std::isfinite(p[1])) top = std::min(top, p[1]);
+  const int farthest = -8 * (rows + 1) - 65536;
+  return RowOrder{clampedIndex(std::floor(top), farthest, 0), rows};
+}
 
 // False for a triangle without area or with a corner off any grid (not finite).
 bool planeOf(const std::vector<Pos>& positions, const std::vector<double>& z, const Triangle& t, Plane& out) {
@@ -81,15 +98,15 @@ bool planeOf(const std::vector<Pos>& positions, const std::vector<double>& z, co
 // each band of rows skip to its own. A counting sort that writes each plane once, in its
 // place: a million planes take about 100 MB, and a second copy cost as much as the filling.
 std::vector<Plane> planesByTopRow(const std::vector<Pos>& positions, const std::vector<double>& z,
-                                  const std::vector<Triangle>& triangles, int rows) {
-  std::vector<std::size_t> start(static_cast<std::size_t>(rows) + 2, 0);
+                                  const std::vector<Triangle>& triangles, const RowOrder& order) {
+  std::vector<std::size_t> start(static_cast<std::size_t>(order.rows - order.lowest) + 2, 0);
   Plane p;
   for (const Triangle& t : triangles)
-    if (planeOf(positions, z, t, p)) ++start[topRow(p, rows) + 1];
+    if (planeOf(positions, z, t, p)) ++start[order.slot(p) + 1];
   for (std::size_t r = 1; r < start.size(); ++r) start[r] += start[r - 1];
   std::vector<Plane> sorted(start.back());
   for (const Triangle& t : triangles)
-    if (planeOf(positions, z, t, p)) sorted[start[topRow(p, rows)]++] = p;
+    if (planeOf(positions, z, t, p)) sorted[start[order.slot(p)]++] = p;
   return sorted;
 }
 
@@ -98,13 +115,14 @@ std::vector<Plane> planesByTopRow(const std::vector<Pos>& positions, const std::
 Grid rasterizeTin(const std::vector<Pos>& positions, const std::vector<double>& z, const std::vector<Triangle>& triangles,
                   int cols, int rows, const ProgressRange& progress) {
   Grid out(cols, rows);
-  const std::vector<Plane> planes = planesByTopRow(positions, z, triangles, rows);
+  const RowOrder order = rowOrder(positions, rows);
+  const std::vector<Plane> planes = planesByTopRow(positions, z, triangles, order);
   double tallest = 0;
   for (const Plane& p : planes) tallest = std::max(tallest, p.bottom - p.top);
   auto work = [&](int rowBegin, int rowEnd) {
-    const int firstRow = clampedIndex(std::floor(rowBegin - tallest) - 1, -1, rows);
+    const int firstRow = clampedIndex(std::floor(rowBegin - tallest) - 1, order.lowest, rows);
     auto first = std::lower_bound(planes.begin(), planes.end(), firstRow,
-                                  [rows](const Plane& p, int row) { return topRow(p, rows) < row; });
+                                  [&order](const Plane& p, int row) { return order.of(p) < row; });
     for (auto it = first; it != planes.end() && it->top < rowEnd; ++it)
       if (it->bottom >= rowBegin) fillTriangle(*it, rowBegin, rowEnd, out);
   };
