@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "accuracy_raster_canvas.h"
 #include "gdal_handles.h"
 #include "tinlod/error.h"
 
@@ -31,36 +32,62 @@ GDALDriver& driverFor(const RasterWriteOptions& options) {
 
 void checkRasterFormat(const RasterWriteOptions& options) { driverFor(options); }
 
+const char* const kAccuracyBandNames[kAccuracyBandCount] = {
+    "elevation difference (simplified - reference), m", "mean curvature difference (simplified - reference), 1/m",
+    "mean curvature of the reference, 1/m", "mean curvature of the simplified TIN, 1/m"};
+
+void georeference(GDALDataset& ds, const TestGrid& grid) {
+  double gt[6];
+  std::copy(grid.geotransform.begin(), grid.geotransform.end(), gt);
+  ds.SetGeoTransform(gt);
+  if (!grid.crsWkt.empty()) ds.SetProjection(grid.crsWkt.c_str());
+}
+
+void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& rect, int col0, int row0) {
+  // Bands of rows at a time: a call per row would cost a tiled file a pass over its blocks
+  // per row.
+  constexpr int kRows = 256;
+  const int width = rect.col1 - rect.col0;
+  if (width <= 0) return;
+  std::vector<float> rows(static_cast<std::size_t>(width) * std::min(kRows, std::max(rect.row1 - rect.row0, 0)));
+  for (int r0 = rect.row0; r0 < rect.row1; r0 += kRows) {
+    const int count = std::min(kRows, rect.row1 - r0);
+    for (int r = r0; r < r0 + count; ++r)
+      for (int c = rect.col0; c < rect.col1; ++c) {
+        const double v = grid.at(c, r);
+        rows[static_cast<std::size_t>(r - r0) * width + (c - rect.col0)] =
+            std::isfinite(v) ? static_cast<float>(v) : float(kAccuracyNodata);
+      }
+    if (band.RasterIO(GF_Write, col0 + rect.col0, row0 + r0, width, count, rows.data(), width, count, GDT_Float32, 0,
+                      0) != CE_None)
+      throw Error(std::string("cannot fill the accuracy raster: ") + CPLGetLastErrorMsg());
+  }
+}
+
+void computeStatistics(GDALRasterBand& band) {
+  double min, max, mean, sd;
+  CPLPushErrorHandler(CPLQuietErrorHandler);  // an all-nodata band has no statistics, and that is fine
+  band.ComputeStatistics(false, &min, &max, &mean, &sd, nullptr, nullptr);
+  CPLPopErrorHandler();
+}
+
 namespace {
 
 void writeBand(GDALDataset& ds, int index, const Grid& grid, const char* description) {
-  std::vector<float> row(grid.cols);
   GDALRasterBand* band = ds.GetRasterBand(index);
   band->SetDescription(description);
   band->SetNoDataValue(kAccuracyNodata);
-  for (int r = 0; r < grid.rows; ++r) {
-    for (int c = 0; c < grid.cols; ++c)
-      row[c] = grid.valid(c, r) && std::isfinite(grid.at(c, r)) ? static_cast<float>(grid.at(c, r)) : float(kAccuracyNodata);
-    if (band->RasterIO(GF_Write, 0, r, grid.cols, 1, row.data(), grid.cols, 1, GDT_Float32, 0, 0) != CE_None)
-      throw Error(std::string("cannot fill the accuracy raster in memory: ") + CPLGetLastErrorMsg());
-  }
-  double min, max, mean, sd;
-  CPLPushErrorHandler(CPLQuietErrorHandler);  // an all-nodata band has no statistics, and that is fine
-  band->ComputeStatistics(false, &min, &max, &mean, &sd, nullptr, nullptr);
-  CPLPopErrorHandler();
+  writeRasterWindow(*band, grid, TestRect{0, 0, grid.cols, grid.rows}, 0, 0);
+  computeStatistics(*band);
 }
 
 DatasetPtr inMemory(const AccuracyBands& bands, const TestGrid& grid) {
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-  DatasetPtr ds = DatasetPtr(mem->Create("", grid.cols, grid.rows, 4, GDT_Float32, nullptr));
-  double gt[6];
-  std::copy(grid.geotransform.begin(), grid.geotransform.end(), gt);
-  ds->SetGeoTransform(gt);
-  if (!grid.crsWkt.empty()) ds->SetProjection(grid.crsWkt.c_str());
-  writeBand(*ds, 1, bands.elevationDifference, "elevation difference (simplified - reference), m");
-  writeBand(*ds, 2, bands.meanCurvatureDifference, "mean curvature difference (simplified - reference), 1/m");
-  writeBand(*ds, 3, bands.meanCurvatureReference, "mean curvature of the reference, 1/m");
-  writeBand(*ds, 4, bands.meanCurvatureSimplified, "mean curvature of the simplified TIN, 1/m");
+  DatasetPtr ds = DatasetPtr(mem->Create("", grid.cols, grid.rows, kAccuracyBandCount, GDT_Float32, nullptr));
+  georeference(*ds, grid);
+  const Grid* grids[] = {&bands.elevationDifference, &bands.meanCurvatureDifference, &bands.meanCurvatureReference,
+                         &bands.meanCurvatureSimplified};
+  for (int b = 0; b < kAccuracyBandCount; ++b) writeBand(*ds, b + 1, *grids[b], kAccuracyBandNames[b]);
   return ds;
 }
 
@@ -75,16 +102,15 @@ int gdalProgress(double fraction, const char*, void* data) {
 
 }  // namespace
 
-void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const StagedFile& file,
-                         const RasterWriteOptions& options, const ProgressRange& progress) {
+void copyRaster(GDALDataset& source, const StagedFile& file, const RasterWriteOptions& options,
+                const ProgressRange& progress) {
   GDALDriver& driver = driverFor(options);
-  const DatasetPtr mem = inMemory(bands, grid);
   CPLErrorReset();
   CPLStringList co;
   for (const std::string& o : options.creationOptions) co.AddString(o.c_str());
   // GDAL's own messages would name the staging file: kept quiet, then said in the user's terms.
   CPLPushErrorHandler(CPLQuietErrorHandler);
-  DatasetPtr out(driver.CreateCopy(file.staging.c_str(), mem.get(), FALSE, co.List(), gdalProgress,
+  DatasetPtr out(driver.CreateCopy(file.staging.c_str(), &source, FALSE, co.List(), gdalProgress,
                                    const_cast<ProgressRange*>(&progress)));
   CPLPopErrorHandler();
   const auto failed = [&] {
@@ -99,6 +125,13 @@ void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const
   out.reset();
   CPLPopErrorHandler();
   if (CPLGetLastErrorType() == CE_Failure) throw failed();
+}
+
+void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const StagedFile& file,
+                         const RasterWriteOptions& options, const ProgressRange& progress) {
+  driverFor(options);
+  const DatasetPtr mem = inMemory(bands, grid);
+  copyRaster(*mem, file, options, progress);
 }
 
 }  // namespace tinlod
