@@ -16,10 +16,14 @@
 #include "catalogue_hierarchy.h"
 #include "mesh_checks.h"
 #include "test_support.h"
+#include "tinlod/accuracy_job.h"
 #include "tinlod/build_job.h"
+#include "tinlod/crs_transform.h"
+#include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
 #include "tinlod/lod_extraction.h"
 #include "tinlod/lod_job.h"
+#include "tinlod/tile_reader.h"
 
 namespace tinlod {
 namespace {
@@ -39,10 +43,10 @@ void addField(OGRLayer& layer, const char* name, OGRFieldType type) {
 }
 
 // The tile's cells' extent, for the catalogue's geometry (read only by tinlod locate).
-OGRPolygon tileBox(const Dem& dem, int col, int row) {
-  const double x0 = dem.geotransform[0] + col * kTileSize * dem.geotransform[1];
-  const double y0 = dem.geotransform[3] + row * kTileSize * dem.geotransform[5];
-  const double x1 = x0 + (kTileSize + 1) * dem.geotransform[1], y1 = y0 + (kTileSize + 1) * dem.geotransform[5];
+OGRPolygon tileBox(const Dem& dem, const CellWindow& cells) {
+  const double x0 = dem.geotransform[0] + cells.xoff * dem.geotransform[1];
+  const double y0 = dem.geotransform[3] + cells.yoff * dem.geotransform[5];
+  const double x1 = x0 + cells.xsize * dem.geotransform[1], y1 = y0 + cells.ysize * dem.geotransform[5];
   OGRLinearRing ring;
   ring.addPoint(x0, y0), ring.addPoint(x1, y0), ring.addPoint(x1, y1), ring.addPoint(x0, y1), ring.addPoint(x0, y0);
   OGRPolygon box;
@@ -50,38 +54,41 @@ OGRPolygon tileBox(const Dem& dem, int col, int row) {
   return box;
 }
 
-// Every tile of the small synthetic DEM (its void and lake included) built as tinlod tiles
-// -selection tile builds them, and a catalogue as tinlod-tiles writes it: the fields the
-// readers use, file names relative to the catalogue.
+// Every tile of a DEM built as tinlod tiles -selection tile builds them, and a catalogue as
+// tinlod-tiles writes it: the fields the readers use, file names relative to the catalogue.
+BuiltTiles buildCatalogue(const std::string& demFile, int tileSize, const std::string& dir) {
+  BuiltTiles b;
+  GDALAllRegister();
+  const Dem dem = readDem(demFile, 1, kRange);
+  b.catalogue = dir + "/catalogue.gpkg";
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(b.catalogue.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+  ds->SetMetadataItem("TINLOD_KIND", "catalogue");
+  OGRLayer& layer = *ds->CreateLayer("tiles", nullptr, wkbPolygon, nullptr);
+  for (const char* name : {"tile_col", "tile_row", "xoff", "yoff", "xsize", "ysize"}) addField(layer, name, OFTInteger);
+  for (const char* name : {"file", "status"}) addField(layer, name, OFTString);
+  for (int c = 0; c < TileSpec::count(dem.width, tileSize); ++c)
+    for (int r = 0; r < TileSpec::count(dem.height, tileSize); ++r) {
+      const std::string name = "tile_" + std::to_string(c) + "_" + std::to_string(r) + ".gpkg";
+      b.files.push_back(dir + "/" + name);
+      runBuildJob(demFile, b.files.back(), SampleOptions{}, HierarchyOptions{}, true, kQuiet, AccuracyOutputs(),
+                  HierarchyLayers(), TileSpec{tileSize, c, r});
+      const CellWindow cells = tileWindow({dem.width, dem.height}, TileSpec{tileSize, c, r});
+      OGRFeature f(layer.GetLayerDefn());
+      f.SetField("tile_col", c), f.SetField("tile_row", r);
+      f.SetField("xoff", cells.xoff), f.SetField("yoff", cells.yoff);
+      f.SetField("xsize", cells.xsize), f.SetField("ysize", cells.ysize);
+      f.SetField("file", name.c_str()), f.SetField("status", "done");
+      OGRPolygon box = tileBox(dem, cells);
+      f.SetGeometry(&box);
+      EXPECT_EQ(layer.CreateFeature(&f), OGRERR_NONE);
+    }
+  GDALClose(ds);
+  return b;
+}
+
+// The small synthetic DEM (its void and lake included) as 3 x 3 tiles.
 const BuiltTiles& builtTiles() {
-  static const BuiltTiles built = [] {
-    BuiltTiles b;
-    GDALAllRegister();
-    const std::string dir = test::tempDir();
-    const Dem dem = test::smallSyntheticDem();
-    b.catalogue = dir + "/catalogue.gpkg";
-    GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(b.catalogue.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
-    ds->SetMetadataItem("TINLOD_KIND", "catalogue");
-    OGRLayer& layer = *ds->CreateLayer("tiles", nullptr, wkbPolygon, nullptr);
-    for (const char* name : {"tile_col", "tile_row", "xoff", "yoff"}) addField(layer, name, OFTInteger);
-    for (const char* name : {"file", "status"}) addField(layer, name, OFTString);
-    for (int c = 0; c < TileSpec::count(dem.width, kTileSize); ++c)
-      for (int r = 0; r < TileSpec::count(dem.height, kTileSize); ++r) {
-        const std::string name = "tile_" + std::to_string(c) + "_" + std::to_string(r) + ".gpkg";
-        b.files.push_back(dir + "/" + name);
-        runBuildJob(test::smallSyntheticDemFile(), b.files.back(), SampleOptions{}, HierarchyOptions{}, true, kQuiet,
-                    AccuracyOutputs(), HierarchyLayers(), TileSpec{kTileSize, c, r});
-        OGRFeature f(layer.GetLayerDefn());
-        f.SetField("tile_col", c), f.SetField("tile_row", r);
-        f.SetField("xoff", c * kTileSize), f.SetField("yoff", r * kTileSize);
-        f.SetField("file", name.c_str()), f.SetField("status", "done");
-        OGRPolygon box = tileBox(dem, c, r);
-        f.SetGeometry(&box);
-        EXPECT_EQ(layer.CreateFeature(&f), OGRERR_NONE);
-      }
-    GDALClose(ds);
-    return b;
-  }();
+  static const BuiltTiles built = buildCatalogue(test::smallSyntheticDemFile(), kTileSize, test::tempDir());
   return built;
 }
 
@@ -208,6 +215,173 @@ TEST(CatalogueHierarchy, AccuracyOfACatalogueIsMeasuredOverAllItsTiles) {
     EXPECT_NEAR(row.maxAbsError, row.certifiedError, 1e-6) << "level " << row.level;
   }
   EXPECT_GT(report.rows.back().rmse, report.rows[1].rmse);
+}
+
+// A catalogue's tiles read as one hierarchy (`h`) and measured at once, as a whole run is.
+AccuracyReport measuredAsOne(const std::string& demFile, const Hierarchy& h, const AccuracyOutputs& outputs) {
+  const Dem dem = readDem(demFile, 1, kRange);
+  const CrsTransform toTin = CrsTransform::forDem(dem, "", h.base.crsWkt, kRange);
+  OutputFiles files(outputs.overwrite, {demFile});
+  const AccuracyFiles staged = stageAccuracyFiles(outputs, files);
+  AccuracyReport report = measureAndWrite(dem, h, toTin, outputs, staged, kRange);
+  files.commit();
+  return report;
+}
+
+// Equal but for the order of summing: `scale` is what the value's rounding is relative to.
+void expectSum(double tiles, double whole, double scale, const std::string& what) {
+  if (std::isnan(whole)) {
+    EXPECT_TRUE(std::isnan(tiles)) << what;
+    return;
+  }
+  EXPECT_NEAR(tiles, whole, 1e-9 * (std::fabs(whole) + std::fabs(scale)) + 1e-300) << what;
+}
+
+void expectSameRow(const LevelAccuracy& tiles, const LevelAccuracy& whole, const std::string& what) {
+  EXPECT_EQ(tiles.vertices, whole.vertices) << what;
+  EXPECT_EQ(tiles.triangles, whole.triangles) << what;
+  EXPECT_EQ(tiles.testPoints, whole.testPoints) << what;
+  EXPECT_EQ(tiles.certifiedError, whole.certifiedError) << what;
+  EXPECT_EQ(tiles.maxAbsError, whole.maxAbsError) << what;
+  EXPECT_EQ(tiles.maxErrorX, whole.maxErrorX) << what;
+  EXPECT_EQ(tiles.maxErrorY, whole.maxErrorY) << what;
+  expectSum(tiles.rmse, whole.rmse, 0, what + " rmse");
+  expectSum(tiles.meanError, whole.meanError, whole.rmse, what + " mean error");
+  expectSum(tiles.moransI, whole.moransI, 1, what + " Moran's I");
+  ASSERT_EQ(tiles.variables.size(), whole.variables.size()) << what;
+  for (std::size_t k = 0; k < whole.variables.size(); ++k) {
+    const VariableComparison &a = tiles.variables[k], &b = whole.variables[k];
+    const std::string name = what + " " + b.name;
+    EXPECT_EQ(a.name, b.name) << name;
+    EXPECT_EQ(a.count, b.count) << name;
+    expectSum(a.correlation, b.correlation, 1, name + " r");
+    expectSum(a.meanReference, b.meanReference, b.stdReference, name + " mean");
+    expectSum(a.meanSimplified, b.meanSimplified, b.stdSimplified, name + " mean");
+    expectSum(a.stdReference, b.stdReference, 0, name + " std");
+    expectSum(a.stdSimplified, b.stdSimplified, 0, name + " std");
+  }
+}
+
+TEST(CatalogueHierarchy, AccuracyTileByTileIsThatOfTheTilesReadAsOne) {
+  struct Case {
+    Reference reference;
+    int step, control;
+  };
+  // Steps that do and do not divide the tile size; the B-spline reaching 2 to 10 points
+  // beyond a tile.
+  for (const Case& c : {Case{Reference::Dem, 1, 3}, Case{Reference::Tin, 1, 5}, Case{Reference::Dem, 7, 2},
+                        Case{Reference::Tin, 2, 1}}) {
+    AccuracyOutputs outputs;
+    outputs.options.reference = c.reference, outputs.options.step = c.step, outputs.options.controlSpacing = c.control;
+    const AccuracyReport tiles = runAccuracyJob(test::smallSyntheticDemFile(), builtTiles().catalogue, outputs, 0, "", kQuiet);
+    const AccuracyReport whole = measuredAsOne(test::smallSyntheticDemFile(), merged().hierarchy, outputs);
+    ASSERT_EQ(tiles.rows.size(), whole.rows.size());
+    for (std::size_t L = 0; L < whole.rows.size(); ++L)
+      expectSameRow(tiles.rows[L], whole.rows[L],
+                    referenceName(c.reference) + " step " + std::to_string(c.step) + " control " +
+                        std::to_string(c.control) + " level " + std::to_string(L));
+    EXPECT_GT(whole.rows.back().testPoints, 0u);
+    EXPECT_GT(whole.rows.back().variables[3].count, 0u) << "curvature is compared";
+  }
+}
+
+TEST(CatalogueHierarchy, AccuracyTileByTileOnRealDemsIsThatOfTheTilesReadAsOne) {
+  const std::string data = test::dataDir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";
+  // A geographic DEM (its TIN in UTM, where a window's edges bend) and one stored bottom-up;
+  // both with a last column or row of tiles narrower than the reach of the B-spline.
+  for (const std::string name : {"fort_worth_3s.tif", "bavaria_dgm5_bottomup.tif"}) {
+    const std::string file = data + "/" + name;
+    const BuiltTiles built = buildCatalogue(file, kTileSize, test::tempDir());
+    AccuracyOutputs outputs;
+    outputs.options.reference = Reference::Dem;
+    const AccuracyReport tiles = runAccuracyJob(file, built.catalogue, outputs, 0, "", kQuiet);
+    const AccuracyReport whole = measuredAsOne(file, readHierarchyOrCatalogue(built.catalogue, kRange).hierarchy, outputs);
+    ASSERT_EQ(tiles.rows.size(), whole.rows.size()) << name;
+    for (std::size_t L = 0; L < whole.rows.size(); ++L)
+      expectSameRow(tiles.rows[L], whole.rows[L], name + " level " + std::to_string(L));
+    EXPECT_GT(whole.rows.back().testPoints, 10000u) << name;
+  }
+}
+
+// The band's values, nodata as NaN.
+std::vector<float> bandValues(const std::string& path, int band) {
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_ReadOnly));
+  EXPECT_NE(ds, nullptr) << path;
+  if (!ds) return {};
+  GDALRasterBand* b = ds->GetRasterBand(band);
+  std::vector<float> values(static_cast<std::size_t>(ds->GetRasterXSize()) * ds->GetRasterYSize());
+  EXPECT_EQ(b->RasterIO(GF_Read, 0, 0, ds->GetRasterXSize(), ds->GetRasterYSize(), values.data(), ds->GetRasterXSize(),
+                        ds->GetRasterYSize(), GDT_Float32, 0, 0),
+            CE_None);
+  int hasNodata = 0;
+  const double nodata = b->GetNoDataValue(&hasNodata);
+  EXPECT_TRUE(hasNodata) << path;
+  for (float& v : values)
+    if (v == float(nodata)) v = std::nanf("");
+  GDALClose(ds);
+  return values;
+}
+
+TEST(CatalogueHierarchy, AccuracyRasterTileByTileIsThatOfTheTilesReadAsOne) {
+  const std::string dir = test::tempDir();
+  AccuracyOutputs outputs;
+  outputs.options.reference = Reference::Dem;
+  outputs.rasterLevel = 5;
+  outputs.overwrite = true;
+  outputs.rasterPath = dir + "/tiles.tif";
+  runAccuracyJob(test::smallSyntheticDemFile(), builtTiles().catalogue, outputs, 0, "", kQuiet);
+  outputs.rasterPath = dir + "/whole.tif";
+  measuredAsOne(test::smallSyntheticDemFile(), merged().hierarchy, outputs);
+  for (int band = 1; band <= 4; ++band) {
+    const std::vector<float> tiles = bandValues(dir + "/tiles.tif", band), whole = bandValues(dir + "/whole.tif", band);
+    ASSERT_EQ(tiles.size(), whole.size());
+    std::size_t valid = 0, differing = 0;
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      valid += !std::isnan(whole[i]);
+      differing += std::isnan(whole[i]) != std::isnan(tiles[i]) || (!std::isnan(whole[i]) && tiles[i] != whole[i]);
+    }
+    EXPECT_EQ(differing, 0u) << "band " << band;
+    EXPECT_GT(valid, whole.size() / 2) << "band " << band;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/tiles.tif.canvas.tif"));
+}
+
+TEST(CatalogueHierarchy, AccuracyTileByTileStopsOnCancelAndLeavesNothing) {
+  // Cancelled at 30 %, 60 % and 99 %: in a tile's levels, between tiles, writing the raster.
+  for (const double stop : {0.3, 0.6, 0.99}) {
+    const std::string dir = test::tempDir() + "/cancel_" + std::to_string(int(stop * 100));
+    std::filesystem::create_directories(dir);
+    AccuracyOutputs outputs;
+    outputs.rasterPath = dir + "/acc.tif";
+    outputs.reportPath = dir + "/acc.json";
+    Feedback cancelling;
+    double reached = 0;
+    cancelling.progress = [&](double f, const std::string&) {
+      reached = std::max(reached, f);
+      return f < stop;
+    };
+    EXPECT_THROW(runAccuracyJob(test::smallSyntheticDemFile(), builtTiles().catalogue, outputs, 0, "", cancelling),
+                 Cancelled);
+    EXPECT_LT(reached, stop + 0.05) << "stopped promptly";
+    EXPECT_TRUE(std::filesystem::is_empty(dir)) << "nothing left at " << stop;
+  }
+}
+
+TEST(CatalogueHierarchy, AccuracyOfACatalogueThatDoesNotRecordItsTilesCellsIsRefused) {
+  const std::string dir = std::filesystem::path(builtTiles().catalogue).parent_path().string();
+  const std::string catalogue = dir + "/no_sizes.gpkg";
+  std::filesystem::copy_file(builtTiles().catalogue, catalogue, std::filesystem::copy_options::overwrite_existing);
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
+  ds->ExecuteSQL("UPDATE tiles SET xsize = NULL, ysize = NULL", nullptr, nullptr);
+  GDALClose(ds);
+  try {
+    runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet);
+    FAIL() << "measured without knowing the tiles' cells";
+  } catch (const Error& e) {
+    EXPECT_TRUE(test::contains(e.what(), "xsize and ysize")) << e.what();
+    EXPECT_TRUE(test::contains(e.what(), "tinlod tiles")) << e.what();
+  }
 }
 
 TEST(CatalogueHierarchy, TilesOfTwoJobsAreRefused) {

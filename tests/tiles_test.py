@@ -171,6 +171,22 @@ def lod_and_accuracy(tinlod, catalogue, dem, work):
         check("(g) ... each level's largest error at the cells is the build's certified one",
               all(abs(r["max_abs_error_m"] - r["certified_error_m"]) < 1e-6 for r in rows),
               [(r["max_abs_error_m"], r["certified_error_m"]) for r in rows])
+        # -compare_insert reads the tiles as one hierarchy at once; without it they are
+        # measured a tile at a time: the same points and values, summed in another order.
+        whole_report = os.path.join(work, "accuracy_whole.json")
+        whole = run([tinlod, "accuracy", dem, catalogue, "-reference", "dem", "-report", whole_report,
+                     "-compare_insert", "-q"])
+        check("(g) accuracy -compare_insert on the catalogue succeeds", whole.returncode == 0, whole.stderr[-2000:])
+        if whole.returncode == 0:
+            with open(whole_report) as f:
+                as_one = json.load(f)["runs"][0]["levels"]
+            check("(g) tile by tile, accuracy is that of the tiles read as one hierarchy",
+                  len(as_one) == len(rows) and all(
+                      a["test_points"] == b["test_points"] and a["vertices"] == b["vertices"]
+                      and a["max_abs_error_m"] == b["max_abs_error_m"]
+                      and abs(a["rmse_m"] - b["rmse_m"]) <= 1e-9 * b["rmse_m"]
+                      and abs(a["morans_i"] - b["morans_i"]) <= 1e-9 for a, b in zip(rows, as_one)),
+                  [(a["rmse_m"], b["rmse_m"], a["test_points"], b["test_points"]) for a, b in zip(rows, as_one)])
 
 
 def main(tinlod, tiles):

@@ -6,9 +6,11 @@
 #include <charconv>
 #include <filesystem>
 
+#include "catalogue_accuracy.h"
 #include "catalogue_hierarchy.h"
 #include "dataset_files.h"
 #include "insertion_levels.h"
+#include "tile_catalogue.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
 #include "tinlod/version.h"
@@ -30,6 +32,12 @@ AccuracyFiles stageAccuracyFiles(const AccuracyOutputs& outputs, OutputFiles& fi
 }
 
 std::string demName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+std::string crsNameOf(const std::string& wkt) {
+  OGRSpatialReference srs;
+  if (!wkt.empty() && srs.importFromWkt(wkt.c_str()) == OGRERR_NONE && srs.GetName()) return srs.GetName();
+  return "no CRS";
+}
 
 std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, const Hierarchy& h, const std::string& dem,
                                          int rasterLevel, AccuracyBands* bands, const ProgressRange& progress) {
@@ -57,12 +65,17 @@ std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, con
 
 AccuracyReport makeReport(const AccuracyEvaluator& evaluator, const std::string& title, const std::string& crsName,
                           std::vector<LevelAccuracy> rows) {
+  return makeReport(evaluator.options(), title, crsName, std::move(rows));
+}
+
+AccuracyReport makeReport(const AccuracyOptions& options, const std::string& title, const std::string& crsName,
+                          std::vector<LevelAccuracy> rows) {
   AccuracyReport report;
   report.title = title;
-  report.reference = referenceName(evaluator.options().reference);
+  report.reference = referenceName(options.reference);
   report.crsName = crsName;
-  report.step = evaluator.options().step;
-  report.controlSpacing = evaluator.options().controlSpacing;
+  report.step = options.step;
+  report.controlSpacing = options.controlSpacing;
   report.generator = std::string("tinlod ") + kVersion;
   report.rows = std::move(rows);
   return report;
@@ -88,12 +101,8 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
     compareWithInsertion(rows, measureInsertionLevels(evaluator, dem, h.base, toTin, counts, h.options.stopPct,
                                                       progress.sub(measured, 0.9)));
   }
-  std::string crs = "no CRS";
-  if (!dem.crsWkt.empty()) {
-    OGRSpatialReference srs;
-    if (srs.importFromWkt(dem.crsWkt.c_str()) == OGRERR_NONE && srs.GetName()) crs = srs.GetName();
-  }
-  AccuracyReport report = makeReport(evaluator, "Accuracy of the TIN hierarchy of " + demName(dem.path), crs, std::move(rows));
+  AccuracyReport report =
+      makeReport(evaluator, "Accuracy of the TIN hierarchy of " + demName(dem.path), crsNameOf(dem.crsWkt), std::move(rows));
   if (raster) writeAccuracyRaster(bands, evaluator.grid(), *files.raster, outputs.raster, progress.sub(0.9, 0.98));
   if (files.report) writeAccuracyReport(report, *files.report);
   return report;
@@ -102,14 +111,14 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
 namespace {
 
 // The band the TIN was sampled from, as the file records it (1 when it does not).
-int sampledBand(const StoredHierarchy& stored) {
-  const auto item = stored.info.metadata.find("band");
-  if (item == stored.info.metadata.end()) return 1;
+int sampledBand(const HierarchyInfo& info) {
+  const auto item = info.metadata.find("band");
+  if (item == info.metadata.end()) return 1;
   const std::string& text = item->second;
   int band = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), band);
   if (error != std::errc() || end != text.data() + text.size() || band < 1)
-    throw Error("'" + stored.info.path + "' is damaged: its TINLOD_BAND is '" + text + "', not a band number; give -b");
+    throw Error("'" + info.path + "' is damaged: its TINLOD_BAND is '" + text + "', not a band number; give -b");
   return band;
 }
 
@@ -124,8 +133,19 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   OutputFiles files(outputs.overwrite, datasetFiles(inputs));
   const AccuracyFiles staged = stageAccuracyFiles(outputs, files);
   const ProgressRange all(feedback, 0, 1);
+  if (isCatalogue(hierarchyPath) && !outputs.compareInsert) {
+    // A tile at a time: the memory of one tile, whatever the catalogue's size.
+    const HierarchyInfo first = readHierarchyInfo(readCatalogue(hierarchyPath).front().file);
+    if (band == 0) band = sampledBand(first);
+    AccuracyReport report = measureCatalogue(demPath, hierarchyPath, band,
+                                             validHeights ? *validHeights : recordedRange(first.metadata), sourceSrs,
+                                             outputs, staged, all);
+    files.commit();
+    all.finish("Done");
+    return report;
+  }
   const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.15));
-  if (band == 0) band = sampledBand(stored);
+  if (band == 0) band = sampledBand(stored.info);
   const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), validHeights ? *validHeights : recordedRange(stored.info.metadata));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
   const CrsTransform toTin = CrsTransform::forDem(dem, sourceSrs, stored.hierarchy.base.crsWkt, quiet);

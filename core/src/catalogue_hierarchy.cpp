@@ -38,7 +38,6 @@ class TileMerger {
   Hierarchy finish();
 
  private:
-  void checkSameJob(const CatalogueTile& tile, const Hierarchy& h) const;
   void addLevels(const Hierarchy& h);
   std::vector<VertexId> addVertices(const CatalogueTile& tile, const Hierarchy& h);
   void addTriangles(const Hierarchy& h, const std::vector<VertexId>& id);
@@ -48,16 +47,6 @@ class TileMerger {
   std::unordered_map<Place, VertexId, PlaceHash> places_;
   bool first_ = true;
 };
-
-void TileMerger::checkSameJob(const CatalogueTile& tile, const Hierarchy& h) const {
-  if (h.coarsest() != all_.coarsest())
-    throw Error(notOneJob(tile, "has levels 0 to " + std::to_string(h.coarsest()) + ", the tiles before it 0 to " +
-                                    std::to_string(all_.coarsest())));
-  if (h.base.crsWkt != all_.base.crsWkt) throw Error(notOneJob(tile, "has another CRS than the tiles before it"));
-  if (h.options.measure != all_.options.measure || h.options.deletePct != all_.options.deletePct ||
-      h.options.stopPct != all_.options.stopPct || h.tinMethod != all_.tinMethod)
-    throw Error(notOneJob(tile, "was simplified with other options than the tiles before it"));
-}
 
 void TileMerger::addLevels(const Hierarchy& h) {
   if (first_) all_.levels = h.levels, squares_.assign(h.levels.size(), 0);
@@ -124,7 +113,7 @@ void TileMerger::add(const CatalogueTile& tile, const Hierarchy& h) {
     all_.base.crsWkt = h.base.crsWkt, all_.base.crsName = h.base.crsName;
     all_.options = h.options, all_.tinMethod = h.tinMethod;
   } else {
-    checkSameJob(tile, h);
+    checkSameJob(tile, h, all_);
   }
   addLevels(h);
   addTriangles(h, addVertices(tile, h));
@@ -162,6 +151,16 @@ Hierarchy TileMerger::finish() {
 }
 
 }  // namespace
+
+void checkSameJob(const CatalogueTile& tile, const Hierarchy& h, const Hierarchy& before) {
+  if (h.coarsest() != before.coarsest())
+    throw Error(notOneJob(tile, "has levels 0 to " + std::to_string(h.coarsest()) + ", the tiles before it 0 to " +
+                                    std::to_string(before.coarsest())));
+  if (h.base.crsWkt != before.base.crsWkt) throw Error(notOneJob(tile, "has another CRS than the tiles before it"));
+  if (h.options.measure != before.options.measure || h.options.deletePct != before.options.deletePct ||
+      h.options.stopPct != before.options.stopPct || h.tinMethod != before.tinMethod)
+    throw Error(notOneJob(tile, "was simplified with other options than the tiles before it"));
+}
 
 StoredHierarchy readCatalogueHierarchy(const std::string& path, const ProgressRange& progress) {
   const std::vector<CatalogueTile> tiles = readCatalogue(path);

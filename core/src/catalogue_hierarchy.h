@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tile_catalogue.h"
 #include "tinlod/feedback.h"
 #include "tinlod/hierarchy_reader.h"
 
@@ -21,6 +22,10 @@ namespace tinlod {
 // by one job (other levels, CRS or options, or a shared vertex with two heights or levels).
 // Memory is that of a whole run over the tiles' extent.
 StoredHierarchy readCatalogueHierarchy(const std::string& path, const ProgressRange& progress);
+
+// Throws Error naming `tile` unless its hierarchy `h` has the levels, CRS and options of
+// the tiles read `before` it (any of them).
+void checkSameJob(const CatalogueTile& tile, const Hierarchy& h, const Hierarchy& before);
 
 // A hierarchy GeoPackage as readHierarchy reads it, or a catalogue as above.
 StoredHierarchy readHierarchyOrCatalogue(const std::string& path, const ProgressRange& progress);

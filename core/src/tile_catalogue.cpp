@@ -53,6 +53,8 @@ std::vector<CatalogueTile> readCatalogue(const std::string& path) {
     t.file = (file.is_absolute() ? file : folder / file).string();
     t.box = {e.MinX, e.MinY, e.MaxX, e.MaxY};
     t.xoff = f->GetFieldAsInteger("xoff"), t.yoff = f->GetFieldAsInteger("yoff");
+    if (f->GetFieldIndex("xsize") >= 0 && f->GetFieldIndex("ysize") >= 0)
+      t.xsize = f->GetFieldAsInteger("xsize"), t.ysize = f->GetFieldAsInteger("ysize");
     tiles.push_back(std::move(t));
   }
   if (tiles.empty()) throw Error("the catalogue '" + path + "' has no finished tile: run tinlod tiles on it first");

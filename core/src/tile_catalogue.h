@@ -13,6 +13,9 @@ struct CatalogueTile {
   std::string file;  // resolved against the catalogue's folder
   std::array<double, 4> box;  // min x, min y, max x, max y in the TIN's CRS
   int xoff = 0, yoff = 0;     // the tile's first column and row in the raster
+  // Its cells across and down, the line it shares with the next tile included; 0 in a
+  // catalogue that does not say.
+  int xsize = 0, ysize = 0;
 };
 
 // Whether `path` is a tinlod-tiles catalogue (its metadata says so).

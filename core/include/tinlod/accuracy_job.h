@@ -51,6 +51,8 @@ std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, con
 
 AccuracyReport makeReport(const AccuracyEvaluator& evaluator, const std::string& title, const std::string& crsName,
                           std::vector<LevelAccuracy> rows);
+AccuracyReport makeReport(const AccuracyOptions& options, const std::string& title, const std::string& crsName,
+                          std::vector<LevelAccuracy> rows);
 
 // Measures every level of `h` (sampled from `dem`), compares it with greedy insertion at its
 // size when asked, and writes the raster and report asked for.
@@ -67,5 +69,8 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
 
 // "dem.tif" from "/data/dem.tif": how reports name a DEM.
 std::string demName(const std::string& path);
+
+// A CRS's name for reports ("WGS 84 / UTM zone 32N"), "no CRS" without one.
+std::string crsNameOf(const std::string& wkt);
 
 }  // namespace tinlod

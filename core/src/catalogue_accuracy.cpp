@@ -1,0 +1,382 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "catalogue_accuracy.h"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include "accuracy_raster_canvas.h"
+#include "catalogue_hierarchy.h"
+#include "gdal_handles.h"
+#include "release_memory.h"
+#include "stored_table.h"
+#include "surface_comparison.h"
+#include "tile_catalogue.h"
+#include "tinlod/accuracy_report.h"
+#include "tinlod/accuracy_statistics.h"
+#include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
+#include "tinlod/importance.h"
+#include "tinlod/tin_rasterizer.h"
+
+namespace tinlod {
+namespace {
+
+using Pos = std::array<double, 2>;
+
+// One level's sums over the test points of the tiles measured so far.
+struct LevelSums {
+  ErrorStatistics errors;
+  MoranAccumulator moran;
+  SurfaceComparison surfaces;
+  std::size_t vertices = 0, triangles = 0;
+  double selectSeconds = 0, deleteSeconds = 0, certifiedError = 0;
+};
+
+// The whole raster's test grid, which every tile's window is a piece of.
+struct WholeGrid {
+  Dem header;  // the raster's size, georeferencing and CRS, without heights
+  CrsTransform toTin;
+  TestGrid grid;
+  AccuracyOptions options;
+  HeightRange valid;
+};
+
+WholeGrid wholeGrid(const std::string& demPath, int band, const HeightRange& valid, const std::string& sourceSrs,
+                    const std::string& tinCrs, const AccuracyOptions& options, const ProgressRange& progress) {
+  // One cell reads the raster's georeferencing (and says what it has to about it once).
+  Dem header = readDemWindow(demPath, band, CellWindow{0, 0, 1, 1}, progress, valid);
+  header.width = header.window.fullWidth, header.height = header.window.fullHeight;
+  header.geotransform = header.window.fullGeotransform;
+  header.window = RasterWindow{0, 0, header.width, header.height, header.geotransform};
+  releaseMemory(header.z);
+  const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
+  CrsTransform toTin = CrsTransform::forDem(header, sourceSrs, tinCrs, quiet);
+  TestGrid grid = makeTestGrid(header, options.step, toTin);
+  return WholeGrid{std::move(header), std::move(toTin), std::move(grid), options, valid};
+}
+
+int ceilDiv(int a, int b) { return (a + b - 1) / b; }  // a >= 0, b > 0
+
+// The test points a tile answers for: those of its cells but the line it shares with the
+// next tile, which that tile answers for. So each point is counted once.
+TestRect ownedPoints(const CatalogueTile& tile, const Dem& raster, int step) {
+  const int col1 = tile.xoff + tile.xsize - (tile.xoff + tile.xsize < raster.width ? 1 : 0);
+  const int row1 = tile.yoff + tile.ysize - (tile.yoff + tile.ysize < raster.height ? 1 : 0);
+  return {ceilDiv(tile.xoff, step), ceilDiv(tile.yoff, step), ceilDiv(col1, step), ceilDiv(row1, step)};
+}
+
+// The test points the owned ones need: the 4 x 4 control points of the B-spline about each
+// (the control lattice is the whole grid's, so the window starts on it, and within the window
+// a surface is the whole grid's) and the right and lower neighbours of Moran's I.
+TestRect windowOf(const TestRect& owned, const TestGrid& grid, int spacing) {
+  const auto start = [&](int first) { return std::max(0, (first / spacing - 1) * spacing); };
+  const auto end = [&](int last, int size) { return std::min(size, (last / spacing + 2) * spacing + 1); };
+  return {start(owned.col0), start(owned.row0), end(owned.col1 - 1, grid.cols), end(owned.row1 - 1, grid.rows)};
+}
+
+TestGrid subGrid(const TestGrid& whole, const TestRect& w) {
+  TestGrid g = whole;
+  g.cols = w.col1 - w.col0, g.rows = w.row1 - w.row0;
+  g.geotransform[0] += w.col0 * whole.geotransform[1];
+  g.geotransform[3] += w.row0 * whole.geotransform[5];
+  g.cellWidth.assign(whole.cellWidth.begin() + w.row0, whole.cellWidth.begin() + w.row1);
+  return g;
+}
+
+// The window's cells, one test point wider each way, in the TIN's CRS: its edges are
+// followed point by point, since a change of CRS bends them.
+std::array<double, 4> boxInTinCrs(const WholeGrid& g, const TestRect& w) {
+  const double x0 = g.grid.x(w.col0 - 1), x1 = g.grid.x(w.col1), y0 = g.grid.y(w.row0 - 1), y1 = g.grid.y(w.row1);
+  constexpr int kSteps = 32;
+  std::vector<double> xs, ys;
+  for (int k = 0; k <= kSteps; ++k) {
+    const double x = x0 + (x1 - x0) * k / kSteps, y = y0 + (y1 - y0) * k / kSteps;
+    xs.insert(xs.end(), {x, x, x0, x1});
+    ys.insert(ys.end(), {y0, y1, y, y});
+  }
+  g.toTin.apply(xs, ys);
+  std::array<double, 4> box{HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    if (!std::isfinite(xs[i]) || !std::isfinite(ys[i])) continue;
+    box = {std::min(box[0], xs[i]), std::min(box[1], ys[i]), std::max(box[2], xs[i]), std::max(box[3], ys[i])};
+  }
+  // A hundredth more each way for the bend between the points followed.
+  const double dx = (box[2] - box[0]) / 100, dy = (box[3] - box[1]) / 100;
+  return {box[0] - dx, box[1] - dy, box[2] + dx, box[3] + dy};
+}
+
+bool cellsMeet(const CatalogueTile& tile, const TestRect& w, int step) {
+  const int col0 = w.col0 * step, col1 = (w.col1 - 1) * step, row0 = w.row0 * step, row1 = (w.row1 - 1) * step;
+  return tile.xoff <= col1 && tile.xoff + tile.xsize - 1 >= col0 && tile.yoff <= row1 && tile.yoff + tile.ysize - 1 >= row0;
+}
+
+// Triangles of other tiles: three corners each, with the levels each is in.
+struct NeighbourTriangles {
+  std::vector<TinVertex> corners;
+  std::vector<std::array<std::int32_t, 2>> levels;
+};
+
+// A tile's triangles in id order, as a whole hierarchy of the tiles holds them: where two
+// triangles meet, the rasterizer gives a point on their edge the value of the later one,
+// and the two values may differ in the last bit.
+struct IdOrder {
+  std::vector<GIntBig> fids;
+  std::vector<std::size_t> order;
+  void sort() {
+    order.resize(fids.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return fids[a] < fids[b]; });
+  }
+};
+
+void readNeighbourTriangles(const CatalogueTile& tile, const std::array<double, 4>& box, std::int32_t coarsest,
+                            NeighbourTriangles& out) {
+  const DatasetPtr ds = openReadOnly(tile.file, GDAL_OF_VECTOR);
+  OGRLayer* layer = ds ? ds->GetLayerByName("triangles") : nullptr;
+  if (!layer) throw Error("tile " + tile.name + " ('" + tile.file + "') has no triangles layer: build the tiles with tinlod tiles");
+  const StoredTable table(tile.file, *layer);
+  const int first = table.column("first_level"), last = table.column("last_level");
+  layer->SetSpatialFilterRect(box[0], box[1], box[2], box[3]);  // through the GeoPackage's R-tree
+  NeighbourTriangles read;
+  IdOrder ids;
+  for (auto& f : *layer) {
+    const StoredRow row(table, *f);
+    const auto* polygon = dynamic_cast<const OGRPolygon*>(f->GetGeometryRef());
+    const OGRLinearRing* ring = polygon ? polygon->getExteriorRing() : nullptr;
+    if (!ring || ring->getNumPoints() < 3) row.damaged("is not a triangle");
+    for (int k = 0; k < 3; ++k) {
+      TinVertex v;
+      v.x = ring->getX(k), v.y = ring->getY(k), v.z = ring->getZ(k);
+      read.corners.push_back(v);
+    }
+    const auto from = static_cast<std::int32_t>(row.integer(first, 0, coarsest, "levels"));
+    read.levels.push_back({from, static_cast<std::int32_t>(row.integer(last, from, coarsest, "levels"))});
+    ids.fids.push_back(f->GetFID());
+  }
+  table.checkFullyRead();
+  ids.sort();
+  for (std::size_t i : ids.order) {
+    out.corners.insert(out.corners.end(), read.corners.begin() + 3 * i, read.corners.begin() + 3 * i + 3);
+    out.levels.push_back(read.levels[i]);
+  }
+}
+
+// One tile's test points, measured level by level on a window of the whole test grid: its
+// own triangles and those of the tiles beside it that reach into the window.
+class TileMeasure {
+ public:
+  TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, const Hierarchy& h,
+              const ProgressRange& progress);
+  void measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas, const ProgressRange& progress) const;
+
+ private:
+  std::vector<Triangle> trianglesOf(std::int32_t level) const;
+  Grid rasterize(std::int32_t level, const ProgressRange& progress) const;
+  void addErrors(const Grid& simplified, LevelSums& sums, Grid* band) const;
+
+  const WholeGrid& g_;
+  const Hierarchy& h_;
+  TestRect window_, owned_;  // owned_ in the window's points
+  TestGrid grid_;            // the window's
+  std::vector<Pos> positions_;
+  std::vector<double> z_;
+  std::vector<std::array<std::int32_t, 2>> neighbourLevels_;  // of triangles whose corners follow the tile's vertices
+  std::size_t neighboursBefore_ = 0;  // of tiles before this one in the catalogue
+  Grid reference_;
+  std::unique_ptr<BsplineSurface> referenceSurface_;
+};
+
+TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index,
+                         const Hierarchy& h, const ProgressRange& progress)
+    : g_(g), h_(h) {
+  const int step = g.grid.step;
+  const TestRect owned = ownedPoints(tiles[index], g.header, step);
+  window_ = windowOf(owned, g.grid, g.options.controlSpacing);
+  owned_ = {owned.col0 - window_.col0, owned.row0 - window_.row0, owned.col1 - window_.col0, owned.row1 - window_.row0};
+  grid_ = subGrid(g.grid, window_);
+  NeighbourTriangles neighbours;
+  const std::array<double, 4> box = boxInTinCrs(g, window_);
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    if (t == index) neighboursBefore_ = neighbours.levels.size();
+    else if (cellsMeet(tiles[t], window_, step)) readNeighbourTriangles(tiles[t], box, h.coarsest(), neighbours);
+  }
+  neighbourLevels_ = std::move(neighbours.levels);
+  std::vector<TinVertex> vertices = h.base.vertices;
+  vertices.insert(vertices.end(), neighbours.corners.begin(), neighbours.corners.end());
+  // Placed on the whole grid as a whole run places them, then moved by whole points: the
+  // same positions to the bit, so points on an edge fall alike.
+  positions_ = gridPositions(g.grid, g.header, vertices, g.toTin);
+  for (Pos& p : positions_) p[0] -= window_.col0, p[1] -= window_.row0;
+  z_.reserve(vertices.size());
+  for (const TinVertex& v : vertices) z_.push_back(v.z);
+  if (g.options.reference == Reference::Dem) {
+    const CellWindow cells{window_.col0 * step, window_.row0 * step, (window_.col1 - window_.col0 - 1) * step + 1,
+                           (window_.row1 - window_.row0 - 1) * step + 1};
+    const ProgressRange quiet(Feedback{}, 0, 1);  // the whole raster's header said it
+    reference_ = demHeights(readDemWindow(g.header.path, g.header.band, cells, quiet, g.valid), grid_);
+  } else {
+    reference_ = rasterize(0, progress);
+  }
+  referenceSurface_ =
+      std::make_unique<BsplineSurface>(reference_, g.options.controlSpacing, grid_.cellWidth, grid_.cellHeight);
+}
+
+// In the order of the tiles read as one hierarchy (see IdOrder): the tiles before this
+// one in the catalogue, this one, the tiles after it.
+std::vector<Triangle> TileMeasure::trianglesOf(std::int32_t level) const {
+  std::vector<Triangle> out;
+  const auto first = static_cast<VertexId>(h_.base.vertices.size());
+  const auto neighbours = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t)
+      if (neighbourLevels_[t][0] <= level && level <= neighbourLevels_[t][1]) {
+        const auto v = static_cast<VertexId>(first + 3 * t);
+        out.push_back({v, v + 1, v + 2});
+      }
+  };
+  neighbours(0, neighboursBefore_);
+  for (std::uint32_t t : h_.levelTriangles(level)) out.push_back(h_.triangles[t].v);
+  neighbours(neighboursBefore_, neighbourLevels_.size());
+  return out;
+}
+
+Grid TileMeasure::rasterize(std::int32_t level, const ProgressRange& progress) const {
+  return rasterizeTin(positions_, z_, trianglesOf(level), grid_.cols, grid_.rows, progress);
+}
+
+void TileMeasure::addErrors(const Grid& simplified, LevelSums& sums, Grid* band) const {
+  const auto error = [&](int c, int r) { return simplified.at(c, r) - reference_.at(c, r); };  // NaN unless both
+  for (int r = owned_.row0; r < owned_.row1; ++r)
+    for (int c = owned_.col0; c < owned_.col1; ++c) {
+      const double e = error(c, r);
+      if (std::isnan(e)) continue;
+      sums.errors.add(e, g_.grid.x(window_.col0 + c), g_.grid.y(window_.row0 + r));
+      sums.moran.addPoint(e);
+      // The pairs with the right and lower neighbours: each pair once, by its first point.
+      if (c + 1 < simplified.cols && !std::isnan(error(c + 1, r))) sums.moran.addPair(e, error(c + 1, r));
+      if (r + 1 < simplified.rows && !std::isnan(error(c, r + 1))) sums.moran.addPair(e, error(c, r + 1));
+      if (band) band->at(c, r) = e;
+    }
+}
+
+void TileMeasure::measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas,
+                          const ProgressRange& progress) const {
+  const Grid simplified = rasterize(level, progress.sub(0, 0.3));
+  std::unique_ptr<AccuracyBands> bands;
+  if (canvas) {
+    const Grid empty(grid_.cols, grid_.rows);
+    bands = std::make_unique<AccuracyBands>(AccuracyBands{empty, empty, empty, empty});
+  }
+  addErrors(simplified, sums, bands ? &bands->elevationDifference : nullptr);
+  const BsplineSurface surface(simplified, g_.options.controlSpacing, grid_.cellWidth, grid_.cellHeight);
+  sums.surfaces.merge(compareSurfaces(*referenceSurface_, surface, owned_, bands.get(), progress.sub(0.35, 1)));
+  if (canvas) canvas->write(*bands, owned_, window_.col0, window_.row0);
+}
+
+// The level statistics the build recorded, pooled as readCatalogueHierarchy pools them,
+// and the vertices the tile answers for (a vertex on a shared line is counted once).
+void poolLevels(const CatalogueTile& tile, const Hierarchy& h, const Dem& raster, std::vector<LevelSums>& sums) {
+  for (std::size_t L = 0; L < sums.size(); ++L) {
+    const LevelStats& s = h.levels[L];
+    sums[L].triangles += s.triangles;
+    sums[L].selectSeconds += s.selectSeconds, sums[L].deleteSeconds += s.deleteSeconds;
+    sums[L].certifiedError = std::max(sums[L].certifiedError, s.maxError);
+  }
+  const TestRect cells = ownedPoints(tile, raster, 1);
+  std::vector<std::size_t> topLevel(sums.size(), 0);
+  for (std::size_t v = 0; v < h.base.vertices.size(); ++v) {
+    const int col = h.base.vertices[v].col + tile.xoff, row = h.base.vertices[v].row + tile.yoff;
+    if (col >= cells.col0 && col < cells.col1 && row >= cells.row0 && row < cells.row1) ++topLevel[h.vertexLevel[v]];
+  }
+  std::size_t above = 0;  // vertices whose highest level is L or more
+  for (std::size_t L = sums.size(); L-- > 0;) sums[L].vertices += above += topLevel[L];
+}
+
+LevelAccuracy rowOf(const LevelSums& s, const Hierarchy& first, const std::string& dem, std::int32_t level) {
+  LevelAccuracy row;
+  row.dem = dem;
+  row.method = first.tinMethod.empty() ? measureName(first.options.measure) : first.tinMethod;
+  row.deletePct = first.options.deletePct, row.stopPct = first.options.stopPct;
+  row.level = level, row.vertices = s.vertices, row.triangles = s.triangles;
+  row.selectSeconds = s.selectSeconds, row.deleteSeconds = s.deleteSeconds, row.certifiedError = s.certifiedError;
+  row.testPoints = s.errors.count();
+  row.rmse = s.errors.rmse(), row.meanError = s.errors.mean(), row.maxAbsError = s.errors.maxAbs();
+  row.maxErrorX = s.errors.maxX(), row.maxErrorY = s.errors.maxY();
+  row.moransI = s.moran.value();
+  row.variables = s.surfaces.describe();
+  return row;
+}
+
+// What every tile is checked against: the first tile's levels, CRS and options.
+Hierarchy jobOf(const Hierarchy& h) {
+  Hierarchy job;
+  job.levels = h.levels;
+  job.base.crsWkt = h.base.crsWkt;
+  job.options = h.options;
+  job.tinMethod = h.tinMethod;
+  return job;
+}
+
+void checkTiles(const std::string& path, const std::vector<CatalogueTile>& tiles) {
+  for (const CatalogueTile& tile : tiles)
+    if (tile.xsize < 2 || tile.ysize < 2)
+      throw Error("the catalogue '" + path + "' does not record the cells of tile " + tile.name +
+                  " (its xsize and ysize): make it again with tinlod tiles");
+}
+
+}  // namespace
+
+AccuracyReport measureCatalogue(const std::string& demPath, const std::string& cataloguePath, int band,
+                                const HeightRange& validHeights, const std::string& sourceSrs,
+                                const AccuracyOutputs& outputs, const AccuracyFiles& files, const ProgressRange& progress) {
+  const std::vector<CatalogueTile> tiles = readCatalogue(cataloguePath);
+  checkTiles(cataloguePath, tiles);
+  std::unique_ptr<WholeGrid> g;
+  Hierarchy job;
+  std::vector<LevelSums> sums;
+  std::unique_ptr<AccuracyRasterCanvas> canvas;
+  std::int32_t rasterLevel = 0;
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    const CatalogueTile& tile = tiles[i];
+    const ProgressRange part = progress.sub(0.95 * i / tiles.size(), 0.95 * (i + 1) / tiles.size());
+    part.report(0, "Measuring tile " + tile.name + " (" + std::to_string(i + 1) + " of " + std::to_string(tiles.size()) + ")");
+    const StoredHierarchy stored = readHierarchy(tile.file, part.sub(0, 0.2));
+    const Hierarchy& h = stored.hierarchy;
+    if (stored.info.kind != "hierarchy")
+      throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
+    if (i == 0) {
+      rasterLevel = outputs.rasterLevel < 0 ? h.coarsest() : outputs.rasterLevel;
+      if (rasterLevel > h.coarsest())
+        throw Error("-level " + std::to_string(outputs.rasterLevel) + " does not exist: the hierarchy has levels 0 to " +
+                    std::to_string(h.coarsest()));
+      g = std::make_unique<WholeGrid>(
+          wholeGrid(demPath, band, validHeights, sourceSrs, h.base.crsWkt, outputs.options, part.sub(0.2, 0.25)));
+      job = jobOf(h);
+      sums.resize(h.levels.size());
+      if (files.raster) canvas = std::make_unique<AccuracyRasterCanvas>(g->grid, *files.raster, outputs.raster);
+    } else {
+      checkSameJob(tile, h, job);
+    }
+    poolLevels(tile, h, g->header, sums);
+    if (ownedPoints(tile, g->header, g->grid.step).empty()) continue;
+    const TileMeasure measure(*g, tiles, i, h, part.sub(0.25, 0.3));
+    for (std::int32_t L = 0; L <= h.coarsest(); ++L)
+      measure.measure(L, sums[L], L == rasterLevel ? canvas.get() : nullptr,
+                      part.sub(0.3 + 0.7 * L / (h.coarsest() + 1), 0.3 + 0.7 * (L + 1) / (h.coarsest() + 1)));
+  }
+  std::vector<LevelAccuracy> rows;
+  for (std::size_t L = 0; L < sums.size(); ++L) rows.push_back(rowOf(sums[L], job, demName(demPath), std::int32_t(L)));
+  if (rows.empty() || rows.front().testPoints == 0)
+    throw Error("no test point of '" + demPath + "' lies on the TIN: give the DEM the TIN was made from");
+  AccuracyReport report = makeReport(outputs.options, "Accuracy of the TIN hierarchy of " + demName(demPath),
+                                     crsNameOf(g->header.crsWkt), std::move(rows));
+  if (canvas) canvas->finish(progress.sub(0.95, 0.99));
+  if (files.report) writeAccuracyReport(report, *files.report);
+  return report;
+}
+
+}  // namespace tinlod
