@@ -43,7 +43,24 @@ void georeference(GDALDataset& ds, const TestGrid& grid) {
   if (!grid.crsWkt.empty()) ds.SetProjection(grid.crsWkt.c_str());
 }
 
-void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& rect, int col0, int row0) {
+void BandStatistics::add(float value) {
+  min_ = count_ ? std::min<double>(min_, value) : value;
+  max_ = count_ ? std::max<double>(max_, value) : value;
+  ++count_;
+  sum_.add(value);
+  squares_.add(double(value) * value);
+}
+
+void BandStatistics::store(GDALRasterBand& band, double pixels) const {
+  if (count_ == 0) return;  // as ComputeStatistics, an all-nodata band has none
+  const double mean = sum_.value() / double(count_);
+  const double variance = std::max(0.0, squares_.value() / double(count_) - mean * mean);
+  band.SetStatistics(min_, max_, mean, std::sqrt(variance));
+  band.SetMetadataItem("STATISTICS_VALID_PERCENT", CPLSPrintf("%.4g", 100.0 * double(count_) / pixels));
+}
+
+void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& rect, int col0, int row0,
+                       BandStatistics* statistics) {
   // Bands of rows at a time: a call per row would cost a tiled file a pass over its blocks
   // per row.
   constexpr int kRows = 256;
@@ -55,8 +72,9 @@ void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& r
     for (int r = r0; r < r0 + count; ++r)
       for (int c = rect.col0; c < rect.col1; ++c) {
         const double v = grid.at(c, r);
-        rows[static_cast<std::size_t>(r - r0) * width + (c - rect.col0)] =
-            std::isfinite(v) ? static_cast<float>(v) : float(kAccuracyNodata);
+        float& out = rows[static_cast<std::size_t>(r - r0) * width + (c - rect.col0)];
+        out = std::isfinite(v) ? static_cast<float>(v) : float(kAccuracyNodata);
+        if (statistics && std::isfinite(v)) statistics->add(out);
       }
     if (band.RasterIO(GF_Write, col0 + rect.col0, row0 + r0, width, count, rows.data(), width, count, GDT_Float32, 0,
                       0) != CE_None)
@@ -64,14 +82,16 @@ void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& r
   }
 }
 
+
+namespace {
+
+// Statistics stored with the band, so that QGIS shows it at once (none for an all-nodata band).
 void computeStatistics(GDALRasterBand& band) {
   double min, max, mean, sd;
   CPLPushErrorHandler(CPLQuietErrorHandler);  // an all-nodata band has no statistics, and that is fine
   band.ComputeStatistics(false, &min, &max, &mean, &sd, nullptr, nullptr);
   CPLPopErrorHandler();
 }
-
-namespace {
 
 void writeBand(GDALDataset& ds, int index, const Grid& grid, const char* description) {
   GDALRasterBand* band = ds.GetRasterBand(index);

@@ -3,7 +3,9 @@
 
 #include <cpl_string.h>
 
+#include <algorithm>
 #include <utility>
+#include <vector>
 
 #include "tinlod/error.h"
 
@@ -46,17 +48,74 @@ void AccuracyRasterCanvas::write(const AccuracyBands& bands, const TestRect& rec
   CPLErrorReset();
   const Grid* grids[] = {&bands.elevationDifference, &bands.meanCurvatureDifference, &bands.meanCurvatureReference,
                          &bands.meanCurvatureSimplified};
-  for (int b = 0; b < kAccuracyBandCount; ++b) writeRasterWindow(*ds_->GetRasterBand(b + 1), *grids[b], rect, col0, row0);
+  for (int b = 0; b < kAccuracyBandCount; ++b)
+    writeRasterWindow(*ds_->GetRasterBand(b + 1), *grids[b], rect, col0, row0, &statistics_[b]);
   // To disk at once: GDAL's block cache would otherwise hold up to GDAL_CACHEMAX of it.
   ds_->FlushCache();
-  if (CPLGetLastErrorType() == CE_Failure)
-    throw Error(file_.option + ": cannot write the accuracy raster '" + file_.path +
-                "': " + inUserTerms(file_, CPLGetLastErrorMsg()));
+  if (CPLGetLastErrorType() == CE_Failure) fail();
+}
+
+void AccuracyRasterCanvas::fail() const {
+  throw Error(file_.option + ": cannot write the accuracy raster '" + file_.path +
+              "': " + inUserTerms(file_, CPLGetLastErrorMsg()));
 }
 
 void AccuracyRasterCanvas::finish(const ProgressRange& progress) {
-  for (int b = 0; b < kAccuracyBandCount; ++b) computeStatistics(*ds_->GetRasterBand(b + 1));
-  copyRaster(*ds_, file_, options_, progress);
+  const double pixels = double(ds_->GetRasterXSize()) * ds_->GetRasterYSize();
+  for (int b = 0; b < kAccuracyBandCount; ++b) statistics_[b].store(*ds_->GetRasterBand(b + 1), pixels);
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(options_.format.c_str());
+  // CreateCopy would read the whole scratch file through GDAL's block cache.
+  if (driver && driver->GetMetadataItem(GDAL_DCAP_CREATE)) copyByRows(*driver, progress);
+  else copyRaster(*ds_, file_, options_, progress);
+}
+
+void AccuracyRasterCanvas::copyByRows(GDALDriver& driver, const ProgressRange& progress) {
+  const int cols = ds_->GetRasterXSize(), rows = ds_->GetRasterYSize();
+  CPLStringList co;
+  for (const std::string& o : options_.creationOptions) co.AddString(o.c_str());
+  CPLErrorReset();
+  CPLPushErrorHandler(CPLQuietErrorHandler);  // said in the user's terms below
+  DatasetPtr out(driver.Create(file_.staging.c_str(), cols, rows, kAccuracyBandCount, GDT_Float32, co.List()));
+  CPLPopErrorHandler();
+  if (!out) fail();
+  double gt[6];
+  ds_->GetGeoTransform(gt);
+  out->SetGeoTransform(gt);
+  if (const char* wkt = ds_->GetProjectionRef(); wkt && *wkt) out->SetProjection(wkt);
+  for (int b = 1; b <= kAccuracyBandCount; ++b) {
+    GDALRasterBand& from = *ds_->GetRasterBand(b);
+    GDALRasterBand& to = *out->GetRasterBand(b);
+    to.SetDescription(from.GetDescription());
+    to.SetNoDataValue(kAccuracyNodata);
+    to.SetMetadata(from.GetMetadata());
+  }
+  // Whole blocks of the output at a time, about 2^22 pixels (16 MB), one band at a time:
+  // GDAL's cache then holds a band of rows of the scratch file and of the output.
+  int blockCols = 0, blockRows = 0;
+  out->GetRasterBand(1)->GetBlockSize(&blockCols, &blockRows);
+  blockRows = std::max(blockRows, 1);
+  const int step = blockRows * std::max(1, (1 << 22) / std::max(1, cols) / blockRows);
+  std::vector<float> buffer(static_cast<std::size_t>(cols) * std::min(step, rows));
+  for (int r0 = 0; r0 < rows; r0 += step) {
+    const int count = std::min(step, rows - r0);
+    CPLErrorReset();
+    for (int b = 1; b <= kAccuracyBandCount; ++b) {
+      if (ds_->GetRasterBand(b)->RasterIO(GF_Read, 0, r0, cols, count, buffer.data(), cols, count, GDT_Float32, 0, 0) !=
+              CE_None ||
+          out->GetRasterBand(b)->RasterIO(GF_Write, 0, r0, cols, count, buffer.data(), cols, count, GDT_Float32, 0, 0) !=
+              CE_None)
+        fail();
+      ds_->GetRasterBand(b)->FlushCache();
+      out->GetRasterBand(b)->FlushCache();
+      if (CPLGetLastErrorType() == CE_Failure) fail();
+    }
+    progress.report(double(r0 + count) / rows, "Writing the accuracy raster");
+  }
+  CPLErrorReset();
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  out.reset();
+  CPLPopErrorHandler();
+  if (CPLGetLastErrorType() == CE_Failure) fail();
 }
 
 }  // namespace tinlod

@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "tinlod/accuracy_statistics.h"
+
 #include "gdal_handles.h"
 #include "surface_comparison.h"
 #include "tinlod/accuracy_raster.h"
@@ -18,18 +20,35 @@ extern const char* const kAccuracyBandNames[kAccuracyBandCount];  // the bands' 
 
 // The test grid's georeferencing and CRS.
 void georeference(GDALDataset& ds, const TestGrid& grid);
+// A band's statistics as GDAL computes them (minimum, maximum, mean, population standard
+// deviation of the valid pixels), summed from the values as they are written, so that a
+// band on disk need not be read back for them.
+class BandStatistics {
+ public:
+  void add(float value);
+  // Stores them in the band's metadata, as ComputeStatistics does; `pixels` is the band's size.
+  void store(GDALRasterBand& band, double pixels) const;
+
+ private:
+  std::size_t count_ = 0;
+  detail::CompensatedSum sum_, squares_;
+  double min_ = 0, max_ = 0;
+};
+
 // The points `rect` of `grid` into the band, the grid's point (0, 0) lying at (col0, row0)
-// of the band; Float32, nodata for NaN.
-void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& rect, int col0, int row0);
-// Statistics stored with the band, so that QGIS shows it at once (none for an all-nodata band).
-void computeStatistics(GDALRasterBand& band);
+// of the band; Float32, nodata for NaN. The valid values also go to `statistics` if given.
+void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& rect, int col0, int row0,
+                       BandStatistics* statistics = nullptr);
 // `source` into the staged file in options.format; throws Error in the user's terms.
 void copyRaster(GDALDataset& source, const StagedFile& file, const RasterWriteOptions& options,
                 const ProgressRange& progress);
 
 // The four bands over the whole test grid on disk, in a scratch GeoTIFF beside the staged
 // file (in its staging folder, so a failed job leaves nothing), filled window by window and
-// then copied into the staged file in the format asked for.
+// then copied into the staged file in the format asked for. Its memory is a window's, not
+// the grid's: each window goes to disk at once, and the copy goes a band of rows at a time
+// (but for formats GDAL can only copy whole, such as COG, which go through GDAL's block
+// cache, GDAL_CACHEMAX).
 class AccuracyRasterCanvas {
  public:
   AccuracyRasterCanvas(const TestGrid& grid, const StagedFile& file, RasterWriteOptions options);
@@ -44,10 +63,14 @@ class AccuracyRasterCanvas {
   void finish(const ProgressRange& progress);
 
  private:
+  void copyByRows(GDALDriver& driver, const ProgressRange& progress);
+  [[noreturn]] void fail() const;
+
   const StagedFile& file_;
   RasterWriteOptions options_;
   std::string scratch_;
   DatasetPtr ds_;
+  BandStatistics statistics_[kAccuracyBandCount];
 };
 
 }  // namespace tinlod
