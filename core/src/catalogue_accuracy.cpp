@@ -321,20 +321,13 @@ Hierarchy jobOf(const Hierarchy& h) {
   return job;
 }
 
-void checkTiles(const std::string& path, const std::vector<CatalogueTile>& tiles) {
-  for (const CatalogueTile& tile : tiles)
-    if (tile.xsize < 2 || tile.ysize < 2)
-      throw Error("the catalogue '" + path + "' does not record the cells of tile " + tile.name +
-                  " (its xsize and ysize): make it again with tinlod tiles");
-}
-
 }  // namespace
 
 AccuracyReport measureCatalogue(const std::string& demPath, const std::string& cataloguePath, int band,
                                 const HeightRange& validHeights, const std::string& sourceSrs,
                                 const AccuracyOutputs& outputs, const AccuracyFiles& files, const ProgressRange& progress) {
   const std::vector<CatalogueTile> tiles = readCatalogue(cataloguePath);
-  checkTiles(cataloguePath, tiles);
+  requireTileCells(cataloguePath, tiles);
   std::unique_ptr<WholeGrid> g;
   Hierarchy job;
   std::vector<LevelSums> sums;

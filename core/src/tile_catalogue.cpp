@@ -61,4 +61,11 @@ std::vector<CatalogueTile> readCatalogue(const std::string& path) {
   return tiles;
 }
 
+void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles) {
+  for (const CatalogueTile& tile : tiles)
+    if (tile.xsize < 2 || tile.ysize < 2)
+      throw Error("the catalogue '" + path + "' does not record the cells of tile " + tile.name +
+                  " (its xsize and ysize): make it again with tinlod tiles");
+}
+
 }  // namespace tinlod
