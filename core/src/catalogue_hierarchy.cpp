@@ -3,29 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <unordered_map>
 
 #include "tile_catalogue.h"
+#include "vertex_place.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
 namespace {
-
-// A vertex's place, bit for bit: tiles put a shared vertex at the very same x and y.
-struct Place {
-  std::uint64_t x, y;
-  bool operator==(const Place& o) const { return x == o.x && y == o.y; }
-};
-struct PlaceHash {
-  std::size_t operator()(const Place& p) const { return std::hash<std::uint64_t>()(p.x * 0x9E3779B97F4A7C15ull ^ p.y); }
-};
-Place placeOf(const TinVertex& v) {
-  Place p;
-  std::memcpy(&p.x, &v.x, sizeof p.x);
-  std::memcpy(&p.y, &v.y, sizeof p.y);
-  return p;
-}
 
 std::string notOneJob(const CatalogueTile& tile, const std::string& what) {
   return "tile " + tile.name + " ('" + tile.file + "') " + what + ": the catalogue's tiles were not built by one job";
