@@ -53,12 +53,16 @@ bool accepted(const Hierarchy& h, const LodOptions& o, const Group& g) {
 // climbs all the way up). Groups deleting one vertex (the tiles of a catalogue each have
 // their own group for a vertex of the line they share, at the same level) go together,
 // so that both tiles bring the vertex back and their sides of the line stay the same.
-std::vector<bool> groupsToRefine(const Hierarchy& h, const LodOptions& o) {
+std::vector<bool> groupsToRefine(const Hierarchy& h, const LodOptions& o, LodVertices* vertices) {
   std::vector<std::uint32_t> order(h.groups.size());
   for (std::uint32_t g = 0; g < order.size(); ++g) order[g] = g;
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return h.groups[a].level < h.groups[b].level; });
   std::vector<bool> refine(h.groups.size(), false);
   std::vector<std::uint8_t> vertexBack(h.base.vertices.size(), 0);
+  if (vertices && !vertices->forced.empty()) {
+    if (vertices->forced.size() != vertexBack.size()) throw Error("internal error: forced vertices of another hierarchy");
+    vertexBack = vertices->forced;
+  }
   for (std::size_t begin = 0, end = 0; begin < order.size(); begin = end) {
     for (end = begin; end < order.size() && h.groups[order[end]].level == h.groups[order[begin]].level; ++end) {
       const std::uint32_t g = order[end];
@@ -74,14 +78,16 @@ std::vector<bool> groupsToRefine(const Hierarchy& h, const LodOptions& o) {
         if (h.triangles[*r].replacedBy != kNoGroup) refine[h.triangles[*r].replacedBy] = true;
     }
   }
+  if (vertices) vertices->back = std::move(vertexBack);
   return refine;
 }
 
 }  // namespace
 
-std::vector<std::uint32_t> extractLod(const Hierarchy& h, const LodOptions& options, const ProgressRange& progress) {
+std::vector<std::uint32_t> extractLod(const Hierarchy& h, const LodOptions& options, const ProgressRange& progress,
+                                      LodVertices* vertices) {
   options.validate();
-  const std::vector<bool> refine = groupsToRefine(h, options);
+  const std::vector<bool> refine = groupsToRefine(h, options, vertices);
   progress.report(0.3, "Extracting the TIN");
   // Coarser triangles first: a group is decided once every coarser one is.
   auto coarserFirst = [&](std::uint32_t a, std::uint32_t b) {

@@ -36,6 +36,16 @@ struct LodOptions {
 // group needs one of its accept triangles (the study's traversal would leave such a
 // vertex out). Returns the triangles (indices into h.triangles) of a conforming TIN
 // covering exactly what every level covers.
-std::vector<std::uint32_t> extractLod(const Hierarchy& h, const LodOptions& options, const ProgressRange& progress);
+//
+// `vertices`, when given, says which vertices must come back whatever the tests say
+// (`forced`, one flag per vertex, or empty for none) and gets every vertex that comes back
+// (`back`): the tiles of a catalogue, each extracted on its own, bring a vertex of the line
+// two tiles share back when either does.
+struct LodVertices {
+  std::vector<std::uint8_t> forced;
+  std::vector<std::uint8_t> back;
+};
+std::vector<std::uint32_t> extractLod(const Hierarchy& h, const LodOptions& options, const ProgressRange& progress,
+                                      LodVertices* vertices = nullptr);
 
 }  // namespace tinlod
