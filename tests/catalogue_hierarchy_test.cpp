@@ -7,6 +7,8 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -14,6 +16,7 @@
 #include <set>
 
 #include "catalogue_hierarchy.h"
+#include "catalogue_lod.h"
 #include "mesh_checks.h"
 #include "test_support.h"
 #include "tinlod/accuracy_job.h"
@@ -107,11 +110,11 @@ Tin tinOf(const Hierarchy& h, const std::vector<std::uint32_t>& triangles) {
 
 // Expects `tin` to be one conforming surface with the boundary loops of level 0 (the outline
 // and the void's): a crack along a tile line is a loop of its own.
-void expectOneSurfaceLikeLevelZero(const Tin& tin, const std::string& what) {
+void expectOneSurfaceLikeLevelZero(const Tin& tin, const std::string& what, const Hierarchy& like = merged().hierarchy) {
   const test::Topology top = test::analyseTopology(tin);
   EXPECT_EQ(top.problem, "") << what;
   EXPECT_EQ(top.components, 1u) << what;
-  EXPECT_EQ(top.boundaryLoops, test::analyseTopology(merged().hierarchy.levelTin(0)).boundaryLoops) << what;
+  EXPECT_EQ(top.boundaryLoops, test::analyseTopology(like.levelTin(0)).boundaryLoops) << what;
   EXPECT_EQ(top.eulerCharacteristic(), top.expectedEuler()) << what;
   EXPECT_EQ(test::verticesInsideTriangles(tin), 0u) << what << ": triangles overlap";
   EXPECT_EQ(test::clockwiseTriangles(tin), 0u) << what;
@@ -194,6 +197,53 @@ TEST(CatalogueHierarchy, VaryingDetailAcrossTilesHasNoCrackWhereEachTileOnItsOwn
   }
   EXPECT_GT(test::analyseTopology(apart).boundaryLoops, test::analyseTopology(h.levelTin(0)).boundaryLoops)
       << "tiles extracted apart should leave cracks, or this test shows nothing";
+}
+
+// A TIN's triangles by their corners' places (each triangle's corners in a canonical turn),
+// to compare TINs whose vertices are numbered apart.
+std::multiset<std::array<Place, 3>> trianglesByPlace(const Tin& tin) {
+  std::multiset<std::array<Place, 3>> out;
+  for (const Triangle& t : tin.triangles) {
+    std::array<Place, 3> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = {tin.vertices[t[k]].x, tin.vertices[t[k]].y};
+    std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
+    out.insert(corners);
+  }
+  return out;
+}
+
+// Tile by tile against the tiles read as one hierarchy: the same triangles, the same
+// vertices (rows, columns and heights) in the same order.
+void expectTheLodOfTheTilesReadAsOne(const std::string& catalogue, const Hierarchy& asOne, const LodOptions& o,
+                                     const std::string& what, int* passes = nullptr) {
+  const ExtractedLod tiles = extractCatalogueLod(catalogue, [&](const std::string&) { return o; }, kRange);
+  const Tin whole = tinOf(asOne, extractLod(asOne, o, kRange));
+  EXPECT_EQ(trianglesByPlace(tiles.tin), trianglesByPlace(whole)) << what;
+  ASSERT_EQ(tiles.tin.vertices.size(), whole.vertices.size()) << what;
+  for (std::size_t v = 0; v < whole.vertices.size(); ++v) {
+    const TinVertex &a = tiles.tin.vertices[v], &b = whole.vertices[v];
+    EXPECT_TRUE(a.x == b.x && a.y == b.y && a.z == b.z && a.row == b.row && a.col == b.col) << what << " vertex " << v;
+  }
+  EXPECT_EQ(tiles.firstLevel.size(), whole.triangles.size()) << what;
+  expectOneSurfaceLikeLevelZero(tiles.tin, what, asOne);
+  if (passes) *passes = tiles.passes;
+}
+
+TEST(CatalogueHierarchy, LodTileByTileIsThatOfTheTilesReadAsOne) {
+  const Dem dem = test::smallSyntheticDem();
+  const std::array<double, 2> corner{dem.centreX(kTileSize), dem.centreY(kTileSize)};  // four tiles meet there
+  LodOptions byDistance, byError, byGrowingError;
+  byDistance.centres = {corner}, byDistance.dropoff = 40;
+  byError.maxError = 6;
+  byGrowingError.centres = {corner}, byGrowingError.maxError = 4, byGrowingError.errorGrowth = 0.002;
+  int passes = 0, most = 0;
+  for (const auto& [o, what] : {std::pair{byDistance, "distance"}, std::pair{byError, "error"},
+                                std::pair{byGrowingError, "growing error"}}) {
+    expectTheLodOfTheTilesReadAsOne(builtTiles().catalogue, merged().hierarchy, o, what, &passes);
+    most = std::max(most, passes);
+  }
+  // A vertex a tile brings back for its own needs makes the tile beside it bring it back too.
+  EXPECT_GE(most, 2) << "no line vertex had to be exchanged: the test shows nothing";
 }
 
 TEST(CatalogueHierarchy, AccuracyOfACatalogueIsMeasuredOverAllItsTiles) {
@@ -302,6 +352,20 @@ TEST(CatalogueHierarchy, AccuracyTileByTileOnRealDemsIsThatOfTheTilesReadAsOne) 
       expectSameRow(tiles.rows[L], whole.rows[L], name + " level " + std::to_string(L));
     EXPECT_GT(whole.rows.back().testPoints, 10000u) << name;
   }
+}
+
+TEST(CatalogueHierarchy, LodTileByTileOnARealDemIsThatOfTheTilesReadAsOne) {
+  const std::string data = test::dataDir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";
+  const std::string file = data + "/fort_worth_3s.tif";
+  const BuiltTiles built = buildCatalogue(file, kTileSize, test::tempDir());
+  const Hierarchy asOne = readHierarchyOrCatalogue(built.catalogue, kRange).hierarchy;
+  const Tin level0 = asOne.levelTin(0);
+  double x = 0, y = 0;  // a centre in the middle of the data
+  for (const TinVertex& v : level0.vertices) x += v.x / level0.vertices.size(), y += v.y / level0.vertices.size();
+  LodOptions o;
+  o.centres = {{x, y}}, o.dropoff = 500, o.maxError = 3, o.errorGrowth = 0.001;
+  expectTheLodOfTheTilesReadAsOne(built.catalogue, asOne, o, "fort_worth_3s");
 }
 
 // The band's values, nodata as NaN.

@@ -9,11 +9,14 @@
 #include <memory>
 
 #include "catalogue_hierarchy.h"
+#include "catalogue_lod.h"
 #include "layer_source.h"
 #include "polygon_region.h"
 #include "text_and_paths.h"
+#include "tile_catalogue.h"
 #include "tinlod/error.h"
 #include "tinlod/gpkg_writer.h"
+#include "tinlod/hierarchy_reader.h"
 #include "tinlod/point_reader.h"
 #include "tinlod/version.h"
 
@@ -63,6 +66,46 @@ std::map<std::string, std::string> jobMetadata(const std::string& source, const 
 
 }  // namespace
 
+namespace {
+
+// The tests with the centres and region read from their files, in the hierarchy's CRS.
+LodOptions resolvedOptions(const LodJobOptions& options, const std::string& crsWkt,
+                           std::unique_ptr<PolygonRegion>& region, const ProgressRange& progress) {
+  LodOptions lod = options.lod;
+  if (!options.centresPath.empty())
+    for (const auto& p : readPoints(options.centresPath, crsWkt, progress, "-centers")) lod.centres.push_back(p);
+  if (!options.regionPath.empty()) {
+    region = std::make_unique<PolygonRegion>(options.regionPath, crsWkt, "-region", progress);
+    PolygonRegion* meets = region.get();
+    lod.meetsRegion = [meets](const std::array<std::array<double, 2>, 3>& t) { return meets->meets(t); };
+  }
+  return lod;
+}
+
+// One hierarchy GeoPackage, read whole.
+ExtractedLod extractFileLod(const std::string& path, const LodJobOptions& options, std::unique_ptr<PolygonRegion>& region,
+                            const ProgressRange& progress) {
+  const StoredHierarchy stored = readHierarchy(path, progress.sub(0, 0.8));
+  if (stored.info.kind != "hierarchy")
+    throw Error("'" + path + "' is a single TIN (" + stored.info.kind + "), not a hierarchy: make one with tinlod build");
+  const Hierarchy& h = stored.hierarchy;
+  const LodOptions lod = resolvedOptions(options, h.base.crsWkt, region, progress);
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::uint32_t> triangles = extractLod(h, lod, progress.sub(0.8, 1));
+  ExtractedLod out;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.tin = extractedTin(h, triangles, out.vertexLevel);
+  for (std::uint32_t t : triangles) {
+    out.firstLevel.push_back(h.triangles[t].firstLevel);
+    out.lastLevel.push_back(h.triangles[t].lastLevel);
+  }
+  out.levelZeroTriangles = h.levels.empty() ? 0 : h.levels[0].triangles;
+  out.coarsest = h.coarsest();
+  return out;
+}
+
+}  // namespace
+
 LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPath, const LodJobOptions& options,
                      bool overwrite, const Feedback& feedback, bool vertexIndex) {
   checkOptions(options);
@@ -74,38 +117,26 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   OutputFiles files(overwrite, datasetFiles(inputs));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
-  const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.5));
-  if (stored.info.kind != "hierarchy")
-    throw Error("'" + hierarchyPath + "' is a single TIN (" + stored.info.kind + "), not a hierarchy: make one with tinlod build");
-  const Hierarchy& h = stored.hierarchy;
-  LodOptions lod = options.lod;
-  if (!options.centresPath.empty())
-    for (const auto& p : readPoints(options.centresPath, h.base.crsWkt, all, "-centers")) lod.centres.push_back(p);
   std::unique_ptr<PolygonRegion> region;
-  if (!options.regionPath.empty()) {
-    region = std::make_unique<PolygonRegion>(options.regionPath, h.base.crsWkt, "-region", all);
-    lod.meetsRegion = [&region](const std::array<std::array<double, 2>, 3>& t) { return region->meets(t); };
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<std::uint32_t> triangles = extractLod(h, lod, all.sub(0.5, 0.6));
+  // A catalogue a tile at a time: the memory of one tile and of the output.
+  const ExtractedLod lod =
+      isCatalogue(hierarchyPath)
+          ? extractCatalogueLod(hierarchyPath,
+                                [&](const std::string& crs) { return resolvedOptions(options, crs, region, all); },
+                                all.sub(0, 0.6))
+          : extractFileLod(hierarchyPath, options, region, all.sub(0, 0.6));
   LodSummary s;
-  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::vector<double> vertexLevel;
-  const Tin tin = extractedTin(h, triangles, vertexLevel);
-  std::vector<ExtraField> triangleFields{{"first_level", {}, true}, {"last_level", {}, true}};
-  s.trianglesPerLevel.assign(static_cast<std::size_t>(h.coarsest()) + 1, 0);
-  for (std::uint32_t t : triangles) {
-    triangleFields[0].values.push_back(h.triangles[t].firstLevel);
-    triangleFields[1].values.push_back(h.triangles[t].lastLevel);
-    ++s.trianglesPerLevel[static_cast<std::size_t>(h.triangles[t].firstLevel)];
-  }
-  writeOptions.metadata["TINLOD_CRS"] = h.base.crsName;
-  writeTinGpkg(tin, out, writeOptions, all.sub(0.6, 1), {{"level", vertexLevel, true}}, triangleFields);
+  s.seconds = lod.seconds;
+  s.trianglesPerLevel.assign(static_cast<std::size_t>(lod.coarsest) + 1, 0);
+  for (double level : lod.firstLevel) ++s.trianglesPerLevel[static_cast<std::size_t>(level)];
+  writeOptions.metadata["TINLOD_CRS"] = lod.tin.crsName;
+  writeTinGpkg(lod.tin, out, writeOptions, all.sub(0.6, 1), {{"level", lod.vertexLevel, true}},
+               {{"first_level", lod.firstLevel, true}, {"last_level", lod.lastLevel, true}});
   files.commit();
   all.finish("Done");
-  s.vertices = tin.vertices.size(), s.triangles = tin.triangles.size();
-  s.levelZeroTriangles = h.levels.empty() ? 0 : h.levels[0].triangles;
-  s.crsName = h.base.crsName;
+  s.vertices = lod.tin.vertices.size(), s.triangles = lod.tin.triangles.size();
+  s.levelZeroTriangles = lod.levelZeroTriangles;
+  s.crsName = lod.tin.crsName;
   return s;
 }
 

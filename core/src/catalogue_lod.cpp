@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "catalogue_lod.h"
+
+#include <chrono>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "catalogue_hierarchy.h"
+#include "tile_catalogue.h"
+#include "tinlod/error.h"
+#include "tinlod/hierarchy_reader.h"
+#include "vertex_place.h"
+
+namespace tinlod {
+namespace {
+
+using PlaceSet = std::unordered_set<Place, PlaceHash>;
+constexpr VertexId kUnused = UINT32_MAX;
+
+// One tile's part of the output, from its last extraction.
+struct TileLod {
+  bool extracted = false;
+  std::vector<TinVertex> vertices;  // those its triangles use, in its order; rows and columns the raster's
+  std::vector<double> vertexLevel;
+  std::vector<std::uint8_t> onLine; // of `vertices`: on a line another tile shares
+  std::vector<Triangle> triangles;  // into `vertices`
+  std::vector<double> firstLevel, lastLevel;
+  std::vector<Place> line;          // its vertices on lines it shares with other tiles
+  std::size_t forced = 0;           // how many of them had come back when it was extracted
+};
+
+// Where the tiles start: a tile's last column (row) is a shared line when another starts there.
+struct TileStarts {
+  std::unordered_set<int> cols, rows;
+  explicit TileStarts(const std::vector<CatalogueTile>& tiles) {
+    for (const CatalogueTile& t : tiles) cols.insert(t.xoff), rows.insert(t.yoff);
+  }
+  bool onSharedLine(const CatalogueTile& t, const TinVertex& v) const {
+    return (v.col == 0 && t.xoff > 0) || (v.row == 0 && t.yoff > 0) ||
+           (v.col == t.xsize - 1 && cols.count(t.xoff + t.xsize - 1)) ||
+           (v.row == t.ysize - 1 && rows.count(t.yoff + t.ysize - 1));
+  }
+};
+
+std::size_t countIn(const PlaceSet& set, const std::vector<Place>& places) {
+  std::size_t n = 0;
+  for (const Place& p : places) n += set.count(p);
+  return n;
+}
+
+// The triangles as the tile's part of the output: the vertices they use, in the tile's order.
+void keepTriangles(const CatalogueTile& tile, const Hierarchy& h, const std::vector<std::uint32_t>& triangles,
+                   const std::vector<std::uint8_t>& onLine, TileLod& out) {
+  std::vector<VertexId> id(h.base.vertices.size(), kUnused);
+  for (std::uint32_t t : triangles)
+    for (VertexId v : h.triangles[t].v) id[v] = 0;
+  out.vertices.clear(), out.vertexLevel.clear(), out.onLine.clear();
+  out.triangles.clear(), out.firstLevel.clear(), out.lastLevel.clear();
+  for (std::size_t v = 0; v < id.size(); ++v) {
+    if (id[v] == kUnused) continue;
+    id[v] = static_cast<VertexId>(out.vertices.size());
+    TinVertex vertex = h.base.vertices[v];
+    vertex.row += tile.yoff, vertex.col += tile.xoff;
+    out.vertices.push_back(vertex);
+    out.vertexLevel.push_back(h.vertexLevel[v]);
+    out.onLine.push_back(onLine[v]);
+  }
+  for (std::uint32_t t : triangles) {
+    const Triangle& v = h.triangles[t].v;
+    out.triangles.push_back({id[v[0]], id[v[1]], id[v[2]]});
+    out.firstLevel.push_back(h.triangles[t].firstLevel);
+    out.lastLevel.push_back(h.triangles[t].lastLevel);
+  }
+}
+
+// Extracts one tile with the line vertices `back` holds forced back; adds those it brings
+// back. True when it added one.
+bool extractTile(const CatalogueTile& tile, const Hierarchy& h, const LodOptions& options, const TileStarts& starts,
+                 PlaceSet& back, TileLod& out, double& seconds, const ProgressRange& progress) {
+  LodVertices vertices;
+  vertices.forced.assign(h.base.vertices.size(), 0);
+  std::vector<VertexId> line;
+  std::vector<std::uint8_t> onLine(h.base.vertices.size(), 0);
+  out.line.clear();
+  for (std::size_t v = 0; v < h.base.vertices.size(); ++v)
+    if (starts.onSharedLine(tile, h.base.vertices[v])) {
+      onLine[v] = 1;
+      line.push_back(static_cast<VertexId>(v));
+      out.line.push_back(placeOf(h.base.vertices[v]));
+      vertices.forced[v] = back.count(out.line.back()) > 0;
+    }
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::uint32_t> triangles = extractLod(h, options, progress, &vertices);
+  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  bool added = false;
+  for (std::size_t i = 0; i < line.size(); ++i)
+    if (vertices.back[line[i]]) added = back.insert(out.line[i]).second || added;
+  keepTriangles(tile, h, triangles, onLine, out);
+  out.forced = countIn(back, out.line);  // its own included: forcing them changes nothing
+  out.extracted = true;
+  return added;
+}
+
+// The tiles' parts as one TIN: a vertex of a shared line once (only those are looked up).
+void assemble(const std::vector<TileLod>& parts, ExtractedLod& out) {
+  std::unordered_map<Place, VertexId, PlaceHash> ids;
+  for (const TileLod& part : parts) {
+    std::vector<VertexId> id(part.vertices.size());
+    for (std::size_t v = 0; v < id.size(); ++v) {
+      id[v] = static_cast<VertexId>(out.tin.vertices.size());
+      if (part.onLine[v]) {
+        const auto [it, added] = ids.try_emplace(placeOf(part.vertices[v]), id[v]);
+        id[v] = it->second;
+        if (!added) continue;
+      }
+      out.tin.vertices.push_back(part.vertices[v]);
+      out.vertexLevel.push_back(part.vertexLevel[v]);
+    }
+    for (const Triangle& t : part.triangles) out.tin.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
+    out.firstLevel.insert(out.firstLevel.end(), part.firstLevel.begin(), part.firstLevel.end());
+    out.lastLevel.insert(out.lastLevel.end(), part.lastLevel.begin(), part.lastLevel.end());
+  }
+}
+
+// A tile's hierarchy, checked against the tiles read before it (`job`, set by the first).
+Hierarchy readTile(const CatalogueTile& tile, Hierarchy& job, bool first, const ProgressRange& progress) {
+  StoredHierarchy stored = readHierarchy(tile.file, progress);
+  if (stored.info.kind != "hierarchy")
+    throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
+  if (first) {
+    job.levels = stored.hierarchy.levels, job.options = stored.hierarchy.options, job.tinMethod = stored.hierarchy.tinMethod;
+    job.base.crsWkt = stored.hierarchy.base.crsWkt, job.base.crsName = stored.hierarchy.base.crsName;
+  } else {
+    checkSameJob(tile, stored.hierarchy, job);
+  }
+  return std::move(stored.hierarchy);
+}
+
+}  // namespace
+
+ExtractedLod extractCatalogueLod(const std::string& cataloguePath,
+                                 const std::function<LodOptions(const std::string& crsWkt)>& optionsFor,
+                                 const ProgressRange& progress) {
+  const std::vector<CatalogueTile> tiles = readCatalogue(cataloguePath);
+  requireTileCells(cataloguePath, tiles);
+  const TileStarts starts(tiles);
+  std::vector<TileLod> parts(tiles.size());
+  PlaceSet back;
+  Hierarchy job;
+  LodOptions options;
+  ExtractedLod out;
+  for (bool again = true; again; ++out.passes) {
+    again = false;
+    // The first pass reads every tile; later ones only those whose lines gained a vertex.
+    const auto share = [](int pass) { return 0.8 + 0.2 * (1 - 1.0 / pass); };  // done after `pass` passes
+    const ProgressRange pass = out.passes == 1 ? progress.sub(0, 0.8) : progress.sub(share(out.passes - 1), share(out.passes));
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+      if (parts[i].extracted && countIn(back, parts[i].line) == parts[i].forced) continue;
+      const ProgressRange part = pass.sub(double(i) / tiles.size(), double(i + 1) / tiles.size());
+      part.report(0, "Extracting tile " + tiles[i].name + " (pass " + std::to_string(out.passes) + ")");
+      const bool first = out.passes == 1 && i == 0;
+      const Hierarchy h = readTile(tiles[i], job, first, part.sub(0, 0.8));
+      if (first) options = optionsFor(h.base.crsWkt);
+      if (out.passes == 1) out.levelZeroTriangles += h.levels.empty() ? 0 : h.levels[0].triangles;
+      again = extractTile(tiles[i], h, options, starts, back, parts[i], out.seconds, part.sub(0.8, 1)) || again;
+    }
+  }
+  --out.passes;
+  out.tin.crsWkt = job.base.crsWkt, out.tin.crsName = job.base.crsName;
+  out.coarsest = job.coarsest();
+  assemble(parts, out);
+  return out;
+}
+
+}  // namespace tinlod
