@@ -8,8 +8,10 @@
 #     the DEM, from the tiles' levels tables) against a whole-raster run with the same
 #     options, at the coarsest level and at equal vertex counts;
 #  2. the peak memory of one tile of 4096 x 4096 cells (-tile_size 4095, tile 0,0 of a synthetic 8193 x 8193 DEM);
-#  3. with tinlod-tiles (Dask): cells per second on 1 and on 2 workers (alps_2x2, 16 tiles).
-# Usage: bash bench/tiles_bench.sh [parts...]   (parts: accuracy memory throughput; default all)
+#  3. tinlod accuracy on a catalogue (a tile at a time) against the same on the whole run's
+#     hierarchy: time, peak memory, figures (alps_2x2 and patagonia_coast as 16 tiles);
+#  4. with tinlod-tiles (Dask): cells per second on 1 and on 2 workers (alps_2x2, 16 tiles).
+# Usage: bash bench/tiles_bench.sh [parts...]   (parts: accuracy memory measure throughput; default all)
 # Environment: TINLOD (default build/core/tinlod), TINLOD_TILES (default build/tiles/tinlod-tiles),
 #   WORK (default build/tiles-bench: outputs go there), TINLOD_TEST_DATA (default ../shared/data).
 set -euo pipefail
@@ -18,7 +20,7 @@ tinlod=${TINLOD:-$root/build/core/tinlod}
 tiles=${TINLOD_TILES:-$root/build/tiles/tinlod-tiles}
 data=${TINLOD_TEST_DATA:-$root/../shared/data}
 work=${WORK:-$root/build/tiles-bench}
-parts=${*:-accuracy memory throughput}
+parts=${*:-accuracy memory measure throughput}
 mkdir -p "$work"
 
 # tile_grid DEM SIZE: "across down"
@@ -89,6 +91,31 @@ memory_case() {
     -tile_size 4095 -tile 0,0 -q -overwrite
 }
 
+# tinlod accuracy on a catalogue, a tile at a time, against the same on the whole run's
+# hierarchy (one file, all in memory): time and peak memory, and the report's figures.
+measure_case() {  # NAME DEM SIZE
+  local name=$1 dem=$2 size=$3
+  if ! /usr/bin/python3 -c "import distributed" 2> /dev/null || [[ ! -x $tiles ]]; then
+    echo "== measure $name: SKIPPED (python3-distributed or $tiles absent)"
+    return 0
+  fi
+  echo "== tinlod accuracy -reference dem on $name: a catalogue of tiles of $size cells against the whole run"
+  [[ -f $work/$name.measure.gpkg ]] || "$tiles" "$dem" "$work/$name.measure.gpkg" -tile_size "$size" -workers 2 -tinlod "$tinlod" -q
+  [[ -f $work/$name.whole.gpkg ]] || "$tinlod" build "$dem" "$work/$name.whole.gpkg" -q
+  /usr/bin/time -f "catalogue, tile by tile: %e s, peak %M KB" "$tinlod" accuracy "$dem" "$work/$name.measure.gpkg" \
+    -reference dem -report "$work/$name.measure.json" -accuracy "$work/$name.measure.tif" -overwrite -q
+  /usr/bin/time -f "whole run's hierarchy: %e s, peak %M KB" "$tinlod" accuracy "$dem" "$work/$name.whole.gpkg" \
+    -reference dem -report "$work/$name.whole_measure.json" -accuracy "$work/$name.whole_measure.tif" -overwrite -q
+  /usr/bin/python3 - "$work/$name.measure.json" "$work/$name.whole_measure.json" << 'PY'
+import json, sys
+tiles, whole = (json.load(open(p))["runs"][0]["levels"] for p in sys.argv[1:])
+for a, b in ((tiles[0], whole[0]), (tiles[-1], whole[-1])):
+    print(f"  level {a['level']}: catalogue {a['test_points']} points, RMSE {a['rmse_m']:.4f} m, "
+          f"mean curvature r {a['variables']['mean_curvature']['r']:.4f}; "
+          f"whole run {b['test_points']} points, RMSE {b['rmse_m']:.4f} m, r {b['variables']['mean_curvature']['r']:.4f}")
+PY
+}
+
 throughput_case() {
   if ! /usr/bin/python3 -c "import distributed" 2> /dev/null || [[ ! -x $tiles ]]; then
     echo "== throughput: SKIPPED (python3-distributed or $tiles absent)"
@@ -129,6 +156,10 @@ for part in $parts; do
       accuracy_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
       ;;
     memory) memory_case ;;
+    measure)
+      measure_case alps16 "$data/alps_2x2_N46E007_N47E008.tif" 600
+      measure_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
+      ;;
     throughput) throughput_case ;;
     *) echo "unknown part $part" >&2; exit 2 ;;
   esac

@@ -31,7 +31,7 @@ QString AccuracyAlgorithm::shortHelpString() const {
              "Measures how well every level of a TIN hierarchy (or a TIN) written by tinlod represents the "
              "original, and writes an accuracy raster of one level and a report of all levels.\n\n"
              "Hierarchy: a GeoPackage of tinlod, or the catalogue GeoPackage of tinlod tiles (all its finished "
-             "tiles measured as one hierarchy). DEM: the raster the GeoPackage was made from. Band: empty means the band it was sampled from. "
+             "tiles measured as one hierarchy, a tile at a time). DEM: the raster the GeoPackage was made from. Band: empty means the band it was sampled from. "
              "Valid heights: cells outside them are nodata; empty means the range the GeoPackage was made with "
              "(-12000 to 9000 m unless widened).\n\n") +
          accuracyHelp() + QStringLiteral("\n\nLevel: the raster's level; -1 (the default) means the coarsest.");

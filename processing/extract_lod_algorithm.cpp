@@ -46,7 +46,8 @@ QString ExtractLodAlgorithm::shortHelpString() const {
       "- Region: every vertex inside the polygons comes back: full detail there.\n"
       "A vertex that a restored vertex needs comes back as well, so the tests hold everywhere.\n\n"
       "Hierarchy: a GeoPackage of 'Build TIN hierarchy from DEM', or the catalogue GeoPackage of tinlod tiles: "
-      "its finished tiles are then one hierarchy and the output one TIN across them, without a crack.\n\n"
+      "its finished tiles are then one hierarchy and the output one TIN across them, without a crack "
+      "(read a tile at a time).\n\n"
       "Output: a GeoPackage TIN ('vertices' and 'triangles' with each triangle's first and last level) in the "
       "hierarchy's CRS.");
 }

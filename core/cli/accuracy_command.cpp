@@ -21,7 +21,7 @@ I of the error, and correlations of slope, aspect, Gaussian, profile and plan cu
 Usage: tinlod accuracy DEM TIN.gpkg [options]
 
 TIN.gpkg is a hierarchy of tinlod build, a TIN of tinlod sample, insert or lod, or the
-catalogue of tinlod tiles (all its finished tiles, measured as one hierarchy).
+catalogue of tinlod tiles (all its finished tiles, measured as one hierarchy, a tile at a time).
 DEM is the raster the GeoPackage (or the catalogue's tiles) was made from.
   -b band          its band (default: the one the GeoPackage was sampled from)
   -s_srs srs       its CRS, when its file has none (as given to tinlod build)

@@ -21,7 +21,7 @@ conforming TIN (de Berg and Dobrindt's traversal of the hierarchy).
 Usage: tinlod lod HIER.gpkg OUT.gpkg [tests] [options]
 
   HIER.gpkg          a hierarchy written by tinlod build, or the catalogue of tinlod tiles
-                     (its finished tiles as one hierarchy, one TIN across them)
+                     (its finished tiles as one hierarchy, one TIN across them; read a tile at a time)
   OUT.gpkg           GeoPackage TIN: 'vertices' (PointZ: id, row, col, outline, level) and
                      'triangles' (PolygonZ: id, v0, v1, v2, first_level, last_level), in
                      the hierarchy's CRS
