@@ -39,6 +39,16 @@ std::string crsNameOf(const std::string& wkt) {
   return "no CRS";
 }
 
+LevelAccuracy levelRow(const Hierarchy& h, const std::string& dem, int level, const LevelStats& s) {
+  LevelAccuracy row;
+  row.dem = dem;
+  row.method = h.tinMethod.empty() ? measureName(h.options.measure) : h.tinMethod;
+  row.deletePct = h.options.deletePct, row.stopPct = h.options.stopPct;
+  row.level = level, row.vertices = s.vertices, row.triangles = s.triangles;
+  row.selectSeconds = s.selectSeconds, row.deleteSeconds = s.deleteSeconds, row.certifiedError = s.maxError;
+  return row;
+}
+
 std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, const Hierarchy& h, const std::string& dem,
                                          int rasterLevel, AccuracyBands* bands, const ProgressRange& progress) {
   const int top = h.coarsest();
@@ -47,13 +57,7 @@ std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, con
     throw Error("-level " + std::to_string(rasterLevel) + " does not exist: the hierarchy has levels 0 to " + std::to_string(top));
   std::vector<LevelAccuracy> rows;
   for (int L = 0; L <= top; ++L) {
-    const LevelStats& s = h.levels[L];
-    LevelAccuracy row;
-    row.dem = dem;
-    row.method = h.tinMethod.empty() ? measureName(h.options.measure) : h.tinMethod;
-    row.deletePct = h.options.deletePct, row.stopPct = h.options.stopPct;
-    row.level = L, row.vertices = s.vertices, row.triangles = s.triangles;
-    row.selectSeconds = s.selectSeconds, row.deleteSeconds = s.deleteSeconds, row.certifiedError = s.maxError;
+    LevelAccuracy row = levelRow(h, dem, L, h.levels[L]);
     std::vector<Triangle> triangles;
     for (std::uint32_t t : h.levelTriangles(L)) triangles.push_back(h.triangles[t].v);
     evaluator.evaluate(triangles, row, L == chosen ? bands : nullptr,

@@ -20,7 +20,6 @@
 #include "tinlod/accuracy_statistics.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
-#include "tinlod/importance.h"
 #include "tinlod/tin_rasterizer.h"
 
 namespace tinlod {
@@ -296,13 +295,11 @@ void poolLevels(const CatalogueTile& tile, const Hierarchy& h, const Dem& raster
   for (std::size_t L = sums.size(); L-- > 0;) sums[L].vertices += above += topLevel[L];
 }
 
-LevelAccuracy rowOf(const LevelSums& s, const Hierarchy& first, const std::string& dem, std::int32_t level) {
-  LevelAccuracy row;
-  row.dem = dem;
-  row.method = first.tinMethod.empty() ? measureName(first.options.measure) : first.tinMethod;
-  row.deletePct = first.options.deletePct, row.stopPct = first.options.stopPct;
-  row.level = level, row.vertices = s.vertices, row.triangles = s.triangles;
-  row.selectSeconds = s.selectSeconds, row.deleteSeconds = s.deleteSeconds, row.certifiedError = s.certifiedError;
+LevelAccuracy rowOf(const LevelSums& s, const Hierarchy& job, const std::string& dem, std::int32_t level) {
+  LevelStats stats;
+  stats.vertices = s.vertices, stats.triangles = s.triangles;
+  stats.selectSeconds = s.selectSeconds, stats.deleteSeconds = s.deleteSeconds, stats.maxError = s.certifiedError;
+  LevelAccuracy row = levelRow(job, dem, level, stats);
   row.testPoints = s.errors.count();
   row.rmse = s.errors.rmse(), row.meanError = s.errors.mean(), row.maxAbsError = s.errors.maxAbs();
   row.maxErrorX = s.errors.maxX(), row.maxErrorY = s.errors.maxY();

@@ -44,6 +44,10 @@ struct AccuracyFiles {
 // Adds the raster and report `outputs` asks for to `files`: checked now, before the work.
 AccuracyFiles stageAccuracyFiles(const AccuracyOutputs& outputs, OutputFiles& files);
 
+// The row of level `level` before it is measured: what the hierarchy `h` says of it (`s`, its
+// statistics, or those a catalogue's tiles pool).
+LevelAccuracy levelRow(const Hierarchy& h, const std::string& demName, int level, const LevelStats& s);
+
 // Every level of `h` measured against the evaluator's reference, one row each; the
 // bands of `rasterLevel` (-1: the coarsest) go to `bands` when it is not null.
 std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, const Hierarchy& h, const std::string& demName,
