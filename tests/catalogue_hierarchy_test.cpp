@@ -13,10 +13,12 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <random>
 #include <set>
 
 #include "catalogue_hierarchy.h"
 #include "catalogue_lod.h"
+#include "tile_ownership.h"
 #include "mesh_checks.h"
 #include "test_support.h"
 #include "tinlod/accuracy_job.h"
@@ -475,6 +477,75 @@ TEST(CatalogueHierarchy, AccuracyOfACatalogueThatDoesNotRecordItsTilesCellsIsRef
   } catch (const Error& e) {
     EXPECT_TRUE(test::contains(e.what(), "xsize and ysize")) << e.what();
     EXPECT_TRUE(test::contains(e.what(), "tinlod tiles")) << e.what();
+  }
+}
+
+TEST(CatalogueHierarchy, WithATileUnfinishedTileByTileIsStillTheRestReadAsOne) {
+  // The middle tile failed: the others meet a hole in the tiles, not a neighbour.
+  const std::string dir = std::filesystem::path(builtTiles().catalogue).parent_path().string();
+  const std::string catalogue = dir + "/middle_failed.gpkg";
+  std::filesystem::copy_file(builtTiles().catalogue, catalogue, std::filesystem::copy_options::overwrite_existing);
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
+  ds->ExecuteSQL("UPDATE tiles SET status = 'failed' WHERE tile_col = 1 AND tile_row = 1", nullptr, nullptr);
+  GDALClose(ds);
+  const Hierarchy asOne = readHierarchyOrCatalogue(catalogue, kRange).hierarchy;
+  AccuracyOutputs outputs;
+  outputs.options.reference = Reference::Dem;
+  const AccuracyReport tiles = runAccuracyJob(test::smallSyntheticDemFile(), catalogue, outputs, 0, "", kQuiet);
+  const AccuracyReport whole = measuredAsOne(test::smallSyntheticDemFile(), asOne, outputs);
+  ASSERT_EQ(tiles.rows.size(), whole.rows.size());
+  for (std::size_t L = 0; L < whole.rows.size(); ++L) expectSameRow(tiles.rows[L], whole.rows[L], "level " + std::to_string(L));
+  const std::vector<std::uint32_t> all = extractLod(asOne, LodOptions{{}, std::nan(""), 6}, kRange);
+  const Tin whole0 = tinOf(asOne, all);
+  const ExtractedLod apart =
+      extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 6}; }, kRange);
+  EXPECT_EQ(trianglesByPlace(apart.tin), trianglesByPlace(whole0));
+  EXPECT_EQ(apart.tin.vertices.size(), whole0.vertices.size());
+}
+
+TEST(CatalogueHierarchy, LodOfACatalogueStopsOnCancelAndLeavesNothing) {
+  const std::string dir = test::tempDir() + "/lod_cancel";
+  std::filesystem::create_directories(dir);
+  LodJobOptions o;
+  o.lod.maxError = 6;
+  Feedback cancelling;
+  cancelling.progress = [](double f, const std::string&) { return f < 0.5; };
+  EXPECT_THROW(runLodJob(builtTiles().catalogue, dir + "/lod.gpkg", o, false, cancelling), Cancelled);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+TEST(TileOwnership, EveryCellThePresentTilesHoldHasOneOwnerWhicheverTilesAreMissing) {
+  const int width = 100, height = 70, size = 30;  // 4 x 3 tiles, the last column and row narrower
+  std::vector<CatalogueTile> all;
+  for (int c = 0; c < TileSpec::count(width, size); ++c)
+    for (int r = 0; r < TileSpec::count(height, size); ++r) {
+      const CellWindow w = tileWindow({width, height}, TileSpec{size, c, r});
+      CatalogueTile t;
+      t.name = std::to_string(c) + "," + std::to_string(r);
+      t.xoff = w.xoff, t.yoff = w.yoff, t.xsize = w.xsize, t.ysize = w.ysize;
+      all.push_back(t);
+    }
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<CatalogueTile> present;
+    for (const CatalogueTile& t : all)
+      if (trial == 0 || rng() % 3 != 0) present.push_back(t);
+    if (present.empty()) continue;
+    std::vector<int> owners(width * height, 0), holders(width * height, 0);
+    for (std::size_t i = 0; i < present.size(); ++i) {
+      const CatalogueTile& t = present[i];
+      for (int r = t.yoff; r < t.yoff + t.ysize; ++r)
+        for (int c = t.xoff; c < t.xoff + t.xsize; ++c) ++holders[r * width + c];
+      for (const CellRect& rect : ownedCells(present, i))
+        for (int r = rect.row0; r < rect.row1; ++r)
+          for (int c = rect.col0; c < rect.col1; ++c) {
+            ASSERT_TRUE(c >= t.xoff && c < t.xoff + t.xsize && r >= t.yoff && r < t.yoff + t.ysize)
+                << "tile " << t.name << " owns a cell it does not hold";
+            ++owners[r * width + c];
+          }
+    }
+    for (int cell = 0; cell < width * height; ++cell)
+      ASSERT_EQ(owners[cell], holders[cell] > 0 ? 1 : 0) << "trial " << trial << ", cell " << cell % width << "," << cell / width;
   }
 }
 

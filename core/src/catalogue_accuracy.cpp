@@ -16,6 +16,7 @@
 #include "stored_table.h"
 #include "surface_comparison.h"
 #include "tile_catalogue.h"
+#include "tile_ownership.h"
 #include "tinlod/accuracy_report.h"
 #include "tinlod/accuracy_statistics.h"
 #include "tinlod/dem_reader.h"
@@ -61,12 +62,22 @@ WholeGrid wholeGrid(const std::string& demPath, int band, const HeightRange& val
 
 int ceilDiv(int a, int b) { return (a + b - 1) / b; }  // a >= 0, b > 0
 
-// The test points a tile answers for: those of its cells but the line it shares with the
-// next tile, which that tile answers for. So each point is counted once.
-TestRect ownedPoints(const CatalogueTile& tile, const Dem& raster, int step) {
-  const int col1 = tile.xoff + tile.xsize - (tile.xoff + tile.xsize < raster.width ? 1 : 0);
-  const int row1 = tile.yoff + tile.ysize - (tile.yoff + tile.ysize < raster.height ? 1 : 0);
-  return {ceilDiv(tile.xoff, step), ceilDiv(tile.yoff, step), ceilDiv(col1, step), ceilDiv(row1, step)};
+// The test points a tile answers for: those of the cells it answers for (ownedCells), so
+// that each point counts once.
+std::vector<TestRect> ownedPoints(const std::vector<CatalogueTile>& tiles, std::size_t index, int step) {
+  std::vector<TestRect> points;
+  for (const CellRect& c : ownedCells(tiles, index)) {
+    const TestRect p{ceilDiv(c.col0, step), ceilDiv(c.row0, step), ceilDiv(c.col1, step), ceilDiv(c.row1, step)};
+    if (!p.empty()) points.push_back(p);
+  }
+  return points;
+}
+
+TestRect boundsOf(const std::vector<TestRect>& rects) {
+  TestRect b = rects.front();
+  for (const TestRect& r : rects)
+    b = {std::min(b.col0, r.col0), std::min(b.row0, r.row0), std::max(b.col1, r.col1), std::max(b.row1, r.row1)};
+  return b;
 }
 
 // The test points the owned ones need: the 4 x 4 control points of the B-spline about each
@@ -180,7 +191,8 @@ class TileMeasure {
 
   const WholeGrid& g_;
   const Hierarchy& h_;
-  TestRect window_, owned_;  // owned_ in the window's points
+  TestRect window_;
+  std::vector<TestRect> owned_;  // in the window's points
   TestGrid grid_;            // the window's
   std::vector<Pos> positions_;
   std::vector<double> z_;
@@ -194,9 +206,10 @@ TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& t
                          const Hierarchy& h, const ProgressRange& progress)
     : g_(g), h_(h) {
   const int step = g.grid.step;
-  const TestRect owned = ownedPoints(tiles[index], g.header, step);
-  window_ = windowOf(owned, g.grid, g.options.controlSpacing);
-  owned_ = {owned.col0 - window_.col0, owned.row0 - window_.row0, owned.col1 - window_.col0, owned.row1 - window_.row0};
+  const std::vector<TestRect> owned = ownedPoints(tiles, index, step);
+  window_ = windowOf(boundsOf(owned), g.grid, g.options.controlSpacing);
+  for (const TestRect& o : owned)
+    owned_.push_back({o.col0 - window_.col0, o.row0 - window_.row0, o.col1 - window_.col0, o.row1 - window_.row0});
   grid_ = subGrid(g.grid, window_);
   NeighbourTriangles neighbours;
   const std::array<double, 4> box = boxInTinCrs(g, window_);
@@ -249,17 +262,18 @@ Grid TileMeasure::rasterize(std::int32_t level, const ProgressRange& progress) c
 
 void TileMeasure::addErrors(const Grid& simplified, LevelSums& sums, Grid* band) const {
   const auto error = [&](int c, int r) { return simplified.at(c, r) - reference_.at(c, r); };  // NaN unless both
-  for (int r = owned_.row0; r < owned_.row1; ++r)
-    for (int c = owned_.col0; c < owned_.col1; ++c) {
-      const double e = error(c, r);
-      if (std::isnan(e)) continue;
-      sums.errors.add(e, g_.grid.x(window_.col0 + c), g_.grid.y(window_.row0 + r));
-      sums.moran.addPoint(e);
-      // The pairs with the right and lower neighbours: each pair once, by its first point.
-      if (c + 1 < simplified.cols && !std::isnan(error(c + 1, r))) sums.moran.addPair(e, error(c + 1, r));
-      if (r + 1 < simplified.rows && !std::isnan(error(c, r + 1))) sums.moran.addPair(e, error(c, r + 1));
-      if (band) band->at(c, r) = e;
-    }
+  for (const TestRect& owned : owned_)
+    for (int r = owned.row0; r < owned.row1; ++r)
+      for (int c = owned.col0; c < owned.col1; ++c) {
+        const double e = error(c, r);
+        if (std::isnan(e)) continue;
+        sums.errors.add(e, g_.grid.x(window_.col0 + c), g_.grid.y(window_.row0 + r));
+        sums.moran.addPoint(e);
+        // The pairs with the right and lower neighbours: each pair once, by its first point.
+        if (c + 1 < simplified.cols && !std::isnan(error(c + 1, r))) sums.moran.addPair(e, error(c + 1, r));
+        if (r + 1 < simplified.rows && !std::isnan(error(c, r + 1))) sums.moran.addPair(e, error(c, r + 1));
+        if (band) band->at(c, r) = e;
+      }
 }
 
 void TileMeasure::measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas,
@@ -272,24 +286,30 @@ void TileMeasure::measure(std::int32_t level, LevelSums& sums, AccuracyRasterCan
   }
   addErrors(simplified, sums, bands ? &bands->elevationDifference : nullptr);
   const BsplineSurface surface(simplified, g_.options.controlSpacing, grid_.cellWidth, grid_.cellHeight);
-  sums.surfaces.merge(compareSurfaces(*referenceSurface_, surface, owned_, bands.get(), progress.sub(0.35, 1)));
-  if (canvas) canvas->write(*bands, owned_, window_.col0, window_.row0);
+  for (std::size_t i = 0; i < owned_.size(); ++i) {
+    const double share = 0.65 / owned_.size();
+    sums.surfaces.merge(compareSurfaces(*referenceSurface_, surface, owned_[i], bands.get(),
+                                        progress.sub(0.35 + share * i, 0.35 + share * (i + 1))));
+    if (canvas) canvas->write(*bands, owned_[i], window_.col0, window_.row0);
+  }
 }
 
 // The level statistics the build recorded, pooled as readCatalogueHierarchy pools them,
 // and the vertices the tile answers for (a vertex on a shared line is counted once).
-void poolLevels(const CatalogueTile& tile, const Hierarchy& h, const Dem& raster, std::vector<LevelSums>& sums) {
+void poolLevels(const std::vector<CatalogueTile>& tiles, std::size_t index, const Hierarchy& h,
+                std::vector<LevelSums>& sums) {
   for (std::size_t L = 0; L < sums.size(); ++L) {
     const LevelStats& s = h.levels[L];
     sums[L].triangles += s.triangles;
     sums[L].selectSeconds += s.selectSeconds, sums[L].deleteSeconds += s.deleteSeconds;
     sums[L].certifiedError = std::max(sums[L].certifiedError, s.maxError);
   }
-  const TestRect cells = ownedPoints(tile, raster, 1);
+  const std::vector<CellRect> cells = ownedCells(tiles, index);
   std::vector<std::size_t> topLevel(sums.size(), 0);
   for (std::size_t v = 0; v < h.base.vertices.size(); ++v) {
-    const int col = h.base.vertices[v].col + tile.xoff, row = h.base.vertices[v].row + tile.yoff;
-    if (col >= cells.col0 && col < cells.col1 && row >= cells.row0 && row < cells.row1) ++topLevel[h.vertexLevel[v]];
+    const int col = h.base.vertices[v].col + tiles[index].xoff, row = h.base.vertices[v].row + tiles[index].yoff;
+    for (const CellRect& c : cells)
+      if (c.contains(col, row)) ++topLevel[h.vertexLevel[v]];
   }
   std::size_t above = 0;  // vertices whose highest level is L or more
   for (std::size_t L = sums.size(); L-- > 0;) sums[L].vertices += above += topLevel[L];
@@ -351,8 +371,8 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     } else {
       checkSameJob(tile, h, job);
     }
-    poolLevels(tile, h, g->header, sums);
-    if (ownedPoints(tile, g->header, g->grid.step).empty()) continue;
+    poolLevels(tiles, i, h, sums);
+    if (ownedPoints(tiles, i, g->grid.step).empty()) continue;
     const TileMeasure measure(*g, tiles, i, h, part.sub(0.25, 0.3));
     for (std::int32_t L = 0; L <= h.coarsest(); ++L)
       measure.measure(L, sums[L], L == rasterLevel ? canvas.get() : nullptr,
