@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <random>
 
 #include "test_support.h"
 #include "tinlod/accuracy_job.h"
@@ -60,6 +61,40 @@ TEST(TinRasterizer, PointsOnSharedEdgesAndVerticesAreNeverMissed) {
     }
   const Grid g = rasterizeTin(pos, z, tris, 9, 9, kQuiet);
   for (double v : g.values) EXPECT_FALSE(std::isnan(v));
+}
+
+TEST(TinRasterizer, AWindowOfTheGridHasTheWholeGridsValuesToTheBit) {
+  // A random TIN over 60 x 50 points, its vertices at fractional places and tiny heights
+  // beside large ones, so that rounding differs from triangle to triangle.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::array<double, 2>> pos;
+  std::vector<double> z;
+  for (int r = 0; r <= 10; ++r)
+    for (int c = 0; c <= 12; ++c) {
+      pos.push_back({-0.5 + c * 5.0 + (c > 0 && c < 12 ? 3 * u(rng) - 1.5 : 0), -0.5 + r * 5.0 + (r > 0 && r < 10 ? 3 * u(rng) - 1.5 : 0)});
+      z.push_back(1000 * u(rng) + 1e-7 * u(rng));
+    }
+  std::vector<Triangle> tris;
+  for (VertexId r = 0; r < 10; ++r)
+    for (VertexId c = 0; c < 12; ++c) {
+      const VertexId a = r * 13 + c, b = a + 1, d = a + 13, e = d + 1;
+      tris.push_back({a, b, e}), tris.push_back({a, e, d});
+    }
+  const Grid whole = rasterizeTin(pos, z, tris, 60, 50, kQuiet);
+  for (const auto& [col0, row0, cols, rows] : {std::array<int, 4>{17, 23, 20, 11}, std::array<int, 4>{0, 0, 60, 50},
+                                               std::array<int, 4>{40, 3, 20, 47}, std::array<int, 4>{59, 49, 1, 1}}) {
+    const Grid window = rasterizeTin(pos, z, tris, cols, rows, kQuiet, col0, row0);
+    std::size_t differing = 0, valid = 0;
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c) {
+        const double a = window.at(c, r), b = whole.at(col0 + c, row0 + r);
+        valid += !std::isnan(b);
+        differing += std::isnan(a) != std::isnan(b) || (!std::isnan(b) && a != b);
+      }
+    EXPECT_EQ(differing, 0u) << "window at " << col0 << ", " << row0;
+    EXPECT_EQ(valid, std::size_t(cols) * rows) << "the TIN covers every point";
+  }
 }
 
 // A sliver whose near-horizontal edge lies a hair across row 0 (as a geographic DEM's

@@ -220,10 +220,9 @@ TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& t
   neighbourLevels_ = std::move(neighbours.levels);
   std::vector<TinVertex> vertices = h.base.vertices;
   vertices.insert(vertices.end(), neighbours.corners.begin(), neighbours.corners.end());
-  // Placed on the whole grid as a whole run places them, then moved by whole points: the
-  // same positions to the bit, so points on an edge fall alike.
+  // Placed on the whole grid as a whole run places them, and rasterized there: the same
+  // values to the bit, so points on an edge fall alike.
   positions_ = gridPositions(g.grid, g.header, vertices, g.toTin);
-  for (Pos& p : positions_) p[0] -= window_.col0, p[1] -= window_.row0;
   z_.reserve(vertices.size());
   for (const TinVertex& v : vertices) z_.push_back(v.z);
   if (g.options.reference == Reference::Dem) {
@@ -257,7 +256,7 @@ std::vector<Triangle> TileMeasure::trianglesOf(std::int32_t level) const {
 }
 
 Grid TileMeasure::rasterize(std::int32_t level, const ProgressRange& progress) const {
-  return rasterizeTin(positions_, z_, trianglesOf(level), grid_.cols, grid_.rows, progress);
+  return rasterizeTin(positions_, z_, trianglesOf(level), grid_.cols, grid_.rows, progress, window_.col0, window_.row0);
 }
 
 void TileMeasure::addErrors(const Grid& simplified, LevelSums& sums, Grid* band) const {

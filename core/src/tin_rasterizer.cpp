@@ -48,41 +48,48 @@ void rowSpan(const Plane& t, double tol, int r, int& c0, int& c1) {
   c1 = clampedIndex(std::ceil(hi) + 1, c0 - 1, c1);
 }
 
-// Fills the points of rows [rowBegin, rowEnd) inside one triangle.
-void fillTriangle(const Plane& t, int rowBegin, int rowEnd, Grid& out) {
+// The grid filled: `cols` x `rows` points from point (col0, row0) of the positions' grid.
+struct Frame {
+  int col0 = 0, row0 = 0, cols = 0, rows = 0;
+};
+
+// Fills the points of rows [rowBegin, rowEnd) inside one triangle; rows and columns are the
+// positions' own, so a window of a grid computes every value as the whole grid does.
+void fillTriangle(const Plane& t, int rowBegin, int rowEnd, const Frame& frame, Grid& out) {
   const double tol = kEdgeTolerance * std::fabs(t.area);
   const int r0 = clampedIndex(std::ceil(t.top), rowBegin, rowEnd);
   const int r1 = clampedIndex(std::floor(t.bottom), rowBegin - 1, rowEnd - 1);
-  const int boxC0 = clampedIndex(std::ceil(std::min({t.a[0], t.b[0], t.c[0]})), 0, out.cols);
-  const int boxC1 = clampedIndex(std::floor(std::max({t.a[0], t.b[0], t.c[0]})), -1, out.cols - 1);
+  const int lastCol = frame.col0 + frame.cols - 1;
+  const int boxC0 = clampedIndex(std::ceil(std::min({t.a[0], t.b[0], t.c[0]})), frame.col0, lastCol + 1);
+  const int boxC1 = clampedIndex(std::floor(std::max({t.a[0], t.b[0], t.c[0]})), frame.col0 - 1, lastCol);
   for (int r = r0; r <= r1; ++r) {
     int c0 = boxC0, c1 = boxC1;
     rowSpan(t, tol, r, c0, c1);
     for (int c = c0; c <= c1; ++c) {
       const double wa = edge(t.b, t.c, c, r), wb = edge(t.c, t.a, c, r), wc = edge(t.a, t.b, c, r);
       const bool inside = t.area > 0 ? (wa >= -tol && wb >= -tol && wc >= -tol) : (wa <= tol && wb <= tol && wc <= tol);
-      if (inside) out.at(c, r) = (wa * t.za + wb * t.zb + wc * t.zc) / t.area;
+      if (inside) out.at(c - frame.col0, r - frame.row0) = (wa * t.za + wb * t.zb + wc * t.zc) / t.area;
     }
   }
 }
 
-// The rows planes are ordered by: their top rows, those above the grid included (a window
-// of a larger grid), so that the planes of one row keep one order whatever window they are
-// rasterized in; where they overlap (a point on a shared edge, which may round differently
-// from each side) the later plane's value stays. Rows far above are bounded: only a
-// damaged file's triangle reaches there.
+// The rows planes are ordered by: their top rows, those above the frame included, so that
+// the planes of one row keep one order whatever frame they are rasterized in; where they
+// overlap (a point on a shared edge, which may round differently from each side) the later
+// plane's value stays. Rows far above are bounded: only a damaged file's triangle reaches
+// there.
 struct RowOrder {
-  int lowest = 0, rows = 0;
-  int of(const Plane& p) const { return clampedIndex(std::floor(p.top), lowest, rows); }
+  int lowest = 0, end = 0;
+  int of(const Plane& p) const { return clampedIndex(std::floor(p.top), lowest, end); }
   std::size_t slot(const Plane& p) const { return static_cast<std::size_t>(of(p) - lowest); }
 };
 
-RowOrder rowOrder(const std::vector<Pos>& positions, int rows) {
-  double top = 0;
+RowOrder rowOrder(const std::vector<Pos>& positions, const Frame& frame) {
+  double top = frame.row0;
   for (const Pos& p : positions)
     if (std::isfinite(p[1])) top = std::min(top, p[1]);
-  const int farthest = -8 * (rows + 1) - 65536;
-  return RowOrder{clampedIndex(std::floor(top), farthest, 0), rows};
+  const int farthest = frame.row0 - 8 * (frame.rows + 1) - 65536;
+  return RowOrder{clampedIndex(std::floor(top), farthest, frame.row0), frame.row0 + frame.rows};
 }
 
 // False for a triangle without area or with a corner off any grid (not finite).
@@ -99,7 +106,7 @@ bool planeOf(const std::vector<Pos>& positions, const std::vector<double>& z, co
 // place: a million planes take about 100 MB, and a second copy cost as much as the filling.
 std::vector<Plane> planesByTopRow(const std::vector<Pos>& positions, const std::vector<double>& z,
                                   const std::vector<Triangle>& triangles, const RowOrder& order) {
-  std::vector<std::size_t> start(static_cast<std::size_t>(order.rows - order.lowest) + 2, 0);
+  std::vector<std::size_t> start(static_cast<std::size_t>(order.end - order.lowest) + 2, 0);
   Plane p;
   for (const Triangle& t : triangles)
     if (planeOf(positions, z, t, p)) ++start[order.slot(p) + 1];
@@ -113,18 +120,20 @@ std::vector<Plane> planesByTopRow(const std::vector<Pos>& positions, const std::
 }  // namespace
 
 Grid rasterizeTin(const std::vector<Pos>& positions, const std::vector<double>& z, const std::vector<Triangle>& triangles,
-                  int cols, int rows, const ProgressRange& progress) {
+                  int cols, int rows, const ProgressRange& progress, int col0, int row0) {
   Grid out(cols, rows);
-  const RowOrder order = rowOrder(positions, rows);
+  const Frame frame{col0, row0, cols, rows};
+  const RowOrder order = rowOrder(positions, frame);
   const std::vector<Plane> planes = planesByTopRow(positions, z, triangles, order);
   double tallest = 0;
   for (const Plane& p : planes) tallest = std::max(tallest, p.bottom - p.top);
-  auto work = [&](int rowBegin, int rowEnd) {
-    const int firstRow = clampedIndex(std::floor(rowBegin - tallest) - 1, order.lowest, rows);
+  auto work = [&](int blockBegin, int blockEnd) {
+    const int rowBegin = row0 + blockBegin, rowEnd = row0 + blockEnd;
+    const int firstRow = clampedIndex(std::floor(rowBegin - tallest) - 1, order.lowest, order.end);
     auto first = std::lower_bound(planes.begin(), planes.end(), firstRow,
                                   [&order](const Plane& p, int row) { return order.of(p) < row; });
     for (auto it = first; it != planes.end() && it->top < rowEnd; ++it)
-      if (it->bottom >= rowBegin) fillTriangle(*it, rowBegin, rowEnd, out);
+      if (it->bottom >= rowBegin) fillTriangle(*it, rowBegin, rowEnd, frame, out);
   };
   forEachBlock(rows, work, [&](double f) { progress.report(f, "Interpolating the TIN"); });
   return out;
