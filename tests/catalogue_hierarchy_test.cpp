@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <random>
 #include <set>
@@ -546,6 +547,67 @@ TEST(TileOwnership, EveryCellThePresentTilesHoldHasOneOwnerWhicheverTilesAreMiss
     }
     for (int cell = 0; cell < width * height; ++cell)
       ASSERT_EQ(owners[cell], holders[cell] > 0 ? 1 : 0) << "trial " << trial << ", cell " << cell % width << "," << cell / width;
+  }
+}
+
+// The small DEM's first `width` x `height` cells raised by `raise` metres, as a GeoTIFF.
+std::string alteredDem(const std::string& path, int width, int height, double raise) {
+  GDALDataset* from = static_cast<GDALDataset*>(GDALOpen(test::smallSyntheticDemFile().c_str(), GA_ReadOnly));
+  GDALDataset* to = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), width, height, 1, GDT_Float32, nullptr);
+  double gt[6];
+  from->GetGeoTransform(gt);
+  to->SetGeoTransform(gt);
+  to->SetProjection(from->GetProjectionRef());
+  int hasNodata = 0;
+  const double nodata = from->GetRasterBand(1)->GetNoDataValue(&hasNodata);
+  if (hasNodata) to->GetRasterBand(1)->SetNoDataValue(nodata);
+  std::vector<float> z(static_cast<std::size_t>(width) * height);
+  EXPECT_EQ(from->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, width, height, z.data(), width, height, GDT_Float32, 0, 0), CE_None);
+  for (float& v : z)
+    if (!(hasNodata && v == float(nodata)) && !std::isnan(v)) v += float(raise);
+  EXPECT_EQ(to->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, width, height, z.data(), width, height, GDT_Float32, 0, 0), CE_None);
+  GDALClose(to);
+  GDALClose(from);
+  return path;
+}
+
+TEST(CatalogueHierarchy, TileByTileADemOtherThanTheTilesIsRefused) {
+  const std::string smaller = alteredDem(test::tempDir() + "/smaller.tif", 300, 300, 0);
+  try {
+    runAccuracyJob(smaller, builtTiles().catalogue, AccuracyOutputs{}, 0, "", kQuiet);
+    FAIL() << "measured tiles beyond the DEM";
+  } catch (const Error& e) {
+    EXPECT_TRUE(test::contains(e.what(), "300 x 300 cells, but tile 2,0")) << e.what();
+    EXPECT_TRUE(test::contains(e.what(), "give the DEM the tiles were cut from")) << e.what();
+  }
+}
+
+TEST(CatalogueHierarchy, TileByTileATileOfAnotherDemIsRefused) {
+  // The middle tile built from the DEM raised by 1 m: its line vertices lie where its
+  // neighbours' do, at other heights.
+  const std::string dir = std::filesystem::path(builtTiles().catalogue).parent_path().string();
+  const std::string raised = alteredDem(dir + "/raised.tif", 360, 300, 1);
+  runBuildJob(raised, dir + "/raised_tile.gpkg", SampleOptions{}, HierarchyOptions{}, true, kQuiet, AccuracyOutputs(),
+              HierarchyLayers(), TileSpec{kTileSize, 1, 1});
+  const std::string catalogue = dir + "/raised_middle.gpkg";
+  std::filesystem::copy_file(builtTiles().catalogue, catalogue, std::filesystem::copy_options::overwrite_existing);
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
+  ds->ExecuteSQL("UPDATE tiles SET file = 'raised_tile.gpkg' WHERE tile_col = 1 AND tile_row = 1", nullptr, nullptr);
+  GDALClose(ds);
+  const auto refusal = [](const std::function<void()>& run) {
+    try {
+      run();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  for (const std::string& what :
+       {refusal([&] { runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet); }),
+        refusal([&] { extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 0}; }, kRange); }),
+        refusal([&] { readHierarchyOrCatalogue(catalogue, kRange); })}) {
+    EXPECT_TRUE(test::contains(what, "not built by one job")) << what;
+    EXPECT_TRUE(test::contains(what, "another height")) << what;
   }
 }
 

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <unordered_map>
 
 #include "accuracy_raster_canvas.h"
 #include "catalogue_hierarchy.h"
@@ -17,6 +18,7 @@
 #include "surface_comparison.h"
 #include "tile_catalogue.h"
 #include "tile_ownership.h"
+#include "vertex_place.h"
 #include "tinlod/accuracy_report.h"
 #include "tinlod/accuracy_statistics.h"
 #include "tinlod/dem_reader.h"
@@ -84,8 +86,10 @@ TestRect boundsOf(const std::vector<TestRect>& rects) {
 // (the control lattice is the whole grid's, so the window starts on it, and within the window
 // a surface is the whole grid's) and the right and lower neighbours of Moran's I.
 TestRect windowOf(const TestRect& owned, const TestGrid& grid, int spacing) {
-  const auto start = [&](int first) { return std::max(0, (first / spacing - 1) * spacing); };
-  const auto end = [&](int last, int size) { return std::min(size, (last / spacing + 2) * spacing + 1); };
+  // In 64 bits: a spacing near INT_MAX would overflow.
+  const std::int64_t c = spacing;
+  const auto start = [&](int first) { return int(std::max<std::int64_t>(0, (first / c - 1) * c)); };
+  const auto end = [&](int last, int size) { return int(std::min<std::int64_t>(size, (last / c + 2) * c + 1)); };
   return {start(owned.col0), start(owned.row0), end(owned.col1 - 1, grid.cols), end(owned.row1 - 1, grid.rows)};
 }
 
@@ -176,6 +180,26 @@ void readNeighbourTriangles(const CatalogueTile& tile, const std::array<double, 
   }
 }
 
+// The heights of a tile's vertices on its edges, by place: a tile beside it must have the
+// same vertex there (the catalogue's tiles made by one job).
+class SharedHeights {
+ public:
+  SharedHeights(const CatalogueTile& tile, const Hierarchy& h) {
+    for (const TinVertex& v : h.base.vertices)
+      if (v.col == 0 || v.row == 0 || v.col == tile.xsize - 1 || v.row == tile.ysize - 1) heights_[placeOf(v)] = v.z;
+  }
+  // Throws Error naming `other` when a corner from `first` on lies on one of them at another height.
+  void check(const CatalogueTile& other, const std::vector<TinVertex>& corners, std::size_t first) const {
+    for (std::size_t k = first; k < corners.size(); ++k) {
+      const auto it = heights_.find(placeOf(corners[k]));
+      if (it != heights_.end() && it->second != corners[k].z) throw Error(sharedVertexDiffers(other, corners[k]));
+    }
+  }
+
+ private:
+  std::unordered_map<Place, double, PlaceHash> heights_;
+};
+
 // One tile's test points, measured level by level on a window of the whole test grid: its
 // own triangles and those of the tiles beside it that reach into the window.
 class TileMeasure {
@@ -213,9 +237,15 @@ TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& t
   grid_ = subGrid(g.grid, window_);
   NeighbourTriangles neighbours;
   const std::array<double, 4> box = boxInTinCrs(g, window_);
+  const SharedHeights shared(tiles[index], h);
   for (std::size_t t = 0; t < tiles.size(); ++t) {
-    if (t == index) neighboursBefore_ = neighbours.levels.size();
-    else if (cellsMeet(tiles[t], window_, step)) readNeighbourTriangles(tiles[t], box, h.coarsest(), neighbours);
+    if (t == index) {
+      neighboursBefore_ = neighbours.levels.size();
+    } else if (cellsMeet(tiles[t], window_, step)) {
+      const std::size_t first = neighbours.corners.size();
+      readNeighbourTriangles(tiles[t], box, h.coarsest(), neighbours);
+      shared.check(tiles[t], neighbours.corners, first);
+    }
   }
   neighbourLevels_ = std::move(neighbours.levels);
   std::vector<TinVertex> vertices = h.base.vertices;
@@ -327,6 +357,17 @@ LevelAccuracy rowOf(const LevelSums& s, const Hierarchy& job, const std::string&
   return row;
 }
 
+// Tiles cut from another raster would be measured outside the DEM.
+void checkTilesFit(const std::vector<CatalogueTile>& tiles, const Dem& raster) {
+  for (const CatalogueTile& t : tiles)
+    if (t.xoff < 0 || t.yoff < 0 || std::int64_t{t.xoff} + t.xsize > raster.width ||
+        std::int64_t{t.yoff} + t.ysize > raster.height)
+      throw Error("'" + raster.path + "' is " + std::to_string(raster.width) + " x " + std::to_string(raster.height) +
+                  " cells, but tile " + t.name + " of the catalogue holds columns " + std::to_string(t.xoff) + " to " +
+                  std::to_string(std::int64_t{t.xoff} + t.xsize - 1) + ", rows " + std::to_string(t.yoff) + " to " +
+                  std::to_string(std::int64_t{t.yoff} + t.ysize - 1) + ": give the DEM the tiles were cut from");
+}
+
 // What every tile is checked against: the first tile's levels, CRS and options.
 Hierarchy jobOf(const Hierarchy& h) {
   Hierarchy job;
@@ -364,6 +405,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
                     std::to_string(h.coarsest()));
       g = std::make_unique<WholeGrid>(
           wholeGrid(demPath, band, validHeights, sourceSrs, h.base.crsWkt, outputs.options, part.sub(0.2, 0.25)));
+      checkTilesFit(tiles, g->header);
       job = jobOf(h);
       sums.resize(h.levels.size());
       if (files.raster) canvas = std::make_unique<AccuracyRasterCanvas>(g->grid, *files.raster, outputs.raster);

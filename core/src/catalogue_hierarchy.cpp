@@ -12,10 +12,6 @@
 namespace tinlod {
 namespace {
 
-std::string notOneJob(const CatalogueTile& tile, const std::string& what) {
-  return "tile " + tile.name + " ('" + tile.file + "') " + what + ": the catalogue's tiles were not built by one job";
-}
-
 // Appends tiles to one hierarchy, one vertex for each place.
 class TileMerger {
  public:
@@ -63,8 +59,7 @@ std::vector<VertexId> TileMerger::addVertices(const CatalogueTile& tile, const H
     }
     // A vertex of a line this tile shares with one read before.
     if (all_.base.vertices[id[v]].z != vertex.z || all_.vertexLevel[id[v]] != h.vertexLevel[v])
-      throw Error(notOneJob(tile, "and a tile before it have a vertex at x " + std::to_string(vertex.x) + ", y " +
-                                      std::to_string(vertex.y) + " with another height or level"));
+      throw Error(sharedVertexDiffers(tile, vertex));
     all_.fixed[id[v]] = all_.fixed[id[v]] || fixed;
   }
   return id;
@@ -136,6 +131,15 @@ Hierarchy TileMerger::finish() {
 }
 
 }  // namespace
+
+std::string notOneJob(const CatalogueTile& tile, const std::string& what) {
+  return "tile " + tile.name + " ('" + tile.file + "') " + what + ": the catalogue's tiles were not built by one job";
+}
+
+std::string sharedVertexDiffers(const CatalogueTile& tile, const TinVertex& v) {
+  return notOneJob(tile, "and a tile before it have a vertex at x " + std::to_string(v.x) + ", y " + std::to_string(v.y) +
+                             " with another height or level");
+}
 
 void checkSameJob(const CatalogueTile& tile, const Hierarchy& h, const Hierarchy& before) {
   if (h.coarsest() != before.coarsest())

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Private: the tiles of a tinlod-tiles catalogue read as one hierarchy, for the jobs that
-// need a whole hierarchy at once (lod, accuracy).
+// Private: the tiles of a tinlod-tiles catalogue read as one hierarchy, for what needs a
+// whole hierarchy at once (accuracy -compare_insert; the tests of the tile-by-tile jobs).
 #pragma once
 
 #include <string>
@@ -22,6 +22,11 @@ namespace tinlod {
 // by one job (other levels, CRS or options, or a shared vertex with two heights or levels).
 // Memory is that of a whole run over the tiles' extent.
 StoredHierarchy readCatalogueHierarchy(const std::string& path, const ProgressRange& progress);
+
+// "tile C,R ('file') <what>: the catalogue's tiles were not built by one job".
+std::string notOneJob(const CatalogueTile& tile, const std::string& what);
+// The same for a vertex `tile` shares with a tile read before it, at another height or level.
+std::string sharedVertexDiffers(const CatalogueTile& tile, const TinVertex& v);
 
 // Throws Error naming `tile` unless its hierarchy `h` has the levels, CRS and options of
 // the tiles read `before` it (any of them).

@@ -102,15 +102,18 @@ bool extractTile(const CatalogueTile& tile, const Hierarchy& h, const LodOptions
 }
 
 // The tiles' parts as one TIN: a vertex of a shared line once (only those are looked up).
-void assemble(const std::vector<TileLod>& parts, ExtractedLod& out) {
+void assemble(const std::vector<CatalogueTile>& tiles, const std::vector<TileLod>& parts, ExtractedLod& out) {
   std::unordered_map<Place, VertexId, PlaceHash> ids;
-  for (const TileLod& part : parts) {
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const TileLod& part = parts[i];
     std::vector<VertexId> id(part.vertices.size());
     for (std::size_t v = 0; v < id.size(); ++v) {
       id[v] = static_cast<VertexId>(out.tin.vertices.size());
       if (part.onLine[v]) {
         const auto [it, added] = ids.try_emplace(placeOf(part.vertices[v]), id[v]);
         id[v] = it->second;
+        if (!added && (out.tin.vertices[id[v]].z != part.vertices[v].z || out.vertexLevel[id[v]] != part.vertexLevel[v]))
+          throw Error(sharedVertexDiffers(tiles[i], part.vertices[v]));
         if (!added) continue;
       }
       out.tin.vertices.push_back(part.vertices[v]);
@@ -168,7 +171,7 @@ ExtractedLod extractCatalogueLod(const std::string& cataloguePath,
   --out.passes;
   out.tin.crsWkt = job.base.crsWkt, out.tin.crsName = job.base.crsName;
   out.coarsest = job.coarsest();
-  assemble(parts, out);
+  assemble(tiles, parts, out);
   return out;
 }
 
