@@ -209,6 +209,9 @@ class TileMeasure {
   void measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas, const ProgressRange& progress) const;
 
  private:
+  // The corners of the other tiles' triangles that reach into the window (three a triangle).
+  std::vector<TinVertex> readNeighbours(const std::vector<CatalogueTile>& tiles, std::size_t index);
+  void makeReference(const ProgressRange& progress);
   std::vector<Triangle> trianglesOf(std::int32_t level) const;
   Grid rasterize(std::int32_t level, const ProgressRange& progress) const;
   void addErrors(const Grid& simplified, LevelSums& sums, Grid* band) const;
@@ -217,7 +220,7 @@ class TileMeasure {
   const Hierarchy& h_;
   TestRect window_;
   std::vector<TestRect> owned_;  // in the window's points
-  TestGrid grid_;            // the window's
+  TestGrid grid_;                // the window's
   std::vector<Pos> positions_;
   std::vector<double> z_;
   std::vector<std::array<std::int32_t, 2>> neighbourLevels_;  // of triangles whose corners follow the tile's vertices
@@ -235,36 +238,46 @@ TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& t
   for (const TestRect& o : owned)
     owned_.push_back({o.col0 - window_.col0, o.row0 - window_.row0, o.col1 - window_.col0, o.row1 - window_.row0});
   grid_ = subGrid(g.grid, window_);
-  NeighbourTriangles neighbours;
-  const std::array<double, 4> box = boxInTinCrs(g, window_);
-  const SharedHeights shared(tiles[index], h);
-  for (std::size_t t = 0; t < tiles.size(); ++t) {
-    if (t == index) {
-      neighboursBefore_ = neighbours.levels.size();
-    } else if (cellsMeet(tiles[t], window_, step)) {
-      const std::size_t first = neighbours.corners.size();
-      readNeighbourTriangles(tiles[t], box, h.coarsest(), neighbours);
-      shared.check(tiles[t], neighbours.corners, first);
-    }
-  }
-  neighbourLevels_ = std::move(neighbours.levels);
   std::vector<TinVertex> vertices = h.base.vertices;
-  vertices.insert(vertices.end(), neighbours.corners.begin(), neighbours.corners.end());
+  const std::vector<TinVertex> corners = readNeighbours(tiles, index);
+  vertices.insert(vertices.end(), corners.begin(), corners.end());
   // Placed on the whole grid as a whole run places them, and rasterized there: the same
   // values to the bit, so points on an edge fall alike.
   positions_ = gridPositions(g.grid, g.header, vertices, g.toTin);
   z_.reserve(vertices.size());
   for (const TinVertex& v : vertices) z_.push_back(v.z);
-  if (g.options.reference == Reference::Dem) {
+  makeReference(progress);
+}
+
+std::vector<TinVertex> TileMeasure::readNeighbours(const std::vector<CatalogueTile>& tiles, std::size_t index) {
+  NeighbourTriangles neighbours;
+  const std::array<double, 4> box = boxInTinCrs(g_, window_);
+  const SharedHeights shared(tiles[index], h_);
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    if (t == index) {
+      neighboursBefore_ = neighbours.levels.size();
+    } else if (cellsMeet(tiles[t], window_, g_.grid.step)) {
+      const std::size_t first = neighbours.corners.size();
+      readNeighbourTriangles(tiles[t], box, h_.coarsest(), neighbours);
+      shared.check(tiles[t], neighbours.corners, first);
+    }
+  }
+  neighbourLevels_ = std::move(neighbours.levels);
+  return std::move(neighbours.corners);
+}
+
+void TileMeasure::makeReference(const ProgressRange& progress) {
+  const int step = g_.grid.step;
+  if (g_.options.reference == Reference::Dem) {
     const CellWindow cells{window_.col0 * step, window_.row0 * step, (window_.col1 - window_.col0 - 1) * step + 1,
                            (window_.row1 - window_.row0 - 1) * step + 1};
     const ProgressRange quiet(Feedback{}, 0, 1);  // the whole raster's header said it
-    reference_ = demHeights(readDemWindow(g.header.path, g.header.band, cells, quiet, g.valid), grid_);
+    reference_ = demHeights(readDemWindow(g_.header.path, g_.header.band, cells, quiet, g_.valid), grid_);
   } else {
     reference_ = rasterize(0, progress);
   }
   referenceSurface_ =
-      std::make_unique<BsplineSurface>(reference_, g.options.controlSpacing, grid_.cellWidth, grid_.cellHeight);
+      std::make_unique<BsplineSurface>(reference_, g_.options.controlSpacing, grid_.cellWidth, grid_.cellHeight);
 }
 
 // In the order of the tiles read as one hierarchy (see IdOrder): the tiles before this

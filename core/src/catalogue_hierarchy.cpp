@@ -137,7 +137,7 @@ std::string notOneJob(const CatalogueTile& tile, const std::string& what) {
 }
 
 std::string sharedVertexDiffers(const CatalogueTile& tile, const TinVertex& v) {
-  return notOneJob(tile, "and a tile before it have a vertex at x " + std::to_string(v.x) + ", y " + std::to_string(v.y) +
+  return notOneJob(tile, "and a tile beside it have a vertex at x " + std::to_string(v.x) + ", y " + std::to_string(v.y) +
                              " with another height or level");
 }
 

@@ -25,7 +25,7 @@ StoredHierarchy readCatalogueHierarchy(const std::string& path, const ProgressRa
 
 // "tile C,R ('file') <what>: the catalogue's tiles were not built by one job".
 std::string notOneJob(const CatalogueTile& tile, const std::string& what);
-// The same for a vertex `tile` shares with a tile read before it, at another height or level.
+// The same for a vertex `tile` shares with a tile beside it, at another height or level.
 std::string sharedVertexDiffers(const CatalogueTile& tile, const TinVertex& v);
 
 // Throws Error naming `tile` unless its hierarchy `h` has the levels, CRS and options of
