@@ -407,10 +407,13 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     const CatalogueTile& tile = tiles[i];
     const ProgressRange part = progress.sub(0.95 * i / tiles.size(), 0.95 * (i + 1) / tiles.size());
     part.report(0, "Measuring tile " + tile.name + " (" + std::to_string(i + 1) + " of " + std::to_string(tiles.size()) + ")");
-    const StoredHierarchy stored = readHierarchy(tile.file, part.sub(0, 0.2));
-    const Hierarchy& h = stored.hierarchy;
+    StoredHierarchy stored = readHierarchy(tile.file, part.sub(0, 0.2));
     if (stored.info.kind != "hierarchy")
       throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
+    // Levels are measured from the triangles alone: the groups and their links (a tenth of
+    // a tile's hierarchy) need not stay beside the grids.
+    releaseMemory(stored.hierarchy.groups), releaseMemory(stored.hierarchy.links), releaseMemory(stored.hierarchy.rings);
+    const Hierarchy& h = stored.hierarchy;
     if (i == 0) {
       rasterLevel = outputs.rasterLevel < 0 ? h.coarsest() : outputs.rasterLevel;
       if (rasterLevel > h.coarsest())
