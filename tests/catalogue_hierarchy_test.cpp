@@ -98,6 +98,17 @@ const BuiltTiles& builtTiles() {
   return built;
 }
 
+// A copy of the catalogue beside its tiles (which it names relative to its folder), named
+// `name` and altered by the SQL statement `sql`.
+std::string alteredCatalogue(const std::string& name, const std::string& sql) {
+  const std::string catalogue = std::filesystem::path(builtTiles().catalogue).parent_path().string() + "/" + name;
+  std::filesystem::copy_file(builtTiles().catalogue, catalogue, std::filesystem::copy_options::overwrite_existing);
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
+  EXPECT_NE(ds, nullptr) << catalogue;
+  if (ds) ds->ExecuteSQL(sql.c_str(), nullptr, nullptr), GDALClose(ds);
+  return catalogue;
+}
+
 const StoredHierarchy& merged() {
   static const StoredHierarchy m = readHierarchyOrCatalogue(builtTiles().catalogue, kRange);
   return m;
@@ -466,12 +477,7 @@ TEST(CatalogueHierarchy, AccuracyTileByTileStopsOnCancelAndLeavesNothing) {
 }
 
 TEST(CatalogueHierarchy, AccuracyOfACatalogueThatDoesNotRecordItsTilesCellsIsRefused) {
-  const std::string dir = std::filesystem::path(builtTiles().catalogue).parent_path().string();
-  const std::string catalogue = dir + "/no_sizes.gpkg";
-  std::filesystem::copy_file(builtTiles().catalogue, catalogue, std::filesystem::copy_options::overwrite_existing);
-  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
-  ds->ExecuteSQL("UPDATE tiles SET xsize = NULL, ysize = NULL", nullptr, nullptr);
-  GDALClose(ds);
+  const std::string catalogue = alteredCatalogue("no_sizes.gpkg", "UPDATE tiles SET xsize = NULL, ysize = NULL");
   try {
     runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet);
     FAIL() << "measured without knowing the tiles' cells";
@@ -483,12 +489,8 @@ TEST(CatalogueHierarchy, AccuracyOfACatalogueThatDoesNotRecordItsTilesCellsIsRef
 
 TEST(CatalogueHierarchy, WithATileUnfinishedTileByTileIsStillTheRestReadAsOne) {
   // The middle tile failed: the others meet a hole in the tiles, not a neighbour.
-  const std::string dir = std::filesystem::path(builtTiles().catalogue).parent_path().string();
-  const std::string catalogue = dir + "/middle_failed.gpkg";
-  std::filesystem::copy_file(builtTiles().catalogue, catalogue, std::filesystem::copy_options::overwrite_existing);
-  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
-  ds->ExecuteSQL("UPDATE tiles SET status = 'failed' WHERE tile_col = 1 AND tile_row = 1", nullptr, nullptr);
-  GDALClose(ds);
+  const std::string catalogue =
+      alteredCatalogue("middle_failed.gpkg", "UPDATE tiles SET status = 'failed' WHERE tile_col = 1 AND tile_row = 1");
   const Hierarchy asOne = readHierarchyOrCatalogue(catalogue, kRange).hierarchy;
   AccuracyOutputs outputs;
   outputs.options.reference = Reference::Dem;
@@ -589,11 +591,8 @@ TEST(CatalogueHierarchy, TileByTileATileOfAnotherDemIsRefused) {
   const std::string raised = alteredDem(dir + "/raised.tif", 360, 300, 1);
   runBuildJob(raised, dir + "/raised_tile.gpkg", SampleOptions{}, HierarchyOptions{}, true, kQuiet, AccuracyOutputs(),
               HierarchyLayers(), TileSpec{kTileSize, 1, 1});
-  const std::string catalogue = dir + "/raised_middle.gpkg";
-  std::filesystem::copy_file(builtTiles().catalogue, catalogue, std::filesystem::copy_options::overwrite_existing);
-  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
-  ds->ExecuteSQL("UPDATE tiles SET file = 'raised_tile.gpkg' WHERE tile_col = 1 AND tile_row = 1", nullptr, nullptr);
-  GDALClose(ds);
+  const std::string catalogue =
+      alteredCatalogue("raised_middle.gpkg", "UPDATE tiles SET file = 'raised_tile.gpkg' WHERE tile_col = 1 AND tile_row = 1");
   const auto refusal = [](const std::function<void()>& run) {
     try {
       run();
@@ -619,11 +618,8 @@ TEST(CatalogueHierarchy, TilesOfTwoJobsAreRefused) {
   fewer.deletePct = 30;
   runBuildJob(test::smallSyntheticDemFile(), other, SampleOptions{}, fewer, true, kQuiet, AccuracyOutputs(),
               HierarchyLayers(), TileSpec{kTileSize, 1, 1});
-  const std::string catalogue = dir + "/two_jobs.gpkg";
-  ASSERT_TRUE(std::filesystem::copy_file(builtTiles().catalogue, catalogue));
-  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
-  ds->ExecuteSQL(("UPDATE tiles SET file = '" + other + "' WHERE tile_col = 1 AND tile_row = 1").c_str(), nullptr, nullptr);
-  GDALClose(ds);
+  const std::string catalogue =
+      alteredCatalogue("two_jobs.gpkg", "UPDATE tiles SET file = '" + other + "' WHERE tile_col = 1 AND tile_row = 1");
   try {
     readHierarchyOrCatalogue(catalogue, kRange);
     FAIL() << "tiles of another job were merged";
