@@ -381,16 +381,6 @@ void checkTilesFit(const std::vector<CatalogueTile>& tiles, const Dem& raster) {
                   std::to_string(std::int64_t{t.yoff} + t.ysize - 1) + ": give the DEM the tiles were cut from");
 }
 
-// What every tile is checked against: the first tile's levels, CRS and options.
-Hierarchy jobOf(const Hierarchy& h) {
-  Hierarchy job;
-  job.levels = h.levels;
-  job.base.crsWkt = h.base.crsWkt;
-  job.options = h.options;
-  job.tinMethod = h.tinMethod;
-  return job;
-}
-
 }  // namespace
 
 AccuracyReport measureCatalogue(const std::string& demPath, const std::string& cataloguePath, int band,
@@ -407,9 +397,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     const CatalogueTile& tile = tiles[i];
     const ProgressRange part = progress.sub(0.95 * i / tiles.size(), 0.95 * (i + 1) / tiles.size());
     part.report(0, "Measuring tile " + tile.name + " (" + std::to_string(i + 1) + " of " + std::to_string(tiles.size()) + ")");
-    StoredHierarchy stored = readHierarchy(tile.file, part.sub(0, 0.2));
-    if (stored.info.kind != "hierarchy")
-      throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
+    StoredHierarchy stored = readCatalogueTile(tile, part.sub(0, 0.2));
     // Levels are measured from the triangles alone: the groups and their links (a tenth of
     // a tile's hierarchy) need not stay beside the grids.
     releaseMemory(stored.hierarchy.groups), releaseMemory(stored.hierarchy.links), releaseMemory(stored.hierarchy.rings);

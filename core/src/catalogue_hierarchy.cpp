@@ -141,6 +141,22 @@ std::string sharedVertexDiffers(const CatalogueTile& tile, const TinVertex& v) {
                              " with another height or level");
 }
 
+StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress) {
+  StoredHierarchy stored = readHierarchy(tile.file, progress);
+  if (stored.info.kind != "hierarchy")
+    throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
+  return stored;
+}
+
+Hierarchy jobOf(const Hierarchy& h) {
+  Hierarchy job;
+  job.levels = h.levels;
+  job.base.crsWkt = h.base.crsWkt, job.base.crsName = h.base.crsName;
+  job.options = h.options;
+  job.tinMethod = h.tinMethod;
+  return job;
+}
+
 void checkSameJob(const CatalogueTile& tile, const Hierarchy& h, const Hierarchy& before) {
   if (h.coarsest() != before.coarsest())
     throw Error(notOneJob(tile, "has levels 0 to " + std::to_string(h.coarsest()) + ", the tiles before it 0 to " +
@@ -158,9 +174,7 @@ StoredHierarchy readCatalogueHierarchy(const std::string& path, const ProgressRa
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const ProgressRange part = progress.sub(double(i) / tiles.size(), double(i + 1) / tiles.size());
     part.report(0, "Reading tile " + tiles[i].name + " (" + std::to_string(i + 1) + " of " + std::to_string(tiles.size()) + ")");
-    StoredHierarchy tile = readHierarchy(tiles[i].file, part);
-    if (tile.info.kind != "hierarchy")
-      throw Error("tile " + tiles[i].name + " ('" + tiles[i].file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
+    StoredHierarchy tile = readCatalogueTile(tiles[i], part);
     merger.add(tiles[i], tile.hierarchy);
     if (i == 0) out.info = std::move(tile.info);
     else out.info.bytes += tile.info.bytes;

@@ -28,6 +28,13 @@ std::string notOneJob(const CatalogueTile& tile, const std::string& what);
 // The same for a vertex `tile` shares with a tile beside it, at another height or level.
 std::string sharedVertexDiffers(const CatalogueTile& tile, const TinVertex& v);
 
+// A tile's hierarchy file; throws Error naming the tile when it is a single TIN.
+StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress);
+
+// What checkSameJob compares of a tile (and what a job on the tiles keeps of the first):
+// its levels, CRS and options, without its vertices and triangles.
+Hierarchy jobOf(const Hierarchy& h);
+
 // Throws Error naming `tile` unless its hierarchy `h` has the levels, CRS and options of
 // the tiles read `before` it (any of them).
 void checkSameJob(const CatalogueTile& tile, const Hierarchy& h, const Hierarchy& before);

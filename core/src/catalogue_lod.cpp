@@ -8,7 +8,6 @@
 #include "catalogue_hierarchy.h"
 #include "tile_catalogue.h"
 #include "tinlod/error.h"
-#include "tinlod/hierarchy_reader.h"
 #include "vertex_place.h"
 
 namespace tinlod {
@@ -125,20 +124,6 @@ void assemble(const std::vector<CatalogueTile>& tiles, const std::vector<TileLod
   }
 }
 
-// A tile's hierarchy, checked against the tiles read before it (`job`, set by the first).
-Hierarchy readTile(const CatalogueTile& tile, Hierarchy& job, bool first, const ProgressRange& progress) {
-  StoredHierarchy stored = readHierarchy(tile.file, progress);
-  if (stored.info.kind != "hierarchy")
-    throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
-  if (first) {
-    job.levels = stored.hierarchy.levels, job.options = stored.hierarchy.options, job.tinMethod = stored.hierarchy.tinMethod;
-    job.base.crsWkt = stored.hierarchy.base.crsWkt, job.base.crsName = stored.hierarchy.base.crsName;
-  } else {
-    checkSameJob(tile, stored.hierarchy, job);
-  }
-  return std::move(stored.hierarchy);
-}
-
 }  // namespace
 
 ExtractedLod extractCatalogueLod(const std::string& cataloguePath,
@@ -161,9 +146,13 @@ ExtractedLod extractCatalogueLod(const std::string& cataloguePath,
       if (parts[i].extracted && countIn(back, parts[i].line) == parts[i].forced) continue;
       const ProgressRange part = pass.sub(double(i) / tiles.size(), double(i + 1) / tiles.size());
       part.report(0, "Extracting tile " + tiles[i].name + " (pass " + std::to_string(out.passes) + ")");
-      const bool first = out.passes == 1 && i == 0;
-      const Hierarchy h = readTile(tiles[i], job, first, part.sub(0, 0.8));
-      if (first) options = optionsFor(h.base.crsWkt);
+      const Hierarchy h = readCatalogueTile(tiles[i], part.sub(0, 0.8)).hierarchy;
+      if (out.passes == 1 && i == 0) {
+        job = jobOf(h);
+        options = optionsFor(h.base.crsWkt);
+      } else {
+        checkSameJob(tiles[i], h, job);
+      }
       if (out.passes == 1) out.levelZeroTriangles += h.levels.empty() ? 0 : h.levels[0].triangles;
       again = extractTile(tiles[i], h, options, starts, back, parts[i], out.seconds, part.sub(0.8, 1)) || again;
     }
