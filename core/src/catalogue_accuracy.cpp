@@ -30,13 +30,13 @@ namespace {
 
 using Pos = std::array<double, 2>;
 
-// One level's sums over the test points of the tiles measured so far.
+// One level's sums over the tiles measured so far: the statistics their builds recorded
+// (vertices, triangles, times, certified error) and those of their test points.
 struct LevelSums {
+  LevelStats stats;
   ErrorStatistics errors;
   MoranAccumulator moran;
   SurfaceComparison surfaces;
-  std::size_t vertices = 0, triangles = 0;
-  double selectSeconds = 0, deleteSeconds = 0, certifiedError = 0;
 };
 
 // The whole raster's test grid, which every tile's window is a piece of.
@@ -64,11 +64,10 @@ WholeGrid wholeGrid(const std::string& demPath, int band, const HeightRange& val
 
 int ceilDiv(int a, int b) { return (a + b - 1) / b; }  // a >= 0, b > 0
 
-// The test points a tile answers for: those of the cells it answers for (ownedCells), so
-// that each point counts once.
-std::vector<TestRect> ownedPoints(const std::vector<CatalogueTile>& tiles, std::size_t index, int step) {
+// The test points of the cells a tile answers for (ownedCells), so that each point counts once.
+std::vector<TestRect> ownedPoints(const std::vector<CellRect>& cells, int step) {
   std::vector<TestRect> points;
-  for (const CellRect& c : ownedCells(tiles, index)) {
+  for (const CellRect& c : cells) {
     const TestRect p{ceilDiv(c.col0, step), ceilDiv(c.row0, step), ceilDiv(c.col1, step), ceilDiv(c.row1, step)};
     if (!p.empty()) points.push_back(p);
   }
@@ -135,19 +134,6 @@ struct NeighbourTriangles {
   std::vector<std::array<std::int32_t, 2>> levels;
 };
 
-// A tile's triangles in id order, as a whole hierarchy of the tiles holds them: where two
-// triangles meet, the rasterizer gives a point on their edge the value of the later one,
-// and the two values may differ in the last bit.
-struct IdOrder {
-  std::vector<GIntBig> fids;
-  std::vector<std::size_t> order;
-  void sort() {
-    order.resize(fids.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return fids[a] < fids[b]; });
-  }
-};
-
 void readNeighbourTriangles(const CatalogueTile& tile, const std::array<double, 4>& box, std::int32_t coarsest,
                             NeighbourTriangles& out) {
   const DatasetPtr ds = openReadOnly(tile.file, GDAL_OF_VECTOR);
@@ -156,27 +142,34 @@ void readNeighbourTriangles(const CatalogueTile& tile, const std::array<double, 
   const StoredTable table(tile.file, *layer);
   const int first = table.column("first_level"), last = table.column("last_level");
   layer->SetSpatialFilterRect(box[0], box[1], box[2], box[3]);  // through the GeoPackage's R-tree
-  NeighbourTriangles read;
-  IdOrder ids;
+  struct Read {
+    GIntBig fid;
+    std::array<TinVertex, 3> corners;
+    std::array<std::int32_t, 2> levels;
+  };
+  std::vector<Read> read;
   for (auto& f : *layer) {
     const StoredRow row(table, *f);
     const auto* polygon = dynamic_cast<const OGRPolygon*>(f->GetGeometryRef());
     const OGRLinearRing* ring = polygon ? polygon->getExteriorRing() : nullptr;
     if (!ring || ring->getNumPoints() < 3) row.damaged("is not a triangle");
+    Read t{f->GetFID(), {}, {}};
     for (int k = 0; k < 3; ++k) {
-      TinVertex v;
+      TinVertex& v = t.corners[k];
       v.x = ring->getX(k), v.y = ring->getY(k), v.z = ring->getZ(k);
-      read.corners.push_back(v);
     }
     const auto from = static_cast<std::int32_t>(row.integer(first, 0, coarsest, "levels"));
-    read.levels.push_back({from, static_cast<std::int32_t>(row.integer(last, from, coarsest, "levels"))});
-    ids.fids.push_back(f->GetFID());
+    t.levels = {from, static_cast<std::int32_t>(row.integer(last, from, coarsest, "levels"))};
+    read.push_back(t);
   }
   table.checkFullyRead();
-  ids.sort();
-  for (std::size_t i : ids.order) {
-    out.corners.insert(out.corners.end(), read.corners.begin() + 3 * i, read.corners.begin() + 3 * i + 3);
-    out.levels.push_back(read.levels[i]);
+  // In id order, as a whole hierarchy of the tiles holds them: where two triangles meet, the
+  // rasterizer gives a point on their edge the later one's value, which may differ in the
+  // last bit.
+  std::sort(read.begin(), read.end(), [](const Read& a, const Read& b) { return a.fid < b.fid; });
+  for (const Read& t : read) {
+    out.corners.insert(out.corners.end(), t.corners.begin(), t.corners.end());
+    out.levels.push_back(t.levels);
   }
 }
 
@@ -204,8 +197,9 @@ class SharedHeights {
 // own triangles and those of the tiles beside it that reach into the window.
 class TileMeasure {
  public:
+  // `owned`: the test points it answers for (ownedPoints).
   TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, const Hierarchy& h,
-              const ProgressRange& progress);
+              const std::vector<TestRect>& owned, const ProgressRange& progress);
   void measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas, const ProgressRange& progress) const;
 
  private:
@@ -230,10 +224,8 @@ class TileMeasure {
 };
 
 TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index,
-                         const Hierarchy& h, const ProgressRange& progress)
+                         const Hierarchy& h, const std::vector<TestRect>& owned, const ProgressRange& progress)
     : g_(g), h_(h) {
-  const int step = g.grid.step;
-  const std::vector<TestRect> owned = ownedPoints(tiles, index, step);
   window_ = windowOf(boundsOf(owned), g.grid, g.options.controlSpacing);
   for (const TestRect& o : owned)
     owned_.push_back({o.col0 - window_.col0, o.row0 - window_.row0, o.col1 - window_.col0, o.row1 - window_.row0});
@@ -280,8 +272,8 @@ void TileMeasure::makeReference(const ProgressRange& progress) {
       std::make_unique<BsplineSurface>(reference_, g_.options.controlSpacing, grid_.cellWidth, grid_.cellHeight);
 }
 
-// In the order of the tiles read as one hierarchy (see IdOrder): the tiles before this
-// one in the catalogue, this one, the tiles after it.
+// In the order of the tiles read as one hierarchy (see readNeighbourTriangles): the tiles
+// before this one in the catalogue, this one, the tiles after it.
 std::vector<Triangle> TileMeasure::trianglesOf(std::int32_t level) const {
   std::vector<Triangle> out;
   const auto first = static_cast<VertexId>(h_.base.vertices.size());
@@ -338,30 +330,28 @@ void TileMeasure::measure(std::int32_t level, LevelSums& sums, AccuracyRasterCan
 
 // The level statistics the build recorded, pooled as readCatalogueHierarchy pools them,
 // and the vertices the tile answers for (a vertex on a shared line is counted once).
-void poolLevels(const std::vector<CatalogueTile>& tiles, std::size_t index, const Hierarchy& h,
+// `cells`: those the tile answers for (ownedCells).
+void poolLevels(const CatalogueTile& tile, const Hierarchy& h, const std::vector<CellRect>& cells,
                 std::vector<LevelSums>& sums) {
   for (std::size_t L = 0; L < sums.size(); ++L) {
     const LevelStats& s = h.levels[L];
-    sums[L].triangles += s.triangles;
-    sums[L].selectSeconds += s.selectSeconds, sums[L].deleteSeconds += s.deleteSeconds;
-    sums[L].certifiedError = std::max(sums[L].certifiedError, s.maxError);
+    LevelStats& pooled = sums[L].stats;
+    pooled.triangles += s.triangles;
+    pooled.selectSeconds += s.selectSeconds, pooled.deleteSeconds += s.deleteSeconds;
+    pooled.maxError = std::max(pooled.maxError, s.maxError);
   }
-  const std::vector<CellRect> cells = ownedCells(tiles, index);
   std::vector<std::size_t> topLevel(sums.size(), 0);
   for (std::size_t v = 0; v < h.base.vertices.size(); ++v) {
-    const int col = h.base.vertices[v].col + tiles[index].xoff, row = h.base.vertices[v].row + tiles[index].yoff;
+    const int col = h.base.vertices[v].col + tile.xoff, row = h.base.vertices[v].row + tile.yoff;
     for (const CellRect& c : cells)
       if (c.contains(col, row)) ++topLevel[h.vertexLevel[v]];
   }
   std::size_t above = 0;  // vertices whose highest level is L or more
-  for (std::size_t L = sums.size(); L-- > 0;) sums[L].vertices += above += topLevel[L];
+  for (std::size_t L = sums.size(); L-- > 0;) sums[L].stats.vertices += above += topLevel[L];
 }
 
 LevelAccuracy rowOf(const LevelSums& s, const Hierarchy& job, const std::string& dem, std::int32_t level) {
-  LevelStats stats;
-  stats.vertices = s.vertices, stats.triangles = s.triangles;
-  stats.selectSeconds = s.selectSeconds, stats.deleteSeconds = s.deleteSeconds, stats.maxError = s.certifiedError;
-  LevelAccuracy row = levelRow(job, dem, level, stats);
+  LevelAccuracy row = levelRow(job, dem, level, s.stats);
   row.testPoints = s.errors.count();
   row.rmse = s.errors.rmse(), row.meanError = s.errors.mean(), row.maxAbsError = s.errors.maxAbs();
   row.maxErrorX = s.errors.maxX(), row.maxErrorY = s.errors.maxY();
@@ -416,9 +406,11 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     } else {
       checkSameJob(tile, h, job);
     }
-    poolLevels(tiles, i, h, sums);
-    if (ownedPoints(tiles, i, g->grid.step).empty()) continue;
-    const TileMeasure measure(*g, tiles, i, h, part.sub(0.25, 0.3));
+    const std::vector<CellRect> cells = ownedCells(tiles, i);
+    poolLevels(tile, h, cells, sums);
+    const std::vector<TestRect> owned = ownedPoints(cells, g->grid.step);
+    if (owned.empty()) continue;
+    const TileMeasure measure(*g, tiles, i, h, owned, part.sub(0.25, 0.3));
     for (std::int32_t L = 0; L <= h.coarsest(); ++L)
       measure.measure(L, sums[L], L == rasterLevel ? canvas.get() : nullptr,
                       part.sub(0.3 + 0.7 * L / (h.coarsest() + 1), 0.3 + 0.7 * (L + 1) / (h.coarsest() + 1)));
