@@ -14,18 +14,14 @@ namespace tinlod {
 namespace {
 
 using PlaceSet = std::unordered_set<Place, PlaceHash>;
-constexpr VertexId kUnused = UINT32_MAX;
 
 // One tile's part of the output, from its last extraction.
 struct TileLod {
   bool extracted = false;
-  std::vector<TinVertex> vertices;  // those its triangles use, in its order; rows and columns the raster's
-  std::vector<double> vertexLevel;
-  std::vector<std::uint8_t> onLine; // of `vertices`: on a line another tile shares
-  std::vector<Triangle> triangles;  // into `vertices`
-  std::vector<double> firstLevel, lastLevel;
-  std::vector<Place> line;          // its vertices on lines it shares with other tiles
-  std::size_t forced = 0;           // how many of them had come back when it was extracted
+  ExtractedLod part;                 // rows and columns the raster's
+  std::vector<std::uint8_t> onLine;  // of part's vertices: on a line another tile shares
+  std::vector<Place> line;           // the tile's vertices on lines it shares with other tiles
+  std::size_t forced = 0;            // how many of them had come back when it was extracted
 };
 
 // Where the tiles start: a tile's last column (row) is a shared line when another starts there.
@@ -47,29 +43,14 @@ std::size_t countIn(const PlaceSet& set, const std::vector<Place>& places) {
   return n;
 }
 
-// The triangles as the tile's part of the output: the vertices they use, in the tile's order.
+// The triangles as the tile's part of the output.
 void keepTriangles(const CatalogueTile& tile, const Hierarchy& h, const std::vector<std::uint32_t>& triangles,
                    const std::vector<std::uint8_t>& onLine, TileLod& out) {
-  std::vector<VertexId> id(h.base.vertices.size(), kUnused);
-  for (std::uint32_t t : triangles)
-    for (VertexId v : h.triangles[t].v) id[v] = 0;
-  out.vertices.clear(), out.vertexLevel.clear(), out.onLine.clear();
-  out.triangles.clear(), out.firstLevel.clear(), out.lastLevel.clear();
-  for (std::size_t v = 0; v < id.size(); ++v) {
-    if (id[v] == kUnused) continue;
-    id[v] = static_cast<VertexId>(out.vertices.size());
-    TinVertex vertex = h.base.vertices[v];
-    vertex.row += tile.yoff, vertex.col += tile.xoff;
-    out.vertices.push_back(vertex);
-    out.vertexLevel.push_back(h.vertexLevel[v]);
-    out.onLine.push_back(onLine[v]);
-  }
-  for (std::uint32_t t : triangles) {
-    const Triangle& v = h.triangles[t].v;
-    out.triangles.push_back({id[v[0]], id[v[1]], id[v[2]]});
-    out.firstLevel.push_back(h.triangles[t].firstLevel);
-    out.lastLevel.push_back(h.triangles[t].lastLevel);
-  }
+  std::vector<VertexId> kept;
+  out.part = extractedLod(h, triangles, &kept);
+  for (TinVertex& v : out.part.tin.vertices) v.row += tile.yoff, v.col += tile.xoff;
+  out.onLine.clear();
+  for (VertexId v : kept) out.onLine.push_back(onLine[v]);
 }
 
 // Extracts one tile with the line vertices `back` holds forced back; adds those it brings
@@ -104,27 +85,45 @@ bool extractTile(const CatalogueTile& tile, const Hierarchy& h, const LodOptions
 void assemble(const std::vector<CatalogueTile>& tiles, const std::vector<TileLod>& parts, ExtractedLod& out) {
   std::unordered_map<Place, VertexId, PlaceHash> ids;
   for (std::size_t i = 0; i < parts.size(); ++i) {
-    const TileLod& part = parts[i];
-    std::vector<VertexId> id(part.vertices.size());
+    const ExtractedLod& part = parts[i].part;
+    const std::vector<TinVertex>& vertices = part.tin.vertices;
+    std::vector<VertexId> id(vertices.size());
     for (std::size_t v = 0; v < id.size(); ++v) {
       id[v] = static_cast<VertexId>(out.tin.vertices.size());
-      if (part.onLine[v]) {
-        const auto [it, added] = ids.try_emplace(placeOf(part.vertices[v]), id[v]);
+      if (parts[i].onLine[v]) {
+        const auto [it, added] = ids.try_emplace(placeOf(vertices[v]), id[v]);
         id[v] = it->second;
-        if (!added && (out.tin.vertices[id[v]].z != part.vertices[v].z || out.vertexLevel[id[v]] != part.vertexLevel[v]))
-          throw Error(sharedVertexDiffers(tiles[i], part.vertices[v]));
+        if (!added && (out.tin.vertices[id[v]].z != vertices[v].z || out.vertexLevel[id[v]] != part.vertexLevel[v]))
+          throw Error(sharedVertexDiffers(tiles[i], vertices[v]));
         if (!added) continue;
       }
-      out.tin.vertices.push_back(part.vertices[v]);
+      out.tin.vertices.push_back(vertices[v]);
       out.vertexLevel.push_back(part.vertexLevel[v]);
     }
-    for (const Triangle& t : part.triangles) out.tin.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
+    for (const Triangle& t : part.tin.triangles) out.tin.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
     out.firstLevel.insert(out.firstLevel.end(), part.firstLevel.begin(), part.firstLevel.end());
     out.lastLevel.insert(out.lastLevel.end(), part.lastLevel.begin(), part.lastLevel.end());
   }
 }
 
 }  // namespace
+
+ExtractedLod extractedLod(const Hierarchy& h, const std::vector<std::uint32_t>& triangles, std::vector<VertexId>* kept) {
+  ExtractedLod out;
+  out.tin.crsWkt = h.base.crsWkt, out.tin.crsName = h.base.crsName;
+  out.tin.vertices = h.base.vertices;
+  for (std::uint32_t t : triangles) {
+    out.tin.triangles.push_back(h.triangles[t].v);
+    out.firstLevel.push_back(h.triangles[t].firstLevel);
+    out.lastLevel.push_back(h.triangles[t].lastLevel);
+  }
+  std::vector<VertexId> ids = dropUnusedVertices(out.tin);
+  for (VertexId v : ids) out.vertexLevel.push_back(h.vertexLevel[v]);
+  out.levelZeroTriangles = h.levels.empty() ? 0 : h.levels[0].triangles;
+  out.coarsest = h.coarsest();
+  if (kept) *kept = std::move(ids);
+  return out;
+}
 
 ExtractedLod extractCatalogueLod(const std::string& cataloguePath,
                                  const std::function<LodOptions(const std::string& crsWkt)>& optionsFor,

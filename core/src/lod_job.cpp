@@ -37,16 +37,6 @@ void checkOptions(const LodJobOptions& o) {
   lod.validate();
 }
 
-// The extracted triangles as a TIN of the vertices they use, in hierarchy order.
-Tin extractedTin(const Hierarchy& h, const std::vector<std::uint32_t>& triangles, std::vector<double>& vertexLevel) {
-  Tin tin;
-  tin.crsWkt = h.base.crsWkt, tin.crsName = h.base.crsName;
-  tin.vertices = h.base.vertices;
-  for (std::uint32_t t : triangles) tin.triangles.push_back(h.triangles[t].v);
-  for (VertexId v : dropUnusedVertices(tin)) vertexLevel.push_back(h.vertexLevel[v]);
-  return tin;
-}
-
 std::map<std::string, std::string> jobMetadata(const std::string& source, const LodJobOptions& o) {
   std::map<std::string, std::string> m{{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "lod"}, {"TINLOD_SOURCE", source}};
   std::string centres;
@@ -63,10 +53,6 @@ std::map<std::string, std::string> jobMetadata(const std::string& source, const 
   if (o.lod.errorGrowth > 0) m["TINLOD_ERROR_GROWTH"] = formatNumber(o.lod.errorGrowth);
   return m;
 }
-
-}  // namespace
-
-namespace {
 
 // The tests with the centres and region read from their files, in the hierarchy's CRS.
 LodOptions resolvedOptions(const LodJobOptions& options, const std::string& crsWkt,
@@ -92,15 +78,9 @@ ExtractedLod extractFileLod(const std::string& path, const LodJobOptions& option
   const LodOptions lod = resolvedOptions(options, h.base.crsWkt, region, progress);
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::uint32_t> triangles = extractLod(h, lod, progress.sub(0.8, 1));
-  ExtractedLod out;
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.tin = extractedTin(h, triangles, out.vertexLevel);
-  for (std::uint32_t t : triangles) {
-    out.firstLevel.push_back(h.triangles[t].firstLevel);
-    out.lastLevel.push_back(h.triangles[t].lastLevel);
-  }
-  out.levelZeroTriangles = h.levels.empty() ? 0 : h.levels[0].triangles;
-  out.coarsest = h.coarsest();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ExtractedLod out = extractedLod(h, triangles);
+  out.seconds = seconds;
   return out;
 }
 
