@@ -82,23 +82,28 @@ void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& r
   }
 }
 
+Error rasterWriteError(const StagedFile& file) {
+  return Error(file.option + ": cannot write the accuracy raster '" + file.path +
+               "': " + inUserTerms(file, CPLGetLastErrorMsg()));
+}
+
+void closeRaster(DatasetPtr& out, const StagedFile& file) {
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  out.reset();
+  CPLPopErrorHandler();
+  if (CPLGetLastErrorType() == CE_Failure) throw rasterWriteError(file);
+}
 
 namespace {
 
-// Statistics stored with the band, so that QGIS shows it at once (none for an all-nodata band).
-void computeStatistics(GDALRasterBand& band) {
-  double min, max, mean, sd;
-  CPLPushErrorHandler(CPLQuietErrorHandler);  // an all-nodata band has no statistics, and that is fine
-  band.ComputeStatistics(false, &min, &max, &mean, &sd, nullptr, nullptr);
-  CPLPopErrorHandler();
-}
-
+// With its statistics, so that QGIS shows it at once (none for an all-nodata band).
 void writeBand(GDALDataset& ds, int index, const Grid& grid, const char* description) {
   GDALRasterBand* band = ds.GetRasterBand(index);
   band->SetDescription(description);
   band->SetNoDataValue(kAccuracyNodata);
-  writeRasterWindow(*band, grid, TestRect{0, 0, grid.cols, grid.rows}, 0, 0);
-  computeStatistics(*band);
+  BandStatistics statistics;
+  writeRasterWindow(*band, grid, TestRect{0, 0, grid.cols, grid.rows}, 0, 0, &statistics);
+  statistics.store(*band, double(grid.cols) * grid.rows);
 }
 
 DatasetPtr inMemory(const AccuracyBands& bands, const TestGrid& grid) {
@@ -133,18 +138,11 @@ void copyRaster(GDALDataset& source, const StagedFile& file, const RasterWriteOp
   DatasetPtr out(driver.CreateCopy(file.staging.c_str(), &source, FALSE, co.List(), gdalProgress,
                                    const_cast<ProgressRange*>(&progress)));
   CPLPopErrorHandler();
-  const auto failed = [&] {
-    return Error(file.option + ": cannot write the accuracy raster '" + file.path +
-                 "': " + inUserTerms(file, CPLGetLastErrorMsg()));
-  };
   if (!out) {
     progress.report(1, "Writing the accuracy raster");  // a cancel, if that is what stopped GDAL
-    throw failed();
+    throw rasterWriteError(file);
   }
-  CPLPushErrorHandler(CPLQuietErrorHandler);
-  out.reset();
-  CPLPopErrorHandler();
-  if (CPLGetLastErrorType() == CE_Failure) throw failed();
+  closeRaster(out, file);
 }
 
 void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const StagedFile& file,

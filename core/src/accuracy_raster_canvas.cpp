@@ -59,10 +59,7 @@ void AccuracyRasterCanvas::write(const AccuracyBands& bands, const TestRect& rec
   if (CPLGetLastErrorType() == CE_Failure) fail();
 }
 
-void AccuracyRasterCanvas::fail() const {
-  throw Error(file_.option + ": cannot write the accuracy raster '" + file_.path +
-              "': " + inUserTerms(file_, CPLGetLastErrorMsg()));
-}
+void AccuracyRasterCanvas::fail() const { throw rasterWriteError(file_); }
 
 void AccuracyRasterCanvas::finish(const ProgressRange& progress) {
   const double pixels = double(ds_->GetRasterXSize()) * ds_->GetRasterYSize();
@@ -115,11 +112,8 @@ void AccuracyRasterCanvas::copyByRows(GDALDriver& driver, const ProgressRange& p
     }
     progress.report(double(r0 + count) / rows, "Writing the accuracy raster");
   }
-  CPLErrorReset();
-  CPLPushErrorHandler(CPLQuietErrorHandler);
-  out.reset();
-  CPLPopErrorHandler();
-  if (CPLGetLastErrorType() == CE_Failure) fail();
+  CPLErrorReset();  // every band of rows was checked
+  closeRaster(out, file_);
 }
 
 }  // namespace tinlod

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tinlod/accuracy_statistics.h"
+#include "tinlod/error.h"
 
 #include "gdal_handles.h"
 #include "surface_comparison.h"
@@ -39,6 +40,12 @@ class BandStatistics {
 // of the band; Float32, nodata for NaN. The valid values also go to `statistics` if given.
 void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& rect, int col0, int row0,
                        BandStatistics* statistics = nullptr);
+// "<option>: cannot write the accuracy raster '<path>': " and GDAL's last message, in the
+// user's terms (it names the staging file).
+Error rasterWriteError(const StagedFile& file);
+// Closes a raster written into the staged file; throws rasterWriteError when GDAL has
+// failed since the last CPLErrorReset (in the writing or in the closing).
+void closeRaster(DatasetPtr& out, const StagedFile& file);
 // `source` into the staged file in options.format; throws Error in the user's terms.
 void copyRaster(GDALDataset& source, const StagedFile& file, const RasterWriteOptions& options,
                 const ProgressRange& progress);
