@@ -74,16 +74,25 @@ TileLine tile(const Dem& whole, int col) {
   return t;
 }
 
-// What the line's first thinning takes below `below`: whole-raster row -> importance.
-std::map<int, double> taken(const TileLine& t, double below) {
+// What the line's first thinning takes within `limit`: whole-raster row -> importance.
+std::map<int, double> taken(const TileLine& t, BorderLines::Limit limit) {
   const int side = t.dem.window.colOffset == 0 ? kLastCol : kFirstCol;
   BorderLines lines(t.tin, t.dem, t.borders);
   std::map<int, double> out;
-  for (const auto& [importance, v] : lines.take(1 + t.borders.lineClass[side], 0.5, below)) {
+  for (const auto& [importance, v] : lines.take(1 + t.borders.lineClass[side], 0.5, limit)) {
     EXPECT_NE(v, BorderLines::kNoVertex);
     if (v != BorderLines::kNoVertex) out[int(t.dem.globalRow(t.tin.vertices[v].row))] = importance;
   }
   return out;
+}
+
+BorderLines::Limit volumeBelow(double v) { return {BorderLines::Limit::kVolume, v}; }
+
+// The deviation of the cell at `i` of the line from the line between its neighbours, by hand.
+double deviationAt(const Dem& whole, const std::vector<int>& rows, std::size_t i) {
+  auto z = [&](std::size_t k) { return double(whole.at(rows[k], kLineCol)); };
+  const double f = double(rows[i] - rows[i - 1]) / (rows[i + 1] - rows[i - 1]);
+  return std::fabs(z(i) - (z(i - 1) + f * (z(i + 1) - z(i - 1))));
 }
 
 // The estimate of the cell at `i` of the line, by hand.
@@ -99,7 +108,7 @@ TEST(BorderLines, BelowTheThresholdOnlyCellsOfLittleVolumeGoAndTheSpikesStay) {
   const Dem whole = wholeDem();
   const std::vector<int> rows = lineRows(whole);
   ASSERT_GE(rows.size(), 15u);
-  const std::map<int, double> gone = taken(tile(whole, 0), 1e-6);
+  const std::map<int, double> gone = taken(tile(whole, 0), volumeBelow(1e-6));
   EXPECT_GE(gone.size(), 4u);
   // Cells 4 to 6 and 10 to 12 deviate (the spikes and their neighbours); none of them goes.
   for (std::size_t i : {4, 5, 6, 10, 11, 12}) EXPECT_EQ(gone.count(rows[i]), 0u) << "cell " << i;
@@ -111,7 +120,7 @@ TEST(BorderLines, ImportanceIsTheVolumeEstimateAndTheThresholdCutsBetweenTheSpik
   const std::vector<int> rows = lineRows(whole);
   const double spike5 = volumeAt(whole, rows, 5), spike11 = volumeAt(whole, rows, 11);
   ASSERT_GT(spike5, 0);
-  const std::map<int, double> all = taken(tile(whole, 0), 1e12);
+  const std::map<int, double> all = taken(tile(whole, 0), volumeBelow(1e12));
   ASSERT_GE(all.size(), 5u);
   for (const auto& [row, importance] : all) {
     const std::size_t i = std::find(rows.begin(), rows.end(), row) - rows.begin();
@@ -120,7 +129,7 @@ TEST(BorderLines, ImportanceIsTheVolumeEstimateAndTheThresholdCutsBetweenTheSpik
   }
   // A threshold between the two spikes' estimates lets the smaller go, never the larger.
   ASSERT_LT(spike5, spike11);
-  const std::map<int, double> gone = taken(tile(whole, 0), 0.5 * (spike5 + spike11));
+  const std::map<int, double> gone = taken(tile(whole, 0), volumeBelow(0.5 * (spike5 + spike11)));
   EXPECT_EQ(gone.count(rows[11]), 0u);
   EXPECT_EQ(gone.count(rows[5]), 1u);
 }
@@ -128,9 +137,53 @@ TEST(BorderLines, ImportanceIsTheVolumeEstimateAndTheThresholdCutsBetweenTheSpik
 TEST(BorderLines, BothTilesOnTheLineTakeTheSameCells) {
   const Dem whole = wholeDem();
   for (double below : {1e-6, 50.0, 1e12}) {
-    const std::map<int, double> left = taken(tile(whole, 0), below), right = taken(tile(whole, 1), below);
-    EXPECT_FALSE(left.empty());
-    EXPECT_EQ(left, right) << "below " << below;
+    for (const auto kind : {BorderLines::Limit::kVolume, BorderLines::Limit::kDeviation}) {
+      const BorderLines::Limit limit{kind, below};
+      const std::map<int, double> left = taken(tile(whole, 0), limit), right = taken(tile(whole, 1), limit);
+      EXPECT_FALSE(left.empty());
+      EXPECT_EQ(left, right) << "below " << below;
+    }
+  }
+}
+
+// Under -max_error a cell goes only if its own deviation is within it: the spikes stay.
+TEST(BorderLines, UnderADeviationLimitOnlyCellsWithinItGoAndTheSpikesStay) {
+  const Dem whole = wholeDem();
+  const std::vector<int> rows = lineRows(whole);
+  const double spike5 = deviationAt(whole, rows, 5), spike11 = deviationAt(whole, rows, 11);
+  ASSERT_LT(spike5, spike11);
+  const std::map<int, double> gone = taken(tile(whole, 0), {BorderLines::Limit::kDeviation, 0.5 * (spike5 + spike11)});
+  EXPECT_GE(gone.size(), 4u);
+  EXPECT_EQ(gone.count(rows[11]), 0u);
+  for (const auto& [row, importance] : gone) {
+    const std::size_t i = std::find(rows.begin(), rows.end(), row) - rows.begin();
+    ASSERT_LT(i + 1, rows.size());
+    EXPECT_DOUBLE_EQ(importance, deviationAt(whole, rows, i)) << "row " << row;
+    EXPECT_LE(importance, 0.5 * (spike5 + spike11));
+  }
+}
+
+// A cell the tiles agreed to keep is pinned in both and never taken.
+TEST(BorderLines, AKeptCellNeverGoesInEitherTile) {
+  const Dem whole = wholeDem();
+  const BorderLines::Limit all{BorderLines::Limit::kDeviation, 1e12};
+  const std::map<int, double> before = taken(tile(whole, 0), all);
+  ASSERT_FALSE(before.empty());
+  const int keptRow = before.begin()->first;
+  for (int col : {0, 1}) {
+    TileLine t = tile(whole, col);
+    t.borders = agreedTileBorders(t.dem, t.tin, {kSize, col, 0}, 10, kBlock, kSeed, kCellArea, false,
+                                  {globalCellKey(keptRow, kLineCol)});
+    EXPECT_TRUE(t.borders.agreed);
+    const std::map<int, double> after = taken(t, all);
+    EXPECT_EQ(after.count(keptRow), 0u) << "tile " << col;
+    EXPECT_FALSE(after.empty());
+    EXPECT_EQ(keptOnSharedLines(t.dem, t.borders.kept), std::vector<std::uint64_t>{globalCellKey(keptRow, kLineCol)});
+    std::size_t pinned = 0;
+    for (std::size_t v = 0; v < t.tin.vertices.size(); ++v)
+      if (t.dem.globalRow(t.tin.vertices[v].row) == keptRow && t.dem.globalCol(t.tin.vertices[v].col) == kLineCol)
+        pinned += t.borders.pinned[v];
+    EXPECT_EQ(pinned, 1u) << "tile " << col;
   }
 }
 

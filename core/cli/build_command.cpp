@@ -16,7 +16,7 @@ namespace {
 const char* const kUsage =
     "tinlod build DEM OUT.gpkg [-method degree|volume|normal|error] [-delete_pct p] [-stop_pct s] "
     "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-outline_tolerance m] [-keep_outline] "
-    "[-tile_size N -tile C,R [-survey | -level_thresholds t[:s],...]] "
+    "[-tile_size N -tile C,R [-survey | -level_thresholds t[:s],...] [-border_keep FILE]] "
     "[-fixed POINTS] [-fix_peaks_pits] [-levels all|L,L,...] [-no_group_outlines] [-vertex_index] "
     "[sampling options] [accuracy options] [-overwrite] [-q]";
 
@@ -75,6 +75,13 @@ One tile of a raster (tinlod tiles runs them all; see docs/cli/tiles.md):
                    importance is below the k-th threshold (tinlod tiles sets them from the
                    surveys of every tile), instead of -delete_pct of the tile's vertices; t:s
                    lets only the share s of the candidates in t's survey bin go (ties)
+  -border_keep FILE
+                   with -method error -max_error: delete line vertices too, each only where
+                   it keeps this tile's cells within the bound, and keep the line cells FILE
+                   lists ("row col" of the whole raster, one a line). A vertex the bound
+                   refuses stays and is listed in TINLOD_BORDER_REFUSED: the tile beyond the
+                   line must then keep it too. tinlod tiles agrees these lists between tiles;
+                   without -border_keep a bounded tile keeps all its line vertices
 
 What the GeoPackage holds (vertices, triangles, the groups and the levels table are always
 written: lod, locate and accuracy need them):
@@ -174,6 +181,7 @@ int buildCommand(std::vector<std::string> args) {
   layers.vertexIndex = a.flag("-vertex_index");
   o.survey = a.flag("-survey");
   parseThresholds(a.text("-level_thresholds", ""), o.levelThresholds, o.levelShares);
+  o.borderKeep = a.text("-border_keep", "");
   TileSpec tile;
   tile.size = a.integer("-tile_size", 0);
   if (a.given("-tile") != (tile.size > 0)) throw Error("-tile C,R and -tile_size N go together: one tile of a raster cut into N x N-cell tiles");

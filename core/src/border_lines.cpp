@@ -37,22 +37,42 @@ BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& til
   }
 }
 
-std::vector<std::pair<double, VertexId>> BorderLines::take(int level, double share, double below) {
+std::vector<std::pair<double, VertexId>> BorderLines::take(int level, double share, Limit limit) {
+  std::vector<VertexId> refused;
+  return take(level, share, limit, [](VertexId) { return true; }, refused);
+}
+
+std::vector<std::pair<double, VertexId>> BorderLines::take(int level, double share, Limit limit,
+                                                           const std::function<bool(VertexId)>& accept,
+                                                           std::vector<VertexId>& refused) {
   std::vector<std::pair<double, VertexId>> out;
-  for (Line& line : lines_)
-    if ((level - 1) % 4 == line.lineClass) takeFromLine(line, share, below, out);
+  for (Line& line : lines_) {
+    if ((level - 1) % 4 != line.lineClass) continue;
+    for (;;) {
+      const std::vector<Choice> chosen = choose(line, share, limit);
+      bool again = false;
+      for (const Choice& c : chosen) {
+        const VertexId v = line.cells[c.at].vertex;
+        if (v != kNoVertex && !accept(v)) {  // only this tile has the vertex to check
+          line.cells[c.at].pinned = true;
+          refused.push_back(v);
+          again = true;
+        }
+      }
+      if (again) continue;
+      for (const Choice& c : chosen) out.emplace_back(c.importance, line.cells[c.at].vertex);
+      drop(line, chosen);
+      break;
+    }
+  }
   return out;
 }
 
-void BorderLines::takeFromLine(Line& line, double share, double below, std::vector<std::pair<double, VertexId>>& out) const {
-  std::vector<Cell>& cells = line.cells;
+std::vector<BorderLines::Choice> BorderLines::choose(const Line& line, double share, Limit limit) const {
+  const std::vector<Cell>& cells = line.cells;
   const std::size_t n = cells.size();
-  if (n < 3) return;
-  struct Candidate {
-    double importance;  // the deviation, or the volume when one bounds it
-    std::size_t at;
-  };
-  std::vector<Candidate> candidates;
+  std::vector<Choice> candidates, chosen;
+  if (n < 3) return chosen;
   for (std::size_t i = 1; i + 1 < n; ++i) {
     if (cells[i].pinned) continue;
     const Cell &a = cells[i - 1], &b = cells[i + 1];
@@ -63,26 +83,33 @@ void BorderLines::takeFromLine(Line& line, double share, double below, std::vect
     // diagonals are both `span`). The other tile, which shares the line, finds the same.
     const double span = b.along - a.along;
     const double volume = deviation * span * span * cellArea_ / 6;
-    if (volume < below) candidates.push_back({std::isfinite(below) ? volume : deviation, i});
+    if (limit.kind == Limit::kVolume) {
+      if (volume < limit.below) candidates.push_back({volume, i});
+    } else if (limit.kind == Limit::kNone || deviation <= limit.below) {
+      candidates.push_back({deviation, i});
+    }
   }
   // Ties go to the cell first along the line: nothing but the line decides.
   std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.importance < b.importance; });
-  const std::size_t limit = static_cast<std::size_t>(std::floor(share * double(n - 2)));
-  std::vector<std::uint8_t> blocked(n, 0), gone(n, 0);
-  std::size_t taken = 0;
-  for (const Candidate& c : candidates) {
-    if (taken >= limit) break;
+                   [](const Choice& a, const Choice& b) { return a.importance < b.importance; });
+  const std::size_t most = static_cast<std::size_t>(std::floor(share * double(n - 2)));
+  std::vector<std::uint8_t> blocked(n, 0);
+  for (const Choice& c : candidates) {
+    if (chosen.size() >= most) break;
     if (blocked[c.at]) continue;
     blocked[c.at] = blocked[c.at - 1] = blocked[c.at + 1] = 1;
-    gone[c.at] = 1;
-    out.emplace_back(c.importance, cells[c.at].vertex);
-    ++taken;
+    chosen.push_back(c);
   }
+  return chosen;
+}
+
+void BorderLines::drop(Line& line, const std::vector<Choice>& chosen) {
+  std::vector<std::uint8_t> gone(line.cells.size(), 0);
+  for (const Choice& c : chosen) gone[c.at] = 1;
   std::size_t k = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (!gone[i]) cells[k++] = cells[i];
-  cells.resize(k);
+  for (std::size_t i = 0; i < line.cells.size(); ++i)
+    if (!gone[i]) line.cells[k++] = line.cells[i];
+  line.cells.resize(k);
 }
 
 }  // namespace tinlod

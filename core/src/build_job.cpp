@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <unordered_set>
 
 #include "dataset_files.h"
 #include "release_memory.h"
@@ -110,10 +111,56 @@ double cellAreaInTin(const Dem& dem, const SampleOptions& sample) {
   return std::isfinite(area) && area > 0 ? area : std::fabs(g[1] * g[5]);
 }
 
+// -border_keep's file: one "row col" of the whole raster per line ('#' starts a comment).
+std::unordered_set<std::uint64_t> readKeptCells(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error("-border_keep: cannot read '" + path + "': give the file of line cells to keep (tinlod tiles writes it)");
+  std::unordered_set<std::uint64_t> kept;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream fields(line);
+    std::int64_t row = -1, col = -1;
+    std::string rest;
+    if (!(fields >> row)) continue;  // a blank line
+    if (!(fields >> col) || (fields >> rest) || row < 0 || col < 0 || row > INT32_MAX || col > INT32_MAX)
+      throw Error("-border_keep: line " + std::to_string(number) + " of '" + path +
+                  "' is not a cell \"row col\" of the raster (two whole numbers from 0)");
+    kept.insert(globalCellKey(row, col));
+  }
+  return kept;
+}
+
 TileBorders bordersOf(const Dem& dem, const Tin& tin, const TileSpec& tile, const SampleOptions& sample,
                       const HierarchyOptions& options) {
-  return tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample),
-                     options.fixPeaksPits);
+  if (options.borderKeep.empty())
+    return tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample),
+                       options.fixPeaksPits);
+  return agreedTileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample),
+                           options.fixPeaksPits, readKeptCells(options.borderKeep));
+}
+
+std::string cellList(const std::vector<std::uint64_t>& keys) {
+  std::string text;
+  for (const std::uint64_t key : keys)
+    text += (text.empty() ? "" : ";") + std::to_string(key >> 32) + " " + std::to_string(key & 0xffffffffu);
+  return text;
+}
+
+// What the driver of an agreed job reads back: the line cells this tile was told to keep,
+// and those it refused (which the tile beyond the line must keep too).
+void addAgreementMetadata(const Dem& dem, const TileBorders& borders, const Hierarchy& h,
+                          std::map<std::string, std::string>& m, const ProgressRange& progress) {
+  if (!borders.agreed) return;
+  m["TINLOD_BORDER_AGREED"] = "yes";  // GDAL drops empty items: the two lists below may be absent
+  m["TINLOD_BORDER_KEPT"] = cellList(keptOnSharedLines(dem, borders.kept));
+  std::vector<std::uint64_t> refused = h.borderRefused;
+  std::sort(refused.begin(), refused.end());
+  m["TINLOD_BORDER_REFUSED"] = cellList(refused);
+  if (!refused.empty())
+    progress.warn(std::to_string(refused.size()) + " border vertices would take cells of this tile beyond -max_error; "
+                  "they stayed here, so the tiles beside them must keep them too (tinlod tiles does so, "
+                  "adding them to the -border_keep file and building both again): TINLOD_BORDER_REFUSED lists them");
 }
 
 Dem readInput(const std::string& demPath, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {
@@ -170,6 +217,9 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   if (options.survey) return runSurvey(demPath, outPath, sample, options, overwrite, feedback, tile);
   if (!options.levelThresholds.empty() && tile.size == 0)
     throw Error("-level_thresholds is the second pass of a tiled run: give it with -tile_size and -tile");
+  if (!options.borderKeep.empty() && tile.size == 0)
+    throw Error("-border_keep is for a tile of a job with -method error -max_error: give it with -tile_size and -tile");
+  if (!options.borderKeep.empty()) readKeptCells(options.borderKeep);  // a bad file fails before the long work
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   const std::string fixedName = "-fixed (points to keep)";
@@ -195,6 +245,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   if (!accuracy.wanted()) releaseMemory(dem.z), releaseMemory(dem.nearNodata);
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
   if (tile.size > 0) addTileMetadata(dem, tile, writeOptions.metadata);
+  if (tile.size > 0) addAgreementMetadata(dem, borders, h, writeOptions.metadata, all);
   writeOptions.metadata["TINLOD_LEVEL_VIEWS"] = levelListText(layers.levelViews);
   writeOptions.metadata["TINLOD_GROUP_OUTLINES"] = layers.groupOutlines ? "yes" : "no";
   writeOptions.metadata["TINLOD_VERTEX_INDEX"] = layers.vertexIndex ? "yes" : "no";

@@ -435,6 +435,14 @@ class Simplifier {
     h_.survey.push_back(std::move(l));
   }
 
+  // Whether deleting the border vertex keeps every cell of this tile under its new
+  // triangles within the bound (the other tile checks its side of the line).
+  bool withinBound(VertexId v) {
+    StarScratch s;
+    s.walk(mesh_, v);
+    return retriangulateStar(s.star, s.fill) && cellError(s) < INFINITY;
+  }
+
   // The candidates of each half of the live list (which is in id order), listed and
   // sorted on a core of its own.
   void sortCandidates() {
@@ -459,11 +467,27 @@ class Simplifier {
   void pickBorders(std::int32_t level, std::vector<Pick>& picks) {
     const double share = 1 - std::pow(1 - options_.deletePct / 100.0, 4);  // a line is thinned every fourth level
     const bool bounded = options_.measure == Measure::Error && std::isfinite(options_.maxError);
-    if (bounded) return;  // the bound holds at cells only this tile sees: the border stays
+    // The bound holds at cells only one tile sees: unless the tiles agree on the line's
+    // deletions (TileBorders::agreed), the border stays.
+    if (bounded && !tile_->agreed) return;
     // With the raster's volume threshold for the level, a line keeps its vertices where the
-    // terrain needs them, as the interior does; otherwise it thins by count.
-    const bool volumes = options_.measure == Measure::Volume && !options_.levelThresholds.empty();
-    for (const auto& [importance, v] : borders_.take(level, share, volumes ? levelThreshold_ : INFINITY)) {
+    // terrain needs them, as the interior does; otherwise it thins by count. Under a bound,
+    // a cell goes only if it is itself within the bound of the line between its neighbours
+    // (both tiles interpolate it along that line): the rounds of agreement then refuse
+    // only what cells off the line forbid.
+    BorderLines::Limit limit;
+    if (bounded) limit = {BorderLines::Limit::kDeviation, options_.maxError};
+    else if (options_.measure == Measure::Volume && !options_.levelThresholds.empty())
+      limit = {BorderLines::Limit::kVolume, levelThreshold_};
+    std::vector<VertexId> refused;
+    const auto accept = [&](VertexId v) { return !bounded || withinBound(v); };
+    const auto taken = borders_.take(level, share, limit, accept, refused);
+    for (const VertexId v : refused) {
+      const TinVertex& p = h_.base.vertices[v];
+      h_.borderRefused.push_back(globalCellKey(dem_.globalRow(p.row), dem_.globalCol(p.col)));
+      h_.fixed[v] = 1;
+    }
+    for (const auto& [importance, v] : taken) {
       if (v == BorderLines::kNoVertex) continue;  // left out of this tile's level 0
       if (!mesh_.open(v) || !mesh_.deletableOpen(v) || stamp_[v] == level)
         throw Error("tile border vertex at cell (row " + std::to_string(dem_.globalRow(h_.base.vertices[v].row)) +

@@ -32,6 +32,9 @@ void HierarchyOptions::validate() const {
                 measureName(measure) + ")");
   if (maxError != INFINITY && measure != Measure::Error)
     throw Error("max_error applies to the error method only: add -method error");
+  if (!borderKeep.empty() && (measure != Measure::Error || maxError == INFINITY))
+    throw Error("-border_keep applies to tiles built with -method error -max_error (tinlod tiles gives it): "
+                "other methods thin a tile's lines by a rule that needs no agreement");
 }
 
 }  // namespace tinlod

@@ -82,15 +82,26 @@ int tileLevelCount(double deletePct, double stopPct) {
 }
 
 bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int col) {
-  return pinnedOnLine(dem, row, col) || (borders.pinPeaksAndPits && dem.edgePeakOrPitAt(row, col));
+  return pinnedOnLine(dem, row, col) || (borders.pinPeaksAndPits && dem.edgePeakOrPitAt(row, col)) ||
+         (!borders.kept.empty() && borders.kept.count(globalCellKey(dem.globalRow(row), dem.globalCol(col))) > 0);
 }
 
 TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed,
                         double cellArea, bool pinPeaksAndPits) {
+  TileBorders b = agreedTileBorders(dem, tin, tile, levels, block, seed, cellArea, pinPeaksAndPits, {});
+  b.agreed = false;
+  return b;
+}
+
+TileBorders agreedTileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block,
+                              std::uint64_t seed, double cellArea, bool pinPeaksAndPits,
+                              std::unordered_set<std::uint64_t> kept) {
   if (!(cellArea > 0) || !std::isfinite(cellArea))
     throw Error("internal error: a tile's cell area must be positive, not " + std::to_string(cellArea));
   TileBorders b;
   b.block = block, b.seed = seed, b.cellArea = cellArea, b.pinPeaksAndPits = pinPeaksAndPits;
+  b.agreed = true;
+  b.kept = std::move(kept);
   b.levels = levels;
   // A line's class from its index among the raster's lines of its direction: the same for
   // the two tiles that share it.
@@ -107,6 +118,18 @@ TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, in
     if (b.side[i] >= 0) b.pinned[i] = pinnedBorderCell(dem, b, v.row, v.col);
   }
   return b;
+}
+
+std::vector<std::uint64_t> keptOnSharedLines(const Dem& dem, const std::unordered_set<std::uint64_t>& kept) {
+  std::vector<std::uint64_t> out;
+  for (const std::uint64_t key : kept) {
+    const std::int64_t row = std::int64_t(key >> 32) - dem.window.rowOffset;
+    const std::int64_t col = std::int64_t(key & 0xffffffffu) - dem.window.colOffset;
+    if (row >= 0 && col >= 0 && row < dem.height && col < dem.width && onSharedLine(dem, int(row), int(col)))
+      out.push_back(key);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 }  // namespace tinlod

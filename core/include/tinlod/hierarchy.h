@@ -75,6 +75,9 @@ struct Hierarchy {
   std::vector<VertexId> rings;              // vertex ids of the groups' outlines
   std::vector<LevelStats> levels;
   std::vector<LevelSurvey> survey;          // with HierarchyOptions::survey, by level from 1
+  // A tile's line cells (globalCellKey) the border rule took but this tile's bound refused
+  // (TileBorders::agreed): they stayed here, and must stay in the tile beyond the line too.
+  std::vector<std::uint64_t> borderRefused;
   HierarchyOptions options;
   // How a file that is one TIN was made ("sample", "insert"); empty for a hierarchy,
   // whose method is options.measure.

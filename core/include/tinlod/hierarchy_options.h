@@ -37,6 +37,11 @@ struct HierarchyOptions {
   // of zeros), only this share may go at level k (least important first); empty: all.
   std::vector<double> levelShares;
   bool survey = false;                // record each level's LevelSurvey in the hierarchy
+  // A tile of a job with -method error -max_error: the file of line cells to keep (one
+  // "row col" of the whole raster per line) that the tiles agreed on so far. Given (even
+  // empty), the border rule deletes line vertices under the bound (TileBorders::agreed);
+  // not given, a bounded tile's line vertices all stay.
+  std::string borderKeep;
 
   // Throws Error naming the option when a value is out of range.
   void validate() const;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <unordered_set>
 #include <vector>
 
 #include "tinlod/dem.h"
@@ -45,7 +46,19 @@ struct TileBorders {
   // One cell's area in the TIN's CRS (at the whole raster's centre): the border rule's
   // estimate of a line vertex's volume is in the units of the volume measure.
   double cellArea = 0;
+  // With -method error -max_error, only with `agreed`: a line vertex the border rule takes
+  // goes when its deletion keeps this tile's cells within the bound, and is *refused*
+  // otherwise (Hierarchy::borderRefused). The driver then keeps it (`kept`, by
+  // globalCellKey) in both tiles and builds them again, until no tile refuses one: the two
+  // tiles check the two sides of the line, which neither sees whole.
+  bool agreed = false;
+  std::unordered_set<std::uint64_t> kept;
 };
+
+// A cell of the whole raster as one number: its row in the high half, its column in the low.
+inline std::uint64_t globalCellKey(std::int64_t row, std::int64_t col) {
+  return (std::uint64_t(row) << 32) | std::uint32_t(col);
+}
 
 // How near (in cells) a missing cell pins a border vertex: a level-0 triangle reaches about
 // two blocks from its vertices, and the nodata filter drops those over missing cells.
@@ -68,8 +81,8 @@ bool onOneSharedLine(const Dem& dem, int rowA, int colA, int rowB, int colB);
 // tile does not read. Always sampled.
 bool pinnedOnLine(const Dem& dem, int row, int col);
 
-// Whether a cell of a shared line never goes in this job: pinnedOnLine, or a peak or pit
-// kept by -fix_peaks_pits.
+// Whether a cell of a shared line never goes in this job: pinnedOnLine, a peak or pit
+// kept by -fix_peaks_pits, or a cell the tiles agreed to keep (TileBorders::kept).
 bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int col);
 
 // Whether a valid cell of a shared line is a vertex: the pinned cells, and one valid cell
@@ -86,5 +99,13 @@ int tileLevelCount(double deletePct, double stopPct);
 // `pinPeaksAndPits` as TileBorders::pinPeaksAndPits.
 TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed,
                         double cellArea, bool pinPeaksAndPits = false);
+// As above, the line cells `kept` (globalCellKey) pinned as well, the border's deletions
+// under a bound agreed (TileBorders::agreed).
+TileBorders agreedTileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block,
+                              std::uint64_t seed, double cellArea, bool pinPeaksAndPits,
+                              std::unordered_set<std::uint64_t> kept);
+
+// The cells of `kept` (globalCellKey) that lie on the tile's shared lines, sorted.
+std::vector<std::uint64_t> keptOnSharedLines(const Dem& dem, const std::unordered_set<std::uint64_t>& kept);
 
 }  // namespace tinlod
