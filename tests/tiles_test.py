@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """tinlod-tiles as a user runs it, on a local Dask cluster of 2 workers: the catalogue ends
 complete, a tile whose tinlod is killed mid-run is retried, a rerun builds no finished tile
-again, and each level across the tiles (VRT and merge) holds every tile's triangles.
+again, each level across the tiles (VRT and merge) holds every tile's triangles, and under
+-method error -max_error the tiles agree their lines in rounds.
 Usage: tiles_test.py TINLOD_CLI TINLOD_TILES STANDIN
 Skipped (exit 77) where python3-distributed is absent. A tinlod without -tile_size (the core
 before tiles) is stood in for by STANDIN, which cuts the tile's window itself."""
@@ -189,6 +190,50 @@ def lod_and_accuracy(tinlod, catalogue, dem, work):
                   [(a["rmse_m"], b["rmse_m"], a["test_points"], b["test_points"]) for a, b in zip(rows, as_one)])
 
 
+def border_agreement(base, options, work, env):
+    """(h) Under -method error -max_error the tiles agree their lines in rounds: the run ends
+    with no tile refusing a line vertex, the union conforming at every level, and a rerun
+    after a kept cell was added to the keep file builds the two tiles of its line again."""
+    catalogue = os.path.join(work, "e.gpkg")
+    bounded = options + ["-method", "error", "-max_error", "2"]
+    first = run(base + [catalogue] + bounded, env)
+    check("(h) the bounded run succeeds", first.returncode == 0, first.stderr[-2000:])
+    check("(h) its tiles agreed their lines in a second round", "border agreement, round 2" in first.stdout,
+          first.stdout[-2000:])
+    folder = os.path.join(work, "e_tiles")
+    found = rows(catalogue)[0]
+    files = [os.path.join(work, r["file"]) for r in found.values() if r["status"] == "done"]
+    metadata = [gdal.OpenEx(f).GetMetadata_Dict() for f in files]
+    check("(h) every tile was built agreed, and none refuses a line vertex any more",
+          len(files) == 5 and all(m.get("TINLOD_BORDER_AGREED") == "yes" and not m.get("TINLOD_BORDER_REFUSED")
+                                  for m in metadata), [(m.get("TINLOD_BORDER_AGREED"), m.get("TINLOD_BORDER_REFUSED")) for m in metadata])
+    with open(os.path.join(folder, "border_keep.txt")) as f:
+        kept = [tuple(int(v) for v in line.split()) for line in f if line.strip()]
+    check("(h) the keep file lists the refused cells, each on a shared line",
+          kept and all(r % TILE_SIZE == 0 or c % TILE_SIZE == 0 for r, c in kept), kept[:10])
+    union = subprocess.run(["/usr/bin/python3", os.path.join(os.path.dirname(os.path.abspath(__file__)), "tile_union.py")]
+                           + files, capture_output=True, text=True)
+    levels = union.stdout.count("conforming=yes")
+    check("(h) the union of the tiles is conforming at every level",
+          union.returncode == 0 and levels >= 10 and "conforming=no" not in union.stdout, union.stdout[-2000:])
+    rerun = run(base + [catalogue] + bounded, env)
+    check("(h) a rerun builds nothing", rerun.returncode == 0 and "0 tiles run" in rerun.stdout, rerun.stdout)
+    # A driver stopped between two rounds left a keep file the tiles were not built with.
+    cell = next((r, TILE_SIZE) for r in range(1, TILE_SIZE) if (r, TILE_SIZE) not in kept)
+    with open(os.path.join(folder, "border_keep.txt"), "a") as f:
+        f.write("%d %d\n" % cell)
+    before = file_times(folder)
+    resumed = run(base + [catalogue] + bounded, env)
+    after = file_times(folder)
+    changed = sorted(name for name in before if after.get(name) != before[name])
+    check("(h) after a cell of the line between tiles 0,0 and 1,0 was kept, a rerun builds those two again",
+          resumed.returncode == 0 and "2 tiles run, 4 skipped" in resumed.stdout
+          and changed == ["tile_0_0.gpkg", "tile_1_0.gpkg"], (changed, resumed.stdout))
+    metadata = gdal.OpenEx(os.path.join(folder, "tile_0_0.gpkg")).GetMetadata_Dict()
+    check("(h) ... with that cell kept", "%d %d" % cell in (metadata.get("TINLOD_BORDER_KEPT") or "").split(";"),
+          metadata.get("TINLOD_BORDER_KEPT"))
+
+
 def main(tinlod, tiles):
     try:
         import distributed  # noqa: F401
@@ -318,6 +363,7 @@ def main(tinlod, tiles):
           and heights[0][0] is not None, (heights, one, via_catalogue.stderr))
 
     lod_and_accuracy(tinlod, catalogue, dem, work)
+    border_agreement(base, options, work, env)
 
     print("tiles: %d failed" % len(failures))
     if not failures:

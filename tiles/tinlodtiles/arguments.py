@@ -55,6 +55,7 @@ General:
 REFUSED_BUILD_OPTIONS = {
     "-survey": "tinlod-tiles runs the survey pass itself (-selection global)",
     "-level_thresholds": "tinlod-tiles sets them from the survey pass (-selection global)",
+    "-border_keep": "tinlod-tiles agrees the lines' kept cells itself (-method error -max_error)",
     "-tile": "tinlod-tiles gives each task its tile",
     "-tile_size": "give -tile_size to tinlod-tiles itself, before --",
     "-accuracy": "one raster per run cannot hold every tile",

@@ -15,7 +15,7 @@ import sys
 
 from osgeo import gdal
 
-from . import task, thresholds
+from . import agreement, task, thresholds
 from .arguments import build_option
 from .catalogue import Catalogue, levels_folder, tiles_folder
 from .errors import TilesError
@@ -42,15 +42,54 @@ def run(arguments):
         dem = None
         remove_leftovers(folder)
         pending = pending_tiles(catalogue, tiles, arguments.catalogue)
+        agreeing = agreement.needed(arguments.build_options)
+        if agreeing:  # a run stopped between two rounds of agreement left tiles to build again
+            pending += [t for t in tiles_to_agree(catalogue, tiles, arguments) if t not in pending]
         outcome = {}
         if pending:
-            with Workers(arguments) as workers:  # one cluster for both passes
+            with Workers(arguments) as workers:  # one cluster for every pass
                 extra = []
                 if global_selection(arguments):
                     extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments, workers)]
                     pending = pending_tiles(catalogue, tiles, arguments.catalogue)  # the surveys found empty tiles
+                if agreeing:
+                    extra += ["-border_keep", os.path.abspath(agreement.keep_path(folder))]
                 outcome = run_tiles(catalogue, pending, arguments, workers, extra) if pending else {}
+                if agreeing:
+                    agree_lines(catalogue, tiles, arguments, workers, extra, outcome)
         return finish(catalogue, arguments, len(tiles) - len(pending), outcome)
+
+
+def tiles_to_agree(catalogue, tiles, arguments):
+    """The finished tiles to build again so that their lines agree (agreement.next_round),
+    marked pending; the keep file updated first."""
+    rows = catalogue.rows()
+    base = os.path.dirname(os.path.abspath(arguments.catalogue))
+    done = {t: os.path.join(base, rows[(t.col, t.row)]["file"]) for t in tiles
+            if rows[(t.col, t.row)]["status"] == "done" and rows[(t.col, t.row)]["file"]}
+    path = agreement.keep_path(tiles_folder(arguments.catalogue))
+    kept, again = agreement.next_round(done, agreement.read_keep(path), agreement.TileLines(tiles))
+    agreement.write_keep(path, kept)
+    for t in again:
+        catalogue.update(t.col, t.row, {"status": "pending", "file": None})
+    return again
+
+
+def agree_lines(catalogue, tiles, arguments, workers, extra, outcome):
+    """Rounds of building again the tiles whose lines gained kept cells, until none does
+    (or a tile fails for good: a rerun goes on from there). Adds to `outcome`."""
+    rounds = 1
+    while not outcome.get("failed"):
+        again = tiles_to_agree(catalogue, tiles, arguments)
+        if not again:
+            break
+        rounds += 1
+        if not arguments.quiet:
+            print("border agreement, round %d: %d tiles again (%d line cells kept under -max_error)"
+                  % (rounds, len(again), len(agreement.read_keep(agreement.keep_path(tiles_folder(arguments.catalogue))))))
+        for status, count in run_tiles(catalogue, again, arguments, workers, extra).items():
+            outcome[status] = outcome.get(status, 0) + count
+    return rounds
 
 
 def job_settings(arguments, dem):
@@ -110,7 +149,8 @@ def remove_job(catalogue_path):
     """-overwrite: the catalogue, its tiles and its level files go; only files tinlod-tiles
     names, so that nothing else a user keeps in those folders is lost."""
     removable = {tiles_folder(catalogue_path): re.compile(
-                     r"tile_\d+_\d+\.(gpkg|partial\.gpkg|gpkg\.log|gpkg\.attempts|survey\.json|survey\.partial\.json|survey\.json\.log|survey\.json\.attempts)"),
+                     r"tile_\d+_\d+\.(gpkg|partial\.gpkg|gpkg\.log|gpkg\.attempts|survey\.json|survey\.partial\.json|survey\.json\.log|survey\.json\.attempts)"
+                     r"|border_keep\.txt(\.partial)?"),
                  levels_folder(catalogue_path): re.compile(r"level_\d+\.vrt")}
     for folder, names in removable.items():
         if os.path.isdir(folder):
@@ -155,6 +195,9 @@ def remove_leftovers(folder):
         if name.startswith("tile_") and name.endswith((".partial.gpkg", ".gpkg.log", ".gpkg.attempts", ".partial.json",
                                                        ".survey.json.log", ".survey.json.attempts")):
             os.remove(os.path.join(folder, name))
+    agreement_partial = agreement.keep_path(folder) + ".partial"
+    if os.path.exists(agreement_partial):
+        os.remove(agreement_partial)
 
 
 def pending_tiles(catalogue, tiles, catalogue_path):
