@@ -10,8 +10,11 @@
 #  2. the peak memory of one tile of 4096 x 4096 cells (-tile_size 4095, tile 0,0 of a synthetic 8193 x 8193 DEM);
 #  3. tinlod accuracy on a catalogue (a tile at a time) against the same on the whole run's
 #     hierarchy: time, peak memory, figures (alps_2x2 and patagonia_coast as 16 tiles);
-#  4. with tinlod-tiles (Dask): cells per second on 1 and on 2 workers (alps_2x2, 16 tiles).
-# Usage: bash bench/tiles_bench.sh [parts...]   (parts: accuracy memory measure throughput; default all)
+#  4. with tinlod-tiles (Dask): cells per second on 1 and on 2 workers (alps_2x2, 16 tiles);
+#  5. under -method error -max_error 25, the rounds that agree the border lines, and the
+#     union against a whole run (alps_2x2 as 4 and 16 tiles, patagonia_coast as 16).
+# Usage: bash bench/tiles_bench.sh [parts...]
+#   (parts: accuracy memory measure throughput bounded; default all)
 # Environment: TINLOD (default build/core/tinlod), TINLOD_TILES (default build/tiles/tinlod-tiles),
 #   WORK (default build/tiles-bench: outputs go there), TINLOD_TEST_DATA (default ../shared/data).
 set -euo pipefail
@@ -20,7 +23,7 @@ tinlod=${TINLOD:-$root/build/core/tinlod}
 tiles=${TINLOD_TILES:-$root/build/tiles/tinlod-tiles}
 data=${TINLOD_TEST_DATA:-$root/../shared/data}
 work=${WORK:-$root/build/tiles-bench}
-parts=${*:-accuracy memory measure throughput}
+parts=${*:-accuracy memory measure throughput bounded}
 mkdir -p "$work"
 
 # tile_grid DEM SIZE: "across down"
@@ -116,6 +119,39 @@ for a, b in ((tiles[0], whole[0]), (tiles[-1], whole[-1])):
 PY
 }
 
+# Under -method error -max_error 25, tinlod-tiles (Dask, 2 workers) agrees the border lines
+# in rounds: the rounds, time, kept line cells, whether every level's union is conforming,
+# and the coarsest level against a whole-raster run with the same options.
+bounded_case() {  # NAME DEM SIZE
+  local name=$1 dem=$2 size=$3
+  if ! /usr/bin/python3 -c "import distributed" 2> /dev/null || [[ ! -x $tiles ]]; then
+    echo "== bounded $name: SKIPPED (python3-distributed or $tiles absent)"
+    return 0
+  fi
+  local options=(-method error -max_error 25)
+  echo "== $name under ${options[*]}: tiles of $size cells, border lines agreed in rounds"
+  [[ -f $work/$name.bounded_whole.gpkg ]] || /usr/bin/time -f "whole run: %e s, peak %M KB" \
+    "$tinlod" build "$dem" "$work/$name.bounded_whole.gpkg" -q "${options[@]}"
+  rm -rf "$work/$name.bounded.gpkg" "$work/$name.bounded_tiles" "$work/$name.bounded_levels"
+  local start=$SECONDS
+  "$tiles" "$dem" "$work/$name.bounded.gpkg" -tile_size "$size" -workers 2 -tinlod "$tinlod" -- "${options[@]}" \
+    > "$work/$name.bounded.log"
+  echo "tinlod-tiles: $((SECONDS - start)) s, $(grep -c '^border agreement' "$work/$name.bounded.log" | \
+    awk '{print $1 + 1}') rounds, $(wc -l < "$work/$name.bounded_tiles/border_keep.txt") line cells kept"
+  /usr/bin/python3 "$root/tests/tile_union.py" --whole "$work/$name.bounded_whole.gpkg" --json "$work/$name.bounded.json" \
+    "$work/$name.bounded_tiles"/tile_*.gpkg > "$work/$name.bounded.union.txt" || { cat "$work/$name.bounded.union.txt"; return 1; }
+  tail -1 "$work/$name.bounded.union.txt"
+  /usr/bin/python3 - "$work/$name.bounded.json" << 'PY'
+import json, sys
+rows = json.load(open(sys.argv[1]))
+both = [r for r in rows if "whole_vertices" in r]  # a bounded whole run may stop before the tiles' last level
+for r in (both[-1], rows[-1]):
+    whole = (f"; whole run {r['whole_vertices']} vertices, RMSE {r['whole_rmse']:.3f} m, max {r['whole_max_error']:.2f} m"
+             if "whole_vertices" in r else " (the whole run stopped before)")
+    print(f"level {r['level']}: tiles {r['vertices']} vertices, RMSE {r['rmse']:.3f} m, max {r['max_error']:.2f} m{whole}")
+PY
+}
+
 throughput_case() {
   if ! /usr/bin/python3 -c "import distributed" 2> /dev/null || [[ ! -x $tiles ]]; then
     echo "== throughput: SKIPPED (python3-distributed or $tiles absent)"
@@ -161,6 +197,11 @@ for part in $parts; do
       measure_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
       ;;
     throughput) throughput_case ;;
+    bounded)
+      bounded_case alps4 "$data/alps_2x2_N46E007_N47E008.tif" 1200
+      bounded_case alps16 "$data/alps_2x2_N46E007_N47E008.tif" 600
+      bounded_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
+      ;;
     *) echo "unknown part $part" >&2; exit 2 ;;
   esac
 done
