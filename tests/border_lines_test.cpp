@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
+#include <set>
+#include <unordered_set>
 
 #include "border_lines.h"
 #include "test_support.h"
@@ -185,6 +188,47 @@ TEST(BorderLines, AKeptCellNeverGoesInEitherTile) {
         pinned += t.borders.pinned[v];
     EXPECT_EQ(pinned, 1u) << "tile " << col;
   }
+}
+
+// What the lines take level by level: whole-raster row -> the level it goes at.
+std::map<int, int> levelsTaken(const TileLine& t, BorderLines& lines, const std::function<bool(VertexId)>& accept,
+                               std::set<int>& refusedRows) {
+  std::map<int, int> out;
+  const auto rowOf = [&](VertexId v) { return int(t.dem.globalRow(t.tin.vertices[v].row)); };
+  for (int level = 1; level <= 12; ++level) {
+    std::vector<VertexId> refused;
+    for (const auto& [importance, v] : lines.take(level, 0.5, {BorderLines::Limit::kDeviation, 1e12}, accept, refused))
+      out[rowOf(v)] = level;
+    for (VertexId v : refused) refusedRows.insert(rowOf(v));
+  }
+  return out;
+}
+
+// A cell refused when the rule takes it is pinned and the line chosen again: the levels
+// then taken are those of a tile that kept it from the start (the next round's), so the
+// round after the refusals finds the same lines.
+TEST(BorderLines, ARefusedCellIsAsIfKeptFromTheStart) {
+  const Dem whole = wholeDem();
+  const std::vector<int> rows = lineRows(whole);
+  TileLine t = tile(whole, 0);
+  std::set<int> refused, none;
+  BorderLines refusing(t.tin, t.dem, t.borders);
+  // Refuse every third row the rule takes: some at level 1, some later.
+  int asked = 0;
+  const std::map<int, int> taken = levelsTaken(t, refusing, [&](VertexId) { return ++asked % 3 != 0; }, refused);
+  ASSERT_GE(refused.size(), 3u);
+  std::unordered_set<std::uint64_t> kept;
+  for (int row : refused) kept.insert(globalCellKey(row, kLineCol));
+  t.borders = agreedTileBorders(t.dem, t.tin, {kSize, 0, 0}, 10, kBlock, kSeed, kCellArea, false, kept);
+  BorderLines keeping(t.tin, t.dem, t.borders);
+  const std::map<int, int> fromTheStart = levelsTaken(t, keeping, [](VertexId) { return true; }, none);
+  EXPECT_TRUE(none.empty());
+  EXPECT_EQ(taken, fromTheStart);
+  for (int row : refused) EXPECT_EQ(taken.count(row), 0u) << "row " << row;
+  // Without the refusals the lines go otherwise: the test tells them apart.
+  TileLine plain = tile(whole, 0);
+  BorderLines all(plain.tin, plain.dem, plain.borders);
+  EXPECT_NE(levelsTaken(plain, all, [](VertexId) { return true; }, none), taken);
 }
 
 // The volume estimate is in the TIN's area units: a tile made without them would thin its

@@ -252,4 +252,35 @@ double unjitteredArea(const Dem& dem, const Tin& tin, const std::string& sourceS
   return area;
 }
 
+std::vector<double> cellDistances(const Dem& dem, const Hierarchy& h, std::int32_t level,
+                                  const std::function<std::array<double, 2>(const TinVertex&)>& gridPlace) {
+  std::vector<double> out(dem.z.size(), NAN);
+  for (std::uint32_t id : h.levelTriangles(level)) {
+    const Triangle& t = h.triangles[id].v;
+    double c[3], r[3], z[3];
+    for (int k = 0; k < 3; ++k) {
+      const TinVertex& v = h.base.vertices[t[k]];
+      const std::array<double, 2> at = gridPlace(v);
+      c[k] = at[0], r[k] = at[1], z[k] = v.z;
+    }
+    const double d = (c[1] - c[0]) * (r[2] - r[0]) - (c[2] - c[0]) * (r[1] - r[0]);
+    if (d == 0) continue;
+    // The footprint's box, a little wider: a place from x and y may miss a whole number by a rounding.
+    const int r0 = std::max(0, int(std::ceil(std::min({r[0], r[1], r[2]}) - 1e-9)));
+    const int r1 = std::min(dem.height - 1, int(std::floor(std::max({r[0], r[1], r[2]}) + 1e-9)));
+    const int c0 = std::max(0, int(std::ceil(std::min({c[0], c[1], c[2]}) - 1e-9)));
+    const int c1 = std::min(dem.width - 1, int(std::floor(std::max({c[0], c[1], c[2]}) + 1e-9)));
+    for (int row = r0; row <= r1; ++row)
+      for (int col = c0; col <= c1; ++col) {
+        const std::size_t cell = std::size_t(row) * dem.width + col;
+        if (!std::isnan(out[cell]) || !dem.valid(row, col)) continue;
+        const double wb = ((col - c[0]) * (r[2] - r[0]) - (c[2] - c[0]) * (row - r[0])) / d;
+        const double wc = ((c[1] - c[0]) * (row - r[0]) - (col - c[0]) * (r[1] - r[0])) / d;
+        if (wb < -1e-9 || wc < -1e-9 || wb + wc > 1 + 1e-9) continue;
+        out[cell] = std::fabs(dem.at(row, col) - (z[0] + wb * (z[1] - z[0]) + wc * (z[2] - z[0])));
+      }
+  }
+  return out;
+}
+
 }  // namespace tinlod::test

@@ -2,10 +2,14 @@
 // Independent checks of a TIN, written apart from the code they check.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "tinlod/dem.h"
+#include "tinlod/hierarchy.h"
 #include "tinlod/tin.h"
 
 namespace tinlod::test {
@@ -63,5 +67,12 @@ double unjitteredArea(const Dem& dem, const Tin& tin, const std::string& sourceS
 
 // Asserts everything above of a TIN sampled from `dem` with the given jitter (gtest).
 void expectValidTin(const Dem& dem, const Tin& tin, double jitter, const std::string& sourceSrs = "");
+
+// Brute force, written apart from the simplifier: each valid cell centre's vertical distance
+// to a level, by the first triangle of the level whose closed footprint in the grid holds
+// it; NaN where none does. `gridPlace` puts a vertex in the grid as {column, row} (cell
+// centres at whole numbers): by its cell and offsets, or from its x and y.
+std::vector<double> cellDistances(const Dem& dem, const Hierarchy& h, std::int32_t level,
+                                  const std::function<std::array<double, 2>(const TinVertex&)>& gridPlace);
 
 }  // namespace tinlod::test

@@ -7,16 +7,10 @@
 
 
 namespace tinlod {
-namespace {
-
-std::uint64_t cellKey(int row, int col) { return (std::uint64_t(std::uint32_t(row)) << 32) | std::uint32_t(col); }
-
-}  // namespace
-
 BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& tile) : cellArea_(tile.cellArea) {
-  std::unordered_map<std::uint64_t, VertexId> vertexOf;  // the vertices on the shared lines, by cell
+  std::unordered_map<std::uint64_t, VertexId> vertexOf;  // the vertices on the shared lines, by cell of the tile
   for (VertexId v = 0; v < base.vertices.size(); ++v)
-    if (tile.side[v] >= 0) vertexOf.emplace(cellKey(base.vertices[v].row, base.vertices[v].col), v);
+    if (tile.side[v] >= 0) vertexOf.emplace(globalCellKey(base.vertices[v].row, base.vertices[v].col), v);
   for (int s = 0; s < 4; ++s) {
     if (tile.lineClass[s] < 0) continue;
     Line line;
@@ -27,7 +21,7 @@ BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& til
     for (int i = 0; i < n; ++i) {
       const int row = column ? i : at, col = column ? at : i;
       if (!dem.valid(row, col) || !lineCellSampled(dem, row, col, tile.block, tile.seed)) continue;
-      const auto found = vertexOf.find(cellKey(row, col));
+      const auto found = vertexOf.find(globalCellKey(row, col));
       const VertexId v = found == vertexOf.end() ? kNoVertex : found->second;
       // The cell's place, not its vertex's: the other tile may have left the vertex out.
       const double along = column ? double(dem.globalRow(row)) : double(dem.globalCol(col));

@@ -435,12 +435,35 @@ class Simplifier {
     h_.survey.push_back(std::move(l));
   }
 
+  // With the raster's volume threshold for the level, a line keeps its vertices where the
+  // terrain needs them, as the interior does; otherwise it thins by count. Under a bound,
+  // a cell goes only if it is itself within the bound of the line between its neighbours
+  // (both tiles interpolate it along that line), and below the level's error threshold
+  // (its deviation is the least its error can be): the rounds of agreement then refuse
+  // only what cells off the line forbid.
+  BorderLines::Limit borderLimit(bool bounded) const {
+    const bool scheduled = !options_.levelThresholds.empty();
+    if (bounded)
+      return {BorderLines::Limit::kDeviation, scheduled ? std::min(options_.maxError, levelThreshold_) : options_.maxError};
+    if (options_.measure == Measure::Volume && scheduled) return {BorderLines::Limit::kVolume, levelThreshold_};
+    return {};
+  }
+
   // Whether deleting the border vertex keeps every cell of this tile under its new
   // triangles within the bound (the other tile checks its side of the line).
   bool withinBound(VertexId v) {
-    StarScratch s;
-    s.walk(mesh_, v);
-    return retriangulateStar(s.star, s.fill) && cellError(s) < INFINITY;
+    borderScratch_.walk(mesh_, v);
+    return retriangulateStar(borderScratch_.star, borderScratch_.fill) && cellError(borderScratch_) < INFINITY;
+  }
+
+  // A refused border vertex stays here as if it had been kept from the start (its file
+  // then reads as the next round's will); the driver keeps it in the other tile too.
+  void keepRefused(const std::vector<VertexId>& refused) {
+    for (const VertexId v : refused) {
+      const TinVertex& p = h_.base.vertices[v];
+      h_.borderRefused.push_back(globalCellKey(dem_.globalRow(p.row), dem_.globalCol(p.col)));
+      h_.fixed[v] = 1;
+    }
   }
 
   // The candidates of each half of the live list (which is in id order), listed and
@@ -470,23 +493,14 @@ class Simplifier {
     // The bound holds at cells only one tile sees: unless the tiles agree on the line's
     // deletions (TileBorders::agreed), the border stays.
     if (bounded && !tile_->agreed) return;
-    // With the raster's volume threshold for the level, a line keeps its vertices where the
-    // terrain needs them, as the interior does; otherwise it thins by count. Under a bound,
-    // a cell goes only if it is itself within the bound of the line between its neighbours
-    // (both tiles interpolate it along that line): the rounds of agreement then refuse
-    // only what cells off the line forbid.
-    BorderLines::Limit limit;
-    if (bounded) limit = {BorderLines::Limit::kDeviation, options_.maxError};
-    else if (options_.measure == Measure::Volume && !options_.levelThresholds.empty())
-      limit = {BorderLines::Limit::kVolume, levelThreshold_};
     std::vector<VertexId> refused;
-    const auto accept = [&](VertexId v) { return !bounded || withinBound(v); };
-    const auto taken = borders_.take(level, share, limit, accept, refused);
-    for (const VertexId v : refused) {
-      const TinVertex& p = h_.base.vertices[v];
-      h_.borderRefused.push_back(globalCellKey(dem_.globalRow(p.row), dem_.globalCol(p.col)));
-      h_.fixed[v] = 1;
-    }
+    // Under a bound, this tile refuses what it cannot delete within it (the other tile then
+    // keeps it too): a vertex it cannot delete as one fan is refused, not an error.
+    const auto accept = [&](VertexId v) {
+      return !bounded || (mesh_.open(v) && mesh_.deletableOpen(v) && withinBound(v));
+    };
+    const auto taken = borders_.take(level, share, borderLimit(bounded), accept, refused);
+    keepRefused(refused);
     for (const auto& [importance, v] : taken) {
       if (v == BorderLines::kNoVertex) continue;  // left out of this tile's level 0
       if (!mesh_.open(v) || !mesh_.deletableOpen(v) || stamp_[v] == level)
@@ -722,6 +736,7 @@ class Simplifier {
   const Dem& dem_;
   const TileBorders* tile_;
   BorderLines borders_;
+  StarScratch borderScratch_;  // withinBound's, on the selecting thread
   Hierarchy h_;
   SimplificationMesh mesh_;
   CellErrors cells_;

@@ -86,21 +86,15 @@ bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int c
          (!borders.kept.empty() && borders.kept.count(globalCellKey(dem.globalRow(row), dem.globalCol(col))) > 0);
 }
 
-TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed,
-                        double cellArea, bool pinPeaksAndPits) {
-  TileBorders b = agreedTileBorders(dem, tin, tile, levels, block, seed, cellArea, pinPeaksAndPits, {});
-  b.agreed = false;
-  return b;
-}
+namespace {
 
-TileBorders agreedTileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block,
-                              std::uint64_t seed, double cellArea, bool pinPeaksAndPits,
-                              std::unordered_set<std::uint64_t> kept) {
+TileBorders makeBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed,
+                        double cellArea, bool pinPeaksAndPits, bool agreed, std::unordered_set<std::uint64_t> kept) {
   if (!(cellArea > 0) || !std::isfinite(cellArea))
     throw Error("internal error: a tile's cell area must be positive, not " + std::to_string(cellArea));
   TileBorders b;
   b.block = block, b.seed = seed, b.cellArea = cellArea, b.pinPeaksAndPits = pinPeaksAndPits;
-  b.agreed = true;
+  b.agreed = agreed;
   b.kept = std::move(kept);
   b.levels = levels;
   // A line's class from its index among the raster's lines of its direction: the same for
@@ -118,6 +112,19 @@ TileBorders agreedTileBorders(const Dem& dem, const Tin& tin, const TileSpec& ti
     if (b.side[i] >= 0) b.pinned[i] = pinnedBorderCell(dem, b, v.row, v.col);
   }
   return b;
+}
+
+}  // namespace
+
+TileBorders tileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block, std::uint64_t seed,
+                        double cellArea, bool pinPeaksAndPits) {
+  return makeBorders(dem, tin, tile, levels, block, seed, cellArea, pinPeaksAndPits, false, {});
+}
+
+TileBorders agreedTileBorders(const Dem& dem, const Tin& tin, const TileSpec& tile, int levels, int block,
+                              std::uint64_t seed, double cellArea, bool pinPeaksAndPits,
+                              std::unordered_set<std::uint64_t> kept) {
+  return makeBorders(dem, tin, tile, levels, block, seed, cellArea, pinPeaksAndPits, true, std::move(kept));
 }
 
 std::vector<std::uint64_t> keptOnSharedLines(const Dem& dem, const std::unordered_set<std::uint64_t>& kept) {
