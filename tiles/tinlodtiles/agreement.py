@@ -9,6 +9,7 @@ the line then keep, and every tile whose lines gained a kept cell is built again
 set only grows, so the rounds end; when none refuses a vertex, the two tiles of every line
 made the same deletions, each within the bound on its side: the bound holds everywhere.
 """
+import math
 import os
 
 from osgeo import gdal
@@ -20,7 +21,12 @@ KEEP_NAME = "border_keep.txt"
 
 def needed(build_options):
     """Only a bounded error job needs agreeing: other methods thin a line by its own data."""
-    return build_option(build_options, "-method") == "error" and build_option(build_options, "-max_error") is not None
+    if build_option(build_options, "-method") != "error":
+        return False
+    try:
+        return math.isfinite(float(build_option(build_options, "-max_error")))
+    except (TypeError, ValueError):  # absent, or not a number (tinlod says so)
+        return False
 
 
 def keep_path(folder):
@@ -31,9 +37,10 @@ def read_keep(path):
     """The kept cells, as (row, col) of the whole raster."""
     try:
         with open(path) as f:
-            return {tuple(int(v) for v in line.split()) for line in f if line.strip()}
+            lines = [line.split("#", 1)[0].split() for line in f]
     except FileNotFoundError:
         return set()
+    return {(int(fields[0]), int(fields[1])) for fields in lines if fields}
 
 
 def write_keep(path, cells):
@@ -53,9 +60,11 @@ def cells_of(text):
 class TileLines:
     """Which cells lie on a tile's shared lines, as the core finds them (keptOnSharedLines)."""
 
-    def __init__(self, tiles):
+    def __init__(self, tiles, tile_size):
         self.width = max(t.xoff + t.xsize for t in tiles)
         self.height = max(t.yoff + t.ysize for t in tiles)
+        self.size = tile_size
+        self.at = {(t.col, t.row): t for t in tiles}
 
     def holds(self, tile, cell):
         row, col = cell
@@ -65,14 +74,30 @@ class TileLines:
         return ((tile.xoff > 0 and col == tile.xoff) or (last_col < self.width - 1 and col == last_col)
                 or (tile.yoff > 0 and row == tile.yoff) or (last_row < self.height - 1 and row == last_row))
 
-    def kept_on(self, tile, kept):
-        return {cell for cell in kept if self.holds(tile, cell)}
+    def tiles_holding(self, cell):
+        """The tiles whose lines hold the cell: those whose windows do (at most 4)."""
+        row, col = cell
+        cols = {col // self.size, col // self.size - 1} if col % self.size == 0 else {col // self.size}
+        rows = {row // self.size, row // self.size - 1} if row % self.size == 0 else {row // self.size}
+        found = (self.at.get((c, r)) for c in cols for r in rows)
+        return [t for t in found if t is not None and self.holds(t, cell)]
+
+    def kept_by_tile(self, kept):
+        """{tile: the kept cells on its lines}, a cell looked up once (a job has many tiles)."""
+        by_tile = {}
+        for cell in kept:
+            for tile in self.tiles_holding(cell):
+                by_tile.setdefault(tile, set()).add(cell)
+        return by_tile
 
 
 def tile_record(path):
     """(the kept cells a built tile was given, the cells it refused); None for either when
     its file does not say (built without agreement)."""
-    dataset = gdal.OpenEx(path)
+    try:
+        dataset = gdal.OpenEx(path)
+    except RuntimeError:  # unreadable: built again
+        return None, None
     if dataset is None or dataset.GetMetadataItem("TINLOD_BORDER_AGREED") != "yes":
         return None, None
     return cells_of(dataset.GetMetadataItem("TINLOD_BORDER_KEPT")), cells_of(dataset.GetMetadataItem("TINLOD_BORDER_REFUSED"))
@@ -84,7 +109,8 @@ def next_round(done, kept, lines):
     those they were built with, or whose file does not say)."""
     records = {tile: tile_record(path) for tile, path in done.items()}
     kept = set(kept)
-    for _, refused in records.values():
-        kept |= refused or set()
-    again = [tile for tile, (given, _) in records.items() if given is None or given != lines.kept_on(tile, kept)]
+    for given, refused in records.values():  # what the tiles recorded, should the keep file be lost
+        kept |= (given or set()) | (refused or set())
+    by_tile = lines.kept_by_tile(kept)
+    again = [tile for tile, (given, _) in records.items() if given is None or given != by_tile.get(tile, set())]
     return kept, again

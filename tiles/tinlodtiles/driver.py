@@ -44,7 +44,8 @@ def run(arguments):
         pending = pending_tiles(catalogue, tiles, arguments.catalogue)
         agreeing = agreement.needed(arguments.build_options)
         if agreeing:  # a run stopped between two rounds of agreement left tiles to build again
-            pending += [t for t in tiles_to_agree(catalogue, tiles, arguments) if t not in pending]
+            listed = set(pending)
+            pending += [t for t in tiles_to_agree(catalogue, tiles, arguments) if t not in listed]
         outcome = {}
         if pending:
             with Workers(arguments) as workers:  # one cluster for every pass
@@ -68,7 +69,7 @@ def tiles_to_agree(catalogue, tiles, arguments):
     done = {t: os.path.join(base, rows[(t.col, t.row)]["file"]) for t in tiles
             if rows[(t.col, t.row)]["status"] == "done" and rows[(t.col, t.row)]["file"]}
     path = agreement.keep_path(tiles_folder(arguments.catalogue))
-    kept, again = agreement.next_round(done, agreement.read_keep(path), agreement.TileLines(tiles))
+    kept, again = agreement.next_round(done, agreement.read_keep(path), agreement.TileLines(tiles, arguments.tile_size))
     agreement.write_keep(path, kept)
     for t in again:
         catalogue.update(t.col, t.row, {"status": "pending", "file": None})
