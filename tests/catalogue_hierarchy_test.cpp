@@ -281,6 +281,38 @@ TEST(CatalogueHierarchy, AccuracyOfACatalogueIsMeasuredOverAllItsTiles) {
   EXPECT_GT(report.rows.back().rmse, report.rows[1].rmse);
 }
 
+// Heights outside -valid_range are nodata, as in a whole run, and counted once at each
+// test point in one warning, however the tiles' windows overlap.
+TEST(CatalogueHierarchy, AccuracyTileByTileWarnsOnceOfHeightsOutsideTheValidRange) {
+  const Dem dem = test::smallSyntheticDem();
+  std::vector<float> heights;
+  for (int r = 0; r < dem.height; ++r)
+    for (int c = 0; c < dem.width; ++c)
+      if (dem.valid(r, c)) heights.push_back(dem.at(r, c));
+  std::sort(heights.begin(), heights.end());
+  const HeightRange range{-100, double(heights[heights.size() * 95 / 100])};  // the highest 5 % out
+  for (int step : {1, 2}) {
+    std::size_t outside = 0;
+    for (int r = 0; r < dem.height; r += step)
+      for (int c = 0; c < dem.width; c += step) outside += dem.valid(r, c) && !range.contains(dem.at(r, c));
+    ASSERT_GT(outside, 10u);
+    AccuracyOutputs outputs;
+    outputs.options.reference = Reference::Dem;
+    outputs.options.step = step;
+    test::RecordingFeedback fb;
+    const AccuracyReport report =
+        runAccuracyJob(test::smallSyntheticDemFile(), builtTiles().catalogue, outputs, 0, "", fb.feedback(), range);
+    std::size_t warnings = 0;
+    for (const std::string& w : fb.warnings) warnings += test::contains(w, "with heights outside");
+    EXPECT_EQ(warnings, 1u) << "step " << step;
+    EXPECT_TRUE(fb.warned("ignored " + std::to_string(outside) + " test points of")) << "step " << step << ": "
+                                                                                     << (fb.warnings.empty() ? "" : fb.warnings.back());
+    // Those points are not measured: fewer than without the range.
+    const AccuracyReport all = runAccuracyJob(test::smallSyntheticDemFile(), builtTiles().catalogue, outputs, 0, "", kQuiet);
+    EXPECT_LT(report.rows.front().testPoints, all.rows.front().testPoints);
+  }
+}
+
 // A catalogue's tiles read as one hierarchy (`h`) and measured at once, as a whole run is.
 AccuracyReport measuredAsOne(const std::string& demFile, const Hierarchy& h, const AccuracyOutputs& outputs) {
   const Dem dem = readDem(demFile, 1, kRange);

@@ -23,6 +23,7 @@
 #include "tinlod/accuracy_statistics.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
+#include "tinlod/height_range.h"
 #include "tinlod/tin_rasterizer.h"
 
 namespace tinlod {
@@ -39,6 +40,8 @@ struct LevelSums {
   SurfaceComparison surfaces;
 };
 
+const HeightRange kAnyHeight{-1e300, 1e300};  // every finite height
+
 // The whole raster's test grid, which every tile's window is a piece of.
 struct WholeGrid {
   Dem header;  // the raster's size, georeferencing and CRS, without heights
@@ -51,7 +54,7 @@ struct WholeGrid {
 WholeGrid wholeGrid(const std::string& demPath, int band, const HeightRange& valid, const std::string& sourceSrs,
                     const std::string& tinCrs, const AccuracyOptions& options, const ProgressRange& progress) {
   // One cell reads the raster's georeferencing (and says what it has to about it once).
-  Dem header = readDemWindow(demPath, band, CellWindow{0, 0, 1, 1}, progress, valid);
+  Dem header = readDemWindow(demPath, band, CellWindow{0, 0, 1, 1}, progress, kAnyHeight);  // the tiles count drops
   header.width = header.window.fullWidth, header.height = header.window.fullHeight;
   header.geotransform = header.window.fullGeotransform;
   header.window = RasterWindow{0, 0, header.width, header.height, header.geotransform};
@@ -63,6 +66,7 @@ WholeGrid wholeGrid(const std::string& demPath, int band, const HeightRange& val
 }
 
 int ceilDiv(int a, int b) { return (a + b - 1) / b; }  // a >= 0, b > 0
+
 
 // The test points of the cells a tile answers for (ownedCells), so that each point counts once.
 std::vector<TestRect> ownedPoints(const std::vector<CellRect>& cells, int step) {
@@ -201,6 +205,8 @@ class TileMeasure {
   TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, const Hierarchy& h,
               const std::vector<TestRect>& owned, const ProgressRange& progress);
   void measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas, const ProgressRange& progress) const;
+  // With -reference dem: the owned test points whose heights -valid_range made nodata.
+  std::size_t droppedHeights() const { return droppedHeights_; }
 
  private:
   // The corners of the other tiles' triangles that reach into the window (three a triangle).
@@ -221,6 +227,7 @@ class TileMeasure {
   std::size_t neighboursBefore_ = 0;  // of tiles before this one in the catalogue
   Grid reference_;
   std::unique_ptr<BsplineSurface> referenceSurface_;
+  std::size_t droppedHeights_ = 0;
 };
 
 TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index,
@@ -264,7 +271,17 @@ void TileMeasure::makeReference(const ProgressRange& progress) {
     const CellWindow cells{window_.col0 * step, window_.row0 * step, (window_.col1 - window_.col0 - 1) * step + 1,
                            (window_.row1 - window_.row0 - 1) * step + 1};
     const ProgressRange quiet(Feedback{}, 0, 1);  // the whole raster's header said it
-    reference_ = demHeights(readDemWindow(g_.header.path, g_.header.band, cells, quiet, g_.valid), grid_);
+    // Read as they are and dropped here, so that the heights outside -valid_range are
+    // counted at the owned points only (windows overlap): one warning for the raster.
+    Dem heights = readDemWindow(g_.header.path, g_.header.band, cells, quiet, kAnyHeight);
+    for (const TestRect& o : owned_)
+      for (int r = o.row0; r < o.row1; ++r)
+        for (int c = o.col0; c < o.col1; ++c) {
+          const float z = heights.at(r * step, c * step);
+          droppedHeights_ += !std::isnan(z) && !g_.valid.contains(z);
+        }
+    dropHeightsOutside(heights.z, g_.valid);
+    reference_ = demHeights(heights, grid_);
   } else {
     reference_ = rasterize(0, progress);
   }
@@ -383,6 +400,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
   std::vector<LevelSums> sums;
   std::unique_ptr<AccuracyRasterCanvas> canvas;
   std::int32_t rasterLevel = 0;
+  std::size_t droppedHeights = 0;
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const CatalogueTile& tile = tiles[i];
     const ProgressRange part = progress.sub(0.95 * i / tiles.size(), 0.95 * (i + 1) / tiles.size());
@@ -411,10 +429,15 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     const std::vector<TestRect> owned = ownedPoints(cells, g->grid.step);
     if (owned.empty()) continue;
     const TileMeasure measure(*g, tiles, i, h, owned, part.sub(0.25, 0.3));
+    droppedHeights += measure.droppedHeights();
     for (std::int32_t L = 0; L <= h.coarsest(); ++L)
       measure.measure(L, sums[L], L == rasterLevel ? canvas.get() : nullptr,
                       part.sub(0.3 + 0.7 * L / (h.coarsest() + 1), 0.3 + 0.7 * (L + 1) / (h.coarsest() + 1)));
   }
+  if (droppedHeights > 0)
+    progress.warn("ignored " + std::to_string(droppedHeights) + (droppedHeights == 1 ? " test point" : " test points") +
+                  " of '" + demPath + "' with heights outside " + validHeights.text() +
+                  " (treated as nodata); widen with -valid_range");
   std::vector<LevelAccuracy> rows;
   for (std::size_t L = 0; L < sums.size(); ++L) rows.push_back(rowOf(sums[L], job, demName(demPath), std::int32_t(L)));
   if (rows.empty() || rows.front().testPoints == 0)
