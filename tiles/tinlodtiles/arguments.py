@@ -38,7 +38,9 @@ Tiles:
                    (faster, but a few per cent to 20 % less accurate at equal vertex counts)
   -- options       everything after -- goes to each tile's tinlod build, but for what belongs
                    to the run: the tile options -tile and -tile_size, the outputs -accuracy
-                   and -report, and -overwrite and -q
+                   and -report, and -overwrite and -q. With -method error -max_error E the
+                   tiles agree their shared lines in rounds (a line vertex goes only where
+                   both sides stay within E), building again the tiles a round changed
 
 Merge:
   -level K         merge: the level to merge, 0 to the catalogue's TINLOD_LEVELS - 1
