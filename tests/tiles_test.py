@@ -200,6 +200,9 @@ def border_agreement(base, options, work, env):
     check("(h) the bounded run succeeds", first.returncode == 0, first.stderr[-2000:])
     check("(h) its tiles agreed their lines in a second round", "border agreement, round 2" in first.stdout,
           first.stdout[-2000:])
+    check("(h) the summary counts the 5 tiles once, and their builds and rounds apart",
+          re.search(r"^5 tiles run \(\d+ builds in \d rounds of border agreement\), 1 skipped", first.stdout, re.M),
+          first.stdout[-2000:])
     folder = os.path.join(work, "e_tiles")
     found = rows(catalogue)[0]
     files = [os.path.join(work, r["file"]) for r in found.values() if r["status"] == "done"]

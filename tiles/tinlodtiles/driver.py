@@ -46,19 +46,20 @@ def run(arguments):
         if agreeing:  # a run stopped between two rounds of agreement left tiles to build again
             listed = set(pending)
             pending += [t for t in tiles_to_agree(catalogue, tiles, arguments) if t not in listed]
-        outcome = {}
+        outcome, built, rounds = {}, set(pending), 1
         if pending:
             with Workers(arguments) as workers:  # one cluster for every pass
                 extra = []
                 if global_selection(arguments):
                     extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments, workers)]
                     pending = pending_tiles(catalogue, tiles, arguments.catalogue)  # the surveys found empty tiles
+                    built = set(pending)
                 if agreeing:
                     extra += ["-border_keep", os.path.abspath(agreement.keep_path(folder))]
                 outcome = run_tiles(catalogue, pending, arguments, workers, extra) if pending else {}
                 if agreeing:
-                    agree_lines(catalogue, tiles, arguments, workers, extra, outcome)
-        return finish(catalogue, arguments, len(tiles) - len(pending), outcome)
+                    rounds = agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built)
+        return finish(catalogue, arguments, len(tiles) - len(built), outcome, len(built), rounds)
 
 
 def tiles_to_agree(catalogue, tiles, arguments):
@@ -76,9 +77,10 @@ def tiles_to_agree(catalogue, tiles, arguments):
     return again
 
 
-def agree_lines(catalogue, tiles, arguments, workers, extra, outcome):
+def agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built):
     """Rounds of building again the tiles whose lines gained kept cells, until none does
-    (or a tile fails for good: a rerun goes on from there). Adds to `outcome`."""
+    (or a tile fails for good: a rerun goes on from there). Adds to `outcome` and to the
+    set of tiles `built`; returns the rounds, the first included."""
     rounds = 1
     while not outcome.get("failed"):
         again = tiles_to_agree(catalogue, tiles, arguments)
@@ -88,6 +90,7 @@ def agree_lines(catalogue, tiles, arguments, workers, extra, outcome):
         if not arguments.quiet:
             print("border agreement, round %d: %d tiles again (%d line cells kept under -max_error)"
                   % (rounds, len(again), len(agreement.read_keep(agreement.keep_path(tiles_folder(arguments.catalogue))))))
+        built.update(again)
         for status, count in run_tiles(catalogue, again, arguments, workers, extra).items():
             outcome[status] = outcome.get(status, 0) + count
     return rounds
@@ -378,8 +381,9 @@ def stop(client, cluster):
         cluster.close()
 
 
-def finish(catalogue, arguments, skipped, outcome):
-    """TINLOD_LEVELS, the level files and the summary; 1 when tiles failed."""
+def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
+    """TINLOD_LEVELS, the level files and the summary (`ran` tiles built, in `rounds` of
+    border agreement); 1 when tiles failed."""
     rows = catalogue.rows().values()
     counts = sorted({row["levels"] for row in rows if row["status"] == "done"})
     if len(counts) > 1:
@@ -393,7 +397,7 @@ def finish(catalogue, arguments, skipped, outcome):
         states[row["status"]] = states.get(row["status"], 0) + 1
     catalogue.close()
     if not arguments.quiet:
-        print_summary(arguments.catalogue, sum(outcome.values()), skipped, states, levels if vrts else 0)
+        print_summary(arguments.catalogue, ran, sum(outcome.values()), rounds, skipped, states, levels if vrts else 0)
     if states.get("failed"):
         print("ERROR: %d tiles failed after their retries (the catalogue's error field says why): "
               "run again to retry them" % states["failed"], file=sys.stderr)
@@ -401,9 +405,10 @@ def finish(catalogue, arguments, skipped, outcome):
     return 0
 
 
-def print_summary(catalogue_path, ran, skipped, states, levels):
-    print("%d tiles run, %d skipped (already finished); the catalogue %s has %s"
-          % (ran, skipped, catalogue_path,
+def print_summary(catalogue_path, ran, builds, rounds, skipped, states, levels):
+    agreed = " (%d builds in %d rounds of border agreement)" % (builds, rounds) if builds > ran else ""
+    print("%d tiles run%s, %d skipped (already finished); the catalogue %s has %s"
+          % (ran, agreed, skipped, catalogue_path,
              ", ".join("%d %s" % (states[s], s) for s in ("done", "empty", "failed", "pending") if s in states)))
     if levels:
         print("levels 0 to %d across the tiles: %s"
