@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <unordered_set>
 
@@ -131,19 +132,25 @@ std::unordered_set<std::uint64_t> readKeptCells(const std::string& path) {
   return kept;
 }
 
+// `kept`: -border_keep's cells (readKeptCells), or none for a tile whose lines need no agreement.
 TileBorders bordersOf(const Dem& dem, const Tin& tin, const TileSpec& tile, const SampleOptions& sample,
-                      const HierarchyOptions& options) {
-  if (options.borderKeep.empty())
+                      const HierarchyOptions& options, std::optional<std::unordered_set<std::uint64_t>> kept) {
+  if (!kept)
     return tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample),
                        options.fixPeaksPits);
   return agreedTileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample),
-                           options.fixPeaksPits, readKeptCells(options.borderKeep));
+                           options.fixPeaksPits, std::move(*kept));
+}
+
+std::optional<std::unordered_set<std::uint64_t>> keptCellsOf(const HierarchyOptions& options) {
+  if (options.borderKeep.empty()) return std::nullopt;
+  return readKeptCells(options.borderKeep);
 }
 
 std::string cellList(const std::vector<std::uint64_t>& keys) {
   std::string text;
   for (const std::uint64_t key : keys)
-    text += (text.empty() ? "" : ";") + std::to_string(key >> 32) + " " + std::to_string(key & 0xffffffffu);
+    text += (text.empty() ? "" : ";") + std::to_string(globalCellRow(key)) + " " + std::to_string(globalCellCol(key));
   return text;
 }
 
@@ -178,7 +185,7 @@ BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, c
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
-  const TileBorders borders = tile.size > 0 ? bordersOf(dem, tin, tile, sample, options) : TileBorders{};
+  const TileBorders borders = tile.size > 0 ? bordersOf(dem, tin, tile, sample, options, keptCellsOf(options)) : TileBorders{};
   const Hierarchy h = buildHierarchy(std::move(tin), dem, {}, options, all.sub(0.2, 0.95), {},
                                      tile.size > 0 ? &borders : nullptr);
   const std::string partial = outPath + ".partial";
@@ -219,7 +226,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
     throw Error("-level_thresholds is the second pass of a tiled run: give it with -tile_size and -tile");
   if (!options.borderKeep.empty() && tile.size == 0)
     throw Error("-border_keep is for a tile of a job with -method error -max_error: give it with -tile_size and -tile");
-  if (!options.borderKeep.empty()) readKeptCells(options.borderKeep);  // a bad file fails before the long work
+  std::optional<std::unordered_set<std::uint64_t>> kept = keptCellsOf(options);  // a bad file fails before the long work
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   const std::string fixedName = "-fixed (points to keep)";
@@ -232,7 +239,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
-  const TileBorders borders = tile.size > 0 ? bordersOf(dem, tin, tile, sample, options) : TileBorders{};
+  const TileBorders borders = tile.size > 0 ? bordersOf(dem, tin, tile, sample, options, std::move(kept)) : TileBorders{};
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
   // With accuracy outputs the last quarter of the job is theirs.

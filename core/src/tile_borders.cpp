@@ -130,8 +130,8 @@ TileBorders agreedTileBorders(const Dem& dem, const Tin& tin, const TileSpec& ti
 std::vector<std::uint64_t> keptOnSharedLines(const Dem& dem, const std::unordered_set<std::uint64_t>& kept) {
   std::vector<std::uint64_t> out;
   for (const std::uint64_t key : kept) {
-    const std::int64_t row = std::int64_t(key >> 32) - dem.window.rowOffset;
-    const std::int64_t col = std::int64_t(key & 0xffffffffu) - dem.window.colOffset;
+    const std::int64_t row = globalCellRow(key) - dem.window.rowOffset;
+    const std::int64_t col = globalCellCol(key) - dem.window.colOffset;
     if (row >= 0 && col >= 0 && row < dem.height && col < dem.width && onSharedLine(dem, int(row), int(col)))
       out.push_back(key);
   }

@@ -45,7 +45,7 @@ def run(arguments):
         agreeing = agreement.needed(arguments.build_options)
         if agreeing:  # a run stopped between two rounds of agreement left tiles to build again
             listed = set(pending)
-            pending += [t for t in tiles_to_agree(catalogue, tiles, arguments) if t not in listed]
+            pending += [t for t in tiles_to_agree(catalogue, tiles, arguments)[0] if t not in listed]
         outcome, built, rounds = {}, set(pending), 1
         if pending:
             with Workers(arguments) as workers:  # one cluster for every pass
@@ -64,7 +64,7 @@ def run(arguments):
 
 def tiles_to_agree(catalogue, tiles, arguments):
     """The finished tiles to build again so that their lines agree (agreement.next_round),
-    marked pending; the keep file updated first."""
+    marked pending, and how many line cells are kept; the keep file updated first."""
     rows = catalogue.rows()
     base = os.path.dirname(os.path.abspath(arguments.catalogue))
     done = {t: os.path.join(base, rows[(t.col, t.row)]["file"]) for t in tiles
@@ -74,7 +74,7 @@ def tiles_to_agree(catalogue, tiles, arguments):
     agreement.write_keep(path, kept)
     for t in again:
         catalogue.update(t.col, t.row, {"status": "pending", "file": None})
-    return again
+    return again, len(kept)
 
 
 def agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built):
@@ -83,13 +83,13 @@ def agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built):
     set of tiles `built`; returns the rounds, the first included."""
     rounds = 1
     while not outcome.get("failed"):
-        again = tiles_to_agree(catalogue, tiles, arguments)
+        again, kept = tiles_to_agree(catalogue, tiles, arguments)
         if not again:
             break
         rounds += 1
         if not arguments.quiet:
             print("border agreement, round %d: %d tiles again (%d line cells kept under -max_error)"
-                  % (rounds, len(again), len(agreement.read_keep(agreement.keep_path(tiles_folder(arguments.catalogue))))))
+                  % (rounds, len(again), kept))
         built.update(again)
         for status, count in run_tiles(catalogue, again, arguments, workers, extra).items():
             outcome[status] = outcome.get(status, 0) + count

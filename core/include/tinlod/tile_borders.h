@@ -59,6 +59,8 @@ struct TileBorders {
 inline std::uint64_t globalCellKey(std::int64_t row, std::int64_t col) {
   return (std::uint64_t(row) << 32) | std::uint32_t(col);
 }
+inline std::int64_t globalCellRow(std::uint64_t key) { return std::int64_t(key >> 32); }
+inline std::int64_t globalCellCol(std::uint64_t key) { return std::int64_t(key & 0xffffffffu); }
 
 // How near (in cells) a missing cell pins a border vertex: a level-0 triangle reaches about
 // two blocks from its vertices, and the nodata filter drops those over missing cells.
