@@ -350,13 +350,7 @@ void TileMeasure::measure(std::int32_t level, LevelSums& sums, AccuracyRasterCan
 // `cells`: those the tile answers for (ownedCells).
 void poolLevels(const CatalogueTile& tile, const Hierarchy& h, const std::vector<CellRect>& cells,
                 std::vector<LevelSums>& sums) {
-  for (std::size_t L = 0; L < sums.size(); ++L) {
-    const LevelStats& s = h.levels[L];
-    LevelStats& pooled = sums[L].stats;
-    pooled.triangles += s.triangles;
-    pooled.selectSeconds += s.selectSeconds, pooled.deleteSeconds += s.deleteSeconds;
-    pooled.maxError = std::max(pooled.maxError, s.maxError);
-  }
+  for (std::size_t L = 0; L < sums.size(); ++L) poolLevelStats(sums[L].stats, h.levels[L]);
   std::vector<std::size_t> topLevel(sums.size(), 0);
   for (std::size_t v = 0; v < h.base.vertices.size(); ++v) {
     const int col = h.base.vertices[v].col + tile.xoff, row = h.base.vertices[v].row + tile.yoff;

@@ -34,11 +34,7 @@ void TileMerger::addLevels(const Hierarchy& h) {
   for (std::size_t L = 0; L < h.levels.size(); ++L) {
     const LevelStats& s = h.levels[L];
     LevelStats& m = all_.levels[L];
-    if (!first_) {
-      m.triangles += s.triangles, m.cells += s.cells;
-      m.selectSeconds += s.selectSeconds, m.deleteSeconds += s.deleteSeconds;
-      m.maxError = std::max(m.maxError, s.maxError);
-    }
+    if (!first_) poolLevelStats(m, s);
     squares_[L] += s.rmse * s.rmse * double(s.cells);
   }
 }
@@ -139,6 +135,12 @@ std::string notOneJob(const CatalogueTile& tile, const std::string& what) {
 std::string sharedVertexDiffers(const CatalogueTile& tile, const TinVertex& v) {
   return notOneJob(tile, "and a tile beside it have a vertex at x " + std::to_string(v.x) + ", y " + std::to_string(v.y) +
                              " with another height or level");
+}
+
+void poolLevelStats(LevelStats& pooled, const LevelStats& tile) {
+  pooled.triangles += tile.triangles, pooled.cells += tile.cells;
+  pooled.selectSeconds += tile.selectSeconds, pooled.deleteSeconds += tile.deleteSeconds;
+  pooled.maxError = std::max(pooled.maxError, tile.maxError);
 }
 
 StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress) {

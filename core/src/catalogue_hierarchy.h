@@ -28,6 +28,10 @@ std::string notOneJob(const CatalogueTile& tile, const std::string& what);
 // The same for a vertex `tile` shares with a tile beside it, at another height or level.
 std::string sharedVertexDiffers(const CatalogueTile& tile, const TinVertex& v);
 
+// A tile's level statistics added to those pooled over the tiles before it: triangles,
+// cells and times summed, the largest error the largest of them.
+void poolLevelStats(LevelStats& pooled, const LevelStats& tile);
+
 // A tile's hierarchy file; throws Error naming the tile when it is a single TIN.
 StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress);
 
