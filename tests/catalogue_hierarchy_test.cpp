@@ -29,6 +29,7 @@
 #include "tinlod/error.h"
 #include "tinlod/lod_extraction.h"
 #include "tinlod/lod_job.h"
+#include "tinlod/synthetic_dem.h"
 #include "tinlod/tile_reader.h"
 
 namespace tinlod {
@@ -443,6 +444,28 @@ double statistic(const std::string& path, int band, const char* name) {
   return v;
 }
 
+// Every pixel of the four bands the same, and their statistics GDAL's own of the whole band.
+void expectSameRaster(const std::string& tilesFile, const std::string& wholeFile, const std::string& what) {
+  for (int band = 1; band <= 4; ++band) {
+    const std::vector<float> tiles = bandValues(tilesFile, band), whole = bandValues(wholeFile, band);
+    ASSERT_EQ(tiles.size(), whole.size());
+    std::size_t valid = 0, differing = 0;
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      valid += !std::isnan(whole[i]);
+      differing += std::isnan(whole[i]) != std::isnan(tiles[i]) || (!std::isnan(whole[i]) && tiles[i] != whole[i]);
+    }
+    EXPECT_EQ(differing, 0u) << what << " band " << band;
+    EXPECT_GT(valid, whole.size() / 2) << what << " band " << band;
+    // The statistics summed as the windows were written are GDAL's own of the whole band.
+    for (const char* name : {"STATISTICS_MINIMUM", "STATISTICS_MAXIMUM", "STATISTICS_VALID_PERCENT"})
+      EXPECT_EQ(statistic(tilesFile, band, name), statistic(wholeFile, band, name)) << what << " band " << band << " " << name;
+    for (const char* name : {"STATISTICS_MEAN", "STATISTICS_STDDEV"}) {
+      const double w = statistic(wholeFile, band, name);
+      EXPECT_NEAR(statistic(tilesFile, band, name), w, 1e-9 * std::fabs(w)) << what << " band " << band << " " << name;
+    }
+  }
+}
+
 TEST(CatalogueHierarchy, AccuracyRasterTileByTileIsThatOfTheTilesReadAsOne) {
   const std::string dir = test::tempDir();
   AccuracyOutputs outputs;
@@ -462,29 +485,33 @@ TEST(CatalogueHierarchy, AccuracyRasterTileByTileIsThatOfTheTilesReadAsOne) {
     outputs.raster.format = format.name, outputs.raster.creationOptions = format.options;
     outputs.rasterPath = dir + "/tiles.tif";
     runAccuracyJob(test::smallSyntheticDemFile(), builtTiles().catalogue, outputs, 0, "", kQuiet);
-    const std::string what = std::string(format.name) + (format.options.empty() ? "" : " " + format.options.back());
-    for (int band = 1; band <= 4; ++band) {
-      const std::vector<float> tiles = bandValues(dir + "/tiles.tif", band), whole = bandValues(dir + "/whole.tif", band);
-      ASSERT_EQ(tiles.size(), whole.size());
-      std::size_t valid = 0, differing = 0;
-      for (std::size_t i = 0; i < whole.size(); ++i) {
-        valid += !std::isnan(whole[i]);
-        differing += std::isnan(whole[i]) != std::isnan(tiles[i]) || (!std::isnan(whole[i]) && tiles[i] != whole[i]);
-      }
-      EXPECT_EQ(differing, 0u) << what << " band " << band;
-      EXPECT_GT(valid, whole.size() / 2) << what << " band " << band;
-      // The statistics summed as the windows were written are GDAL's own of the whole band.
-      for (const char* name : {"STATISTICS_MINIMUM", "STATISTICS_MAXIMUM", "STATISTICS_VALID_PERCENT"})
-        EXPECT_EQ(statistic(dir + "/tiles.tif", band, name), statistic(dir + "/whole.tif", band, name))
-            << what << " band " << band << " " << name;
-      for (const char* name : {"STATISTICS_MEAN", "STATISTICS_STDDEV"}) {
-        const double whole = statistic(dir + "/whole.tif", band, name);
-        EXPECT_NEAR(statistic(dir + "/tiles.tif", band, name), whole, 1e-9 * std::fabs(whole))
-            << what << " band " << band << " " << name;
-      }
-    }
+    expectSameRaster(dir + "/tiles.tif", dir + "/whole.tif",
+                     std::string(format.name) + (format.options.empty() ? "" : " " + format.options.back()));
   }
   EXPECT_FALSE(std::filesystem::exists(dir + "/tiles.tif.canvas.tif"));
+}
+
+TEST(CatalogueHierarchy, AccuracyRasterTileByTileIsThatOfTheTilesReadAsOneOverManyStripsOfRows) {
+  // Tiles 300 cells high, measured in strips of rows that end on the raster's block rows
+  // (256): the void (rows 295 to 344) begins in the second strip of the first tile, where
+  // the strip before had values in those rows of the bands.
+  const std::string dir = test::tempDir();
+  SyntheticDemOptions o;
+  o.width = 360, o.height = 800, o.cellSize = 25;
+  const std::string dem = dir + "/tall.tif";
+  writeDemGeoTiff(makeSyntheticDem(o), dem);
+  const BuiltTiles built = buildCatalogue(dem, 300, dir);
+  AccuracyOutputs outputs;
+  outputs.options.reference = Reference::Dem;
+  outputs.rasterLevel = 5;
+  outputs.overwrite = true;
+  outputs.rasterPath = dir + "/whole.tif";
+  const AccuracyReport whole = measuredAsOne(dem, readHierarchyOrCatalogue(built.catalogue, kRange).hierarchy, outputs);
+  outputs.rasterPath = dir + "/tiles.tif";
+  const AccuracyReport tiles = runAccuracyJob(dem, built.catalogue, outputs, 0, "", kQuiet);
+  expectSameRaster(dir + "/tiles.tif", dir + "/whole.tif", "tiles of 300");
+  ASSERT_EQ(tiles.rows.size(), whole.rows.size());
+  for (std::size_t L = 0; L < whole.rows.size(); ++L) expectSameRow(tiles.rows[L], whole.rows[L], "level " + std::to_string(L));
 }
 
 TEST(CatalogueHierarchy, AccuracyTileByTileStopsOnCancelAndLeavesNothing) {

@@ -55,7 +55,7 @@ struct AccuracyEvaluator::Impl {
   // Fits the simplified heights and compares both surfaces point by point.
   SurfaceComparison compare(const Grid& simplified, AccuracyBands* bands, const ProgressRange& progress) const {
     const BsplineSurface surface(simplified, options.controlSpacing, grid.cellWidth, grid.cellHeight);
-    return compareSurfaces(*referenceSurface, surface, TestRect{0, 0, grid.cols, grid.rows}, bands, progress);
+    return compareSurfaces(*referenceSurface, surface, TestRect{0, 0, grid.cols, grid.rows}, bands, 0, progress);
   }
 };
 

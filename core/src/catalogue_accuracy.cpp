@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <unordered_map>
 
@@ -214,7 +215,7 @@ class TileMeasure {
   void makeReference(const ProgressRange& progress);
   std::vector<Triangle> trianglesOf(std::int32_t level) const;
   Grid rasterize(std::int32_t level, const ProgressRange& progress) const;
-  void addErrors(const Grid& simplified, LevelSums& sums, Grid* band) const;
+  void addErrors(const Grid& simplified, const TestRect& rect, LevelSums& sums, Grid* band, int bandRow0) const;
 
   const WholeGrid& g_;
   const Hierarchy& h_;
@@ -237,14 +238,16 @@ TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& t
   for (const TestRect& o : owned)
     owned_.push_back({o.col0 - window_.col0, o.row0 - window_.row0, o.col1 - window_.col0, o.row1 - window_.row0});
   grid_ = subGrid(g.grid, window_);
-  std::vector<TinVertex> vertices = h.base.vertices;
-  const std::vector<TinVertex> corners = readNeighbours(tiles, index);
-  vertices.insert(vertices.end(), corners.begin(), corners.end());
-  // Placed on the whole grid as a whole run places them, and rasterized there: the same
-  // values to the bit, so points on an edge fall alike.
-  positions_ = gridPositions(g.grid, g.header, vertices, g.toTin);
-  z_.reserve(vertices.size());
-  for (const TinVertex& v : vertices) z_.push_back(v.z);
+  {
+    std::vector<TinVertex> vertices = h.base.vertices;
+    const std::vector<TinVertex> corners = readNeighbours(tiles, index);
+    vertices.insert(vertices.end(), corners.begin(), corners.end());
+    // Placed on the whole grid as a whole run places them, and rasterized there: the same
+    // values to the bit, so points on an edge fall alike.
+    positions_ = gridPositions(g.grid, g.header, vertices, g.toTin);
+    z_.reserve(vertices.size());
+    for (const TinVertex& v : vertices) z_.push_back(v.z);
+  }  // the copy freed before the reference's grid
   makeReference(progress);
 }
 
@@ -292,17 +295,24 @@ void TileMeasure::makeReference(const ProgressRange& progress) {
 // In the order of the tiles read as one hierarchy (see readNeighbourTriangles): the tiles
 // before this one in the catalogue, this one, the tiles after it.
 std::vector<Triangle> TileMeasure::trianglesOf(std::int32_t level) const {
+  const auto inLevel = [level](std::int32_t first, std::int32_t last) { return first <= level && level <= last; };
+  // Counted first: grown by doubling, a 4096 x 4096 tile's level 0 took up to twice its 44 MB.
+  std::size_t count = 0;
+  for (const HierarchyTriangle& t : h_.triangles) count += inLevel(t.firstLevel, t.lastLevel);
+  for (const auto& levels : neighbourLevels_) count += inLevel(levels[0], levels[1]);
   std::vector<Triangle> out;
+  out.reserve(count);
   const auto first = static_cast<VertexId>(h_.base.vertices.size());
   const auto neighbours = [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t)
-      if (neighbourLevels_[t][0] <= level && level <= neighbourLevels_[t][1]) {
+      if (inLevel(neighbourLevels_[t][0], neighbourLevels_[t][1])) {
         const auto v = static_cast<VertexId>(first + 3 * t);
         out.push_back({v, v + 1, v + 2});
       }
   };
   neighbours(0, neighboursBefore_);
-  for (std::uint32_t t : h_.levelTriangles(level)) out.push_back(h_.triangles[t].v);
+  for (const HierarchyTriangle& t : h_.triangles)
+    if (inLevel(t.firstLevel, t.lastLevel)) out.push_back(t.v);
   neighbours(neighboursBefore_, neighbourLevels_.size());
   return out;
 }
@@ -311,38 +321,54 @@ Grid TileMeasure::rasterize(std::int32_t level, const ProgressRange& progress) c
   return rasterizeTin(positions_, z_, trianglesOf(level), grid_.cols, grid_.rows, progress, window_.col0, window_.row0);
 }
 
-void TileMeasure::addErrors(const Grid& simplified, LevelSums& sums, Grid* band) const {
+// `band`, when given, holds the window's rows from `bandRow0` on.
+void TileMeasure::addErrors(const Grid& simplified, const TestRect& rect, LevelSums& sums, Grid* band,
+                            int bandRow0) const {
   const auto error = [&](int c, int r) { return simplified.at(c, r) - reference_.at(c, r); };  // NaN unless both
-  for (const TestRect& owned : owned_)
-    for (int r = owned.row0; r < owned.row1; ++r)
-      for (int c = owned.col0; c < owned.col1; ++c) {
-        const double e = error(c, r);
-        if (std::isnan(e)) continue;
-        sums.errors.add(e, g_.grid.x(window_.col0 + c), g_.grid.y(window_.row0 + r));
-        sums.moran.addPoint(e);
-        // The pairs with the right and lower neighbours: each pair once, by its first point.
-        if (c + 1 < simplified.cols && !std::isnan(error(c + 1, r))) sums.moran.addPair(e, error(c + 1, r));
-        if (r + 1 < simplified.rows && !std::isnan(error(c, r + 1))) sums.moran.addPair(e, error(c, r + 1));
-        if (band) band->at(c, r) = e;
-      }
+  for (int r = rect.row0; r < rect.row1; ++r)
+    for (int c = rect.col0; c < rect.col1; ++c) {
+      const double e = error(c, r);
+      if (std::isnan(e)) continue;
+      sums.errors.add(e, g_.grid.x(window_.col0 + c), g_.grid.y(window_.row0 + r));
+      sums.moran.addPoint(e);
+      // The pairs with the right and lower neighbours: each pair once, by its first point.
+      if (c + 1 < simplified.cols && !std::isnan(error(c + 1, r))) sums.moran.addPair(e, error(c + 1, r));
+      if (r + 1 < simplified.rows && !std::isnan(error(c, r + 1))) sums.moran.addPair(e, error(c, r + 1));
+      if (band) band->at(c, r - bandRow0) = e;
+    }
 }
 
 void TileMeasure::measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas,
                           const ProgressRange& progress) const {
   const Grid simplified = rasterize(level, progress.sub(0, 0.3));
+  const BsplineSurface surface(simplified, g_.options.controlSpacing, grid_.cellWidth, grid_.cellHeight);
+  // A strip of rows at a time, with or without the raster (so the sums are grouped alike):
+  // the raster's four bands over a strip, not over the window (537 MB for a 4096 x 4096
+  // tile). Strips end on the raster's block rows (GDAL's 256), so that no block is written
+  // in two parts.
+  constexpr int kStripRows = 256;
   std::unique_ptr<AccuracyBands> bands;
   if (canvas) {
-    const Grid empty(grid_.cols, grid_.rows);
+    const Grid empty(grid_.cols, kStripRows);
     bands = std::make_unique<AccuracyBands>(AccuracyBands{empty, empty, empty, empty});
   }
-  addErrors(simplified, sums, bands ? &bands->elevationDifference : nullptr);
-  const BsplineSurface surface(simplified, g_.options.controlSpacing, grid_.cellWidth, grid_.cellHeight);
-  for (std::size_t i = 0; i < owned_.size(); ++i) {
-    const double share = 0.65 / owned_.size();
-    sums.surfaces.merge(compareSurfaces(*referenceSurface_, surface, owned_[i], bands.get(),
-                                        progress.sub(0.35 + share * i, 0.35 + share * (i + 1))));
-    if (canvas) canvas->write(*bands, owned_[i], window_.col0, window_.row0);
-  }
+  std::size_t rows = 0, done = 0;
+  for (const TestRect& o : owned_) rows += o.row1 - o.row0;
+  for (const TestRect& o : owned_)
+    for (int row0 = o.row0, row1; row0 < o.row1; row0 = row1) {
+      row1 = std::min(o.row1, ((window_.row0 + row0) / kStripRows + 1) * kStripRows - window_.row0);
+      const TestRect strip{o.col0, row0, o.col1, row1};
+      if (bands) {  // addErrors leaves the points without an error as they were
+        std::vector<double>& e = bands->elevationDifference.values;
+        std::fill(e.begin(), e.end(), std::numeric_limits<double>::quiet_NaN());
+      }
+      addErrors(simplified, strip, sums, bands ? &bands->elevationDifference : nullptr, row0);
+      const double from = 0.35 + 0.65 * done / rows;
+      done += row1 - row0;
+      sums.surfaces.merge(compareSurfaces(*referenceSurface_, surface, strip, bands.get(), row0,
+                                          progress.sub(from, 0.35 + 0.65 * done / rows)));
+      if (canvas) canvas->write(*bands, TestRect{o.col0, 0, o.col1, row1 - row0}, window_.col0, window_.row0 + row0);
+    }
 }
 
 // The level statistics the build recorded, pooled as readCatalogueHierarchy pools them,
@@ -401,8 +427,10 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     part.report(0, "Measuring tile " + tile.name + " (" + std::to_string(i + 1) + " of " + std::to_string(tiles.size()) + ")");
     StoredHierarchy stored = readCatalogueTile(tile, part.sub(0, 0.2));
     // Levels are measured from the triangles alone: the groups and their links (a tenth of
-    // a tile's hierarchy) need not stay beside the grids.
+    // a tile's hierarchy), and level 0 again as a TIN (44 MB of a 4096 x 4096 tile), need
+    // not stay beside the grids.
     releaseMemory(stored.hierarchy.groups), releaseMemory(stored.hierarchy.links), releaseMemory(stored.hierarchy.rings);
+    releaseMemory(stored.hierarchy.base.triangles);
     const Hierarchy& h = stored.hierarchy;
     if (i == 0) {
       rasterLevel = outputs.rasterLevel < 0 ? h.coarsest() : outputs.rasterLevel;

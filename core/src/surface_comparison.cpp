@@ -46,7 +46,7 @@ std::vector<VariableComparison> SurfaceComparison::describe() const {
 }
 
 SurfaceComparison compareSurfaces(const BsplineSurface& reference, const BsplineSurface& simplified, const TestRect& rect,
-                                  AccuracyBands* bands, const ProgressRange& progress) {
+                                  AccuracyBands* bands, int bandsRow0, const ProgressRange& progress) {
   std::vector<std::pair<int, SurfaceComparison>> blocks;
   std::mutex mutex;
   auto work = [&](int begin, int end) {
@@ -59,9 +59,9 @@ SurfaceComparison compareSurfaces(const BsplineSurface& reference, const Bspline
         const TerrainMeasures a = terrainMeasures(refRow[c]), b = terrainMeasures(simpRow[c]);
         local.add(a, b);
         if (bands) {
-          bands->meanCurvatureReference.at(c, r) = a.meanCurvature;
-          bands->meanCurvatureSimplified.at(c, r) = b.meanCurvature;
-          bands->meanCurvatureDifference.at(c, r) = b.meanCurvature - a.meanCurvature;
+          bands->meanCurvatureReference.at(c, r - bandsRow0) = a.meanCurvature;
+          bands->meanCurvatureSimplified.at(c, r - bandsRow0) = b.meanCurvature;
+          bands->meanCurvatureDifference.at(c, r - bandsRow0) = b.meanCurvature - a.meanCurvature;
         }
       }
     }

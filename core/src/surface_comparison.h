@@ -37,8 +37,9 @@ class SurfaceComparison {
 
 // Both surfaces (over one grid) compared at the points of `rect`, on all cores, merged in
 // row order so any core count gives the same sums. When `bands` is not null its curvature
-// grids (the surfaces' size) get the mean curvatures at those points.
+// grids (the surfaces' width, holding their rows from `bandsRow0` on) get the mean
+// curvatures at those points.
 SurfaceComparison compareSurfaces(const BsplineSurface& reference, const BsplineSurface& simplified, const TestRect& rect,
-                                  AccuracyBands* bands, const ProgressRange& progress);
+                                  AccuracyBands* bands, int bandsRow0, const ProgressRange& progress);
 
 }  // namespace tinlod
