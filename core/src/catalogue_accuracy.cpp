@@ -182,8 +182,8 @@ void readNeighbourTriangles(const CatalogueTile& tile, const std::array<double, 
 // same vertex there (the catalogue's tiles made by one job).
 class SharedHeights {
  public:
-  SharedHeights(const CatalogueTile& tile, const Hierarchy& h) {
-    for (const TinVertex& v : h.base.vertices)
+  SharedHeights(const CatalogueTile& tile, const std::vector<TinVertex>& vertices) {
+    for (const TinVertex& v : vertices)
       if (v.col == 0 || v.row == 0 || v.col == tile.xsize - 1 || v.row == tile.ysize - 1) heights_[placeOf(v)] = v.z;
   }
   // Throws Error naming `other` when a corner from `first` on lies on one of them at another height.
@@ -198,12 +198,21 @@ class SharedHeights {
   std::unordered_map<Place, double, PlaceHash> heights_;
 };
 
+// A tile's triangle as measured: its corners and the levels it is in (16 bytes; the
+// hierarchy's 28 hold what measuring does not read).
+struct MeasuredTriangle {
+  Triangle v;
+  std::int16_t firstLevel, lastLevel;
+};
+
 // One tile's test points, measured level by level on a window of the whole test grid: its
 // own triangles and those of the tiles beside it that reach into the window.
 class TileMeasure {
  public:
-  // `owned`: the test points it answers for (ownedPoints).
-  TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, const Hierarchy& h,
+  // `owned`: the test points it answers for (ownedPoints). Takes the tile's vertices and
+  // triangles from `h`, which is left without them: a 4096 x 4096 tile's 10 M triangles and
+  // 1.9 M vertices as read (370 MB) would otherwise stay beside the grids.
+  TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, Hierarchy& h,
               const std::vector<TestRect>& owned, const ProgressRange& progress);
   void measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas, const ProgressRange& progress) const;
   // With -reference dem: the owned test points whose heights -valid_range made nodata.
@@ -211,14 +220,17 @@ class TileMeasure {
 
  private:
   // The corners of the other tiles' triangles that reach into the window (three a triangle).
-  std::vector<TinVertex> readNeighbours(const std::vector<CatalogueTile>& tiles, std::size_t index);
+  std::vector<TinVertex> readNeighbours(const std::vector<CatalogueTile>& tiles, std::size_t index,
+                                        const std::vector<TinVertex>& vertices);
   void makeReference(const ProgressRange& progress);
   std::vector<Triangle> trianglesOf(std::int32_t level) const;
   Grid rasterize(std::int32_t level, const ProgressRange& progress) const;
   void addErrors(const Grid& simplified, const TestRect& rect, LevelSums& sums, Grid* band, int bandRow0) const;
 
   const WholeGrid& g_;
-  const Hierarchy& h_;
+  std::int32_t coarsest_;
+  std::vector<MeasuredTriangle> triangles_;
+  std::size_t vertexCount_ = 0;  // the tile's; the other tiles' corners follow
   TestRect window_;
   std::vector<TestRect> owned_;  // in the window's points
   TestGrid grid_;                // the window's
@@ -231,36 +243,40 @@ class TileMeasure {
   std::size_t droppedHeights_ = 0;
 };
 
-TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index,
-                         const Hierarchy& h, const std::vector<TestRect>& owned, const ProgressRange& progress)
-    : g_(g), h_(h) {
+TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, Hierarchy& h,
+                         const std::vector<TestRect>& owned, const ProgressRange& progress)
+    : g_(g), coarsest_(h.coarsest()), vertexCount_(h.base.vertices.size()) {
   window_ = windowOf(boundsOf(owned), g.grid, g.options.controlSpacing);
   for (const TestRect& o : owned)
     owned_.push_back({o.col0 - window_.col0, o.row0 - window_.row0, o.col1 - window_.col0, o.row1 - window_.row0});
   grid_ = subGrid(g.grid, window_);
+  triangles_.reserve(h.triangles.size());
+  for (const HierarchyTriangle& t : h.triangles) triangles_.push_back({t.v, t.firstLevel, t.lastLevel});
+  releaseMemory(h.triangles);
   {
-    std::vector<TinVertex> vertices = h.base.vertices;
-    const std::vector<TinVertex> corners = readNeighbours(tiles, index);
+    std::vector<TinVertex> vertices = std::move(h.base.vertices);
+    const std::vector<TinVertex> corners = readNeighbours(tiles, index, vertices);
     vertices.insert(vertices.end(), corners.begin(), corners.end());
     // Placed on the whole grid as a whole run places them, and rasterized there: the same
     // values to the bit, so points on an edge fall alike.
     positions_ = gridPositions(g.grid, g.header, vertices, g.toTin);
     z_.reserve(vertices.size());
     for (const TinVertex& v : vertices) z_.push_back(v.z);
-  }  // the copy freed before the reference's grid
+  }  // freed before the reference's grid
   makeReference(progress);
 }
 
-std::vector<TinVertex> TileMeasure::readNeighbours(const std::vector<CatalogueTile>& tiles, std::size_t index) {
+std::vector<TinVertex> TileMeasure::readNeighbours(const std::vector<CatalogueTile>& tiles, std::size_t index,
+                                                   const std::vector<TinVertex>& vertices) {
   NeighbourTriangles neighbours;
   const std::array<double, 4> box = boxInTinCrs(g_, window_);
-  const SharedHeights shared(tiles[index], h_);
+  const SharedHeights shared(tiles[index], vertices);
   for (std::size_t t = 0; t < tiles.size(); ++t) {
     if (t == index) {
       neighboursBefore_ = neighbours.levels.size();
     } else if (cellsMeet(tiles[t], window_, g_.grid.step)) {
       const std::size_t first = neighbours.corners.size();
-      readNeighbourTriangles(tiles[t], box, h_.coarsest(), neighbours);
+      readNeighbourTriangles(tiles[t], box, coarsest_, neighbours);
       shared.check(tiles[t], neighbours.corners, first);
     }
   }
@@ -298,11 +314,11 @@ std::vector<Triangle> TileMeasure::trianglesOf(std::int32_t level) const {
   const auto inLevel = [level](std::int32_t first, std::int32_t last) { return first <= level && level <= last; };
   // Counted first: grown by doubling, a 4096 x 4096 tile's level 0 took up to twice its 44 MB.
   std::size_t count = 0;
-  for (const HierarchyTriangle& t : h_.triangles) count += inLevel(t.firstLevel, t.lastLevel);
+  for (const MeasuredTriangle& t : triangles_) count += inLevel(t.firstLevel, t.lastLevel);
   for (const auto& levels : neighbourLevels_) count += inLevel(levels[0], levels[1]);
   std::vector<Triangle> out;
   out.reserve(count);
-  const auto first = static_cast<VertexId>(h_.base.vertices.size());
+  const auto first = static_cast<VertexId>(vertexCount_);
   const auto neighbours = [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t)
       if (inLevel(neighbourLevels_[t][0], neighbourLevels_[t][1])) {
@@ -311,7 +327,7 @@ std::vector<Triangle> TileMeasure::trianglesOf(std::int32_t level) const {
       }
   };
   neighbours(0, neighboursBefore_);
-  for (const HierarchyTriangle& t : h_.triangles)
+  for (const MeasuredTriangle& t : triangles_)
     if (inLevel(t.firstLevel, t.lastLevel)) out.push_back(t.v);
   neighbours(neighboursBefore_, neighbourLevels_.size());
   return out;
@@ -431,7 +447,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     // not stay beside the grids.
     releaseMemory(stored.hierarchy.groups), releaseMemory(stored.hierarchy.links), releaseMemory(stored.hierarchy.rings);
     releaseMemory(stored.hierarchy.base.triangles);
-    const Hierarchy& h = stored.hierarchy;
+    Hierarchy& h = stored.hierarchy;
     if (i == 0) {
       rasterLevel = outputs.rasterLevel < 0 ? h.coarsest() : outputs.rasterLevel;
       if (rasterLevel > h.coarsest())
@@ -451,6 +467,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     const std::vector<TestRect> owned = ownedPoints(cells, g->grid.step);
     if (owned.empty()) continue;
     const TileMeasure measure(*g, tiles, i, h, owned, part.sub(0.25, 0.3));
+    releaseFreedMemory();  // what reading the tile left in glibc's heaps, resident beside the grids
     droppedHeights += measure.droppedHeights();
     for (std::int32_t L = 0; L <= h.coarsest(); ++L)
       measure.measure(L, sums[L], L == rasterLevel ? canvas.get() : nullptr,

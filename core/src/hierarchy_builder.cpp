@@ -6,10 +6,6 @@
 #include <cmath>
 #include <limits>
 
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #include "border_lines.h"
 #include "cell_errors.h"
 #include "nearest_vertices.h"
@@ -595,15 +591,6 @@ class Simplifier {
     releaseFreedMemory();  // what the level's selection left
     compact();
     releaseFreedMemory();
-  }
-
-  // The level's arrays shrink as the hierarchy's grow; glibc keeps what they freed in its
-  // heaps, resident, unless asked to give it back (150 MB by the last level of a 4096 x
-  // 4096 tile). A few milliseconds a level.
-  static void releaseFreedMemory() {
-#ifdef __GLIBC__
-    malloc_trim(0);
-#endif
   }
 
   StarView view(const Pick& pick, std::size_t rings) const {
