@@ -285,21 +285,21 @@ TEST(CircularPairStatistics, NaNsAreSkippedAndAConstantSideHasNoCorrelation) {
 
 TEST(ErrorStatistics, AlternatingErrorsHaveRmseOneAndMeanZero) {
   ErrorStatistics s;
-  for (int i = 0; i < 1000; ++i) s.add(i % 2 ? -1 : 1, i, 2 * i);
+  for (int i = 0; i < 1000; ++i) s.add(i % 2 ? -1 : 1, i, 2 * i, 999 - i);
   EXPECT_EQ(s.count(), 1000u);
   EXPECT_DOUBLE_EQ(s.rmse(), 1);
   EXPECT_EQ(s.mean(), 0);
   EXPECT_EQ(s.maxAbs(), 1);
-  EXPECT_EQ(s.maxX(), 0);  // every |e| ties: the first point added
-  EXPECT_EQ(s.maxY(), 0);
+  EXPECT_EQ(s.maxX(), 999);  // every |e| ties: the point first in row order, added last
+  EXPECT_EQ(s.maxY(), 1998);
 }
 
 TEST(ErrorStatistics, LargestAbsoluteErrorAndItsLocation) {
   ErrorStatistics s;
-  s.add(0.5, 1, 1);
-  s.add(-3, 7, 8);  // the largest in absolute value is negative
-  s.add(2.5, 9, 9);
-  s.add(kNaN, 5, 5);
+  s.add(0.5, 1, 1, 0);
+  s.add(-3, 7, 8, 1);  // the largest in absolute value is negative
+  s.add(2.5, 9, 9, 2);
+  s.add(kNaN, 5, 5, 3);
   EXPECT_EQ(s.count(), 3u);
   EXPECT_EQ(s.maxAbs(), 3);
   EXPECT_EQ(s.maxX(), 7);
@@ -308,14 +308,15 @@ TEST(ErrorStatistics, LargestAbsoluteErrorAndItsLocation) {
   EXPECT_NEAR(s.rmse(), std::sqrt((0.25 + 9 + 6.25) / 3), 1e-15);
 }
 
-TEST(ErrorStatistics, MergeKeepsTheLargerMaximumAndThisOnesOnTies) {
+TEST(ErrorStatistics, MergeKeepsTheLargerMaximumAndOnTiesTheFirstInRowOrder) {
   ErrorStatistics a, b, c;
-  a.add(2, 1, 1);
-  b.add(-2, 2, 2);
-  c.add(5, 3, 3);
-  ErrorStatistics ab = a;
-  ab.merge(b);  // tie: a's
-  EXPECT_EQ(ab.maxX(), 1);
+  a.add(2, 1, 1, 7);
+  b.add(-2, 2, 2, 4);
+  c.add(5, 3, 3, 9);
+  ErrorStatistics ab = a, ba = b;
+  ab.merge(b), ba.merge(a);  // a tie: b's point comes first in row order, whichever merges
+  EXPECT_EQ(ab.maxX(), 2);
+  EXPECT_EQ(ba.maxX(), 2);
   ab.merge(c);  // larger: c's
   EXPECT_EQ(ab.maxX(), 3);
   EXPECT_EQ(ab.maxAbs(), 5);
@@ -328,11 +329,31 @@ TEST(ErrorStatistics, MergeKeepsTheLargerMaximumAndThisOnesOnTies) {
   EXPECT_TRUE(std::isnan(ErrorStatistics().maxAbs()));
 }
 
+TEST(ErrorStatistics, TiesGoToTheFirstPointInRowOrderWhateverOrderTheyComeIn) {
+  // A 4 x 3 raster whose errors tie at three points; added in row order, backwards, and as
+  // two pieces merged either way round (as a catalogue's tiles are).
+  const double errors[12] = {1, 3, 0, -3, 2, 3, 0, 1, 0, 0, -1, 2};
+  const auto addRange = [&](ErrorStatistics& s, int begin, int end, int step) {
+    for (int i = begin; i != end; i += step) s.add(errors[i], i % 4, i / 4, std::uint64_t(i));
+  };
+  ErrorStatistics forward, backward, firstRow, otherRows;
+  addRange(forward, 0, 12, 1);
+  addRange(backward, 11, -1, -1);
+  addRange(firstRow, 0, 4, 1), addRange(otherRows, 4, 12, 1);
+  ErrorStatistics firstRowMerged = firstRow, otherRowsMerged = otherRows;
+  firstRowMerged.merge(otherRows), otherRowsMerged.merge(firstRow);
+  for (const ErrorStatistics* s : {&forward, &backward, &firstRowMerged, &otherRowsMerged}) {
+    EXPECT_EQ(s->maxAbs(), 3);
+    EXPECT_EQ(s->maxX(), 1);  // point 1, before points 3 and 5
+    EXPECT_EQ(s->maxY(), 0);
+  }
+}
+
 TEST(ErrorStatistics, MillionsOfErrorsSumWithoutDrift) {
   // 0.1 is not exact in binary; added 4 M times in plain double the mean is off by 5e-12
   // (5e-11 relative). The compensated sum keeps it to a rounding or two.
   ErrorStatistics s;
-  for (int i = 0; i < 4000000; ++i) s.add(0.1, 0, 0);
+  for (int i = 0; i < 4000000; ++i) s.add(0.1, 0, 0, i);
   EXPECT_NEAR(s.mean(), 0.1, 1e-16);
   EXPECT_NEAR(s.rmse(), 0.1, 1e-16);
 }

@@ -382,6 +382,51 @@ TEST(CatalogueHierarchy, AccuracyTileByTileIsThatOfTheTilesReadAsOne) {
   }
 }
 
+TEST(CatalogueHierarchy, AccuracyTileByTileReportsTheLargestErrorWhereTheWholeRasterDoesOnTies) {
+  // A flat DEM with two pits 10 m deep at cells no block samples (sampling depends on the
+  // seed and the block alone): every level is flat at 0 m (exactly, where a plane through
+  // heights of 100 m would round) and misses both by 10 m. Pit A
+  // (row 10, in tile 1,0) comes first in the raster's rows, pit B (row 130, in tile 0,1) in
+  // the catalogue's tiles, which are measured down each column of tiles first.
+  const std::string dir = test::tempDir();
+  const std::string dem = dir + "/pits.tif";
+  const auto flat = [](const std::vector<std::array<int, 2>>& pits) {
+    return test::makeDem(360, 300, 25, [pits](int r, int c) {
+      for (const auto& p : pits)
+        if (p[0] == r && p[1] == c) return -10.0f;
+      return 0.0f;
+    });
+  };
+  writeDemGeoTiff(flat({}), dem);
+  std::set<std::array<int, 2>> sampled;
+  for (const TinVertex& v : readHierarchyOrCatalogue(buildCatalogue(dem, kTileSize, dir).catalogue, kRange).hierarchy.base.vertices)
+    sampled.insert({v.row, v.col});
+  const auto unsampledFrom = [&](int row, int col) {
+    while (sampled.count({row, col})) ++col;
+    return std::array<int, 2>{row, col};
+  };
+  const std::array<int, 2> a = unsampledFrom(10, 150), b = unsampledFrom(130, 30);
+  writeDemGeoTiff(flat({a, b}), dem);
+  const std::string tilesDir = test::tempDir();
+  const BuiltTiles built = buildCatalogue(dem, kTileSize, tilesDir);
+  AccuracyOutputs outputs;
+  outputs.options.reference = Reference::Dem;
+  const AccuracyReport tiles = runAccuracyJob(dem, built.catalogue, outputs, 0, "", kQuiet);
+  const AccuracyReport whole = measuredAsOne(dem, readHierarchyOrCatalogue(built.catalogue, kRange).hierarchy, outputs);
+  ASSERT_EQ(tiles.rows.size(), whole.rows.size());
+  const Dem header = readDem(dem, 1, kRange);
+  for (std::size_t L = 0; L < whole.rows.size(); ++L) {
+    const std::string what = "level " + std::to_string(L);
+    EXPECT_EQ(tiles.rows[L].maxAbsError, 10) << what;
+    EXPECT_EQ(tiles.rows[L].maxErrorX, header.geotransform[0] + (a[1] + 0.5) * 25) << what;
+    EXPECT_EQ(tiles.rows[L].maxErrorY, header.geotransform[3] - (a[0] + 0.5) * 25) << what;
+    EXPECT_EQ(tiles.rows[L].testPoints, whole.rows[L].testPoints) << what;
+    EXPECT_EQ(tiles.rows[L].maxAbsError, whole.rows[L].maxAbsError) << what;
+    EXPECT_EQ(tiles.rows[L].maxErrorX, whole.rows[L].maxErrorX) << what;
+    EXPECT_EQ(tiles.rows[L].maxErrorY, whole.rows[L].maxErrorY) << what;
+  }
+}
+
 TEST(CatalogueHierarchy, AccuracyTileByTileOnRealDemsIsThatOfTheTilesReadAsOne) {
   const std::string data = test::dataDir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";

@@ -42,7 +42,7 @@ struct AccuracyEvaluator::Impl {
     ErrorStatistics stats;
     for (int r = 0; r < grid.rows; ++r)
       for (int c = 0; c < grid.cols; ++c)
-        if (error.valid(c, r)) stats.add(error.at(c, r), grid.x(c), grid.y(r));
+        if (error.valid(c, r)) stats.add(error.at(c, r), grid.x(c), grid.y(r), std::uint64_t(r) * grid.cols + c);
     row.testPoints = stats.count();
     row.rmse = stats.rmse();
     row.meanError = stats.mean();

@@ -132,18 +132,18 @@ double CircularPairStatistics::stdB() const { return circularStdDegrees(sb_.valu
 
 // ---- ErrorStatistics ------------------------------------------------------------
 
-void ErrorStatistics::add(double error, double x, double y) {
+void ErrorStatistics::add(double error, double x, double y, std::uint64_t order) {
   if (std::isnan(error)) return;
+  if (beats(std::fabs(error), order)) maxAbs_ = std::fabs(error), maxX_ = x, maxY_ = y, maxOrder_ = order;
   ++count_;
   sum_.add(error);
   sumSquares_.add(error * error);
-  // Strictly larger: the first location stays on ties.
-  if (count_ == 1 || std::fabs(error) > maxAbs_) maxAbs_ = std::fabs(error), maxX_ = x, maxY_ = y;
 }
 
 void ErrorStatistics::merge(const ErrorStatistics& other) {
   if (other.count_ == 0) return;
-  if (count_ == 0 || other.maxAbs_ > maxAbs_) maxAbs_ = other.maxAbs_, maxX_ = other.maxX_, maxY_ = other.maxY_;
+  if (beats(other.maxAbs_, other.maxOrder_))
+    maxAbs_ = other.maxAbs_, maxX_ = other.maxX_, maxY_ = other.maxY_, maxOrder_ = other.maxOrder_;
   count_ += other.count_;
   sum_.merge(other.sum_);
   sumSquares_.merge(other.sumSquares_);

@@ -345,7 +345,8 @@ void TileMeasure::addErrors(const Grid& simplified, const TestRect& rect, LevelS
     for (int c = rect.col0; c < rect.col1; ++c) {
       const double e = error(c, r);
       if (std::isnan(e)) continue;
-      sums.errors.add(e, g_.grid.x(window_.col0 + c), g_.grid.y(window_.row0 + r));
+      const int col = window_.col0 + c, row = window_.row0 + r;  // the whole grid's
+      sums.errors.add(e, g_.grid.x(col), g_.grid.y(row), std::uint64_t(row) * g_.grid.cols + col);
       sums.moran.addPoint(e);
       // The pairs with the right and lower neighbours: each pair once, by its first point.
       if (c + 1 < simplified.cols && !std::isnan(error(c + 1, r))) sums.moran.addPair(e, error(c + 1, r));

@@ -90,7 +90,7 @@ InsertSummary measureInsertedTin(const Dem& dem, const InsertedTin& out, const P
       if (std::isnan(heights.at(c, r)))
         ++s.uncoveredCells;
       else
-        errors.add(heights.at(c, r) - dem.at(r, c), c, r);
+        errors.add(heights.at(c, r) - dem.at(r, c), c, r, std::uint64_t(r) * dem.width + c);
     }
   s.measuredCells = errors.count();
   s.measuredMaxError = s.measuredCells ? errors.maxAbs() : 0;

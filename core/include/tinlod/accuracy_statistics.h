@@ -89,13 +89,16 @@ class CircularPairStatistics {
 };
 
 // Elevation error e = simplified - reference at located points: RMSE, mean error and
-// the largest absolute error with the location where it occurs (the first one added on
-// ties; after merge, this accumulator's on ties). NaN errors are skipped. Sums are
-// compensated, so millions of points lose no accuracy. All results but count() are NaN
-// for an empty accumulator.
+// the largest absolute error with the location where it occurs. NaN errors are skipped.
+// Sums are compensated, so millions of points lose no accuracy. All results but count()
+// are NaN for an empty accumulator.
 class ErrorStatistics {
  public:
-  void add(double error, double x, double y);
+  // `order`: the point's place in the raster's row order (row x columns + column). Where
+  // errors tie, the location is the one of smallest order, in whatever order the points
+  // were added and the parts merged: a raster measured a tile at a time reports the
+  // location measured whole.
+  void add(double error, double x, double y, std::uint64_t order);
   void merge(const ErrorStatistics& other);
   std::size_t count() const { return count_; }
   double rmse() const;
@@ -108,6 +111,10 @@ class ErrorStatistics {
   std::size_t count_ = 0;
   detail::CompensatedSum sum_, sumSquares_;
   double maxAbs_ = 0, maxX_ = 0, maxY_ = 0;  // meaningful once count_ > 0
+  std::uint64_t maxOrder_ = 0;
+  bool beats(double absError, std::uint64_t order) const {
+    return count_ == 0 || absError > maxAbs_ || (absError == maxAbs_ && order < maxOrder_);
+  }
 };
 
 // Moran's I of a field on a grid with binary rook (4-neighbour) weights between valid
