@@ -10,6 +10,7 @@
 
 #include "catalogue_hierarchy.h"
 #include "catalogue_lod.h"
+#include "extracted_lod.h"
 #include "layer_source.h"
 #include "polygon_region.h"
 #include "text_and_paths.h"
