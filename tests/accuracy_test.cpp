@@ -144,7 +144,18 @@ TEST(AccuracyEvaluator, TheOriginalAgainstItselfIsPerfect) {
   const Fixture& f = fixture();
   const AccuracyEvaluator e(f.dem, f.tin, f.toTin, {}, kQuiet);
   LevelAccuracy row;
-  AccuracyBands bands;
+  // The strips in order, each as wide as the grid, together as tall.
+  int rows = 0, strips = 0;
+  const BandStrips bands = [&](const AccuracyBands& strip, int row0) {
+    EXPECT_EQ(row0, rows);
+    for (const Grid* g : {&strip.elevationDifference, &strip.meanCurvatureDifference, &strip.meanCurvatureReference,
+                          &strip.meanCurvatureSimplified}) {
+      EXPECT_EQ(g->cols, e.grid().cols);
+      EXPECT_EQ(g->rows, strip.elevationDifference.rows);
+    }
+    for (double v : strip.elevationDifference.values) EXPECT_TRUE(std::isnan(v) || v == 0);
+    rows += strip.elevationDifference.rows, ++strips;
+  };
   e.evaluate(f.tin.triangles, row, &bands, kQuiet);
   EXPECT_GT(row.testPoints, 80000u);
   EXPECT_EQ(row.rmse, 0);
@@ -152,7 +163,8 @@ TEST(AccuracyEvaluator, TheOriginalAgainstItselfIsPerfect) {
   EXPECT_NEAR(variable(row, "elevation").correlation, 1, 1e-12);
   EXPECT_NEAR(variable(row, "mean_curvature").correlation, 1, 1e-12);
   EXPECT_NEAR(variable(row, "aspect").correlation, 1, 1e-9);
-  EXPECT_EQ(bands.elevationDifference.cols, e.grid().cols);
+  EXPECT_EQ(rows, e.grid().rows);
+  EXPECT_EQ(strips, (e.grid().rows + 255) / 256);
 }
 
 TEST(AccuracyEvaluator, RaisingEveryHeightByTwoMetresGivesAnRmseOfTwoAndPerfectCorrelation) {

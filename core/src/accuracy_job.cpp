@@ -5,7 +5,9 @@
 
 #include <charconv>
 #include <filesystem>
+#include <memory>
 
+#include "accuracy_raster_canvas.h"
 #include "catalogue_accuracy.h"
 #include "catalogue_hierarchy.h"
 #include "dataset_files.h"
@@ -50,7 +52,7 @@ LevelAccuracy levelRow(const Hierarchy& h, const std::string& dem, int level, co
 }
 
 std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, const Hierarchy& h, const std::string& dem,
-                                         int rasterLevel, AccuracyBands* bands, const ProgressRange& progress) {
+                                         int rasterLevel, const BandStrips* bands, const ProgressRange& progress) {
   const int top = h.coarsest();
   const int chosen = rasterLevel < 0 ? top : rasterLevel;
   if (chosen > top)
@@ -88,11 +90,16 @@ AccuracyReport makeReport(const AccuracyOptions& options, const std::string& tit
 AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTransform& toTin, const AccuracyOutputs& outputs,
                                const AccuracyFiles& files, const ProgressRange& progress) {
   const AccuracyEvaluator evaluator(dem, h.base, toTin, outputs.options, progress.sub(0, 0.05));
-  AccuracyBands bands;
-  const bool raster = files.raster != nullptr;
+  // The raster's level goes to disk a strip at a time as it is measured, not held to the end.
+  std::unique_ptr<AccuracyRasterCanvas> canvas;
+  if (files.raster) canvas = std::make_unique<AccuracyRasterCanvas>(evaluator.grid(), *files.raster, outputs.raster);
+  const BandStrips toCanvas = [&canvas](const AccuracyBands& strip, int row0) {
+    const Grid& g = strip.elevationDifference;
+    canvas->write(strip, TestRect{0, 0, g.cols, g.rows}, 0, row0);
+  };
   const double measured = outputs.compareInsert ? 0.5 : 0.9;
   std::vector<LevelAccuracy> rows = measureLevels(evaluator, h, demName(dem.path), outputs.rasterLevel,
-                                                  raster ? &bands : nullptr, progress.sub(0.05, measured));
+                                                  canvas ? &toCanvas : nullptr, progress.sub(0.05, measured));
   if (rows.empty() || rows.front().testPoints == 0)
     throw Error("no test point of '" + dem.path + "' lies on the TIN: give the DEM the TIN was made from");
   if (outputs.compareInsert) {
@@ -107,7 +114,7 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
   }
   AccuracyReport report =
       makeReport(evaluator, "Accuracy of the TIN hierarchy of " + demName(dem.path), crsNameOf(dem.crsWkt), std::move(rows));
-  if (raster) writeAccuracyRaster(bands, evaluator.grid(), *files.raster, outputs.raster, progress.sub(0.9, 0.98));
+  if (canvas) canvas->finish(progress.sub(0.9, 0.98));
   if (files.report) writeAccuracyReport(report, *files.report);
   return report;
 }

@@ -96,26 +96,6 @@ void closeRaster(DatasetPtr& out, const StagedFile& file) {
 
 namespace {
 
-// With its statistics, so that QGIS shows it at once (none for an all-nodata band).
-void writeBand(GDALDataset& ds, int index, const Grid& grid, const char* description) {
-  GDALRasterBand* band = ds.GetRasterBand(index);
-  band->SetDescription(description);
-  band->SetNoDataValue(kAccuracyNodata);
-  BandStatistics statistics;
-  writeRasterWindow(*band, grid, TestRect{0, 0, grid.cols, grid.rows}, 0, 0, &statistics);
-  statistics.store(*band, double(grid.cols) * grid.rows);
-}
-
-DatasetPtr inMemory(const AccuracyBands& bands, const TestGrid& grid) {
-  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-  DatasetPtr ds = DatasetPtr(mem->Create("", grid.cols, grid.rows, kAccuracyBandCount, GDT_Float32, nullptr));
-  georeference(*ds, grid);
-  const Grid* grids[] = {&bands.elevationDifference, &bands.meanCurvatureDifference, &bands.meanCurvatureReference,
-                         &bands.meanCurvatureSimplified};
-  for (int b = 0; b < kAccuracyBandCount; ++b) writeBand(*ds, b + 1, *grids[b], kAccuracyBandNames[b]);
-  return ds;
-}
-
 int gdalProgress(double fraction, const char*, void* data) {
   try {
     static_cast<const ProgressRange*>(data)->report(fraction, "Writing the accuracy raster");
@@ -143,13 +123,6 @@ void copyRaster(GDALDataset& source, const StagedFile& file, const RasterWriteOp
     throw rasterWriteError(file);
   }
   closeRaster(out, file);
-}
-
-void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const StagedFile& file,
-                         const RasterWriteOptions& options, const ProgressRange& progress) {
-  driverFor(options);
-  const DatasetPtr mem = inMemory(bands, grid);
-  copyRaster(*mem, file, options, progress);
 }
 
 }  // namespace tinlod

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Private: the accuracy raster written a window at a time (a catalogue measured tile by
-// tile), and the pieces it shares with writeAccuracyRaster.
+// Private: the accuracy raster written a window at a time (a strip of rows of a whole
+// grid, or of a catalogue's tile measured on its own), and the pieces of its writing.
 #pragma once
 
 #include <gdal_priv.h>

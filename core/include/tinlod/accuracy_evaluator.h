@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,10 @@ struct AccuracyBands {
   Grid meanCurvatureSimplified;
 };
 
+// Takes the accuracy raster's bands a strip of rows at a time: the grids of `strip` hold
+// every column of the test grid's rows from `row0` on.
+using BandStrips = std::function<void(const AccuracyBands& strip, int row0)>;
+
 // Measures simplified TINs against one reference: the test grid, the reference heights
 // and their B-spline surface are made once, then each TIN is interpolated, fitted and
 // compared (elevation statistics on the interpolated heights; correlations of elevation
@@ -51,13 +56,13 @@ class AccuracyEvaluator {
   AccuracyEvaluator& operator=(const AccuracyEvaluator&) = delete;
 
   // `triangles` index the original TIN's vertices (a level of a hierarchy). Fills the
-  // test point count, error statistics and variable comparisons of `row`, and the
-  // bands when `bands` is not null.
-  void evaluate(const std::vector<Triangle>& triangles, LevelAccuracy& row, AccuracyBands* bands,
+  // test point count, error statistics and variable comparisons of `row`, and gives the
+  // bands to `bands` when it is not null.
+  void evaluate(const std::vector<Triangle>& triangles, LevelAccuracy& row, const BandStrips* bands,
                 const ProgressRange& progress) const;
   // The same with other heights for the original's vertices (one per vertex).
   void evaluate(const std::vector<double>& heights, const std::vector<Triangle>& triangles, LevelAccuracy& row,
-                AccuracyBands* bands, const ProgressRange& progress) const;
+                const BandStrips* bands, const ProgressRange& progress) const;
 
   const TestGrid& grid() const;
   const AccuracyOptions& options() const;

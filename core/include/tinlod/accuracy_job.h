@@ -51,7 +51,7 @@ LevelAccuracy levelRow(const Hierarchy& h, const std::string& demName, int level
 // Every level of `h` measured against the evaluator's reference, one row each; the
 // bands of `rasterLevel` (-1: the coarsest) go to `bands` when it is not null.
 std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, const Hierarchy& h, const std::string& demName,
-                                         int rasterLevel, AccuracyBands* bands, const ProgressRange& progress);
+                                         int rasterLevel, const BandStrips* bands, const ProgressRange& progress);
 
 AccuracyReport makeReport(const AccuracyEvaluator& evaluator, const std::string& title, const std::string& crsName,
                           std::vector<LevelAccuracy> rows);

@@ -22,10 +22,4 @@ constexpr double kAccuracyNodata = -9999;
 // before long work.
 void checkRasterFormat(const RasterWriteOptions& options);
 
-// Writes the four bands on the test grid with its georeferencing and the DEM's CRS,
-// Float32, band descriptions, nodata and statistics set, so that QGIS shows it at once.
-// Into a file of the job's OutputFiles, with any sidecar files the format has.
-void writeAccuracyRaster(const AccuracyBands& bands, const TestGrid& grid, const StagedFile& file,
-                         const RasterWriteOptions& options, const ProgressRange& progress);
-
 }  // namespace tinlod
