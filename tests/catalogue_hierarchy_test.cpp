@@ -383,11 +383,13 @@ TEST(CatalogueHierarchy, AccuracyTileByTileIsThatOfTheTilesReadAsOne) {
 }
 
 TEST(CatalogueHierarchy, AccuracyTileByTileReportsTheLargestErrorWhereTheWholeRasterDoesOnTies) {
-  // A flat DEM with two pits 10 m deep at cells no block samples (sampling depends on the
-  // seed and the block alone): every level is flat at 0 m (exactly, where a plane through
-  // heights of 100 m would round) and misses both by 10 m. Pit A
-  // (row 10, in tile 1,0) comes first in the raster's rows, pit B (row 130, in tile 0,1) in
-  // the catalogue's tiles, which are measured down each column of tiles first.
+  // A DEM flat at 0 m with two pits 10 m deep at cells no block samples (sampling depends
+  // on the seed and the block alone): every level is flat at 0 m and misses both by exactly
+  // 10 m (planes through heights other than 0 would round). Pit A (row 10, in tile 1,0)
+  // comes first in the raster's rows; pit B (row 122, in tile 0,1) comes first in the
+  // catalogue's tiles, which are measured down each column of tiles first, and in its own
+  // tile's rows (row 2 or 3 of it), so neither the tiles' order nor a tile's own rows can
+  // stand for the raster's.
   const std::string dir = test::tempDir();
   const std::string dem = dir + "/pits.tif";
   const auto flat = [](const std::vector<std::array<int, 2>>& pits) {
@@ -405,7 +407,7 @@ TEST(CatalogueHierarchy, AccuracyTileByTileReportsTheLargestErrorWhereTheWholeRa
     while (sampled.count({row, col})) ++col;
     return std::array<int, 2>{row, col};
   };
-  const std::array<int, 2> a = unsampledFrom(10, 150), b = unsampledFrom(130, 30);
+  const std::array<int, 2> a = unsampledFrom(10, 150), b = unsampledFrom(122, 30);
   writeDemGeoTiff(flat({a, b}), dem);
   const std::string tilesDir = test::tempDir();
   const BuiltTiles built = buildCatalogue(dem, kTileSize, tilesDir);

@@ -57,16 +57,15 @@ struct AccuracyEvaluator::Impl {
   }
 
   // Fits the simplified heights and compares both surfaces point by point, a strip of
-  // rows at a time: the bands, when asked for, take a strip's memory, not four grids'
-  // (184 MB for alps_2x2's 5.8 M points). The same strips without them, so that the sums
-  // are grouped alike, and as a catalogue's tiles group theirs (on the grid's 256 rows).
+  // rows at a time: the bands, when asked for, take a strip's memory, not four grids'. The
+  // same strips without them, so that the sums are grouped alike, and as a catalogue's
+  // tiles group theirs.
   SurfaceComparison compare(const Grid& simplified, const Grid& error, const BandStrips* bands,
                             const ProgressRange& progress) const {
-    constexpr int kStripRows = 256;
     const BsplineSurface surface(simplified, options.controlSpacing, grid.cellWidth, grid.cellHeight);
     SurfaceComparison total;
-    for (int row0 = 0; row0 < grid.rows; row0 += kStripRows) {
-      const int row1 = std::min(grid.rows, row0 + kStripRows);
+    for (int row0 = 0; row0 < grid.rows; row0 += kComparedRows) {
+      const int row1 = std::min(grid.rows, row0 + kComparedRows);
       std::unique_ptr<AccuracyBands> strip;
       if (bands) {
         const Grid empty(grid.cols, row1 - row0);

@@ -4,6 +4,7 @@
 #include <cpl_string.h>
 
 #include <algorithm>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -15,11 +16,14 @@ AccuracyRasterCanvas::AccuracyRasterCanvas(const TestGrid& grid, const StagedFil
     : file_(file), options_(std::move(options)), scratch_(file.staging.string() + ".canvas.tif") {
   checkRasterFormat(options_);
   GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
-  // Tiled, so that a tile's window touches few blocks; sparse, so that blocks no tile
-  // writes (nodata all through) take no room and no time; not compressed, since a block a
-  // window fills in part would be decompressed and compressed again; BIGTIFF for national grids.
+  // Tiled, so that a tile's window touches few blocks, as tall as the strips written, so
+  // that a strip writes whole block rows; sparse, so that blocks no tile writes (nodata all
+  // through) take no room and no time; not compressed, since a block a window fills in part
+  // would be decompressed and compressed again; BIGTIFF for national grids.
   CPLStringList co;
   co.AddString("TILED=YES");
+  co.AddString("BLOCKXSIZE=256");
+  co.AddString(("BLOCKYSIZE=" + std::to_string(kComparedRows)).c_str());
   co.AddString("SPARSE_OK=TRUE");
   co.AddString("BIGTIFF=IF_SAFER");
   CPLPushErrorHandler(CPLQuietErrorHandler);

@@ -198,7 +198,7 @@ class SharedHeights {
   std::unordered_map<Place, double, PlaceHash> heights_;
 };
 
-// A tile's triangle as measured: its corners and the levels it is in (16 bytes; the
+// A tile's triangle as measured: its corners and the levels it is in (16 bytes, where the
 // hierarchy's 28 hold what measuring does not read).
 struct MeasuredTriangle {
   Triangle v;
@@ -210,9 +210,10 @@ struct MeasuredTriangle {
 class TileMeasure {
  public:
   // `owned`: the test points it answers for (ownedPoints). Takes the tile's vertices and
-  // triangles from `h`, which is left without them: a 4096 x 4096 tile's 10 M triangles and
-  // 1.9 M vertices as read (370 MB) would otherwise stay beside the grids.
-  TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, Hierarchy& h,
+  // triangles, and frees them (as read, they would stay beside the grids); `coarsest`: its
+  // hierarchy's coarsest level.
+  TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, std::int32_t coarsest,
+              std::vector<TinVertex>&& vertices, std::vector<HierarchyTriangle>&& triangles,
               const std::vector<TestRect>& owned, const ProgressRange& progress);
   void measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas, const ProgressRange& progress) const;
   // With -reference dem: the owned test points whose heights -valid_range made nodata.
@@ -243,18 +244,20 @@ class TileMeasure {
   std::size_t droppedHeights_ = 0;
 };
 
-TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, Hierarchy& h,
-                         const std::vector<TestRect>& owned, const ProgressRange& progress)
-    : g_(g), coarsest_(h.coarsest()), vertexCount_(h.base.vertices.size()) {
+TileMeasure::TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index,
+                         std::int32_t coarsest, std::vector<TinVertex>&& tileVertices,
+                         std::vector<HierarchyTriangle>&& triangles, const std::vector<TestRect>& owned,
+                         const ProgressRange& progress)
+    : g_(g), coarsest_(coarsest), vertexCount_(tileVertices.size()) {
   window_ = windowOf(boundsOf(owned), g.grid, g.options.controlSpacing);
   for (const TestRect& o : owned)
     owned_.push_back({o.col0 - window_.col0, o.row0 - window_.row0, o.col1 - window_.col0, o.row1 - window_.row0});
   grid_ = subGrid(g.grid, window_);
-  triangles_.reserve(h.triangles.size());
-  for (const HierarchyTriangle& t : h.triangles) triangles_.push_back({t.v, t.firstLevel, t.lastLevel});
-  releaseMemory(h.triangles);
+  triangles_.reserve(triangles.size());
+  for (const HierarchyTriangle& t : triangles) triangles_.push_back({t.v, t.firstLevel, t.lastLevel});
+  releaseMemory(triangles);
   {
-    std::vector<TinVertex> vertices = std::move(h.base.vertices);
+    std::vector<TinVertex> vertices = std::move(tileVertices);
     const std::vector<TinVertex> corners = readNeighbours(tiles, index, vertices);
     vertices.insert(vertices.end(), corners.begin(), corners.end());
     // Placed on the whole grid as a whole run places them, and rasterized there: the same
@@ -312,7 +315,7 @@ void TileMeasure::makeReference(const ProgressRange& progress) {
 // before this one in the catalogue, this one, the tiles after it.
 std::vector<Triangle> TileMeasure::trianglesOf(std::int32_t level) const {
   const auto inLevel = [level](std::int32_t first, std::int32_t last) { return first <= level && level <= last; };
-  // Counted first: grown by doubling, a 4096 x 4096 tile's level 0 took up to twice its 44 MB.
+  // Counted first: grown by doubling, the array would take up to twice its size.
   std::size_t count = 0;
   for (const MeasuredTriangle& t : triangles_) count += inLevel(t.firstLevel, t.lastLevel);
   for (const auto& levels : neighbourLevels_) count += inLevel(levels[0], levels[1]);
@@ -360,20 +363,19 @@ void TileMeasure::measure(std::int32_t level, LevelSums& sums, AccuracyRasterCan
   const Grid simplified = rasterize(level, progress.sub(0, 0.3));
   const BsplineSurface surface(simplified, g_.options.controlSpacing, grid_.cellWidth, grid_.cellHeight);
   // A strip of rows at a time, with or without the raster (so the sums are grouped alike):
-  // the raster's four bands over a strip, not over the window (537 MB for a 4096 x 4096
-  // tile). Strips end on the raster's block rows (GDAL's 256), so that no block is written
-  // in two parts.
-  constexpr int kStripRows = 256;
+  // the raster's four bands over a strip, not over the window. Strips end on the whole
+  // grid's multiples of kComparedRows, the canvas's block rows, so that each strip writes
+  // whole block rows where the window covers them.
   std::unique_ptr<AccuracyBands> bands;
   if (canvas) {
-    const Grid empty(grid_.cols, kStripRows);
+    const Grid empty(grid_.cols, kComparedRows);
     bands = std::make_unique<AccuracyBands>(AccuracyBands{empty, empty, empty, empty});
   }
   std::size_t rows = 0, done = 0;
   for (const TestRect& o : owned_) rows += o.row1 - o.row0;
   for (const TestRect& o : owned_)
     for (int row0 = o.row0, row1; row0 < o.row1; row0 = row1) {
-      row1 = std::min(o.row1, ((window_.row0 + row0) / kStripRows + 1) * kStripRows - window_.row0);
+      row1 = std::min(o.row1, ((window_.row0 + row0) / kComparedRows + 1) * kComparedRows - window_.row0);
       const TestRect strip{o.col0, row0, o.col1, row1};
       if (bands) {  // addErrors leaves the points without an error as they were
         std::vector<double>& e = bands->elevationDifference.values;
@@ -444,8 +446,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     part.report(0, "Measuring tile " + tile.name + " (" + std::to_string(i + 1) + " of " + std::to_string(tiles.size()) + ")");
     StoredHierarchy stored = readCatalogueTile(tile, part.sub(0, 0.2));
     // Levels are measured from the triangles alone: the groups and their links (a tenth of
-    // a tile's hierarchy), and level 0 again as a TIN (44 MB of a 4096 x 4096 tile), need
-    // not stay beside the grids.
+    // a tile's hierarchy), and level 0 again as a TIN, need not stay beside the grids.
     releaseMemory(stored.hierarchy.groups), releaseMemory(stored.hierarchy.links), releaseMemory(stored.hierarchy.rings);
     releaseMemory(stored.hierarchy.base.triangles);
     Hierarchy& h = stored.hierarchy;
@@ -467,7 +468,8 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     poolLevels(tile, h, cells, sums);
     const std::vector<TestRect> owned = ownedPoints(cells, g->grid.step);
     if (owned.empty()) continue;
-    const TileMeasure measure(*g, tiles, i, h, owned, part.sub(0.25, 0.3));
+    const TileMeasure measure(*g, tiles, i, h.coarsest(), std::move(h.base.vertices), std::move(h.triangles), owned,
+                              part.sub(0.25, 0.3));
     releaseFreedMemory();  // what reading the tile left in glibc's heaps, resident beside the grids
     droppedHeights += measure.droppedHeights();
     for (std::int32_t L = 0; L <= h.coarsest(); ++L)

@@ -2,10 +2,6 @@
 // Private: giving an array's memory back while its owner lives on.
 #pragma once
 
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 namespace tinlod {
 
 // Empties `c` and frees its memory. `c = {}` would not: for a vector it assigns an empty
@@ -19,10 +15,6 @@ void releaseMemory(Container& c) {
 // Gives the heap's free pages back to the system. glibc keeps what a program frees in its
 // heaps, resident, unless asked (150 MB by the last level of a 4096 x 4096 tile's build).
 // A few milliseconds.
-inline void releaseFreedMemory() {
-#ifdef __GLIBC__
-  malloc_trim(0);
-#endif
-}
+void releaseFreedMemory();
 
 }  // namespace tinlod

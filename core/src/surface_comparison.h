@@ -35,6 +35,11 @@ class SurfaceComparison {
   CircularPairStatistics aspect_;
 };
 
+// Rows of test points compared at a time, on the whole test grid's multiples of it: the
+// accuracy raster's bands are held a strip this tall at a time, and the blocks it is
+// written in are as tall.
+constexpr int kComparedRows = 256;
+
 // Both surfaces (over one grid) compared at the points of `rect`, on all cores, merged in
 // row order so any core count gives the same sums. When `bands` is not null its curvature
 // grids (the surfaces' width, holding their rows from `bandsRow0` on) get the mean

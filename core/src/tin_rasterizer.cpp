@@ -104,8 +104,8 @@ bool planeOf(const std::vector<Pos>& positions, const std::vector<double>& z, co
 
 // A triangle in the rasterizer's order: its top row (RowOrder::of) and its corners. The
 // plane itself is computed again where the triangle is filled: 16 bytes a triangle where
-// the plane takes 96, which set the peak of measuring a large window (355 MB for the 3.7 M
-// triangles of a 4096 x 4096 tile's level 0), for a few loads and products per triangle.
+// the plane takes 96, which set the peak of measuring a large window, for a few loads and
+// products per triangle.
 struct Placed {
   Triangle corners;
   std::int32_t topRow;
