@@ -93,6 +93,11 @@ memory_case() {
   echo "== one tile of 4096 x 4096 cells (-tile_size 4095 and the shared line) of a synthetic 8193 x 8193 DEM"
   /usr/bin/time -f "tile 0,0: %e s, peak %M KB (target: 1 GB)" "$tinlod" build "$dem" "$work/big_tile.gpkg" \
     -tile_size 4095 -tile 0,0 -q -overwrite
+  # As each of 2 Dask workers runs it: one thread.
+  TINLOD_THREADS=1 /usr/bin/time -f "tile 0,0 with one thread: %e s, peak %M KB (target: 1 GB)" "$tinlod" build "$dem" \
+    "$work/big_tile.gpkg" -tile_size 4095 -tile 0,0 -q -overwrite
+  TINLOD_THREADS=1 /usr/bin/time -f "its survey with one thread: %e s, peak %M KB (target: 1 GB)" "$tinlod" build "$dem" \
+    "$work/big_tile.json" -tile_size 4095 -tile 0,0 -survey -q -overwrite
   if ! /usr/bin/python3 -c "import distributed" 2> /dev/null || [[ ! -x $tiles ]]; then
     echo "== measuring 4096 x 4096 tiles: SKIPPED (python3-distributed or $tiles absent)"
     return 0
