@@ -64,12 +64,11 @@ struct AccuracyEvaluator::Impl {
                             const ProgressRange& progress) const {
     const BsplineSurface surface(simplified, options.controlSpacing, grid.cellWidth, grid.cellHeight);
     SurfaceComparison total;
-    for (int row0 = 0; row0 < grid.rows; row0 += kComparedRows) {
-      const int row1 = std::min(grid.rows, row0 + kComparedRows);
+    for (int row0 = 0, row1; row0 < grid.rows; row0 = row1) {
+      row1 = stripEnd(row0, grid.rows);
       std::unique_ptr<AccuracyBands> strip;
       if (bands) {
-        const Grid empty(grid.cols, row1 - row0);
-        strip = std::make_unique<AccuracyBands>(AccuracyBands{empty, empty, empty, empty});
+        strip = std::make_unique<AccuracyBands>(blankBands(grid.cols, row1 - row0));
         const auto from = error.values.begin() + std::ptrdiff_t(row0) * grid.cols;
         std::copy(from, from + std::ptrdiff_t(row1 - row0) * grid.cols, strip->elevationDifference.values.begin());
       }

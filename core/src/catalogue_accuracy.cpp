@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <unordered_map>
 
@@ -366,21 +365,14 @@ void TileMeasure::measure(std::int32_t level, LevelSums& sums, AccuracyRasterCan
   // the raster's four bands over a strip, not over the window. Strips end on the whole
   // grid's multiples of kComparedRows, the canvas's block rows, so that each strip writes
   // whole block rows where the window covers them.
-  std::unique_ptr<AccuracyBands> bands;
-  if (canvas) {
-    const Grid empty(grid_.cols, kComparedRows);
-    bands = std::make_unique<AccuracyBands>(AccuracyBands{empty, empty, empty, empty});
-  }
   std::size_t rows = 0, done = 0;
   for (const TestRect& o : owned_) rows += o.row1 - o.row0;
   for (const TestRect& o : owned_)
     for (int row0 = o.row0, row1; row0 < o.row1; row0 = row1) {
-      row1 = std::min(o.row1, ((window_.row0 + row0) / kComparedRows + 1) * kComparedRows - window_.row0);
+      row1 = stripEnd(row0, o.row1, window_.row0);
       const TestRect strip{o.col0, row0, o.col1, row1};
-      if (bands) {  // addErrors leaves the points without an error as they were
-        std::vector<double>& e = bands->elevationDifference.values;
-        std::fill(e.begin(), e.end(), std::numeric_limits<double>::quiet_NaN());
-      }
+      const std::unique_ptr<AccuracyBands> bands =
+          canvas ? std::make_unique<AccuracyBands>(blankBands(grid_.cols, row1 - row0)) : nullptr;
       addErrors(simplified, strip, sums, bands ? &bands->elevationDifference : nullptr, row0);
       const double from = 0.35 + 0.65 * done / rows;
       done += row1 - row0;

@@ -4,6 +4,7 @@
 // catalogue.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -39,6 +40,18 @@ class SurfaceComparison {
 // accuracy raster's bands are held a strip this tall at a time, and the blocks it is
 // written in are as tall.
 constexpr int kComparedRows = 256;
+
+// Where the strip of rows from `row` ends: at the whole grid's next multiple of
+// kComparedRows (a window's row `row` being the whole grid's `origin + row`), or at `end`.
+inline int stripEnd(int row, int end, int origin = 0) {
+  return std::min(end, ((origin + row) / kComparedRows + 1) * kComparedRows - origin);
+}
+
+// The four bands over `rows` rows, without a value (NaN) until filled.
+inline AccuracyBands blankBands(int cols, int rows) {
+  const Grid blank(cols, rows);
+  return {blank, blank, blank, blank};
+}
 
 // Both surfaces (over one grid) compared at the points of `rect`, on all cores, merged in
 // row order so any core count gives the same sums. When `bands` is not null its curvature
