@@ -2,14 +2,15 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """tinlod-tiles as a user runs it, on a local Dask cluster of 2 workers: the catalogue ends
 complete, a tile whose tinlod is killed mid-run is retried, a rerun builds no finished tile
-again, each level across the tiles (VRT and merge) holds every tile's triangles, and under
--method error -max_error the tiles agree their lines in rounds.
+again, each level across the tiles (VRT and merge) holds every tile's triangles, under
+-method error -max_error the tiles agree their lines in rounds, and Ctrl-C stops a run at once.
 Usage: tiles_test.py TINLOD_CLI TINLOD_TILES STANDIN
 Skipped (exit 77) where python3-distributed is absent. A tinlod without -tile_size (the core
 before tiles) is stood in for by STANDIN, which cuts the tile's window itself."""
 import json
 import os
 import re
+import signal
 import struct
 import subprocess
 import sys
@@ -237,6 +238,41 @@ def border_agreement(base, options, work, env):
           metadata.get("TINLOD_BORDER_KEPT"))
 
 
+def ctrl_c(dem, tiles, work, env):
+    """(i) Ctrl-C while tiles are being built: the run stops at once (exit 130), the tiles'
+    tinlods end with it, and the tiles stay pending. The tinlod here sleeps, so that only
+    the stop can end the tasks."""
+    sleeper, pids = os.path.join(work, "sleeping_tinlod"), os.path.join(work, "sleeping.pids")
+    with open(sleeper, "w") as f:
+        f.write("#!/bin/sh\necho $$ >> %s\nexec sleep 120\n" % pids)
+    os.chmod(sleeper, 0o755)
+    catalogue = os.path.join(work, "g.gpkg")
+    driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-selection", "tile",
+                               "-tinlod", sleeper], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    started = []
+    deadline = time.monotonic() + 60
+    while len(started) < 2 and time.monotonic() < deadline and driver.poll() is None:
+        time.sleep(0.1)
+        started = open(pids).read().split() if os.path.exists(pids) else []
+    check("(i) both workers are building a tile", len(started) == 2, started)
+    driver.send_signal(signal.SIGINT)
+    stopping = time.monotonic()
+    try:
+        out, err = driver.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        driver.kill()
+        out, err = driver.communicate()
+    took = time.monotonic() - stopping
+    check("(i) Ctrl-C stops the run within 10 s with exit code 130", driver.returncode == 130 and took < 10,
+          (driver.returncode, took, err[-1000:]))
+    time.sleep(0.5)  # the signal's delivery
+    alive = [p for p in started if os.path.exists("/proc/%s" % p) and "Z" not in open("/proc/%s/stat" % p).read().split()[2]]
+    check("(i) the tiles' tinlods ended with the run", not alive, alive)
+    pending = [r["status"] for r in rows(catalogue)[0].values()]
+    check("(i) the tiles stay pending (the empty one found so) for a rerun",
+          pending.count("pending") >= 5 and "done" not in pending, pending)
+
+
 def main(tinlod, tiles):
     try:
         import distributed  # noqa: F401
@@ -367,6 +403,7 @@ def main(tinlod, tiles):
 
     lod_and_accuracy(tinlod, catalogue, dem, work)
     border_agreement(base, options, work, env)
+    ctrl_c(dem, tiles, work, env)
 
     print("tiles: %d failed" % len(failures))
     if not failures:

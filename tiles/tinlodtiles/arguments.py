@@ -23,7 +23,7 @@ Usage: tinlod-tiles DEM CATALOGUE.gpkg -tile_size N [options] [-- build options]
 Tiles:
   -tile_size N     cells per tile side, a multiple of the build's -block (default 3);
                    neighbouring tiles share a row or column of cells
-  -workers n       local cluster: worker processes, one tile each at a time
+  -workers n       local cluster: workers, one tile each at a time
                    (default: the number of cores)
   -scheduler ADDR  a running Dask scheduler (tcp://host:8786) instead of a local cluster;
                    its workers must reach the DEM, the tiles folder and tinlod by the same paths

@@ -279,14 +279,11 @@ def start_client(distributed, arguments):
         except OSError as e:
             raise TilesError("cannot reach the Dask scheduler %s (%s): is `dask scheduler` running there?"
                              % (arguments.scheduler, e)) from None
-    # The workers inherit Ctrl-C ignored: the terminal sends it to them too, and the driver
-    # alone should stop the run (it closes the cluster, ending their tasks).
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        cluster = distributed.LocalCluster(n_workers=arguments.workers, threads_per_worker=1, processes=True,
-                                           dashboard_address=None, silence_logs=logging.ERROR)
-    finally:
-        signal.signal(signal.SIGINT, previous)
+    # Threads, not processes: a task only waits on its tinlod (the GIL is free meanwhile),
+    # and worker processes would each start Python and Dask again, seconds of a short run.
+    # The tasks' tinlods are then this process's children (end_tile_processes).
+    cluster = distributed.LocalCluster(n_workers=arguments.workers, threads_per_worker=1, processes=False,
+                                       dashboard_address=None, silence_logs=logging.ERROR)
     return distributed.Client(cluster), cluster
 
 
@@ -376,9 +373,27 @@ def failure_message(future):
 
 
 def stop(client, cluster):
+    """Closes the client and the local cluster, whose tasks' tinlods are ended first: a
+    worker thread cannot be stopped, only what it waits on (Ctrl-C would otherwise wait for
+    the tiles being built). A remote scheduler's workers keep theirs (the cancel ends them)."""
+    if cluster is not None:
+        end_tile_processes()
     client.close()
     if cluster is not None:
         cluster.close()
+        end_tile_processes(signal.SIGKILL)  # one a worker started while the cluster closed
+
+
+def end_tile_processes(how=signal.SIGTERM):
+    """Signals this process's children, the local cluster's tinlods (in sessions of their own,
+    so the terminal's Ctrl-C does not reach them). Their worker threads reap them."""
+    import psutil  # Dask's own dependency
+
+    for child in psutil.Process().children():
+        try:
+            child.send_signal(how)
+        except psutil.NoSuchProcess:
+            pass
 
 
 def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
