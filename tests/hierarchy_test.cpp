@@ -7,6 +7,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <tuple>
 
 #include "mesh_checks.h"
 #include "test_support.h"
@@ -342,6 +343,39 @@ TEST(Hierarchy, HoldsNoMemoryOfTheSimplifiersOwn) {
   EXPECT_EQ(h.base.neighbours.capacity(), 0u);
   EXPECT_EQ(h.base.triangles.size(), h.levels.front().triangles);
   EXPECT_EQ(h.base.triangles.capacity(), h.base.triangles.size());
+}
+
+// A survey (a tile's first pass, written as figures only) makes the very levels a build
+// makes, without keeping their triangles, groups, links and rings.
+TEST(Hierarchy, SurveyMakesTheSameLevelsKeepingOnlyTheirFigures) {
+  const Dem dem = test::smallSyntheticDem();
+  const Tin tin = sampleTin(dem, {}, kQuiet);
+  for (Measure m : {Measure::Volume, Measure::Error}) {
+    SCOPED_TRACE(measureName(m));
+    HierarchyOptions o;
+    o.measure = m;
+    const Hierarchy built = buildHierarchy(tin, dem, {}, o, kQuiet);
+    o.survey = true;
+    const Hierarchy surveyed = buildHierarchy(tin, dem, {}, o, kQuiet);
+    ASSERT_EQ(surveyed.levels.size(), built.levels.size());
+    ASSERT_GT(built.levels.size(), 3u);
+    for (std::size_t k = 0; k < built.levels.size(); ++k) {
+      const LevelStats &a = built.levels[k], &b = surveyed.levels[k];
+      EXPECT_EQ(std::tie(a.vertices, a.triangles, a.deleted, a.maxError, a.rmse, a.cells, a.outlineVertices),
+                std::tie(b.vertices, b.triangles, b.deleted, b.maxError, b.rmse, b.cells, b.outlineVertices))
+          << "level " << k;
+    }
+    EXPECT_EQ(surveyed.vertexLevel, built.vertexLevel);
+    ASSERT_EQ(surveyed.survey.size(), built.levels.size() - 1);
+    for (const LevelSurvey& l : surveyed.survey) {
+      EXPECT_EQ(l.picked, built.levels[l.level].deleted) << "level " << l.level;
+      EXPECT_EQ(l.vertices, built.levels[l.level - 1].vertices) << "level " << l.level;
+    }
+    EXPECT_TRUE(built.survey.empty());
+    EXPECT_TRUE(surveyed.triangles.empty() && surveyed.groups.empty() && surveyed.links.empty() &&
+                surveyed.rings.empty() && surveyed.base.triangles.empty());
+    EXPECT_EQ(surveyed.rings.capacity(), 0u);
+  }
 }
 
 TEST(Hierarchy, RealDemsEveryMeasure) {

@@ -108,14 +108,16 @@ class Simplifier {
   // Reads only the base TIN, so it may run while the mesh is built.
   void allocate() {
     const std::size_t nv = h_.base.vertices.size(), slots = h_.base.triangles.size();
-    reserveForDeletions();
-    for (const Triangle& tri : h_.base.triangles) {
-      HierarchyTriangle ht;
-      ht.v = tri;
-      ht.lastLevel = kOpenLevel;
-      h_.triangles.push_back(ht);
+    if (records_) {
+      reserveForDeletions();
+      for (const Triangle& tri : h_.base.triangles) {
+        HierarchyTriangle ht;
+        ht.v = tri;
+        ht.lastLevel = kOpenLevel;
+        h_.triangles.push_back(ht);
+      }
     }
-    used_ = {0, h_.triangles.size(), 0, 0};
+    used_ = {0, h_.base.triangles.size(), 0, 0};
     slotCells_.assign(slots, TriangleCells{});
     h_.vertexLevel.assign(nv, kOpenLevel);
     importance_.assign(nv, 0.0);
@@ -174,7 +176,7 @@ class Simplifier {
         const bool outline[3] = {mesh_.across(slot, 0) == kNoTriangle, mesh_.across(slot, 1) == kNoTriangle,
                                  mesh_.across(slot, 2) == kNoTriangle};
         slotCells_[slot] = cells_.measure(mesh_.corner(slot, 0), mesh_.corner(slot, 1), mesh_.corner(slot, 2), outline, true);
-        h_.triangles[mesh_.triangleId(slot)].error = roundedUpError(slotCells_[slot].maxError);
+        if (records_) h_.triangles[mesh_.triangleId(slot)].error = roundedUpError(slotCells_[slot].maxError);
       }
     }, [&](double f) { progress_.report(0.1 * f, "Measuring level 0 against the DEM"); });
   }
@@ -550,6 +552,7 @@ class Simplifier {
   // Grows the hierarchy's arrays to at least `to`; unless beyondReserve, only within what
   // was reserved (so they never move while others read them).
   void growHierarchy(const Ranges& to, bool beyondReserve) {
+    if (!records_) return;
     auto grow = [&](auto& v, std::size_t n) {
       if (v.size() >= n) return;
       // Past the reserve the array moves: by an eighth more, not the doubling resize makes,
@@ -562,9 +565,10 @@ class Simplifier {
 
   void deleteAll(const std::vector<Pick>& picks, std::int32_t level) {
     const std::size_t ringCount = slots_.size();
-    const Ranges at = used_;
+    Ranges at = used_;
     used_ = {at.group + picks.size(), at.triangles + fill_.size(), at.links + links_, at.rings + ringCount};
     growHierarchy(used_, true);  // where the last level's picks fell short
+    if (!records_) at.rings = 0, fitted(h_.rings, ringCount);  // the level's rings only, read below
     if (!picks.empty()) meanDegree_ = double(ringCount) / double(picks.size());
     lastPicks_ = picks.size();
     mesh_.beginRound();
@@ -579,7 +583,7 @@ class Simplifier {
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
       for (int i = begin; i < end; ++i) replace(picks[i], at.triangles, at.rings);
     }, [&](double f) { reportProgress(level, 0.5 + f / 2, picks.size()); });
-    for (std::size_t k = at.rings; k < used_.rings; ++k) stale_[h_.rings[k]] = 1;  // the ring vertices' stars changed
+    for (std::size_t k = at.rings; k < at.rings + ringCount; ++k) stale_[h_.rings[k]] = 1;  // the ring vertices' stars changed
     live_.erase(std::remove_if(live_.begin(), live_.end(), [&](VertexId v) { return h_.vertexLevel[v] != kOpenLevel; }),
                 live_.end());
     for (const Pick& p : picks) {
@@ -588,6 +592,7 @@ class Simplifier {
     }
     // The plan is carried out: its arrays go before the compaction, the level's peak.
     releaseMemory(fill_), releaseMemory(slots_), releaseMemory(outer_);
+    if (!records_) releaseMemory(h_.rings);
     releaseFreedMemory();  // what the level's selection left
     compact();
     releaseFreedMemory();
@@ -626,6 +631,8 @@ class Simplifier {
   // The group of a pick, its accept triangles (the star's) and its reject triangles (the
   // new ones).
   void record(const Pick& pick, std::int32_t level, const Ranges& at, const VertexId* ring) {
+    h_.vertexLevel[pick.id] = level - 1;
+    if (!records_) return;
     const std::int32_t g = static_cast<std::int32_t>(at.group);
     const std::uint32_t d = pick.degree;
     Group& group = h_.groups[at.group];
@@ -657,7 +664,6 @@ class Simplifier {
       h_.links[group.rejectBegin + j] = static_cast<std::uint32_t>(t);
       group.error = std::max(group.error, error);  // exact: the error measure's importance
     }
-    h_.vertexLevel[pick.id] = level - 1;
   }
 
   // The second pass, for one pick: the new triangles go into the mesh (their figures went
@@ -709,8 +715,10 @@ class Simplifier {
   }
 
   void finish() {
-    h_.groups.resize(used_.group), h_.triangles.resize(used_.triangles);
-    h_.links.resize(used_.links), h_.rings.resize(used_.rings);
+    if (records_) {
+      h_.groups.resize(used_.group), h_.triangles.resize(used_.triangles);
+      h_.links.resize(used_.links), h_.rings.resize(used_.rings);
+    }
     const std::int32_t top = h_.coarsest();
     for (HierarchyTriangle& t : h_.triangles)
       if (t.lastLevel == kOpenLevel) t.lastLevel = top;
@@ -719,6 +727,9 @@ class Simplifier {
   }
 
   const HierarchyOptions& options_;
+  // A survey is written as figures only: the levels' triangles, groups, links and rings,
+  // which grow with every level to the largest part of the memory, are not kept.
+  const bool records_ = !options_.survey;
   ProgressRange progress_;
   const Dem& dem_;
   const TileBorders* tile_;
@@ -760,7 +771,7 @@ Hierarchy buildHierarchy(Tin base, const Dem& dem, std::vector<std::uint8_t> fix
   Hierarchy h = Simplifier(std::move(base), dem, std::move(fixed), options, progress, tile).run(keep);
   // Level 0's triangles, which the simplifier dropped from the TIN (their ids are their
   // places in it), once its own arrays are freed.
-  const std::size_t levelZero = h.levels.front().triangles;
+  const std::size_t levelZero = h.triangles.empty() ? 0 : h.levels.front().triangles;
   h.base.triangles.reserve(levelZero);
   for (std::size_t t = 0; t < levelZero; ++t) h.base.triangles.push_back(h.triangles[t].v);
   return h;
