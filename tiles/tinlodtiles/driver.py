@@ -12,6 +12,7 @@ import re
 import shlex
 import signal
 import sys
+import threading
 
 from osgeo import gdal
 
@@ -243,9 +244,9 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=F
     distributed, client = workers.distributed, workers.client
     outcome = {}
     progress = Progress(len(pending), arguments.quiet)
-    futures = {}
+    futures = {}  # filled as they are submitted, so that a stop cancels every one
     try:
-        futures = submit(client, pending, arguments, extra_options, survey)
+        submit(client, pending, arguments, extra_options, survey, futures)
         for future in distributed.as_completed(list(futures)):
             tile = futures.pop(future)
             status = record_survey(catalogue, tile, future, tiles_folder(arguments.catalogue)) if survey else record(catalogue, tile, future, arguments.catalogue)
@@ -254,6 +255,9 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=F
     except KeyboardInterrupt:
         client.cancel(list(futures))
         raise TilesStopped(len(futures)) from None
+    except BaseException:  # not retried while the run stops
+        client.cancel(list(futures))
+        raise
     finally:
         progress.end()
     return outcome
@@ -308,13 +312,13 @@ def record_survey(catalogue, tile, future, folder):
     return "surveyed" if status == "done" else status
 
 
-def submit(client, pending, arguments, extra_options=(), survey=False):
-    """The tasks, their code shipped by value so that a remote worker needs only tinlod."""
+def submit(client, pending, arguments, extra_options, survey, futures):
+    """The tasks, their code shipped by value so that a remote worker needs only tinlod;
+    their futures go into `futures` (future: tile) as they are submitted."""
     import cloudpickle
 
     cloudpickle.register_pickle_by_value(task)
     folder = os.path.abspath(tiles_folder(arguments.catalogue))
-    futures = {}
     for tile in pending:
         job = {"tinlod": arguments.tinlod, "dem": os.path.abspath(arguments.dem), "tiles_dir": folder,
                "name": survey_name(tile) if survey else tile.name, "col": tile.col, "row": tile.row,
@@ -326,7 +330,6 @@ def submit(client, pending, arguments, extra_options=(), survey=False):
         futures[client.submit(task.run_tile, job, retries=arguments.retries, pure=False,
                               key="%s-%d-%d-%s" % ("survey" if survey else "tile", tile.col, tile.row,
                                                    os.urandom(4).hex()))] = tile
-    return futures
 
 
 def record(catalogue, tile, future, catalogue_path):
@@ -373,26 +376,42 @@ def failure_message(future):
 
 
 def stop(client, cluster):
-    """Closes the client and the local cluster, whose tasks' tinlods are ended first: a
+    """Closes the client and the local cluster, whose tasks' tinlods are ended meanwhile: a
     worker thread cannot be stopped, only what it waits on (Ctrl-C would otherwise wait for
-    the tiles being built). A remote scheduler's workers keep theirs (the cancel ends them)."""
-    if cluster is not None:
+    the tiles being built), and closing waits for the tasks. A tinlod a worker starts while
+    the cluster closes (its next task, before it hears of the cancel) is ended too. A remote
+    scheduler's workers finish the tasks already running."""
+    if cluster is None:
+        client.close()
+        return
+    closed = threading.Event()
+    ender = threading.Thread(target=end_tile_processes_until, args=(closed,), daemon=True)
+    try:
         end_tile_processes()
-    client.close()
-    if cluster is not None:
+        ender.start()
+        client.close()
         cluster.close()
-        end_tile_processes(signal.SIGKILL)  # one a worker started while the cluster closed
+    finally:
+        closed.set()
+        end_tile_processes(signal.SIGKILL)
+
+
+def end_tile_processes_until(closed):
+    while not closed.wait(0.2):
+        end_tile_processes()
 
 
 def end_tile_processes(how=signal.SIGTERM):
-    """Signals this process's children, the local cluster's tinlods (in sessions of their own,
-    so the terminal's Ctrl-C does not reach them). Their worker threads reap them."""
+    """Signals this process's children that lead a session of their own: the local cluster's
+    tinlods (task.run_measured starts them so, out of the terminal's Ctrl-C). Their worker
+    threads reap them."""
     import psutil  # Dask's own dependency
 
     for child in psutil.Process().children():
         try:
-            child.send_signal(how)
-        except psutil.NoSuchProcess:
+            if os.getsid(child.pid) == child.pid:
+                child.send_signal(how)
+        except (psutil.NoSuchProcess, ProcessLookupError):
             pass
 
 

@@ -89,7 +89,7 @@ def run_measured(command, log_path, kill_after=None, threads=None):
         # run; the parent-death signal ends tinlod if its worker dies.
         env = dict(os.environ, TINLOD_THREADS=str(threads)) if threads else None
         process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                                   stderr=log, start_new_session=True, preexec_fn=_die_with_parent, env=env)
+                                   stderr=log, start_new_session=True, preexec_fn=_dying_with_parent(), env=env)
         status, usage = wait_or_kill(process.pid, start, kill_after)
     process.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
     seconds = time.monotonic() - start
@@ -128,9 +128,11 @@ def last_error_line(log_path, code):
     return lines[-1] if lines else "tinlod exited with code %d" % code
 
 
-def _die_with_parent():
-    """In the child: SIGTERM when the worker thread that started it ends (prctl)."""
-    ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
+def _dying_with_parent():
+    """For the child: SIGTERM when the worker thread that started it ends (prctl), prctl
+    looked up here, so that the forked child of a threaded process only calls it."""
+    prctl = ctypes.CDLL(None, use_errno=True).prctl
+    return lambda: prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
 
 
 def remove_if_present(path):
