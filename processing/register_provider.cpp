@@ -5,6 +5,7 @@
 #include <qgsprocessingregistry.h>
 
 #include "provider.h"
+#include "tinlod/allocator_policy.h"
 
 namespace {
 tinlod::qgis::Provider* gProvider = nullptr;  // owned by the registry while registered
@@ -12,6 +13,9 @@ tinlod::qgis::Provider* gProvider = nullptr;  // owned by the registry while reg
 
 extern "C" __attribute__((visibility("default"))) int tinlod_register_provider() {
   if (gProvider) return 1;
+  // qgis_process runs one algorithm and ends, as the command line does: large builds get
+  // the command line's allocator policy. The desktop's allocator is left as it is.
+  if (QgsApplication::platform() == QLatin1String("qgis_process")) tinlod::mapLargeArraysApart();
   auto* provider = new tinlod::qgis::Provider();
   if (!QgsApplication::processingRegistry()->addProvider(provider)) {
     delete provider;  // refused (an id clash): the registry did not take it

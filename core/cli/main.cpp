@@ -3,10 +3,6 @@
 // GDAL's utilities (exit 0 on success, 1 with "ERROR: ..." otherwise).
 #include <gdal_priv.h>
 
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #include <cstdlib>
 #include <exception>
 #include <iostream>
@@ -14,6 +10,7 @@
 
 #include "commands.h"
 #include "terminal_feedback.h"
+#include "tinlod/allocator_policy.h"
 #include "tinlod/error.h"
 #include "tinlod/version.h"
 
@@ -41,21 +38,10 @@ Commands:
 
 using Command = int (*)(std::vector<std::string>);
 
-// glibc raises its mmap threshold to the largest block freed (up to 32 MB); arrays up to
-// that size then come from the heap, where what is freed between trims stays resident. A
-// fixed threshold gives every large array its own mapping, returned when freed: tens of
-// MB off a large tile's peak, most with one thread, as each worker of a tiled run has. A
-// threshold the user sets (MALLOC_MMAP_THRESHOLD_) stands.
-void mapLargeArraysApart() {
-#ifdef __GLIBC__
-  if (!std::getenv("MALLOC_MMAP_THRESHOLD_")) mallopt(M_MMAP_THRESHOLD, 4 << 20);
-#endif
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  mapLargeArraysApart();
+  tinlod::mapLargeArraysApart();
   const std::map<std::string, Command> commands{{"accuracy", tinlod::cli::accuracyCommand},
                                                  {"build", tinlod::cli::buildCommand},
                                                  {"experiment", tinlod::cli::experimentCommand},
