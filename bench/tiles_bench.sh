@@ -17,7 +17,8 @@
 # Usage: bash bench/tiles_bench.sh [parts...]
 #   (parts: accuracy memory measure throughput bounded; default all)
 # Environment: TINLOD (default build/core/tinlod), TINLOD_TILES (default build/tiles/tinlod-tiles),
-#   WORK (default build/tiles-bench: outputs go there), TINLOD_TEST_DATA (default ../shared/data).
+#   WORK (default build/tiles-bench: outputs go there), TINLOD_TEST_DATA (default ../shared/data),
+#   THROUGHPUT_ROUNDS (default 3: rounds of the three throughput runs, taken in turn).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 tinlod=${TINLOD:-$root/build/core/tinlod}
@@ -171,9 +172,8 @@ throughput_case() {
     echo "== throughput: SKIPPED (python3-distributed or $tiles absent)"
     return 0
   fi
-  local dem=$data/alps_2x2_N46E007_N47E008.tif
-  echo "== throughput: alps_2x2 (5.76 M cells) as 16 tiles of 600 cells with tinlod-tiles"
-  local t1 t2 t1single
+  local dem=$data/alps_2x2_N46E007_N47E008.tif rounds=${THROUGHPUT_ROUNDS:-3}
+  echo "== throughput: alps_2x2 (5.76 M cells) as 16 tiles of 600 cells with tinlod-tiles, $rounds rounds"
   run_workers() {  # N [TINLOD_THREADS]: seconds of a whole run (both passes)
     rm -rf "$work/cat.gpkg" "$work/cat_tiles" "$work/cat_levels"
     local start
@@ -185,17 +185,25 @@ throughput_case() {
   # virtual cores may give far less than 2x, whatever the program).
   local spin='s = 0
 for i in range(20_000_000): s += i * i'
-  local one two
-  one=$( { /usr/bin/time -f "%e" /usr/bin/python3 -c "$spin"; } 2>&1 )
-  two=$( { /usr/bin/time -f "%e" bash -c "/usr/bin/python3 -c '$spin' & /usr/bin/python3 -c '$spin'; wait"; } 2>&1 )
-  echo "the machine: one CPU-bound process $one s, two at once $two s: $(echo "scale=3; 2 * $one / $two" | bc)x"
-  t1=$(run_workers 1)
-  echo "1 worker (tinlod on both cores): $t1 s, $(echo "5764801 / $t1" | bc) cells/s"
-  t1single=$(run_workers 1 1)
-  echo "1 worker, 1 thread (TINLOD_THREADS=1): $t1single s, $(echo "5764801 / $t1single" | bc) cells/s"
-  t2=$(run_workers 2)
-  echo "2 workers (1 thread each): $t2 s, $(echo "5764801 / $t2" | bc) cells/s"
-  echo "speed-up of 2 workers over 1: $(echo "scale=3; $t1 / $t2" | bc)x; over 1 single-threaded worker: $(echo "scale=3; $t1single / $t2" | bc)x (target 1.7x)"
+  # The three runs of a round are taken in turn, so that the machine's drift over minutes
+  # falls on all three; the medians over the rounds are compared.
+  local t1=() t1single=() t2=() one two round
+  for ((round = 1; round <= rounds; ++round)); do
+    one=$( { /usr/bin/time -f "%e" /usr/bin/python3 -c "$spin"; } 2>&1 )
+    two=$( { /usr/bin/time -f "%e" bash -c "/usr/bin/python3 -c '$spin' & /usr/bin/python3 -c '$spin'; wait"; } 2>&1 )
+    t1+=("$(run_workers 1)") t1single+=("$(run_workers 1 1)") t2+=("$(run_workers 2)")
+    printf "round %d: the machine %sx (two CPU-bound processes against one); 1 worker (tinlod on both cores) %.2f s, " \
+      "$round" "$(echo "scale=3; 2 * $one / $two" | bc)" "${t1[-1]}"
+    printf "1 worker of 1 thread (TINLOD_THREADS=1) %.2f s, 2 workers (1 thread each) %.2f s\n" "${t1single[-1]}" "${t2[-1]}"
+  done
+  /usr/bin/python3 - "${t1[*]}" "${t1single[*]}" "${t2[*]}" << 'PY'
+import statistics, sys
+t1, t1single, t2 = (statistics.median(map(float, a.split())) for a in sys.argv[1:4])
+cells = 5764801
+print(f"medians: 1 worker {t1:.2f} s ({cells / t1:.0f} cells/s), 1 single-threaded worker {t1single:.2f} s "
+      f"({cells / t1single:.0f} cells/s), 2 workers {t2:.2f} s ({cells / t2:.0f} cells/s)")
+print(f"speed-up of 2 workers over 1: {t1 / t2:.3f}x; over 1 single-threaded worker: {t1single / t2:.3f}x (target 1.7x)")
+PY
 }
 
 for part in $parts; do
