@@ -594,16 +594,24 @@ TEST(CatalogueHierarchy, AccuracyOfACatalogueThatDoesNotRecordItsTilesCellsIsRef
 }
 
 TEST(CatalogueHierarchy, WithATileUnfinishedTileByTileIsStillTheRestReadAsOne) {
-  // The middle tile failed: the others meet a hole in the tiles, not a neighbour.
+  // The middle tile failed: the others meet a hole in the tiles, not a neighbour. Where it
+  // lies, the raster has the DEM's curvature (band 3) and nodata in the other bands, as the
+  // tiles read as one give.
   const std::string catalogue =
       alteredCatalogue("middle_failed.gpkg", "UPDATE tiles SET status = 'failed' WHERE tile_col = 1 AND tile_row = 1");
   const Hierarchy asOne = readHierarchyOrCatalogue(catalogue, kRange).hierarchy;
+  const std::string dir = test::tempDir();
   AccuracyOutputs outputs;
   outputs.options.reference = Reference::Dem;
+  outputs.rasterLevel = 2;
+  outputs.overwrite = true;
+  outputs.rasterPath = dir + "/tiles.tif";
   const AccuracyReport tiles = runAccuracyJob(test::smallSyntheticDemFile(), catalogue, outputs, 0, "", kQuiet);
+  outputs.rasterPath = dir + "/whole.tif";
   const AccuracyReport whole = measuredAsOne(test::smallSyntheticDemFile(), asOne, outputs);
   ASSERT_EQ(tiles.rows.size(), whole.rows.size());
   for (std::size_t L = 0; L < whole.rows.size(); ++L) expectSameRow(tiles.rows[L], whole.rows[L], "level " + std::to_string(L));
+  expectSameRaster(dir + "/tiles.tif", dir + "/whole.tif", "middle tile failed");
   const std::vector<std::uint32_t> all = extractLod(asOne, LodOptions{{}, std::nan(""), 6}, kRange);
   const Tin whole0 = tinOf(asOne, all);
   const ExtractedLod apart =
@@ -623,7 +631,7 @@ TEST(CatalogueHierarchy, LodOfACatalogueStopsOnCancelAndLeavesNothing) {
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
-TEST(TileOwnership, EveryCellThePresentTilesHoldHasOneOwnerWhicheverTilesAreMissing) {
+TEST(TileOwnership, EveryCellHasOneOwnerAmongThePresentTilesOrElseAmongTheMissingOnes) {
   const int width = 100, height = 70, size = 30;  // 4 x 3 tiles, the last column and row narrower
   std::vector<CatalogueTile> all;
   for (int c = 0; c < TileSpec::count(width, size); ++c)
@@ -636,11 +644,23 @@ TEST(TileOwnership, EveryCellThePresentTilesHoldHasOneOwnerWhicheverTilesAreMiss
     }
   std::mt19937 rng(5);
   for (int trial = 0; trial < 60; ++trial) {
-    std::vector<CatalogueTile> present;
-    for (const CatalogueTile& t : all)
-      if (trial == 0 || rng() % 3 != 0) present.push_back(t);
+    std::vector<CatalogueTile> present, missing;
+    for (const CatalogueTile& t : all) (trial == 0 || rng() % 3 != 0 ? present : missing).push_back(t);
     if (present.empty()) continue;
     std::vector<int> owners(width * height, 0), holders(width * height, 0);
+    // The missing tiles' cells (their test points measured for the DEM's curvature alone):
+    // every cell of the raster is then either a present tile's or a missing tile's, once.
+    std::vector<int> left(width * height, 0);
+    for (std::size_t m = 0; m < missing.size(); ++m) {
+      const CatalogueTile& t = missing[m];
+      for (const CellRect& rect : cellsLeftBy(present, missing, m))
+        for (int r = rect.row0; r < rect.row1; ++r)
+          for (int c = rect.col0; c < rect.col1; ++c) {
+            ASSERT_TRUE(c >= t.xoff && c < t.xoff + t.xsize && r >= t.yoff && r < t.yoff + t.ysize)
+                << "missing tile " << t.name << " is left a cell it does not hold";
+            ++left[r * width + c];
+          }
+    }
     for (std::size_t i = 0; i < present.size(); ++i) {
       const CatalogueTile& t = present[i];
       for (int r = t.yoff; r < t.yoff + t.ysize; ++r)
@@ -653,8 +673,10 @@ TEST(TileOwnership, EveryCellThePresentTilesHoldHasOneOwnerWhicheverTilesAreMiss
             ++owners[r * width + c];
           }
     }
-    for (int cell = 0; cell < width * height; ++cell)
+    for (int cell = 0; cell < width * height; ++cell) {
       ASSERT_EQ(owners[cell], holders[cell] > 0 ? 1 : 0) << "trial " << trial << ", cell " << cell % width << "," << cell / width;
+      ASSERT_EQ(left[cell], holders[cell] > 0 ? 0 : 1) << "trial " << trial << ", cell " << cell % width << "," << cell / width;
+    }
   }
 }
 

@@ -35,30 +35,48 @@ bool isCatalogue(const std::string& path) {
   return kind && std::string(kind) == "catalogue";
 }
 
-std::vector<CatalogueTile> readCatalogue(const std::string& path) {
+namespace {
+
+// The catalogue's tiles whose status `wanted` accepts; `withFile`: only those with a
+// geometry, their file resolved.
+template <class Wanted>
+std::vector<CatalogueTile> tilesWhere(const std::string& path, Wanted wanted, bool withFile) {
   const Dataset ds = openVector(path);
   OGRLayer* layer = ds ? ds->GetLayerByName("tiles") : nullptr;
   if (!layer) throw Error("'" + path + "' is not a tinlod-tiles catalogue: it has no 'tiles' layer");
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  const bool sized = layer->GetLayerDefn()->GetFieldIndex("xsize") >= 0 && layer->GetLayerDefn()->GetFieldIndex("ysize") >= 0;
   std::vector<CatalogueTile> tiles;
   for (auto& f : *layer) {
-    if (std::string(f->GetFieldAsString("status")) != "done") continue;
-    const OGRGeometry* g = f->GetGeometryRef();
-    if (!g) continue;
-    OGREnvelope e;
-    g->getEnvelope(&e);
+    if (!wanted(std::string(f->GetFieldAsString("status")))) continue;
     CatalogueTile t;
     t.name = std::to_string(f->GetFieldAsInteger("tile_col")) + "," + std::to_string(f->GetFieldAsInteger("tile_row"));
-    const std::filesystem::path file = f->GetFieldAsString("file");
-    t.file = (file.is_absolute() ? file : folder / file).string();
-    t.box = {e.MinX, e.MinY, e.MaxX, e.MaxY};
     t.xoff = f->GetFieldAsInteger("xoff"), t.yoff = f->GetFieldAsInteger("yoff");
-    if (f->GetFieldIndex("xsize") >= 0 && f->GetFieldIndex("ysize") >= 0)
-      t.xsize = f->GetFieldAsInteger("xsize"), t.ysize = f->GetFieldAsInteger("ysize");
+    if (sized) t.xsize = f->GetFieldAsInteger("xsize"), t.ysize = f->GetFieldAsInteger("ysize");
+    if (withFile) {
+      const OGRGeometry* g = f->GetGeometryRef();
+      if (!g) continue;
+      OGREnvelope e;
+      g->getEnvelope(&e);
+      const std::filesystem::path file = f->GetFieldAsString("file");
+      t.file = (file.is_absolute() ? file : folder / file).string();
+      t.box = {e.MinX, e.MinY, e.MaxX, e.MaxY};
+    }
     tiles.push_back(std::move(t));
   }
+  return tiles;
+}
+
+}  // namespace
+
+std::vector<CatalogueTile> readCatalogue(const std::string& path) {
+  std::vector<CatalogueTile> tiles = tilesWhere(path, [](const std::string& s) { return s == "done"; }, true);
   if (tiles.empty()) throw Error("the catalogue '" + path + "' has no finished tile: run tinlod tiles on it first");
   return tiles;
+}
+
+std::vector<CatalogueTile> readUnfinishedTiles(const std::string& path) {
+  return tilesWhere(path, [](const std::string& s) { return s != "done" && s != "empty"; }, false);
 }
 
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles) {

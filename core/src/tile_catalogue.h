@@ -24,6 +24,10 @@ bool isCatalogue(const std::string& path);
 // The catalogue's finished tiles (status 'done'). Throws Error when it has none.
 std::vector<CatalogueTile> readCatalogue(const std::string& path);
 
+// The tiles not finished (pending or failed; not those found empty): their cells only, no
+// file or box.
+std::vector<CatalogueTile> readUnfinishedTiles(const std::string& path);
+
 // Throws Error unless every tile says which cells it holds (xsize and ysize), as the jobs
 // that work a tile at a time need.
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles);

@@ -22,4 +22,10 @@ struct CellRect {
 // tiles listed, so a tile missing from the catalogue leaves its lines to its neighbours.
 std::vector<CellRect> ownedCells(const std::vector<CatalogueTile>& tiles, std::size_t index);
 
+// The cells of tile `index` of `missing` (tiles not finished) that no tile of `tiles` holds,
+// shared among the missing tiles by the same rule: each cell of the raster's tiles is then
+// either a finished tile's or a missing tile's, once.
+std::vector<CellRect> cellsLeftBy(const std::vector<CatalogueTile>& tiles, const std::vector<CatalogueTile>& missing,
+                                  std::size_t index);
+
 }  // namespace tinlod
