@@ -595,23 +595,32 @@ TEST(CatalogueHierarchy, AccuracyOfACatalogueThatDoesNotRecordItsTilesCellsIsRef
 
 TEST(CatalogueHierarchy, WithATileUnfinishedTileByTileIsStillTheRestReadAsOne) {
   // The middle tile failed: the others meet a hole in the tiles, not a neighbour. Where it
-  // lies, the raster has the DEM's curvature (band 3) and nodata in the other bands, as the
-  // tiles read as one give.
+  // lies, the raster has the reference's curvature (band 3) where its surface reaches, and
+  // nodata in the other bands, as the tiles read as one give.
   const std::string catalogue =
       alteredCatalogue("middle_failed.gpkg", "UPDATE tiles SET status = 'failed' WHERE tile_col = 1 AND tile_row = 1");
   const Hierarchy asOne = readHierarchyOrCatalogue(catalogue, kRange).hierarchy;
-  const std::string dir = test::tempDir();
-  AccuracyOutputs outputs;
-  outputs.options.reference = Reference::Dem;
-  outputs.rasterLevel = 2;
-  outputs.overwrite = true;
-  outputs.rasterPath = dir + "/tiles.tif";
-  const AccuracyReport tiles = runAccuracyJob(test::smallSyntheticDemFile(), catalogue, outputs, 0, "", kQuiet);
-  outputs.rasterPath = dir + "/whole.tif";
-  const AccuracyReport whole = measuredAsOne(test::smallSyntheticDemFile(), asOne, outputs);
-  ASSERT_EQ(tiles.rows.size(), whole.rows.size());
-  for (std::size_t L = 0; L < whole.rows.size(); ++L) expectSameRow(tiles.rows[L], whole.rows[L], "level " + std::to_string(L));
-  expectSameRaster(dir + "/tiles.tif", dir + "/whole.tif", "middle tile failed");
+  struct Case {
+    Reference reference;
+    int step;
+  };
+  for (const Case& c : {Case{Reference::Dem, 1}, Case{Reference::Tin, 1}, Case{Reference::Dem, 2}}) {
+    const std::string what = std::string(c.reference == Reference::Dem ? "dem" : "tin") + " step " + std::to_string(c.step);
+    const std::string dir = test::tempDir();
+    AccuracyOutputs outputs;
+    outputs.options.reference = c.reference;
+    outputs.options.step = c.step;
+    outputs.rasterLevel = 2;
+    outputs.overwrite = true;
+    outputs.rasterPath = dir + "/tiles.tif";
+    const AccuracyReport tiles = runAccuracyJob(test::smallSyntheticDemFile(), catalogue, outputs, 0, "", kQuiet);
+    outputs.rasterPath = dir + "/whole.tif";
+    const AccuracyReport whole = measuredAsOne(test::smallSyntheticDemFile(), asOne, outputs);
+    ASSERT_EQ(tiles.rows.size(), whole.rows.size()) << what;
+    for (std::size_t L = 0; L < whole.rows.size(); ++L)
+      expectSameRow(tiles.rows[L], whole.rows[L], what + " level " + std::to_string(L));
+    expectSameRaster(dir + "/tiles.tif", dir + "/whole.tif", "middle tile failed, " + what);
+  }
   const std::vector<std::uint32_t> all = extractLod(asOne, LodOptions{{}, std::nan(""), 6}, kRange);
   const Tin whole0 = tinOf(asOne, all);
   const ExtractedLod apart =
@@ -632,58 +641,65 @@ TEST(CatalogueHierarchy, LodOfACatalogueStopsOnCancelAndLeavesNothing) {
 }
 
 TEST(TileOwnership, EveryCellHasOneOwnerAmongThePresentTilesOrElseAmongTheMissingOnes) {
-  const int width = 100, height = 70, size = 30;  // 4 x 3 tiles, the last column and row narrower
-  std::vector<CatalogueTile> all;
-  for (int c = 0; c < TileSpec::count(width, size); ++c)
-    for (int r = 0; r < TileSpec::count(height, size); ++r) {
-      const CellWindow w = tileWindow({width, height}, TileSpec{size, c, r});
-      CatalogueTile t;
-      t.name = std::to_string(c) + "," + std::to_string(r);
-      t.xoff = w.xoff, t.yoff = w.yoff, t.xsize = w.xsize, t.ysize = w.ysize;
-      all.push_back(t);
-    }
-  std::mt19937 rng(5);
-  for (int trial = 0; trial < 60; ++trial) {
-    std::vector<CatalogueTile> present, missing;
-    for (const CatalogueTile& t : all) (trial == 0 || rng() % 3 != 0 ? present : missing).push_back(t);
-    if (present.empty()) continue;
-    std::vector<int> owners(width * height, 0), holders(width * height, 0);
-    // The missing tiles' cells (their test points measured for the DEM's curvature alone):
-    // every cell of the raster is then either a present tile's or a missing tile's, once.
-    std::vector<int> left(width * height, 0);
-    for (std::size_t m = 0; m < missing.size(); ++m) {
-      const CatalogueTile& t = missing[m];
-      for (const CellRect& rect : cellsLeftBy(present, missing, m))
-        for (int r = rect.row0; r < rect.row1; ++r)
-          for (int c = rect.col0; c < rect.col1; ++c) {
-            ASSERT_TRUE(c >= t.xoff && c < t.xoff + t.xsize && r >= t.yoff && r < t.yoff + t.ysize)
-                << "missing tile " << t.name << " is left a cell it does not hold";
-            ++left[r * width + c];
-          }
-    }
-    for (std::size_t i = 0; i < present.size(); ++i) {
-      const CatalogueTile& t = present[i];
-      for (int r = t.yoff; r < t.yoff + t.ysize; ++r)
-        for (int c = t.xoff; c < t.xoff + t.xsize; ++c) ++holders[r * width + c];
-      for (const CellRect& rect : ownedCells(present, i))
-        for (int r = rect.row0; r < rect.row1; ++r)
-          for (int c = rect.col0; c < rect.col1; ++c) {
-            ASSERT_TRUE(c >= t.xoff && c < t.xoff + t.xsize && r >= t.yoff && r < t.yoff + t.ysize)
-                << "tile " << t.name << " owns a cell it does not hold";
-            ++owners[r * width + c];
-          }
-    }
-    for (int cell = 0; cell < width * height; ++cell) {
-      ASSERT_EQ(owners[cell], holders[cell] > 0 ? 1 : 0) << "trial " << trial << ", cell " << cell % width << "," << cell / width;
-      ASSERT_EQ(left[cell], holders[cell] > 0 ? 0 : 1) << "trial " << trial << ", cell " << cell % width << "," << cell / width;
+  // 4 x 3 tiles, the last column and row narrower; then the last only 2 cells across and down.
+  for (const auto& [width, height] : {std::pair{100, 70}, std::pair{92, 62}}) {
+    const int size = 30;
+    std::vector<CatalogueTile> all;
+    for (int c = 0; c < TileSpec::count(width, size); ++c)
+      for (int r = 0; r < TileSpec::count(height, size); ++r) {
+        const CellWindow w = tileWindow({width, height}, TileSpec{size, c, r});
+        CatalogueTile t;
+        t.name = std::to_string(c) + "," + std::to_string(r);
+        t.xoff = w.xoff, t.yoff = w.yoff, t.xsize = w.xsize, t.ysize = w.ysize;
+        all.push_back(t);
+      }
+    std::mt19937 rng(5);
+    for (int trial = 0; trial < 60; ++trial) {
+      std::vector<CatalogueTile> present, missing;
+      for (const CatalogueTile& t : all) (trial == 0 || rng() % 3 != 0 ? present : missing).push_back(t);
+      if (present.empty()) continue;
+      std::vector<int> owners(width * height, 0), holders(width * height, 0);
+      // The missing tiles' cells (measured for the reference's surface alone): every cell of
+      // the raster is then either a present tile's or a missing tile's, once.
+      std::vector<int> left(width * height, 0);
+      for (std::size_t m = 0; m < missing.size(); ++m) {
+        const CatalogueTile& t = missing[m];
+        for (const CellRect& rect : cellsLeftBy(present, missing, m))
+          for (int r = rect.row0; r < rect.row1; ++r)
+            for (int c = rect.col0; c < rect.col1; ++c) {
+              ASSERT_TRUE(c >= t.xoff && c < t.xoff + t.xsize && r >= t.yoff && r < t.yoff + t.ysize)
+                  << "missing tile " << t.name << " is left a cell it does not hold";
+              ++left[r * width + c];
+            }
+      }
+      for (std::size_t i = 0; i < present.size(); ++i) {
+        const CatalogueTile& t = present[i];
+        for (int r = t.yoff; r < t.yoff + t.ysize; ++r)
+          for (int c = t.xoff; c < t.xoff + t.xsize; ++c) ++holders[r * width + c];
+        for (const CellRect& rect : ownedCells(present, i))
+          for (int r = rect.row0; r < rect.row1; ++r)
+            for (int c = rect.col0; c < rect.col1; ++c) {
+              ASSERT_TRUE(c >= t.xoff && c < t.xoff + t.xsize && r >= t.yoff && r < t.yoff + t.ysize)
+                  << "tile " << t.name << " owns a cell it does not hold";
+              ++owners[r * width + c];
+            }
+      }
+      for (int cell = 0; cell < width * height; ++cell) {
+        ASSERT_EQ(owners[cell], holders[cell] > 0 ? 1 : 0)
+            << "trial " << trial << ", cell " << cell % width << "," << cell / width;
+        ASSERT_EQ(left[cell], holders[cell] > 0 ? 0 : 1)
+            << "trial " << trial << ", cell " << cell % width << "," << cell / width;
+      }
     }
   }
 }
 
-// The small DEM's first `width` x `height` cells raised by `raise` metres, as a GeoTIFF.
+// The small DEM's first `width` x `height` cells raised by `raise` metres, as a
+// GeoTIFF.
 std::string alteredDem(const std::string& path, int width, int height, double raise) {
   GDALDataset* from = static_cast<GDALDataset*>(GDALOpen(test::smallSyntheticDemFile().c_str(), GA_ReadOnly));
-  GDALDataset* to = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), width, height, 1, GDT_Float32, nullptr);
+  GDALDataset* to =
+      GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), width, height, 1, GDT_Float32, nullptr);
   double gt[6];
   from->GetGeoTransform(gt);
   to->SetGeoTransform(gt);

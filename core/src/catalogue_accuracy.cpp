@@ -420,22 +420,30 @@ void checkTilesFit(const std::vector<CatalogueTile>& tiles, const Dem& raster) {
 }
 
 // The cells of the tiles not finished, which no finished tile holds: no triangle covers
-// them, but the DEM's surface is there, and a whole run writes its curvature (band 3). Each
-// is measured as a tile without triangles: its neighbours' reach into its window, as they
-// would read as one. Returns the test points whose heights -valid_range dropped.
-std::size_t measureMissingTiles(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, const std::string& cataloguePath,
-                                std::int32_t coarsest, std::int32_t rasterLevel, LevelSums& sums,
-                                AccuracyRasterCanvas* canvas, const ProgressRange& progress) {
-  const std::vector<CatalogueTile> missing = readUnfinishedTiles(cataloguePath);
+// them, but the reference's surface may reach them (the DEM's, or level 0's near its
+// edge), and a whole run writes its curvature (band 3) there and counts a point wherever
+// both surfaces reach. Each such tile is measured as a tile without triangles, at every
+// level: its neighbours' triangles reach into its window as they would read as one.
+// `parts(m)`: the progress of missing tile m. Returns the test points whose heights
+// -valid_range dropped.
+template <class Parts>
+std::size_t measureMissingTiles(const WholeGrid& g, const std::vector<CatalogueTile>& tiles,
+                                const std::vector<CatalogueTile>& missing, std::int32_t coarsest, std::int32_t rasterLevel,
+                                std::vector<LevelSums>& sums, AccuracyRasterCanvas* canvas, const Parts& parts) {
   std::size_t dropped = 0;
+  std::vector<CatalogueTile> withIt = tiles;
+  withIt.emplace_back();  // the missing tile measured, last: after every finished tile, as read as one
   for (std::size_t m = 0; m < missing.size(); ++m) {
     const std::vector<TestRect> owned = ownedPoints(cellsLeftBy(tiles, missing, m), g.grid.step);
     if (owned.empty()) continue;
-    std::vector<CatalogueTile> withIt = tiles;
-    withIt.push_back(missing[m]);
-    const TileMeasure measure(g, withIt, tiles.size(), coarsest, {}, {}, owned, progress);
+    const ProgressRange part = parts(m);
+    part.report(0, "Measuring the cells of unfinished tile " + missing[m].name);
+    withIt.back() = missing[m];
+    const TileMeasure measure(g, withIt, tiles.size(), coarsest, {}, {}, owned, part.sub(0, 0.1));
     dropped += measure.droppedHeights();
-    measure.measure(rasterLevel, sums, canvas, progress);
+    for (std::int32_t L = 0; L <= coarsest; ++L)
+      measure.measure(L, sums[L], L == rasterLevel ? canvas : nullptr,
+                      part.sub(0.1 + 0.9 * L / (coarsest + 1), 0.1 + 0.9 * (L + 1) / (coarsest + 1)));
   }
   return dropped;
 }
@@ -447,6 +455,10 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
                                 const AccuracyOutputs& outputs, const AccuracyFiles& files, const ProgressRange& progress) {
   const std::vector<CatalogueTile> tiles = readCatalogue(cataloguePath);
   requireTileCells(cataloguePath, tiles);
+  const std::vector<CatalogueTile> missing = readUnfinishedTiles(cataloguePath);
+  // The finished tiles, then the cells only unfinished ones hold, each tile a share.
+  const double shares = double(tiles.size() + missing.size());
+  const auto partOf = [&](std::size_t k) { return progress.sub(0.95 * k / shares, 0.95 * (k + 1) / shares); };
   std::unique_ptr<WholeGrid> g;
   Hierarchy job;
   std::vector<LevelSums> sums;
@@ -455,7 +467,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
   std::size_t droppedHeights = 0;
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const CatalogueTile& tile = tiles[i];
-    const ProgressRange part = progress.sub(0.95 * i / tiles.size(), 0.95 * (i + 1) / tiles.size());
+    const ProgressRange part = partOf(i);
     part.report(0, "Measuring tile " + tile.name + " (" + std::to_string(i + 1) + " of " + std::to_string(tiles.size()) + ")");
     StoredHierarchy stored = readCatalogueTile(tile, part.sub(0, 0.2));
     // Levels are measured from the triangles alone: the groups and their links (a tenth of
@@ -471,6 +483,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
       g = std::make_unique<WholeGrid>(
           wholeGrid(demPath, band, validHeights, sourceSrs, h.base.crsWkt, outputs.options, part.sub(0.2, 0.25)));
       checkTilesFit(tiles, g->header);
+      checkTilesFit(missing, g->header);
       job = jobOf(h);
       sums.resize(h.levels.size());
       if (files.raster) canvas = std::make_unique<AccuracyRasterCanvas>(g->grid, *files.raster, outputs.raster);
@@ -489,9 +502,8 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
       measure.measure(L, sums[L], L == rasterLevel ? canvas.get() : nullptr,
                       part.sub(0.3 + 0.7 * L / (h.coarsest() + 1), 0.3 + 0.7 * (L + 1) / (h.coarsest() + 1)));
   }
-  if (outputs.options.reference == Reference::Dem)
-    droppedHeights += measureMissingTiles(*g, tiles, cataloguePath, job.coarsest(), rasterLevel, sums[rasterLevel],
-                                          canvas.get(), progress.sub(0.95, 0.96));
+  droppedHeights += measureMissingTiles(*g, tiles, missing, job.coarsest(), rasterLevel, sums, canvas.get(),
+                                        [&](std::size_t m) { return partOf(tiles.size() + m); });
   if (droppedHeights > 0)
     progress.warn("ignored " + std::to_string(droppedHeights) + (droppedHeights == 1 ? " test point" : " test points") +
                   " of '" + demPath + "' with heights outside " + validHeights.text() +
@@ -502,7 +514,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     throw Error("no test point of '" + demPath + "' lies on the TIN: give the DEM the TIN was made from");
   AccuracyReport report = makeReport(outputs.options, "Accuracy of the TIN hierarchy of " + demName(demPath),
                                      crsNameOf(g->header.crsWkt), std::move(rows));
-  if (canvas) canvas->finish(progress.sub(0.96, 0.99));
+  if (canvas) canvas->finish(progress.sub(0.95, 0.99));
   if (files.report) writeAccuracyReport(report, *files.report);
   return report;
 }

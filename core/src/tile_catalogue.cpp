@@ -76,7 +76,7 @@ std::vector<CatalogueTile> readCatalogue(const std::string& path) {
 }
 
 std::vector<CatalogueTile> readUnfinishedTiles(const std::string& path) {
-  return tilesWhere(path, [](const std::string& s) { return s != "done" && s != "empty"; }, false);
+  return tilesWhere(path, [](const std::string& s) { return s != "done"; }, false);
 }
 
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles) {

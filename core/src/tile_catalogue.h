@@ -11,7 +11,7 @@ namespace tinlod {
 struct CatalogueTile {
   std::string name;  // "C,R"
   std::string file;  // resolved against the catalogue's folder
-  std::array<double, 4> box;  // min x, min y, max x, max y in the TIN's CRS
+  std::array<double, 4> box{};  // min x, min y, max x, max y in the TIN's CRS
   int xoff = 0, yoff = 0;     // the tile's first column and row in the raster
   // Its cells across and down, the line it shares with the next tile included; 0 in a
   // catalogue that does not say.
@@ -24,8 +24,8 @@ bool isCatalogue(const std::string& path);
 // The catalogue's finished tiles (status 'done'). Throws Error when it has none.
 std::vector<CatalogueTile> readCatalogue(const std::string& path);
 
-// The tiles not finished (pending or failed; not those found empty): their cells only, no
-// file or box.
+// The tiles not finished (pending, failed, or empty: no triangle within the build's
+// -valid_range): their cells only, no file or box.
 std::vector<CatalogueTile> readUnfinishedTiles(const std::string& path);
 
 // Throws Error unless every tile says which cells it holds (xsize and ysize), as the jobs
