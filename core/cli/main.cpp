@@ -3,7 +3,6 @@
 // GDAL's utilities (exit 0 on success, 1 with "ERROR: ..." otherwise).
 #include <gdal_priv.h>
 
-#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <map>

@@ -214,7 +214,9 @@ class TileMeasure {
   TileMeasure(const WholeGrid& g, const std::vector<CatalogueTile>& tiles, std::size_t index, std::int32_t coarsest,
               std::vector<TinVertex>&& vertices, std::vector<HierarchyTriangle>&& triangles,
               const std::vector<TestRect>& owned, const ProgressRange& progress);
-  void measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas, const ProgressRange& progress) const;
+  // Every level in turn, into sums[level]; the raster's level into `canvas` too.
+  void measureLevels(std::vector<LevelSums>& sums, std::int32_t rasterLevel, AccuracyRasterCanvas* canvas,
+                     const ProgressRange& progress) const;
   // With -reference dem: the owned test points whose heights -valid_range made nodata.
   std::size_t droppedHeights() const { return droppedHeights_; }
 
@@ -223,6 +225,7 @@ class TileMeasure {
   std::vector<TinVertex> readNeighbours(const std::vector<CatalogueTile>& tiles, std::size_t index,
                                         const std::vector<TinVertex>& vertices);
   void makeReference(const ProgressRange& progress);
+  void measure(std::int32_t level, LevelSums& sums, AccuracyRasterCanvas* canvas, const ProgressRange& progress) const;
   std::vector<Triangle> trianglesOf(std::int32_t level) const;
   Grid rasterize(std::int32_t level, const ProgressRange& progress) const;
   void addErrors(const Grid& simplified, const TestRect& rect, LevelSums& sums, Grid* band, int bandRow0) const;
@@ -382,6 +385,13 @@ void TileMeasure::measure(std::int32_t level, LevelSums& sums, AccuracyRasterCan
     }
 }
 
+void TileMeasure::measureLevels(std::vector<LevelSums>& sums, std::int32_t rasterLevel, AccuracyRasterCanvas* canvas,
+                                const ProgressRange& progress) const {
+  const double levels = coarsest_ + 1;
+  for (std::int32_t L = 0; L <= coarsest_; ++L)
+    measure(L, sums[L], L == rasterLevel ? canvas : nullptr, progress.sub(L / levels, (L + 1) / levels));
+}
+
 // The level statistics the build recorded, pooled as readCatalogueHierarchy pools them,
 // and the vertices the tile answers for (a vertex on a shared line is counted once).
 // `cells`: those the tile answers for (ownedCells).
@@ -441,9 +451,7 @@ std::size_t measureMissingTiles(const WholeGrid& g, const std::vector<CatalogueT
     withIt.back() = missing[m];
     const TileMeasure measure(g, withIt, tiles.size(), coarsest, {}, {}, owned, part.sub(0, 0.1));
     dropped += measure.droppedHeights();
-    for (std::int32_t L = 0; L <= coarsest; ++L)
-      measure.measure(L, sums[L], L == rasterLevel ? canvas : nullptr,
-                      part.sub(0.1 + 0.9 * L / (coarsest + 1), 0.1 + 0.9 * (L + 1) / (coarsest + 1)));
+    measure.measureLevels(sums, rasterLevel, canvas, part.sub(0.1, 1));
   }
   return dropped;
 }
@@ -498,9 +506,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
                               part.sub(0.25, 0.3));
     releaseFreedMemory();  // what reading the tile left in glibc's heaps, resident beside the grids
     droppedHeights += measure.droppedHeights();
-    for (std::int32_t L = 0; L <= h.coarsest(); ++L)
-      measure.measure(L, sums[L], L == rasterLevel ? canvas.get() : nullptr,
-                      part.sub(0.3 + 0.7 * L / (h.coarsest() + 1), 0.3 + 0.7 * (L + 1) / (h.coarsest() + 1)));
+    measure.measureLevels(sums, rasterLevel, canvas.get(), part.sub(0.3, 1));
   }
   droppedHeights += measureMissingTiles(*g, tiles, missing, job.coarsest(), rasterLevel, sums, canvas.get(),
                                         [&](std::size_t m) { return partOf(tiles.size() + m); });
