@@ -244,12 +244,16 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
   // With accuracy outputs the last quarter of the job is theirs.
   const double write = accuracy.wanted() ? 0.6 : 0.75, measure = accuracy.wanted() ? 0.75 : 1;
-  const Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,
-                                     tile.size > 0 ? &borders : nullptr);
+  Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,
+                               tile.size > 0 ? &borders : nullptr);
   if (tile.size == 0) warnIfStoppedEarly(h, all);
-  // Only the accuracy outputs read the heights again; freed, they leave the writing room
-  // (68 MB for a 4096 x 4096 tile). The DEM's size and window stay for the metadata.
-  if (!accuracy.wanted()) releaseMemory(dem.z), releaseMemory(dem.nearNodata);
+  // Only the accuracy outputs read the heights, level 0's TIN and the groups' links again;
+  // freed, they leave the writing room (68, 45 and 71 MB for a 4096 x 4096 tile). The
+  // DEM's size and window stay for the metadata.
+  if (!accuracy.wanted()) {
+    releaseMemory(dem.z), releaseMemory(dem.nearNodata);
+    releaseMemory(h.base.triangles), releaseMemory(h.links);
+  }
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
   if (tile.size > 0) addTileMetadata(dem, tile, writeOptions.metadata);
   if (tile.size > 0) addAgreementMetadata(dem, borders, h, writeOptions.metadata, all);

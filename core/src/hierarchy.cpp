@@ -27,4 +27,25 @@ Tin Hierarchy::levelTin(std::int32_t level) const {
   return tin;
 }
 
+void linkGroups(Hierarchy& h) {
+  for (Group& g : h.groups) g.acceptBegin = g.acceptEnd = g.rejectBegin = g.rejectEnd = 0;
+  for (const HierarchyTriangle& t : h.triangles) {
+    if (t.replacedBy != kNoGroup) ++h.groups[t.replacedBy].acceptEnd;
+    if (t.group != kNoGroup) ++h.groups[t.group].rejectEnd;
+  }
+  // Each group's range holds its accept triangles, then its reject ones.
+  std::uint32_t next = 0;
+  for (Group& g : h.groups) {
+    const std::uint32_t accepts = g.acceptEnd, rejects = g.rejectEnd;
+    g.acceptBegin = g.acceptEnd = next;
+    g.rejectBegin = g.rejectEnd = next += accepts;
+    next += rejects;
+  }
+  h.links.assign(next, 0);
+  for (std::uint32_t t = 0; t < h.triangles.size(); ++t) {
+    if (h.triangles[t].replacedBy != kNoGroup) h.links[h.groups[h.triangles[t].replacedBy].acceptEnd++] = t;
+    if (h.triangles[t].group != kNoGroup) h.links[h.groups[h.triangles[t].group].rejectEnd++] = t;
+  }
+}
+
 }  // namespace tinlod

@@ -38,7 +38,6 @@ struct Pick {
   bool open = false;     // on the outline: degree - 1 triangles around it, not degree
   std::size_t fill = 0;  // its degree - 2 new triangles, in fill_ and new triangle ids
   std::size_t ring = 0;  // its degree ring vertices, slots and outer triangles
-  std::size_t link = 0;  // its accept and reject triangles' ids in the level's links
   std::uint32_t triangles() const { return open ? degree - 1 : degree; }
 };
 
@@ -102,7 +101,7 @@ class Simplifier {
  private:
   // Where a level's records start (or end) in the hierarchy's arrays.
   struct Ranges {
-    std::size_t group, triangles, links, rings;
+    std::size_t group, triangles, rings;
   };
 
   // Reads only the base TIN, so it may run while the mesh is built.
@@ -117,7 +116,7 @@ class Simplifier {
         h_.triangles.push_back(ht);
       }
     }
-    used_ = {0, h_.base.triangles.size(), 0, 0};
+    used_ = {0, h_.base.triangles.size(), 0};
     slotCells_.assign(slots, TriangleCells{});
     h_.vertexLevel.assign(nv, kOpenLevel);
     importance_.assign(nv, 0.0);
@@ -191,7 +190,6 @@ class Simplifier {
     constexpr std::size_t kMeanDegree = 7;
     const std::size_t deletions = maxDeletions();
     h_.triangles.reserve(h_.base.triangles.size() + deletions * (kMeanDegree - 2));
-    h_.links.reserve(deletions * (2 * kMeanDegree - 2));
     h_.rings.reserve(deletions * kMeanDegree);
     h_.groups.reserve(deletions);
   }
@@ -386,13 +384,12 @@ class Simplifier {
     releaseMemory(candidates_[0]), releaseMemory(candidates_[1]);
     std::vector<Pick> scratch;
     radixSort(picks, [](const Pick& p) { return std::uint64_t{p.id}; }, scratch);
-    std::size_t fills = 0, rings = 0, links = 0;
+    std::size_t fills = 0, rings = 0;
     for (Pick& p : picks) {
-      p.fill = fills, p.ring = rings, p.link = links;
-      fills += p.degree - 2, rings += p.degree, links += p.triangles() + p.degree - 2;
+      p.fill = fills, p.ring = rings;
+      fills += p.degree - 2, rings += p.degree;
     }
     fill_.resize(fills), slots_.resize(rings), outer_.resize(rings);
-    links_ = links;
     return picks;
   }
 
@@ -546,7 +543,7 @@ class Simplifier {
   Ranges expectedGrowth(std::size_t picks) const {
     const double d = 1.05 * meanDegree_;
     const auto n = [&](double perPick) { return static_cast<std::size_t>(std::ceil(perPick * double(picks))); };
-    return {used_.group + picks, used_.triangles + n(d - 2), used_.links + n(2 * d - 2), used_.rings + n(d)};
+    return {used_.group + picks, used_.triangles + n(d - 2), used_.rings + n(d)};
   }
 
   // Grows the hierarchy's arrays to at least `to`; unless beyondReserve, only within what
@@ -560,13 +557,13 @@ class Simplifier {
       if (beyondReserve && n > v.capacity()) v.reserve(n + n / 8);
       v.resize(beyondReserve ? n : std::min(n, std::max(v.capacity(), v.size())));
     };
-    grow(h_.groups, to.group), grow(h_.triangles, to.triangles), grow(h_.links, to.links), grow(h_.rings, to.rings);
+    grow(h_.groups, to.group), grow(h_.triangles, to.triangles), grow(h_.rings, to.rings);
   }
 
   void deleteAll(const std::vector<Pick>& picks, std::int32_t level) {
     const std::size_t ringCount = slots_.size();
     Ranges at = used_;
-    used_ = {at.group + picks.size(), at.triangles + fill_.size(), at.links + links_, at.rings + ringCount};
+    used_ = {at.group + picks.size(), at.triangles + fill_.size(), at.rings + ringCount};
     growHierarchy(used_, true);  // where the last level's picks fell short
     if (!records_) at.rings = 0, fitted(h_.rings, ringCount);  // the level's rings only, read below
     if (!picks.empty()) meanDegree_ = double(ringCount) / double(picks.size());
@@ -577,7 +574,7 @@ class Simplifier {
       std::vector<LocalTriangle> fill;
       for (int i = begin; i < end; ++i) {
         mesh_.prefetchAhead(i, end, [&](int j) { return picks[j].id; });
-        plan(picks[i], level, Ranges{at.group + i, at.triangles, at.links, at.rings}, star, fill);
+        plan(picks[i], level, Ranges{at.group + i, at.triangles, at.rings}, star, fill);
       }
     }, [&](double f) { reportProgress(level, f / 2, picks.size()); });
     forEachBlock(static_cast<int>(picks.size()), [&](int begin, int end) {
@@ -628,8 +625,9 @@ class Simplifier {
     record(pick, level, at, ring);
   }
 
-  // The group of a pick, its accept triangles (the star's) and its reject triangles (the
-  // new ones).
+  // The group of a pick, which replaces its accept triangles (the star's) and makes its
+  // reject triangles (the new ones). The triangles say so; linkGroups indexes them by
+  // group once the simplifier is freed, not in arrays that grow level by level.
   void record(const Pick& pick, std::int32_t level, const Ranges& at, const VertexId* ring) {
     h_.vertexLevel[pick.id] = level - 1;
     if (!records_) return;
@@ -639,15 +637,10 @@ class Simplifier {
     group.vertex = pick.id;
     group.level = level;
     group.importance = pick.importance;
-    group.acceptBegin = static_cast<std::uint32_t>(at.links + pick.link);
-    group.acceptEnd = group.acceptBegin + pick.triangles();
-    group.rejectBegin = group.acceptEnd;
-    group.rejectEnd = group.rejectBegin + d - 2;
     group.ringBegin = static_cast<std::uint32_t>(at.rings + pick.ring);
     group.ringEnd = group.ringBegin + d;
     for (std::uint32_t k = 0; k < pick.triangles(); ++k) {
       const std::int32_t t = mesh_.triangleId(slots_[pick.ring + k]);
-      h_.links[group.acceptBegin + k] = static_cast<std::uint32_t>(t);
       h_.triangles[t].lastLevel = level - 1;
       h_.triangles[t].replacedBy = g;
     }
@@ -661,7 +654,6 @@ class Simplifier {
       ht.group = g;
       const double error = slotCells_[slots_[pick.ring + j]].maxError;
       ht.error = roundedUpError(error);
-      h_.links[group.rejectBegin + j] = static_cast<std::uint32_t>(t);
       group.error = std::max(group.error, error);  // exact: the error measure's importance
     }
   }
@@ -717,7 +709,7 @@ class Simplifier {
   void finish() {
     if (records_) {
       h_.groups.resize(used_.group), h_.triangles.resize(used_.triangles);
-      h_.links.resize(used_.links), h_.rings.resize(used_.rings);
+      h_.rings.resize(used_.rings);
     }
     const std::int32_t top = h_.coarsest();
     for (HierarchyTriangle& t : h_.triangles)
@@ -727,7 +719,7 @@ class Simplifier {
   }
 
   const HierarchyOptions& options_;
-  // A survey is written as figures only: the levels' triangles, groups, links and rings,
+  // A survey is written as figures only: the levels' triangles, groups and rings,
   // which grow with every level to the largest part of the memory, are not kept.
   const bool records_ = !options_.survey;
   ProgressRange progress_;
@@ -750,7 +742,6 @@ class Simplifier {
   using Candidate = std::pair<double, VertexId>;
   std::vector<Candidate> candidates_[2];     // the level's, by importance, in two halves
   std::vector<LocalTriangle> fill_;          // the level's plan: each pick's new triangles
-  std::size_t links_ = 0;                    //   and how many accept and reject links in all
   std::vector<std::int32_t> slots_;          //   and each pick's star slots
   std::vector<std::int32_t> outer_;          //   and the triangles beyond its ring
   std::size_t original_ = 0, stopCount_ = 0, current_ = 0, triangles_ = 0;
@@ -774,6 +765,7 @@ Hierarchy buildHierarchy(Tin base, const Dem& dem, std::vector<std::uint8_t> fix
   const std::size_t levelZero = h.triangles.empty() ? 0 : h.levels.front().triangles;
   h.base.triangles.reserve(levelZero);
   for (std::size_t t = 0; t < levelZero; ++t) h.base.triangles.push_back(h.triangles[t].v);
+  linkGroups(h);
   return h;
 }
 

@@ -64,27 +64,13 @@ void readStoredGroups(const StoredTable& table, Hierarchy& h) {
 }
 
 void linkStoredGroups(const std::string& path, Hierarchy& h) {
-  std::vector<std::uint32_t> accepts(h.groups.size(), 0), rejects(h.groups.size(), 0);
-  for (const HierarchyTriangle& t : h.triangles) {
-    if (t.replacedBy != kNoGroup) ++accepts[t.replacedBy];
-    if (t.group != kNoGroup) ++rejects[t.group];
-  }
-  // Each group's range in h.links holds its accept triangles, then its reject ones.
-  std::uint32_t next = 0;
+  linkGroups(h);
   for (std::size_t g = 0; g < h.groups.size(); ++g) {
-    if (accepts[g] == 0 || rejects[g] == 0)
-      throwDamaged(path, "group " + std::to_string(g + 1) + " has no " + (accepts[g] == 0 ? "accept" : "reject") +
-                             " triangle (no triangles row has " + (accepts[g] == 0 ? "replaced_by " : "group_id ") +
+    const bool noAccept = h.groups[g].acceptEnd == h.groups[g].acceptBegin;
+    if (noAccept || h.groups[g].rejectEnd == h.groups[g].rejectBegin)
+      throwDamaged(path, "group " + std::to_string(g + 1) + " has no " + (noAccept ? "accept" : "reject") +
+                             " triangle (no triangles row has " + (noAccept ? "replaced_by " : "group_id ") +
                              std::to_string(g + 1) + ")");
-    Group& group = h.groups[g];
-    group.acceptBegin = group.acceptEnd = next;
-    group.rejectBegin = group.rejectEnd = next += accepts[g];
-    next += rejects[g];
-  }
-  h.links.assign(next, 0);
-  for (std::uint32_t t = 0; t < h.triangles.size(); ++t) {
-    if (h.triangles[t].replacedBy != kNoGroup) h.links[h.groups[h.triangles[t].replacedBy].acceptEnd++] = t;
-    if (h.triangles[t].group != kNoGroup) h.links[h.groups[h.triangles[t].group].rejectEnd++] = t;
   }
 }
 

@@ -71,7 +71,7 @@ struct Hierarchy {
   std::vector<std::uint8_t> fixed;          // 1: never deleted
   std::vector<HierarchyTriangle> triangles; // every distinct triangle of every level
   std::vector<Group> groups;
-  std::vector<std::uint32_t> links;         // triangle ids of the groups' accept and reject ranges
+  std::vector<std::uint32_t> links;         // triangle ids of the groups' accept and reject ranges (linkGroups)
   std::vector<VertexId> rings;              // vertex ids of the groups' outlines
   std::vector<LevelStats> levels;
   std::vector<LevelSurvey> survey;          // with HierarchyOptions::survey, by level from 1
@@ -97,5 +97,10 @@ struct Hierarchy {
     return {links.data() + g.rejectBegin, links.data() + g.rejectEnd};
   }
 };
+
+// Fills `links` and the groups' accept and reject ranges from the triangles' replacedBy
+// and group, each range in triangle order. They are an index of what the triangles say:
+// a hierarchy that is only written can go without it (release h.links).
+void linkGroups(Hierarchy& h);
 
 }  // namespace tinlod
