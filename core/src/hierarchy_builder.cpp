@@ -8,6 +8,7 @@
 
 #include "border_lines.h"
 #include "cell_errors.h"
+#include "compact_in_place.h"
 #include "nearest_vertices.h"
 #include "outline_chain.h"
 #include "parallel_blocks.h"
@@ -342,12 +343,7 @@ class Simplifier {
   // old one is freed, not kept for the next level.
   void compact() {
     const Compaction& slots = mesh_.planCompaction();
-    mesh_.applyCompaction();
-    std::vector<TriangleCells> cells(slots.oldOf.size());
-    forEachBlock(static_cast<int>(cells.size()), [&](int begin, int end) {
-      for (int slot = begin; slot < end; ++slot) cells[slot] = slotCells_[slots.oldOf[slot]];
-    }, {});
-    slotCells_.swap(cells);
+    runBoth([&] { mesh_.applyCompaction(); }, [&] { compactInPlace(slotCells_, slots); });
     mesh_.endCompaction();
   }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 
+#include "compact_in_place.h"
 #include "parallel_blocks.h"
 #include "release_memory.h"
 #include "tinlod/error.h"
@@ -252,14 +253,14 @@ int SimplificationMesh::geometryOf(VertexId v, Star& star, VertexId* ids, int ca
 void SimplificationMesh::beginRound() {
   successor_.resize(triangles_.size(), kNoTriangle);
   retired_.resize(triangles_.size(), 0);
+  releaseUnusedCapacity(successor_), releaseUnusedCapacity(retired_);  // the mesh shrank
   ++round_;
 }
 
 // Ordered by smallest vertex again, as level 0 was: new triangles left where their stars
-// were drift from the order the vertices are visited in. Each triangle is copied once,
-// on every core, into a new array; the old one is freed at once: kept for the next
-// compaction, it would hold a second copy of the mesh through the level while the
-// hierarchy grows (faulting the new one in costs no measurable time).
+// were drift from the order the vertices are visited in. The triangles move in place and
+// the pages past the new end are given back: a copy would hold the mesh twice at the
+// level's peak.
 const Compaction& SimplificationMesh::planCompaction() {
   Compaction& c = compaction_;
   orderBySmallestVertex(triangles_.size(), vertexCount_, [&](std::size_t t) {
@@ -271,16 +272,12 @@ const Compaction& SimplificationMesh::planCompaction() {
 
 void SimplificationMesh::applyCompaction() {
   const Compaction& c = compaction_;
-  std::vector<MeshTriangle> compacted(c.oldOf.size());
-  forEachBlock(static_cast<int>(c.oldOf.size()), [&](int begin, int end) {
-    for (int slot = begin; slot < end; ++slot) {
-      MeshTriangle tri = triangles_[c.oldOf[slot]];
-      for (std::int32_t& n : tri.n)
+  compactInPlace(triangles_, c);
+  forEachBlock(static_cast<int>(triangles_.size()), [&](int begin, int end) {
+    for (int slot = begin; slot < end; ++slot)
+      for (std::int32_t& n : triangles_[slot].n)
         if (n != kNoTriangle) n = c.newOf[n];
-      compacted[slot] = tri;
-    }
   }, {});
-  triangles_.swap(compacted);
   for (std::size_t t = 0; t < triangles_.size(); ++t)
     for (std::int32_t v : triangles_[t].v) start_[v] = static_cast<std::int32_t>(t);
 }
