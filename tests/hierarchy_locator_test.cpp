@@ -27,7 +27,9 @@ constexpr double kHeightTolerance = 1e-9;
 
 Hierarchy buildFrom(const Dem& dem, const SampleOptions& so = {}) {
   const Tin tin = sampleTin(dem, so, kQuiet);
-  return buildHierarchy(tin, dem, {}, HierarchyOptions{}, kQuiet);
+  Hierarchy h = buildHierarchy(tin, dem, {}, HierarchyOptions{}, kQuiet);
+  linkGroups(h);
+  return h;
 }
 
 // One level's triangles, flattened for the brute force: corners, heights and box.

@@ -159,9 +159,13 @@ void expectValidHierarchy(const Dem& dem, const Hierarchy& h) {
         EXPECT_FALSE(deleted.count(v[k]) && deleted.count(v[(k + 1) % 3])) << "adjacent deleted vertices at level " << L;
     }
   }
-  for (const Group& g : h.groups) {
-    const auto [a0, a1] = h.accept(g);
-    const auto [r0, r1] = h.reject(g);
+  // Each group's accept and reject triangles, as the triangles name them.
+  EXPECT_FALSE(h.linked() && !h.groups.empty()) << "buildHierarchy leaves the linking to its caller";
+  Hierarchy linked = h;
+  linkGroups(linked);
+  for (const Group& g : linked.groups) {
+    const auto [a0, a1] = linked.accept(g);
+    const auto [r0, r1] = linked.reject(g);
     const bool open = std::size_t(a1 - a0) == std::size_t(r1 - r0) + 1;
     if (!open) {
       EXPECT_EQ(outline(h, a0, a1), outline(h, r0, r1)) << "group of vertex " << g.vertex;  // same star polygon

@@ -9,6 +9,7 @@
 #include "test_support.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_builder.h"
+#include "tinlod/hierarchy_locator.h"
 #include "tinlod/lod_extraction.h"
 #include "tinlod/sample_job.h"
 
@@ -21,7 +22,9 @@ const Hierarchy& hierarchy() {
   static const Hierarchy h = [] {
     static const Dem dem = test::smallSyntheticDem();
     const Tin tin = sampleTin(dem, SampleOptions{}, kQuiet);
-    return buildHierarchy(tin, dem, {}, HierarchyOptions{}, kQuiet);
+    Hierarchy built = buildHierarchy(tin, dem, {}, HierarchyOptions{}, kQuiet);
+    linkGroups(built);
+    return built;
   }();
   return h;
 }
@@ -60,6 +63,23 @@ std::array<double, 2> middle(const Hierarchy& h) {
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
   for (const TinVertex& v : h.base.vertices) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
   return {(x0 + x1) / 2, (y0 + y1) / 2};
+}
+
+// buildHierarchy leaves the groups' links to its caller: extracting or locating without
+// them is refused, not read as groups with no triangles.
+TEST(LodExtraction, AHierarchyNotLinkedIsRefusedAndOnceLinkedIsTheReadersHierarchy) {
+  const Dem dem = test::smallSyntheticDem();
+  Hierarchy h = buildHierarchy(sampleTin(dem, SampleOptions{}, kQuiet), dem, {}, HierarchyOptions{}, kQuiet);
+  ASSERT_FALSE(h.groups.empty());
+  EXPECT_TRUE(h.links.empty());
+  LodOptions o;
+  o.centres = {middle(h)};
+  o.dropoff = 1;
+  EXPECT_THROW(extractLod(h, o, kQuiet), Error);
+  EXPECT_THROW(HierarchyLocator{h}, Error);
+  linkGroups(h);
+  EXPECT_EQ(h.links, hierarchy().links);
+  EXPECT_EQ(sorted(extractLod(h, o, kQuiet)), sorted(extractLod(hierarchy(), o, kQuiet)));
 }
 
 TEST(LodExtraction, InfiniteDropoffGivesLevelZeroAndZeroDropoffTheCoarsest) {

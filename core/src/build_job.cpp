@@ -247,12 +247,12 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,
                                tile.size > 0 ? &borders : nullptr);
   if (tile.size == 0) warnIfStoppedEarly(h, all);
-  // Only the accuracy outputs read the heights, level 0's TIN and the groups' links again;
-  // freed, they leave the writing room (68, 45 and 71 MB for a 4096 x 4096 tile). The
-  // DEM's size and window stay for the metadata.
+  // Only the accuracy outputs read the heights and level 0's TIN again; freed, they leave
+  // the writing room (68 and 45 MB for a 4096 x 4096 tile). The DEM's size and window stay
+  // for the metadata.
   if (!accuracy.wanted()) {
     releaseMemory(dem.z), releaseMemory(dem.nearNodata);
-    releaseMemory(h.base.triangles), releaseMemory(h.links);
+    releaseMemory(h.base.triangles);
   }
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
   if (tile.size > 0) addTileMetadata(dem, tile, writeOptions.metadata);

@@ -339,8 +339,8 @@ class Simplifier {
   }
 
   // After each level, so the next walks stars that lie side by side. The triangles'
-  // figures follow them to the compacted slots, in a new array: as with the mesh's, the
-  // old one is freed, not kept for the next level.
+  // figures follow them to the compacted slots, moved in place beside the mesh's, on a
+  // thread of their own.
   void compact() {
     const Compaction& slots = mesh_.planCompaction();
     runBoth([&] { mesh_.applyCompaction(); }, [&] { compactInPlace(slotCells_, slots); });
@@ -623,7 +623,7 @@ class Simplifier {
 
   // The group of a pick, which replaces its accept triangles (the star's) and makes its
   // reject triangles (the new ones). The triangles say so; linkGroups indexes them by
-  // group once the simplifier is freed, not in arrays that grow level by level.
+  // group when a caller needs it, not in arrays that grow level by level.
   void record(const Pick& pick, std::int32_t level, const Ranges& at, const VertexId* ring) {
     h_.vertexLevel[pick.id] = level - 1;
     if (!records_) return;
@@ -761,7 +761,6 @@ Hierarchy buildHierarchy(Tin base, const Dem& dem, std::vector<std::uint8_t> fix
   const std::size_t levelZero = h.triangles.empty() ? 0 : h.levels.front().triangles;
   h.base.triangles.reserve(levelZero);
   for (std::size_t t = 0; t < levelZero; ++t) h.base.triangles.push_back(h.triangles[t].v);
-  linkGroups(h);
   return h;
 }
 

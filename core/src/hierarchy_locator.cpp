@@ -212,6 +212,7 @@ struct HierarchyLocator::Impl {
   BoxGrid cutGrid;
 
   explicit Impl(const Hierarchy& hierarchy) : h(hierarchy) {
+    if (!h.linked()) throw Error("internal error: locating in a hierarchy whose groups are not linked (linkGroups)");
     const std::vector<Point> points = pointsOf(h.base);
     std::vector<std::uint32_t> fanStart;  // by group: where its block begins in `fans`
     fans = makeFans(h, points, fanStart);

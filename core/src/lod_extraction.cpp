@@ -87,6 +87,7 @@ std::vector<bool> groupsToRefine(const Hierarchy& h, const LodOptions& o, LodVer
 std::vector<std::uint32_t> extractLod(const Hierarchy& h, const LodOptions& options, const ProgressRange& progress,
                                       LodVertices* vertices) {
   options.validate();
+  if (!h.linked()) throw Error("internal error: extracting from a hierarchy whose groups are not linked (linkGroups)");
   const std::vector<bool> refine = groupsToRefine(h, options, vertices);
   progress.report(0.3, "Extracting the TIN");
   // Coarser triangles first: a group is decided once every coarser one is.

@@ -96,11 +96,15 @@ struct Hierarchy {
   std::pair<const std::uint32_t*, const std::uint32_t*> reject(const Group& g) const {
     return {links.data() + g.rejectBegin, links.data() + g.rejectEnd};
   }
+  // Whether accept and reject can be read: linkGroups has run (a hierarchy without
+  // groups needs nothing).
+  bool linked() const { return groups.empty() || !links.empty(); }
 };
 
 // Fills `links` and the groups' accept and reject ranges from the triangles' replacedBy
-// and group, each range in triangle order. They are an index of what the triangles say:
-// a hierarchy that is only written can go without it (release h.links).
+// and group, each range in triangle order: an index of what the triangles say, which
+// extractLod and HierarchyLocator read. The reader makes it; buildHierarchy leaves it to
+// its caller, since a hierarchy that is only written or measured never reads it.
 void linkGroups(Hierarchy& h);
 
 }  // namespace tinlod

@@ -23,7 +23,8 @@ using PointXY = std::array<double, 2>;
 // options' tolerance, and never out over nodata (none goes with keepOutline). The
 // hierarchy keeps `base`: pass std::move(tin) when the TIN is not needed afterwards.
 // With `tile`, `dem` is a tile of a raster: its border vertices go only by the border rule,
-// and exactly tile->levels levels are made.
+// and exactly tile->levels levels are made. The groups are not linked: call linkGroups
+// before extracting or locating.
 Hierarchy buildHierarchy(Tin base, const Dem& dem, std::vector<std::uint8_t> fixed, const HierarchyOptions& options,
                          const ProgressRange& progress, const std::vector<PointXY>& keep = {},
                          const TileBorders* tile = nullptr);
