@@ -81,7 +81,7 @@ TEST(CompactInPlace, GivesBackThePagesPastTheNewEnd) {
   compactInPlace(v, c);
   const std::size_t after = residentBytes();
   EXPECT_EQ(v.capacity(), count);  // no copy was made
-  // Three quarters of 64 MB went back, less the compaction's own bitmap (1 MB).
+  // Three quarters of 64 MB went back, less the compaction's own bitmap (256 KB).
   EXPECT_GT(before, after + (40u << 20)) << "resident " << before << " bytes before, " << after << " after";
   for (std::size_t s = 0; s < v.size(); s += 4099) ASSERT_EQ(v[s], std::uint64_t(c.oldOf[s]));
 }

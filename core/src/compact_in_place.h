@@ -2,6 +2,7 @@
 // Private: an array renumbered by a Compaction without a second copy of it.
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -13,14 +14,15 @@ namespace tinlod {
 
 // Makes v[s] the old v[c.oldOf[s]] for every new slot s and drops the other entries,
 // moving each entry once, in place; the pages past the new end go back to the system.
-// A copy would hold the array twice at the level's peak (90 MB for the mesh of level 1
-// of a 4096 x 4096 tile, and as much again for its triangles' figures).
+// A copy would hold the array twice at the level's peak: the mesh's and its triangles'
+// figures together held 90 MB more for a moment at level 1 of a 4096 x 4096 tile.
 //
 // Following oldOf from a slot visits each slot once. From a slot whose own entry is
 // dropped, it leads out of the new slots: each takes its source's entry in turn. The
 // slots left over form cycles, each turned once around through one saved entry.
 template <class T>
 void compactInPlace(std::vector<T>& v, const Compaction& c) {
+  assert(v.size() == c.newOf.size());
   const std::size_t slots = c.oldOf.size();
   std::vector<bool> done(slots, false);
   for (std::size_t s = 0; s < slots; ++s) {
