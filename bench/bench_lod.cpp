@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
   const ProgressRange quiet(Feedback{}, 0, 1);
   const Dem dem = readDem(path, 1, quiet);
   const Tin tin = sampleTin(dem, SampleOptions{}, quiet);
-  const Hierarchy h = buildHierarchy(tin, dem, {}, HierarchyOptions{}, quiet);
+  Hierarchy h = buildHierarchy(tin, dem, {}, HierarchyOptions{}, quiet);
+  linkGroups(h);  // extractLod reads the groups' links
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
   for (const TinVertex& v : h.base.vertices) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
   std::printf("%s: %zu levels, %zu triangles at level 0, %zu at the coarsest, extent %.0f x %.0f m\n", path.c_str(),
