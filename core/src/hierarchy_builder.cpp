@@ -70,6 +70,9 @@ class Simplifier {
     triangles_ = h_.base.triangles.size();
     setUp(keep);
     h_.levels.push_back(levelStats(0, 0, 0, 0));
+    // A survey writes no triangle errors and no level's figures: past level 0 (the cell
+    // size), its triangles are not measured against the DEM, which no selection reads.
+    if (!records_) releaseMemory(slotCells_);
     while (tile_ ? h_.coarsest() < tile_->levels : current_ > stopCount_) {
       if (!tile_ && options_.maxLevels > 0 && h_.coarsest() >= options_.maxLevels) {
         h_.stopReason = "-max_levels " + std::to_string(options_.maxLevels) + " reached";
@@ -343,7 +346,7 @@ class Simplifier {
   // thread of their own.
   void compact() {
     const Compaction& slots = mesh_.planCompaction();
-    runBoth([&] { mesh_.applyCompaction(); }, [&] { compactInPlace(slotCells_, slots); });
+    runBoth([&] { mesh_.applyCompaction(); }, [&] { if (records_) compactInPlace(slotCells_, slots); });
     mesh_.endCompaction();
   }
 
@@ -611,9 +614,11 @@ class Simplifier {
                   std::to_string(fill.size()) + " triangles");
     std::copy(fill.begin(), fill.end(), fill_.begin() + pick.fill);
     const std::int32_t* slots = slots_.data() + pick.ring;
-    for (std::size_t j = 0; j < fill.size(); ++j)
-      slotCells_[slots[j]] = measureFill(ring, outer, static_cast<int>(pick.degree), fill[j]);
-    for (std::uint32_t k = static_cast<std::uint32_t>(fill.size()); k < pick.triangles(); ++k) slotCells_[slots[k]] = TriangleCells{};
+    if (records_) {
+      for (std::size_t j = 0; j < fill.size(); ++j)
+        slotCells_[slots[j]] = measureFill(ring, outer, static_cast<int>(pick.degree), fill[j]);
+      for (std::uint32_t k = static_cast<std::uint32_t>(fill.size()); k < pick.triangles(); ++k) slotCells_[slots[k]] = TriangleCells{};
+    }
     thread_local std::vector<int> onEdge;  // by ring edge: the new triangle on it
     onEdge.resize(pick.degree);
     ringEdgeTriangles(fill.data(), static_cast<int>(pick.degree), onEdge.data());

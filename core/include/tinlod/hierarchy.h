@@ -56,7 +56,8 @@ struct LevelStats {
   std::int32_t level = 0;
   std::size_t vertices = 0, triangles = 0, deleted = 0;
   double selectSeconds = 0, deleteSeconds = 0;
-  // Against the DEM at every valid cell centre the level covers:
+  // Against the DEM at every valid cell centre the level covers (a survey measures only
+  // level 0: 0 above it):
   double maxError = 0;              // the largest vertical distance
   double rmse = 0;                  // the root mean square vertical distance
   std::int64_t cells = 0;           // how many valid cells it covers
