@@ -153,6 +153,20 @@ TEST(Cli, BuildWritesAHierarchyThatInfoDescribes) {
     EXPECT_TRUE(has(help.out, option)) << option;
 }
 
+// A survey writes no hierarchy and measures only level 0: it says what it wrote, not a
+// coarsest level's errors it never measured.
+TEST(Cli, SurveyOfATileSaysWhatItWrote) {
+  const std::string dir = test::tempDir();
+  const CliRun survey = tinlod("build -tile_size 99 -tile 0,0 -survey " + defaultDem() + " " + dir + "/s.json");
+  EXPECT_EQ(survey.exitCode, 0) << survey.err;
+  EXPECT_TRUE(has(survey.out, "Surveyed ")) << survey.out;
+  EXPECT_TRUE(has(survey.out, "candidates by importance written to " + dir + "/s.json")) << survey.out;
+  EXPECT_FALSE(has(survey.out, "maximum error")) << survey.out;
+  std::ifstream json(dir + "/s.json");
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(has(text, "\"histogram\"")) << text.substr(0, 200);
+}
+
 TEST(Cli, BuildErrorsNameTheOption) {
   const std::string dir = test::tempDir();
   struct Case {

@@ -192,7 +192,10 @@ int buildCommand(std::vector<std::string> args) {
 
   const BuildSummary s =
       runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet), accuracy, layers, tile);
-  if (!quiet)
+  if (!quiet && o.survey)  // a survey holds no triangles and measures only level 0: no errors to print
+    std::cout << "Surveyed " << s.levels << " levels (" << s.originalVertices << " -> " << s.coarsestVertices
+              << " vertices): each level's candidates by importance written to " << files[1] << std::endl;
+  else if (!quiet)
     std::cout << "Wrote " << s.levels + 1 << (s.levels ? " levels (0 to " + std::to_string(s.levels) + ", " : " level (")
               << s.originalVertices << " -> " << s.coarsestVertices
               << " vertices, " << s.fixedVertices << " fixed; the coarsest level against the DEM: maximum error "

@@ -36,8 +36,9 @@ struct HierarchyOptions {
   // Of the candidates in the survey bin just below levelThresholds[k - 1] (ties, a flat sea
   // of zeros), only this share may go at level k (least important first); empty: all.
   std::vector<double> levelShares;
-  // Record each level's LevelSurvey in the hierarchy, and of the levels only their figures
-  // (levels, vertexLevel): its triangles, groups, links, rings and base triangles stay empty.
+  // Record each level's LevelSurvey in the hierarchy, and of the levels only their counts
+  // (levels, vertexLevel; errors against the DEM for level 0 only): its triangles, groups,
+  // links, rings and base triangles stay empty.
   bool survey = false;
   // A tile of a job with -method error -max_error: the file of line cells to keep (one
   // "row col" of the whole raster per line) that the tiles agreed on so far. Given (even
