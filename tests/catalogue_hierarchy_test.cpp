@@ -659,31 +659,26 @@ TEST(TileOwnership, EveryCellHasOneOwnerAmongThePresentTilesOrElseAmongTheMissin
       for (const CatalogueTile& t : all) (trial == 0 || rng() % 3 != 0 ? present : missing).push_back(t);
       if (present.empty()) continue;
       std::vector<int> owners(width * height, 0), holders(width * height, 0);
+      // Counts the cells of `rects`, each of which must lie in tile t.
+      const auto count = [&](const CatalogueTile& t, const std::vector<CellRect>& rects, std::vector<int>& counts) {
+        const CellRect held{t.xoff, t.yoff, t.xoff + t.xsize, t.yoff + t.ysize};
+        for (const CellRect& rect : rects)
+          for (int r = rect.row0; r < rect.row1; ++r)
+            for (int c = rect.col0; c < rect.col1; ++c) {
+              ASSERT_TRUE(held.contains(c, r)) << "tile " << t.name << " is given a cell it does not hold";
+              ++counts[r * width + c];
+            }
+      };
       // The missing tiles' cells (measured for the reference's surface alone): every cell of
       // the raster is then either a present tile's or a missing tile's, once.
       std::vector<int> left(width * height, 0);
-      for (std::size_t m = 0; m < missing.size(); ++m) {
-        const CatalogueTile& t = missing[m];
-        for (const CellRect& rect : cellsLeftBy(present, missing, m))
-          for (int r = rect.row0; r < rect.row1; ++r)
-            for (int c = rect.col0; c < rect.col1; ++c) {
-              ASSERT_TRUE(c >= t.xoff && c < t.xoff + t.xsize && r >= t.yoff && r < t.yoff + t.ysize)
-                  << "missing tile " << t.name << " is left a cell it does not hold";
-              ++left[r * width + c];
-            }
-      }
+      for (std::size_t m = 0; m < missing.size(); ++m) count(missing[m], cellsLeftBy(present, missing, m), left);
       for (std::size_t i = 0; i < present.size(); ++i) {
         const CatalogueTile& t = present[i];
-        for (int r = t.yoff; r < t.yoff + t.ysize; ++r)
-          for (int c = t.xoff; c < t.xoff + t.xsize; ++c) ++holders[r * width + c];
-        for (const CellRect& rect : ownedCells(present, i))
-          for (int r = rect.row0; r < rect.row1; ++r)
-            for (int c = rect.col0; c < rect.col1; ++c) {
-              ASSERT_TRUE(c >= t.xoff && c < t.xoff + t.xsize && r >= t.yoff && r < t.yoff + t.ysize)
-                  << "tile " << t.name << " owns a cell it does not hold";
-              ++owners[r * width + c];
-            }
+        count(t, {{t.xoff, t.yoff, t.xoff + t.xsize, t.yoff + t.ysize}}, holders);
+        count(t, ownedCells(present, i), owners);
       }
+      ASSERT_FALSE(HasFatalFailure()) << "trial " << trial;  // a cell outside its tile, above
       for (int cell = 0; cell < width * height; ++cell) {
         ASSERT_EQ(owners[cell], holders[cell] > 0 ? 1 : 0)
             << "trial " << trial << ", cell " << cell % width << "," << cell / width;
