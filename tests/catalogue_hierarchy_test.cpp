@@ -27,6 +27,8 @@
 #include "tinlod/crs_transform.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
+#include "tinlod/hierarchy_info.h"
+#include "tinlod/hierarchy_reader.h"
 #include "tinlod/lod_extraction.h"
 #include "tinlod/lod_job.h"
 #include "tinlod/synthetic_dem.h"
@@ -100,14 +102,30 @@ const BuiltTiles& builtTiles() {
 }
 
 // A copy of the catalogue beside its tiles (which it names relative to its folder), named
-// `name` and altered by the SQL statement `sql`.
-std::string alteredCatalogue(const std::string& name, const std::string& sql) {
+// `name` and altered by the SQL statements `sql`, in order.
+std::string alteredCatalogue(const std::string& name, const std::vector<std::string>& sql) {
   const std::string catalogue = std::filesystem::path(builtTiles().catalogue).parent_path().string() + "/" + name;
   std::filesystem::copy_file(builtTiles().catalogue, catalogue, std::filesystem::copy_options::overwrite_existing);
   GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
   EXPECT_NE(ds, nullptr) << catalogue;
-  if (ds) ds->ExecuteSQL(sql.c_str(), nullptr, nullptr), GDALClose(ds);
+  if (!ds) return catalogue;
+  for (const std::string& statement : sql) ds->ExecuteSQL(statement.c_str(), nullptr, nullptr);
+  GDALClose(ds);
   return catalogue;
+}
+
+std::string alteredCatalogue(const std::string& name, const std::string& sql) {
+  return alteredCatalogue(name, std::vector<std::string>{sql});
+}
+
+// The message of the tinlod::Error `run` throws.
+std::string errorOf(const std::function<void()>& run) {
+  try {
+    run();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
 }
 
 const StoredHierarchy& merged() {
@@ -629,6 +647,73 @@ TEST(CatalogueHierarchy, WithATileUnfinishedTileByTileIsStillTheRestReadAsOne) {
   EXPECT_EQ(apart.tin.vertices.size(), whole0.vertices.size());
 }
 
+TEST(CatalogueHierarchy, InfoCountsTheTilesByStatusAndAddsUpTheFinishedTilesLevels) {
+  // The middle tile failed, with a message in the error field tinlod-tiles writes.
+  const std::string catalogue = alteredCatalogue(
+      "info_failed.gpkg", std::vector<std::string>{"ALTER TABLE tiles ADD COLUMN error TEXT",
+                                                   "UPDATE tiles SET status = 'failed', error = 'tinlod was killed by "
+                                                   "signal 9' WHERE tile_col = 1 AND tile_row = 1"});
+  const HierarchyInfo info = readHierarchyInfo(catalogue);
+  EXPECT_EQ(info.kind, "catalogue");
+  EXPECT_EQ(info.tileStatuses, (std::map<std::string, std::size_t>{{"done", 8}, {"failed", 1}}));
+  EXPECT_EQ(info.failedTiles, std::vector<std::string>{"1,1: tinlod was killed by signal 9"});
+  std::vector<LevelStats> expected;
+  std::uintmax_t bytes = 0;
+  for (const std::string& file : builtTiles().files) {
+    if (file.find("tile_1_1.gpkg") != std::string::npos) continue;
+    const HierarchyInfo tile = readHierarchyInfo(file);
+    bytes += tile.bytes;
+    if (expected.empty()) expected.resize(tile.levels.size());
+    ASSERT_EQ(tile.levels.size(), expected.size()) << file;
+    for (std::size_t L = 0; L < expected.size(); ++L) {
+      expected[L].vertices += tile.levels[L].vertices, expected[L].triangles += tile.levels[L].triangles;
+      expected[L].deleted += tile.levels[L].deleted, expected[L].cells += tile.levels[L].cells;
+      expected[L].maxError = std::max(expected[L].maxError, tile.levels[L].maxError);
+    }
+  }
+  EXPECT_EQ(info.tileBytes, bytes);
+  ASSERT_EQ(info.levels.size(), expected.size());
+  for (std::size_t L = 0; L < expected.size(); ++L) {
+    EXPECT_EQ(info.levels[L].vertices, expected[L].vertices) << L;
+    EXPECT_EQ(info.levels[L].triangles, expected[L].triangles) << L;
+    EXPECT_EQ(info.levels[L].deleted, expected[L].deleted) << L;
+    EXPECT_EQ(info.levels[L].cells, expected[L].cells) << L;
+    EXPECT_EQ(info.levels[L].maxError, expected[L].maxError) << L;
+    EXPECT_EQ(info.levels[L].outlineVertices, 0u) << L;
+  }
+  const std::string text = toText(info);
+  EXPECT_NE(text.find(": tinlod catalogue, "), std::string::npos) << text;
+  EXPECT_NE(text.find("; 9 tiles (8 done, 1 failed), "), std::string::npos) << text;
+  EXPECT_NE(text.find("\n  failed tile 1,1: tinlod was killed by signal 9\n"), std::string::npos) << text;
+  const std::string json = toJson(info);
+  EXPECT_NE(json.find("\"tiles\": {\"done\": 8, \"failed\": 1}"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"failed_tiles\": [\"1,1: tinlod was killed by signal 9\"]"), std::string::npos) << json;
+}
+
+TEST(CatalogueHierarchy, InfoOfACatalogueHasTheTrianglesAndLargestErrorsOfItsTilesReadAsOne) {
+  const HierarchyInfo info = readHierarchyInfo(builtTiles().catalogue);
+  const std::vector<LevelStats>& asOne = merged().hierarchy.levels;
+  ASSERT_EQ(info.levels.size(), asOne.size());
+  for (std::size_t L = 0; L < asOne.size(); ++L) {
+    EXPECT_EQ(info.levels[L].triangles, asOne[L].triangles) << L;
+    EXPECT_EQ(info.levels[L].maxError, asOne[L].maxError) << L;
+    EXPECT_NEAR(info.levels[L].rmse, asOne[L].rmse, 1e-9 * asOne[L].rmse) << L;
+    // The vertices of the tiles' shared lines are counted in each tile that holds them.
+    EXPECT_GT(info.levels[L].vertices, asOne[L].vertices) << L;
+  }
+}
+
+TEST(CatalogueHierarchy, InfoNamesAFinishedTileItCannotRead) {
+  const std::string catalogue =
+      alteredCatalogue("info_missing.gpkg", "UPDATE tiles SET file = 'gone.gpkg' WHERE tile_col = 0 AND tile_row = 1");
+  const std::string message = errorOf([&] { readHierarchyInfo(catalogue); });
+  EXPECT_NE(message.find("tile 0,1 of the catalogue ("), std::string::npos) << message;
+  EXPECT_NE(message.find("gone.gpkg' does not exist"), std::string::npos) << message;
+  // A reader of one hierarchy given the catalogue says what it is.
+  const std::string asFile = errorOf([&] { readHierarchy(builtTiles().catalogue, kRange); });
+  EXPECT_NE(asFile.find("is a tinlod-tiles catalogue, not the hierarchy of one tile"), std::string::npos) << asFile;
+}
+
 TEST(CatalogueHierarchy, LodOfACatalogueStopsOnCancelAndLeavesNothing) {
   const std::string dir = test::tempDir() + "/lod_cancel";
   std::filesystem::create_directories(dir);
@@ -732,18 +817,10 @@ TEST(CatalogueHierarchy, TileByTileATileOfAnotherDemIsRefused) {
               HierarchyLayers(), TileSpec{kTileSize, 1, 1});
   const std::string catalogue =
       alteredCatalogue("raised_middle.gpkg", "UPDATE tiles SET file = 'raised_tile.gpkg' WHERE tile_col = 1 AND tile_row = 1");
-  const auto refusal = [](const std::function<void()>& run) {
-    try {
-      run();
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   for (const std::string& what :
-       {refusal([&] { runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet); }),
-        refusal([&] { extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 0}; }, kRange); }),
-        refusal([&] { readHierarchyOrCatalogue(catalogue, kRange); })}) {
+       {errorOf([&] { runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet); }),
+        errorOf([&] { extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 0}; }, kRange); }),
+        errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); })}) {
     EXPECT_TRUE(test::contains(what, "not built by one job")) << what;
     EXPECT_TRUE(test::contains(what, "another height")) << what;
   }

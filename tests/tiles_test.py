@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """tinlod-tiles as a user runs it, on a local Dask cluster of 2 workers: the catalogue ends
 complete, a tile whose tinlod is killed mid-run is retried, a rerun builds no finished tile
-again, each level across the tiles (VRT and merge) holds every tile's triangles, under
--method error -max_error the tiles agree their lines in rounds, and Ctrl-C stops a run at once.
+again, each level across the tiles (VRT and merge) holds every tile's triangles, info describes
+the catalogue, under -method error -max_error the tiles agree their lines in rounds, and Ctrl-C
+stops a run at once.
 Usage: tiles_test.py TINLOD_CLI TINLOD_TILES STANDIN
 Skipped (exit 77) where python3-distributed is absent. A tinlod without -tile_size (the core
 before tiles) is stood in for by STANDIN, which cuts the tile's window itself."""
@@ -136,6 +137,28 @@ def check_complete(catalogue, label):
           and metadata.get("TINLOD_RASTER_SIZE") == "400,300" and int(metadata.get("TINLOD_LEVELS", 0)) > 1,
           metadata)
     return found, metadata
+
+
+def info_of_catalogue(tinlod, catalogue):
+    """(j) info describes the catalogue: its tiles by status, its done tiles' triangles added up."""
+    tiles = rows(catalogue)[0].values()
+    statuses = {}
+    for tile in tiles:
+        statuses[tile["status"]] = statuses.get(tile["status"], 0) + 1
+    text = run([tinlod, "info", catalogue])
+    counts = ", ".join("%d %s" % (statuses[s], s) for s in sorted(statuses))
+    check("(j) info on the catalogue counts its tiles by status",
+          text.returncode == 0 and (": tinlod catalogue, " in text.stdout)
+          and ("; %d tiles (%s), " % (len(tiles), counts)) in text.stdout, (counts, text.stdout, text.stderr))
+    described = run([tinlod, "info", "-json", catalogue])
+    try:
+        levels = json.loads(described.stdout)["levels"]
+    except (ValueError, KeyError):
+        levels = []
+    done = [t for t in tiles if t["status"] == "done"]
+    check("(j) info on the catalogue adds up its done tiles' level 0 triangles",
+          len(levels) == done[0]["levels"] and levels[0]["triangles"] == sum(t["triangles"] for t in done),
+          (levels[:1], [t["triangles"] for t in done], described.stderr))
 
 
 def lod_and_accuracy(tinlod, catalogue, dem, work):
@@ -401,6 +424,7 @@ def main(tinlod, tiles):
           and heights[0] == (one[0][0][0], "0,0") and heights[1] == (one[1][1][0], "1,0")
           and heights[0][0] is not None, (heights, one, via_catalogue.stderr))
 
+    info_of_catalogue(tinlod, catalogue)
     lod_and_accuracy(tinlod, catalogue, dem, work)
     border_agreement(base, options, work, env)
     ctrl_c(dem, tiles, work, env)

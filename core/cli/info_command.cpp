@@ -10,9 +10,11 @@ namespace tinlod::cli {
 int infoCommand(std::vector<std::string> args) {
   Arguments a(std::move(args));
   if (a.flag("--help") || a.flag("-h")) {
-    std::cout << "Describes a GeoPackage written by tinlod build or tinlod sample: parameters, CRS,\n"
+    std::cout << "Describes a GeoPackage written by tinlod build, sample, insert or lod: parameters, CRS,\n"
                  "size, and per level the vertices, triangles, deleted vertices, times and maximum\n"
-                 "vertical error.\n\nUsage: tinlod info FILE.gpkg [-json]\n";
+                 "vertical error. Given a tinlod tiles catalogue, also its tiles by status (the failed\n"
+                 "ones with their errors) and its finished tiles' levels added up.\n\n"
+                 "Usage: tinlod info FILE.gpkg [-json]\n";
     return 0;
   }
   const bool json = a.flag("-json");

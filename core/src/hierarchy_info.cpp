@@ -15,6 +15,7 @@
 #include <memory>
 #include <sstream>
 
+#include "catalogue_info.h"
 #include "gdal_handles.h"
 #include "number_text.h"
 #include "stored_table.h"
@@ -93,6 +94,26 @@ void readLevels(GDALDataset& ds, HierarchyInfo& info) {
   info.levels = readLevelTable(info.path, *levels);
 }
 
+HierarchyInfo catalogueInfo(GDALDataset& ds, HierarchyInfo info) {
+  info.kind = "catalogue";
+  if (OGRLayer* tiles = ds.GetLayerByName("tiles"))
+    if (const OGRSpatialReference* srs = tiles->GetSpatialRef()) info.crsName = srs->GetName() ? srs->GetName() : "";
+  for (int i = 0; i < ds.GetLayerCount(); ++i) info.layers.push_back(ds.GetLayer(i)->GetName());
+  info.bytes = std::filesystem::file_size(info.path);
+  addCatalogueContents(info);
+  return info;
+}
+
+std::string tileCounts(const HierarchyInfo& info) {
+  std::size_t all = 0;
+  std::string counts;
+  for (const auto& [status, count] : info.tileStatuses) {
+    all += count;
+    counts += (counts.empty() ? "" : ", ") + std::to_string(count) + " " + status;
+  }
+  return std::to_string(all) + " tiles" + (counts.empty() ? "" : " (" + counts + ")");
+}
+
 }  // namespace
 
 HierarchyInfo readHierarchyInfo(const std::string& path) {
@@ -113,6 +134,7 @@ HierarchyInfo readHierarchyInfo(const std::string& path) {
       info.metadata[key] = kv.substr(eq + 1);
     }
   }
+  if (info.metadata.count("kind") && info.metadata["kind"] == "catalogue") return catalogueInfo(*ds, std::move(info));
   if (!ds->GetLayerByName("triangles") || info.metadata.empty())
     throw Error("'" + path + "' was not written by tinlod (no tinlod metadata or triangles layer)");
   info.kind = info.metadata.count("kind") ? info.metadata["kind"] : "tin";
@@ -134,7 +156,19 @@ std::string toJson(const HierarchyInfo& info) {
     out << (first ? "\n" : ",\n") << "    " << jsonString(k) << ": " << jsonString(v);
     first = false;
   }
-  out << "\n  },\n  \"layers\": [";
+  out << "\n  },\n";
+  if (info.kind == "catalogue") {
+    out << "  \"tiles\": {";
+    first = true;
+    for (const auto& [status, count] : info.tileStatuses) {
+      out << (first ? "" : ", ") << jsonString(status) << ": " << count;
+      first = false;
+    }
+    out << "},\n  \"failed_tiles\": [";
+    for (std::size_t i = 0; i < info.failedTiles.size(); ++i) out << (i ? ", " : "") << jsonString(info.failedTiles[i]);
+    out << "],\n  \"tile_bytes\": " << info.tileBytes << ",\n";
+  }
+  out << "  \"layers\": [";
   for (std::size_t i = 0; i < info.layers.size(); ++i) out << (i ? ", " : "") << jsonString(info.layers[i]);
   out << "],\n  \"levels\": [";
   for (std::size_t i = 0; i < info.levels.size(); ++i) {
@@ -148,7 +182,12 @@ std::string toJson(const HierarchyInfo& info) {
     else
       out << "null";  // JSON has no infinity
     out << ", \"rmse\": " << l.rmse << ", \"cells\": " << l.cells << ", \"cells_given_up\": "
-        << info.levels.front().cells - l.cells << ", \"outline_vertices\": " << l.outlineVertices << "}";
+        << info.levels.front().cells - l.cells << ", \"outline_vertices\": ";
+    if (info.kind == "catalogue")
+      out << "null";  // the tiles' outlines run along their shared lines
+    else
+      out << l.outlineVertices;
+    out << "}";
   }
   out << "\n  ]\n}\n";
   return out.str();
@@ -156,19 +195,29 @@ std::string toJson(const HierarchyInfo& info) {
 
 std::string toText(const HierarchyInfo& info) {
   std::ostringstream out;
+  const bool catalogue = info.kind == "catalogue";
   out << info.path << ": tinlod " << info.kind << ", " << info.crsName << ", " << std::fixed << std::setprecision(1)
-      << info.bytes / 1e6 << " MB\n";
+      << info.bytes / 1e6 << " MB";
+  if (catalogue) out << "; " << tileCounts(info) << ", " << info.tileBytes / 1e6 << " MB in the finished tiles";
+  out << "\n";
   for (const auto& [k, v] : info.metadata) out << "  " << k << " = " << v << "\n";
+  for (const std::string& failed : info.failedTiles) out << "  failed tile " << failed << "\n";
+  if (catalogue)
+    out << "  levels: the finished tiles' rows added up: a vertex or cell on a line two tiles share is counted\n"
+           "  in each, times are summed, the maximum error is the largest, outlines are not counted;\n"
+           "  tinlod accuracy measures the tiles as one TIN\n";
   out << std::setw(6) << "level" << std::setw(11) << "vertices" << std::setw(11) << "triangles" << std::setw(10)
       << "deleted" << std::setw(10) << "select s" << std::setw(10) << "delete s" << std::setw(12) << "max error m" << std::setw(9) << "RMSE m"
-      << std::setw(10) << "outline" << std::setw(14) << "net cells lost" << "\n";
+      << std::setw(10) << "outline" << std::setw(15) << "net cells lost" << "\n";
   // Each number one character narrower than its column: a space always separates them.
-  for (const LevelStats& l : info.levels)
+  for (const LevelStats& l : info.levels) {
+    const std::string outline = catalogue ? "-" : std::to_string(l.outlineVertices);
     out << std::setw(6) << l.level << std::setw(11) << l.vertices << std::setw(11) << l.triangles << std::setw(10)
         << l.deleted << std::setw(10) << columnNumber(l.selectSeconds, 3, 9) << std::setw(10)
         << columnNumber(l.deleteSeconds, 3, 9) << std::setw(12) << columnNumber(l.maxError, 2, 11) << std::setw(9)
-        << columnNumber(l.rmse, 2, 8) << std::setw(10) << l.outlineVertices << std::setw(14)
-        << info.levels.front().cells - l.cells << "\n";
+        << columnNumber(l.rmse, 2, 8) << std::setw(10) << outline << std::setw(15) << info.levels.front().cells - l.cells
+        << "\n";
+  }
   return out.str();
 }
 

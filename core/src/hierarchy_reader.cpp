@@ -87,6 +87,8 @@ void countSingleLevel(Hierarchy& h) {
 StoredHierarchy readHierarchy(const std::string& path, const ProgressRange& progress) {
   StoredHierarchy out;
   out.info = readHierarchyInfo(path);  // also refuses files tinlod did not write, and checks the levels
+  if (out.info.kind == "catalogue")
+    throw Error("'" + path + "' is a tinlod-tiles catalogue, not the hierarchy of one tile: give the catalogue itself");
   const char* const gpkgOnly[] = {"GPKG", nullptr};
   const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR, gpkgOnly);
   if (!ds) throw Error("'" + path + "' is not a GeoPackage GDAL can read");

@@ -37,20 +37,35 @@ bool isCatalogue(const std::string& path) {
 
 namespace {
 
+OGRLayer& tilesLayer(const std::string& path, const Dataset& ds) {
+  OGRLayer* layer = ds ? ds->GetLayerByName("tiles") : nullptr;
+  if (!layer) throw Error("'" + path + "' is not a tinlod-tiles catalogue: it has no 'tiles' layer");
+  return *layer;
+}
+
+std::string tileName(const OGRFeature& f) {
+  return std::to_string(f.GetFieldAsInteger("tile_col")) + "," + std::to_string(f.GetFieldAsInteger("tile_row"));
+}
+
+// A tile's file, resolved against the catalogue's folder (the catalogue names it relative
+// to that folder, so that the folder can move).
+std::string tileFile(const std::string& path, const OGRFeature& f) {
+  const std::filesystem::path file = f.GetFieldAsString("file");
+  return (file.is_absolute() ? file : std::filesystem::path(path).parent_path() / file).string();
+}
+
 // The catalogue's tiles whose status `wanted` accepts; `withFile`: only those with a
 // geometry, their file resolved.
 template <class Wanted>
 std::vector<CatalogueTile> tilesWhere(const std::string& path, Wanted wanted, bool withFile) {
   const Dataset ds = openVector(path);
-  OGRLayer* layer = ds ? ds->GetLayerByName("tiles") : nullptr;
-  if (!layer) throw Error("'" + path + "' is not a tinlod-tiles catalogue: it has no 'tiles' layer");
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  OGRLayer* layer = &tilesLayer(path, ds);
   const bool sized = layer->GetLayerDefn()->GetFieldIndex("xsize") >= 0 && layer->GetLayerDefn()->GetFieldIndex("ysize") >= 0;
   std::vector<CatalogueTile> tiles;
   for (auto& f : *layer) {
     if (!wanted(std::string(f->GetFieldAsString("status")))) continue;
     CatalogueTile t;
-    t.name = std::to_string(f->GetFieldAsInteger("tile_col")) + "," + std::to_string(f->GetFieldAsInteger("tile_row"));
+    t.name = tileName(*f);
     t.xoff = f->GetFieldAsInteger("xoff"), t.yoff = f->GetFieldAsInteger("yoff");
     if (sized) t.xsize = f->GetFieldAsInteger("xsize"), t.ysize = f->GetFieldAsInteger("ysize");
     if (withFile) {
@@ -58,8 +73,7 @@ std::vector<CatalogueTile> tilesWhere(const std::string& path, Wanted wanted, bo
       if (!g) continue;
       OGREnvelope e;
       g->getEnvelope(&e);
-      const std::filesystem::path file = f->GetFieldAsString("file");
-      t.file = (file.is_absolute() ? file : folder / file).string();
+      t.file = tileFile(path, *f);
       t.box = {e.MinX, e.MinY, e.MaxX, e.MaxY};
     }
     tiles.push_back(std::move(t));
@@ -77,6 +91,19 @@ std::vector<CatalogueTile> readCatalogue(const std::string& path) {
 
 std::vector<CatalogueTile> readUnfinishedTiles(const std::string& path) {
   return tilesWhere(path, [](const std::string& s) { return s != "done"; }, false);
+}
+
+std::vector<TileStatus> readTileStatuses(const std::string& path) {
+  const Dataset ds = openVector(path);
+  OGRLayer& layer = tilesLayer(path, ds);
+  const bool hasError = layer.GetLayerDefn()->GetFieldIndex("error") >= 0;
+  std::vector<TileStatus> tiles;
+  for (auto& f : layer) {
+    TileStatus t{tileName(*f), f->GetFieldAsString("status"), hasError ? f->GetFieldAsString("error") : "", ""};
+    if (f->IsFieldSetAndNotNull(f->GetFieldIndex("file"))) t.file = tileFile(path, *f);
+    tiles.push_back(std::move(t));
+  }
+  return tiles;
 }
 
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles) {

@@ -28,6 +28,17 @@ std::vector<CatalogueTile> readCatalogue(const std::string& path);
 // -valid_range): their cells only, no file or box.
 std::vector<CatalogueTile> readUnfinishedTiles(const std::string& path);
 
+// A tile as the catalogue lists it, whatever its status.
+struct TileStatus {
+  std::string name;    // "C,R"
+  std::string status;  // pending, done, empty or failed
+  std::string error;   // why it failed, when the catalogue says
+  std::string file;    // resolved against the catalogue's folder; empty when it has none
+};
+
+// Every tile of the catalogue, in the catalogue's order.
+std::vector<TileStatus> readTileStatuses(const std::string& path);
+
 // Throws Error unless every tile says which cells it holds (xsize and ysize), as the jobs
 // that work a tile at a time need.
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles);

@@ -13,15 +13,24 @@ namespace tinlod {
 // What a tinlod GeoPackage says of itself, for `tinlod info`.
 struct HierarchyInfo {
   std::string path;
-  std::string kind;  // "hierarchy" or "tin"
+  std::string kind;  // "hierarchy", "tin", "lod" or "catalogue"
   std::string crsName;
   std::uintmax_t bytes = 0;
   std::map<std::string, std::string> metadata;  // TINLOD_* items, without the prefix, lower case
-  std::vector<LevelStats> levels;                // one for a plain TIN
+  // One for a plain TIN. A catalogue's are its finished tiles' rows added up (maximum
+  // error the largest, RMSE over their cells), so a vertex or cell on a line two tiles
+  // share is counted in each; its triangles are exact.
+  std::vector<LevelStats> levels;
   std::vector<std::string> layers;
+  // A catalogue's tiles: how many have each status, why each failed tile failed ("C,R: why"),
+  // and the bytes of the finished tiles' files (`bytes` is the catalogue's own).
+  std::map<std::string, std::size_t> tileStatuses;
+  std::vector<std::string> failedTiles;
+  std::uintmax_t tileBytes = 0;
 };
 
-// Throws Error when the file is not a GeoPackage made by tinlod.
+// Throws Error when the file is not a GeoPackage made by tinlod (or a tinlod-tiles catalogue
+// whose finished tiles are not).
 HierarchyInfo readHierarchyInfo(const std::string& path);
 
 std::string toJson(const HierarchyInfo& info);
