@@ -40,8 +40,26 @@ def run_tile(job):
     if code != 0 or not os.path.isfile(partial):
         remove_if_present(partial)
         raise TileFailed("tile %d,%d (attempt %d): %s" % (job["col"], job["row"], attempt, message))
-    os.replace(partial, final)  # the tile appears whole or not at all
+    publish(partial, final)
     return {"status": "done", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt}
+
+
+def publish(partial, final):
+    """Renames the finished file to its final name, so that the tile appears whole or not at
+    all; its bytes on disk first (tinlod writes without syncing, for speed), then the rename:
+    the catalogue then records a finished tile that a crash of the machine cannot leave
+    truncated under its final name, which a rerun would take as finished."""
+    sync_path(partial, os.O_RDONLY)
+    os.replace(partial, final)
+    sync_path(os.path.dirname(os.path.abspath(final)), os.O_RDONLY | os.O_DIRECTORY)
+
+
+def sync_path(path, flags):
+    descriptor = os.open(path, flags)
+    try:
+        os.fsync(descriptor)
+    finally:
+        os.close(descriptor)
 
 
 def partial_path(final):

@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""tiles/tinlodtiles/task.py with a stand-in tinlod: a finished tile is synced to disk before
+it takes its final name, and the folder after, so that a crash of the machine cannot leave a
+truncated file under the name the catalogue calls finished; a failed tile leaves nothing.
+
+Usage: task_test.py TILES_SOURCE_DIR"""
+import os
+import stat
+import sys
+import tempfile
+
+sys.path.insert(0, sys.argv[1])
+from tinlodtiles import task  # noqa: E402
+
+failures = []
+
+
+def check(what, ok, detail=""):
+    print(("ok: " if ok else "FAILED: ") + what + ("" if ok else "  (%s)" % (detail,)))
+    if not ok:
+        failures.append(what)
+
+
+def stand_in(folder, code):
+    """A tinlod that writes its output file (its 4th argument) and exits with `code`."""
+    path = os.path.join(folder, "tinlod_%d" % code)
+    with open(path, "w") as f:
+        f.write("#!/bin/sh\nprintf 'tile bytes' > \"$3\"\nexit %d\n" % code)
+    os.chmod(path, os.stat(path).st_mode | stat.S_IXUSR)
+    return path
+
+
+def job(tinlod, folder):
+    return {"tinlod": tinlod, "dem": "dem.tif", "tiles_dir": folder, "name": "tile_0_0.gpkg", "col": 0, "row": 0,
+            "tile_size": 100, "build_options": []}
+
+
+synced = []  # (the path synced, whether the final file existed then)
+real_fsync = os.fsync
+
+
+def recording_fsync(descriptor):
+    synced.append((os.readlink("/proc/self/fd/%d" % descriptor), os.path.exists(final)))
+    real_fsync(descriptor)
+
+
+task.os.fsync = recording_fsync
+with tempfile.TemporaryDirectory() as folder:
+    final = os.path.join(folder, "tile_0_0.gpkg")
+    result = task.run_tile(job(stand_in(folder, 0), folder))
+    partial = task.partial_path(final)
+    check("the tile is done", result["status"] == "done", result)
+    check("its file has its final name and its bytes, and no partial file is left",
+          open(final).read() == "tile bytes" and not os.path.exists(partial), os.listdir(folder))
+    check("the file was synced under its partial name, then the folder once it had its final name",
+          synced == [(os.path.realpath(partial), False), (os.path.realpath(folder), True)], synced)
+
+    synced.clear()
+    os.remove(final)
+    try:
+        task.run_tile(job(stand_in(folder, 1), folder))
+        failed = False
+    except task.TileFailed:
+        failed = True
+    check("a failed tinlod fails the task, leaving no file and syncing nothing",
+          failed and not os.path.exists(final) and not os.path.exists(partial) and not synced, (os.listdir(folder), synced))
+
+print("task: %d failed" % len(failures))
+sys.exit(1 if failures else 0)
