@@ -14,15 +14,9 @@ from osgeo import gdal, ogr  # noqa: E402
 
 from tinlodtiles import agreement  # noqa: E402
 from tinlodtiles.grid import tile_grid  # noqa: E402
+from script_checks import check, exit_code  # noqa: E402
 
 gdal.UseExceptions()
-failures = []
-
-
-def check(what, ok, detail=""):
-    print(("ok: " if ok else "FAILED: ") + what + ("" if ok else "  (%s)" % (detail,)))
-    if not ok:
-        failures.append(what)
 
 
 def write_tile(path, agreed, kept=(), refused=()):
@@ -91,5 +85,4 @@ check("both tiles of its line, those built before agreement and the unreadable o
 kept, _ = agreement.next_round({by_name[(2, 0)]: paths[(2, 0)]}, set(), lines)
 check("with the keep file lost, the kept cells come back from what the tiles recorded", kept == {(7, 300)}, kept)
 
-print("agreement: %d failed" % len(failures))
-sys.exit(1 if failures else 0)
+sys.exit(exit_code("agreement"))

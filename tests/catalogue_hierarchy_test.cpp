@@ -118,15 +118,6 @@ std::string alteredCatalogue(const std::string& name, const std::string& sql) {
   return alteredCatalogue(name, std::vector<std::string>{sql});
 }
 
-// The message of the tinlod::Error `run` throws.
-std::string errorOf(const std::function<void()>& run) {
-  try {
-    run();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 const StoredHierarchy& merged() {
   static const StoredHierarchy m = readHierarchyOrCatalogue(builtTiles().catalogue, kRange);
@@ -706,11 +697,11 @@ TEST(CatalogueHierarchy, InfoOfACatalogueHasTheTrianglesAndLargestErrorsOfItsTil
 TEST(CatalogueHierarchy, InfoNamesAFinishedTileItCannotRead) {
   const std::string catalogue =
       alteredCatalogue("info_missing.gpkg", "UPDATE tiles SET file = 'gone.gpkg' WHERE tile_col = 0 AND tile_row = 1");
-  const std::string message = errorOf([&] { readHierarchyInfo(catalogue); });
+  const std::string message = test::errorOf([&] { readHierarchyInfo(catalogue); });
   EXPECT_NE(message.find("tile 0,1 of the catalogue ("), std::string::npos) << message;
   EXPECT_NE(message.find("gone.gpkg' does not exist"), std::string::npos) << message;
   // A reader of one hierarchy given the catalogue says what it is.
-  const std::string asFile = errorOf([&] { readHierarchy(builtTiles().catalogue, kRange); });
+  const std::string asFile = test::errorOf([&] { readHierarchy(builtTiles().catalogue, kRange); });
   EXPECT_NE(asFile.find("is a tinlod-tiles catalogue, not the hierarchy of one tile"), std::string::npos) << asFile;
 }
 
@@ -818,9 +809,13 @@ TEST(CatalogueHierarchy, TileByTileATileOfAnotherDemIsRefused) {
   const std::string catalogue =
       alteredCatalogue("raised_middle.gpkg", "UPDATE tiles SET file = 'raised_tile.gpkg' WHERE tile_col = 1 AND tile_row = 1");
   for (const std::string& what :
-       {errorOf([&] { runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet); }),
-        errorOf([&] { extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 0}; }, kRange); }),
-        errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); })}) {
+       {test::errorOf([&] {
+          runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet);
+        }),
+        test::errorOf([&] {
+          extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 0}; }, kRange);
+        }),
+        test::errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); })}) {
     EXPECT_TRUE(test::contains(what, "not built by one job")) << what;
     EXPECT_TRUE(test::contains(what, "another height")) << what;
   }

@@ -27,14 +27,6 @@ std::set<std::string> namesIn(const std::string& dir) {
   return names;
 }
 
-std::string errorOf(const std::function<void()>& work) {
-  try {
-    work();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 bool has(const std::string& text, const std::string& fragment) { return text.find(fragment) != std::string::npos; }
 
@@ -75,7 +67,7 @@ TEST(OutputFiles, AnInputIsNeverAnOutputEvenWithOverwrite) {
   fs::create_hard_link(dir + "/dem.tif", dir + "/alias.tif");
   OutputFiles files(true, {dir + "/dem.tif"});
   for (const std::string& name : {dir + "/dem.tif", dir + "/./dem.tif", dir + "/alias.tif"}) {
-    const std::string e = errorOf([&] { files.add(name, "-accuracy"); });
+    const std::string e = test::errorOf([&] { files.add(name, "-accuracy"); });
     EXPECT_TRUE(has(e, "-accuracy: '" + name + "' is an input of this run")) << e;
   }
   EXPECT_EQ(test::readFile(dir + "/dem.tif"), "dem");
@@ -85,7 +77,8 @@ TEST(OutputFiles, TheSameFileTwiceIsRefused) {
   const std::string dir = test::tempDir();
   OutputFiles files(true);
   files.add(dir + "/r.csv", "-report");
-  const std::string e = errorOf([&] { files.add(dir + "/../" + fs::path(dir).filename().string() + "/r.csv", "-accuracy"); });
+  const std::string e =
+      test::errorOf([&] { files.add(dir + "/../" + fs::path(dir).filename().string() + "/r.csv", "-accuracy"); });
   EXPECT_TRUE(has(e, "is also given as -report")) << e;
 }
 
@@ -94,9 +87,9 @@ TEST(OutputFiles, ChecksTheFolderAndExistingFilesUpFront) {
   write(dir + "/there.csv", "x");
   fs::create_directories(dir + "/folder.csv");
   OutputFiles files(false);
-  EXPECT_TRUE(has(errorOf([&] { files.add(dir + "/there.csv", "-report"); }), "exists: add -overwrite"));
-  EXPECT_TRUE(has(errorOf([&] { files.add(dir + "/folder.csv", "-report"); }), "is a folder"));
-  EXPECT_TRUE(has(errorOf([&] { files.add(dir + "/none/r.csv", "-report"); }), "the folder of"));
+  EXPECT_TRUE(has(test::errorOf([&] { files.add(dir + "/there.csv", "-report"); }), "exists: add -overwrite"));
+  EXPECT_TRUE(has(test::errorOf([&] { files.add(dir + "/folder.csv", "-report"); }), "is a folder"));
+  EXPECT_TRUE(has(test::errorOf([&] { files.add(dir + "/none/r.csv", "-report"); }), "the folder of"));
 }
 
 // Two runs for one output: without -overwrite the later one must not replace the file the
@@ -107,7 +100,7 @@ TEST(OutputFiles, AFileThatAppearedMeanwhileIsNotReplacedAndNothingElseMoves) {
   write(files.add(dir + "/first.csv", "-report").staging, "mine");
   write(files.add(dir + "/out.gpkg", "output").staging, "mine");
   write(dir + "/out.gpkg", "the other run's");
-  const std::string e = errorOf([&] { files.commit(); });
+  const std::string e = test::errorOf([&] { files.commit(); });
   EXPECT_TRUE(has(e, "output: '" + dir + "/out.gpkg' appeared while this run was working")) << e;
   EXPECT_EQ(test::readFile(dir + "/out.gpkg"), "the other run's");
   EXPECT_FALSE(fs::exists(dir + "/first.csv"));  // taken back
@@ -122,7 +115,7 @@ TEST(OutputFiles, AFailedCommitPutsBackEveryFileItReplaced) {
     write(files.add(dir + "/a.gpkg", "output").staging, "new a");
     write(files.add(dir + "/b.csv", "-report").staging, "new b");
     fs::create_directories(dir + "/b.csv");  // the second move cannot happen
-    e = errorOf([&] { files.commit(); });
+    e = test::errorOf([&] { files.commit(); });
   }
   EXPECT_TRUE(has(e, "is now a folder")) << e;
   EXPECT_EQ(test::readFile(dir + "/a.gpkg"), "old a");

@@ -27,30 +27,19 @@ namespace {
 
 const ProgressRange kQuiet(Feedback{}, 0, 1);
 
-// The message of the tinlod::Error `run` throws; what went wrong otherwise.
-std::string errorOf(const std::function<void()>& run) {
-  try {
-    run();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("not a tinlod::Error: ") + e.what();
-  }
-  return "no error";
-}
 
 std::string readError(const std::string& gpkg) {
-  return errorOf([&] { readHierarchy(gpkg, kQuiet); });
+  return test::errorOf([&] { readHierarchy(gpkg, kQuiet); });
 }
 
 std::string lodError(const std::string& gpkg) {
   LodJobOptions o;
   o.lod.maxError = 0;  // refines every group: every link is followed
-  return errorOf([&] { runLodJob(gpkg, test::tempDir() + "/lod.gpkg", o, false, {}); });
+  return test::errorOf([&] { runLodJob(gpkg, test::tempDir() + "/lod.gpkg", o, false, {}); });
 }
 
 std::string locateError(const std::string& gpkg, const std::string& points) {
-  return errorOf([&] { runLocateJob(gpkg, points, test::tempDir() + "/located.gpkg", 0, false, {}); });
+  return test::errorOf([&] { runLocateJob(gpkg, points, test::tempDir() + "/located.gpkg", 0, false, {}); });
 }
 
 std::string damage(const std::string& gpkg, const std::string& what) { return "'" + gpkg + "' is damaged: " + what; }
@@ -70,7 +59,7 @@ TEST(StoredHierarchy, EveryReaderReadsTheIntactFileAndAnEditableCopy) {
   for (const std::string& gpkg : {s.gpkg, test::editableCopy(s.gpkg)}) {
     EXPECT_EQ(lodError(gpkg), "no error");
     EXPECT_EQ(locateError(gpkg, s.points), "no error");
-    EXPECT_EQ(errorOf([&] { runAccuracyJob(s.dem, gpkg, AccuracyOutputs{}, 0, "", {}); }), "no error");
+    EXPECT_EQ(test::errorOf([&] { runAccuracyJob(s.dem, gpkg, AccuracyOutputs{}, 0, "", {}); }), "no error");
   }
   EXPECT_GE(coarsest(), 3);
   EXPECT_GT(linkedTriangle(), 0);
@@ -93,7 +82,7 @@ TEST(StoredHierarchy, LevelsOutOfOrderAreRefused) {
   EXPECT_NE(readError(before).find("triangles row " + t + " has first_level"), std::string::npos) << readError(before);
   EXPECT_NE(readError(before).find(": its last level is before its first"), std::string::npos) << readError(before);
   const std::string repeated = test::alteredCopy(hierarchy(), "UPDATE levels SET level = 5 WHERE level = 4");
-  EXPECT_EQ(errorOf([&] { readHierarchyInfo(repeated); }), damage(repeated, "levels row 6 repeats level 5"));
+  EXPECT_EQ(test::errorOf([&] { readHierarchyInfo(repeated); }), damage(repeated, "levels row 6 repeats level 5"));
   const std::string gap = test::alteredCopy(hierarchy(), "DELETE FROM levels WHERE level = 3");
   EXPECT_EQ(readError(gap), damage(gap, "its levels table has no row for level 3 but one for level 4"));
   // A triangle keeps its levels in 16 bits: a level beyond them is not read, whatever
@@ -129,7 +118,7 @@ TEST(StoredHierarchy, AHierarchyWithoutItsLevelsOrGroupsTableIsRefused) {
       test::alteredCopy(hierarchy(), "DROP TABLE levels; DELETE FROM gpkg_contents WHERE table_name = 'levels'");
   const std::string expected =
       damage(noLevels, "it is a hierarchy (TINLOD_KIND) but has no levels table; build it again with tinlod build");
-  EXPECT_EQ(errorOf([&] { readHierarchyInfo(noLevels); }), expected);
+  EXPECT_EQ(test::errorOf([&] { readHierarchyInfo(noLevels); }), expected);
   EXPECT_EQ(lodError(noLevels), expected);
   const std::string noGroups =
       test::alteredCopy(hierarchy(), "DROP TABLE groups; DELETE FROM gpkg_contents WHERE table_name = 'groups'");
@@ -152,7 +141,7 @@ TEST(StoredHierarchy, TrianglesWithARepeatedVertexAreRefused) {
 
 TEST(StoredHierarchy, NegativeAndOverflowingCountsAreRefusedOrNotTrusted) {
   const std::string negative = test::alteredCopy(hierarchy(), "UPDATE levels SET vertices = -5 WHERE level = 3");
-  EXPECT_EQ(errorOf([&] { readHierarchyInfo(negative); }),
+  EXPECT_EQ(test::errorOf([&] { readHierarchyInfo(negative); }),
             damage(negative, "levels row 4 has vertices -5 but the counts are 0 to 9223372036854775807"));
   const std::string cells =
       test::alteredCopy(hierarchy(), "UPDATE levels SET cells = -9223372036854775808 WHERE level = 0");
@@ -220,7 +209,7 @@ TEST(StoredHierarchy, MetadataThatIsNotWhatTinlodWritesIsRefused) {
   const test::SmallHierarchy& s = test::smallHierarchy();
   const std::string band = test::editableCopy(s.gpkg);
   ASSERT_TRUE(test::setTinlodItem(band, "BAND", "first"));
-  EXPECT_EQ(errorOf([&] { runAccuracyJob(s.dem, band, AccuracyOutputs{}, 0, "", {}); }),
+  EXPECT_EQ(test::errorOf([&] { runAccuracyJob(s.dem, band, AccuracyOutputs{}, 0, "", {}); }),
             damage(band, "its TINLOD_BAND is 'first', not a band number; give -b"));
   const std::string method = test::editableCopy(s.gpkg);
   ASSERT_TRUE(test::setTinlodItem(method, "METHOD", "curvature"));
@@ -271,17 +260,17 @@ TEST(StoredHierarchy, CentresAndPointsToKeepRefuseOtherGeometries) {
   LodJobOptions lod;
   lod.centresPath = dir + "/lines.gpkg";
   lod.lod.dropoff = 100;
-  EXPECT_EQ(errorOf([&] { runLodJob(s.gpkg, dir + "/lod.gpkg", lod, false, {}); }),
+  EXPECT_EQ(test::errorOf([&] { runLodJob(s.gpkg, dir + "/lod.gpkg", lod, false, {}); }),
             "-centers: the layer of '" + dir + "/lines.gpkg' holds Line String features: a point layer is needed");
   HierarchyOptions keep;
   keep.fixedPoints = dir + "/area.gpkg";
   EXPECT_EQ(
-      errorOf([&] { runBuildJob(s.dem, dir + "/h.gpkg", {}, keep, false, {}); }),
+      test::errorOf([&] { runBuildJob(s.dem, dir + "/h.gpkg", {}, keep, false, {}); }),
       "-fixed (points to keep): the layer of '" + dir + "/area.gpkg' holds Polygon features: a point layer is needed");
   // A multipoint's points are all centres.
   test::writeWktLayer(dir + "/centres.gpkg", {"MULTIPOINT ((400500 5200500), (401000 5201000))"});
   lod.centresPath = dir + "/centres.gpkg";
-  EXPECT_EQ(errorOf([&] { runLodJob(s.gpkg, dir + "/lod2.gpkg", lod, false, {}); }), "no error");
+  EXPECT_EQ(test::errorOf([&] { runLodJob(s.gpkg, dir + "/lod2.gpkg", lod, false, {}); }), "no error");
 }
 
 }  // namespace

@@ -12,14 +12,7 @@ import tempfile
 
 sys.path.insert(0, sys.argv[1])
 from tinlodtiles import task  # noqa: E402
-
-failures = []
-
-
-def check(what, ok, detail=""):
-    print(("ok: " if ok else "FAILED: ") + what + ("" if ok else "  (%s)" % (detail,)))
-    if not ok:
-        failures.append(what)
+from script_checks import check, exit_code  # noqa: E402
 
 
 def stand_in(folder, code):
@@ -66,5 +59,4 @@ with tempfile.TemporaryDirectory() as folder:
     check("a failed tinlod fails the task, leaving no file and syncing nothing",
           failed and not os.path.exists(final) and not os.path.exists(partial) and not synced, (os.listdir(folder), synced))
 
-print("task: %d failed" % len(failures))
-sys.exit(1 if failures else 0)
+sys.exit(exit_code("task"))

@@ -12,6 +12,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "tinlod/error.h"
+
 namespace fs = std::filesystem;
 
 namespace tinlod::test {
@@ -84,6 +86,17 @@ Dem makeGeographicDem(int width, int height, double lon0, double lat0) {
   dem.geotransform = {lon0, 1.0 / 1200, 0.0, lat0, 0.0, -1.0 / 1200};
   dem.crsWkt = wktOf(4326);
   return dem;
+}
+
+std::string errorOf(const std::function<void()>& run) {
+  try {
+    run();
+  } catch (const Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    return std::string("not a tinlod::Error: ") + e.what();
+  }
+  return "no error";
 }
 
 std::string readFile(const std::string& path) {

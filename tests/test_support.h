@@ -50,6 +50,10 @@ struct CommandRun {
 CommandRun runCommand(const std::string& command);
 bool contains(const std::string& text, const std::string& fragment);
 
+// The message of the tinlod::Error `run` throws; "no error" when it throws none, and the
+// kind of anything else it throws.
+std::string errorOf(const std::function<void()>& run);
+
 // A small synthetic DEM for quick tests: 360 x 300 cells of 25 m, with its lake and void.
 Dem smallSyntheticDem();
 // The same DEM as a GeoTIFF, written once per test binary.

@@ -11,14 +11,7 @@ import tempfile
 
 sys.path.insert(0, sys.argv[1])
 from tinlodtiles import thresholds  # noqa: E402
-
-failures = []
-
-
-def check(what, ok, detail=""):
-    print(("ok: " if ok else "FAILED: ") + what + ("" if ok else "  (%s)" % (detail,)))
-    if not ok:
-        failures.append(what)
+from script_checks import check, exit_code  # noqa: E402
 
 
 def level(vertices, picked, considered, histogram):
@@ -60,5 +53,4 @@ except ValueError:
     check("a survey in other bins is refused", True)
 os.remove(f.name)
 
-print("thresholds: %d failed" % len(failures))
-sys.exit(1 if failures else 0)
+sys.exit(exit_code("thresholds"))

@@ -20,6 +20,8 @@ import time
 
 from osgeo import gdal, ogr
 
+from script_checks import check, exit_code, failures
+
 SKIPPED = 77
 TILE_SIZE = 150  # a 400 x 300 DEM: 3 x 2 tiles
 # Killed this long after its tinlod starts: within the loader's and GDAL's start-up on a fast
@@ -29,13 +31,6 @@ EMPTY_TILE = (2, 1)  # its whole window nodata
 FIELDS = {"tile_col", "tile_row", "xoff", "yoff", "xsize", "ysize", "file", "status", "levels", "vertices",
           "triangles", "attempts", "seconds", "peak_mib", "error"}
 
-failures = []
-
-
-def check(what, ok, detail=""):
-    print(("ok: " if ok else "FAILED: ") + what + ("" if ok else "  (%s)" % (detail,)))
-    if not ok:
-        failures.append(what)
 
 
 def run(args, env=None):
@@ -429,12 +424,11 @@ def main(tinlod, tiles):
     border_agreement(base, options, work, env)
     ctrl_c(dem, tiles, work, env)
 
-    print("tiles: %d failed" % len(failures))
     if not failures:
         subprocess.run(["rm", "-rf", work])
     else:
         print("the files are left in " + work)
-    return 1 if failures else 0
+    return exit_code("tiles")
 
 
 if __name__ == "__main__":
