@@ -311,6 +311,12 @@ def main(tinlod, tiles):
     bad = run(base + [os.path.join(work, "x.gpkg"), "-tile_size", "100", "-tinlod", program])
     check("-tile_size not a multiple of -block is refused, naming both",
           bad.returncode == 1 and "-tile_size 100" in bad.stderr and "-block 3" in bad.stderr, bad.stderr)
+    wrong = run(base + [os.path.join(work, "w.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2", "-retries", "0",
+                        "-tinlod", program, "--", "-delete_pct", "200"], env)
+    check("options every tile refuses: the error says what the tiles said, and to correct them with -overwrite",
+          wrong.returncode == 1 and "tiles failed in the survey pass; they say:" in wrong.stderr
+          and "delete_pct must be more than 0 and at most 100 (got 200)" in wrong.stderr and " and 5 more)" in wrong.stderr
+          and "every tile failed alike" in wrong.stderr and "-overwrite" in wrong.stderr, wrong.stderr[-2000:])
 
     # (a) A run: the catalogue ends complete.
     catalogue = os.path.join(work, "a.gpkg")

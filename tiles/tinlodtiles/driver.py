@@ -125,8 +125,8 @@ def level_thresholds(catalogue, tiles, arguments, workers):
             print("survey pass: %d tiles" % len(missing))
         outcome = run_tiles(catalogue, missing, arguments, workers, ["-survey"], survey=True)
         if outcome.get("failed"):
-            raise TilesError("%d tiles failed in the survey pass (the catalogue's error field says why): "
-                             "run again to retry them" % outcome["failed"])
+            raise TilesError("%d tiles failed in the survey pass; %s"
+                             % (outcome["failed"], failure_summary(catalogue.rows().values())))
     rows = catalogue.rows()
     surveys = [thresholds.read_survey(survey_path(folder, t)) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
     def percent(name, default):
@@ -433,10 +433,30 @@ def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
     if not arguments.quiet:
         print_summary(arguments.catalogue, ran, sum(outcome.values()), rounds, skipped, states, levels if vrts else 0)
     if states.get("failed"):
-        print("ERROR: %d tiles failed after their retries (the catalogue's error field says why): "
-              "run again to retry them" % states["failed"], file=sys.stderr)
+        print("ERROR: %d tiles failed after their retries; %s" % (states["failed"], failure_summary(rows)),
+              file=sys.stderr)
         return 1
     return 0
+
+
+def failure_summary(rows):
+    """What the failed tiles' errors say, most common first (the catalogue's error field has
+    each), and what to do: a run whose every tile failed alike most likely has wrong options."""
+    rows = list(rows)
+    messages = {}
+    for row in rows:
+        if row["status"] == "failed":
+            message = re.sub(r"^tile \d+,\d+ \(attempt \d+\): ", "", row["error"] or "no message")
+            messages.setdefault(message, []).append("%d,%d" % (row["tile_col"], row["tile_row"]))
+    ranked = sorted(messages.items(), key=lambda item: -len(item[1]))
+    lines = ["%s (tile %s%s)" % (message, tiles[0], " and %d more" % (len(tiles) - 1) if len(tiles) > 1 else "")
+             for message, tiles in ranked[:3]]
+    if len(ranked) > 3:
+        lines.append("%d other messages (the catalogue's error field has each)" % (len(ranked) - 3))
+    alike = len(ranked) == 1 and all(row["status"] == "failed" for row in rows)
+    advice = ("every tile failed alike: if the DEM or the options are wrong, correct them and run again with "
+              "-overwrite (the catalogue keeps the options it was made with)" if alike else "run again to retry them")
+    return "\n  ".join(["they say:"] + lines) + "\n" + advice
 
 
 def print_summary(catalogue_path, ran, builds, rounds, skipped, states, levels):
