@@ -30,6 +30,7 @@
 #include "tinlod/hierarchy_info.h"
 #include "tinlod/hierarchy_reader.h"
 #include "tinlod/lod_extraction.h"
+#include "tinlod/locate_job.h"
 #include "tinlod/lod_job.h"
 #include "tinlod/synthetic_dem.h"
 #include "tinlod/tile_reader.h"
@@ -703,6 +704,55 @@ TEST(CatalogueHierarchy, InfoNamesAFinishedTileItCannotRead) {
   // A reader of one hierarchy given the catalogue says what it is.
   const std::string asFile = test::errorOf([&] { readHierarchy(builtTiles().catalogue, kRange); });
   EXPECT_NE(asFile.find("is a tinlod-tiles catalogue, not the hierarchy of one tile"), std::string::npos) << asFile;
+}
+
+TEST(CatalogueHierarchy, LocateReadsEachTileOnceWhateverTheOrderOfThePoints) {
+  // The 9 tiles' centres, round and round three times: with a few tiles kept, points in
+  // this order would read a tile for every point (27), not 9 tiles.
+  const std::string dir = test::tempDir();
+  GDALDataset* catalogue = static_cast<GDALDataset*>(
+      GDALOpenEx(builtTiles().catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  ASSERT_NE(catalogue, nullptr);
+  std::vector<std::pair<OGRPoint, std::string>> centres;
+  for (auto& f : *catalogue->GetLayerByName("tiles")) {
+    OGRPoint centre;
+    ASSERT_EQ(f->GetGeometryRef()->Centroid(&centre), OGRERR_NONE);
+    centres.emplace_back(centre, std::to_string(f->GetFieldAsInteger("tile_col")) + "," +
+                                     std::to_string(f->GetFieldAsInteger("tile_row")));
+  }
+  GDALClose(catalogue);
+  ASSERT_EQ(centres.size(), 9u);
+  const std::string points = dir + "/round.gpkg";
+  OGRSpatialReference crs;  // the tiles' (a GeoPackage layer without one is taken as geographic)
+  ASSERT_EQ(crs.importFromWkt(merged().hierarchy.base.crsWkt.c_str()), OGRERR_NONE);
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(points.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+  OGRLayer* layer = ds->CreateLayer("points", &crs, wkbPoint, nullptr);
+  addField(*layer, "n", OFTInteger);
+  for (int n = 0; n < 27; ++n) {
+    OGRFeature f(layer->GetLayerDefn());
+    f.SetField("n", n);
+    f.SetGeometry(&centres[n % 9].first);
+    ASSERT_EQ(layer->CreateFeature(&f), OGRERR_NONE);
+  }
+  GDALClose(ds);
+  const LocateSummary s = runLocateJob(builtTiles().catalogue, points, dir + "/located.gpkg", 1, false, kQuiet);
+  EXPECT_EQ(s.tilesRead, 9u);
+  EXPECT_EQ(s.located, 27u);
+  // Written in the points' own order, each with its tile and that tile's height there.
+  GDALDataset* out = static_cast<GDALDataset*>(
+      GDALOpenEx((dir + "/located.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  ASSERT_NE(out, nullptr);
+  int n = 0;
+  std::map<std::string, double> heights;
+  for (auto& f : *out->GetLayerByName("points")) {
+    EXPECT_EQ(f->GetFieldAsInteger("n"), n);
+    EXPECT_EQ(f->GetFieldAsString("tile"), centres[n % 9].second) << n;
+    const auto [it, first] = heights.emplace(centres[n % 9].second, f->GetFieldAsDouble("elevation"));
+    if (!first) EXPECT_EQ(f->GetFieldAsDouble("elevation"), it->second) << n;
+    ++n;
+  }
+  GDALClose(out);
+  EXPECT_EQ(n, 27);
 }
 
 TEST(CatalogueHierarchy, LodOfACatalogueStopsOnCancelAndLeavesNothing) {

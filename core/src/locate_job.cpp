@@ -2,9 +2,11 @@
 #include "dataset_files.h"
 #include "tinlod/locate_job.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <filesystem>
+#include <numeric>
 #include <vector>
 
 #include "gdal_handles.h"
@@ -66,6 +68,43 @@ OGRLayer* createPointsLayer(GpkgOutput& out, OGRLayer& source, bool tiled) {
   return layer;
 }
 
+// Points are located a chunk at a time, in the order of the tiles that hold them, and
+// written in their own order: points in any order would read a catalogue's tiles again and
+// again (only a few are kept), and the chunk bounds the memory whatever the layer's size.
+constexpr std::size_t kChunk = std::size_t{1} << 16;
+
+struct PendingPoint {
+  OGRFeatureUniquePtr feature;  // as it is written: the source's fields and geometry, and ours
+  double x = 0, y = 0;          // in the TIN's CRS
+  bool placed = false;          // it has one point, and the CRS transformation took it
+  std::size_t tile = 0;         // PointSurface::firstTileAt
+};
+
+struct OutputFields {
+  int elevation, triangle, tile;
+};
+
+void locateChunk(std::vector<PendingPoint>& chunk, PointSurface& surface, int level, const OutputFields& fields,
+                 LocateSummary& s) {
+  std::vector<std::size_t> order(chunk.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return chunk[a].tile < chunk[b].tile; });
+  std::string tile;
+  for (std::size_t i : order) {
+    PendingPoint& point = chunk[i];
+    if (!point.placed) continue;
+    const auto start = std::chrono::steady_clock::now();
+    const LocatedPoint p = surface.locate(point.x, point.y, level, tile);
+    s.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!p.found()) continue;
+    point.feature->SetField(fields.elevation, p.z);
+    point.feature->SetField(fields.triangle, static_cast<GIntBig>(p.triangle) + 1);
+    if (fields.tile >= 0) point.feature->SetField(fields.tile, tile.c_str());
+    ++s.located;
+  }
+}
+
 }  // namespace
 
 LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& pointsPath, const std::string& outPath,
@@ -93,37 +132,34 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
 
   GpkgOutput out(staged, writeOptions, [](const std::string& name) { return name == "points"; });
   OGRLayer* layer = createPointsLayer(out, source, surface.tiled());
-  const int elevation = layer->GetLayerDefn()->GetFieldIndex("elevation");
-  const int triangle = layer->GetLayerDefn()->GetFieldIndex("triangle");
-  const int tileField = layer->GetLayerDefn()->GetFieldIndex("tile");
-  std::string tile;
+  const OGRFeatureDefn& defn = *layer->GetLayerDefn();
+  const OutputFields fields{defn.GetFieldIndex("elevation"), defn.GetFieldIndex("triangle"),
+                            defn.GetFieldIndex("tile")};
   out.begin();
   LocateSummary s;
   s.level = level;
   const GIntBig count = std::max<GIntBig>(1, source.GetFeatureCount());
-  double seconds = 0;
+  std::vector<PendingPoint> chunk;
+  const auto flush = [&] {
+    locateChunk(chunk, surface, level, fields, s);
+    for (PendingPoint& point : chunk) writeFeature(*layer, *point.feature);
+    chunk.clear();
+  };
   for (auto& f : source) {
-    OGRFeature copy(layer->GetLayerDefn());
-    copy.SetFrom(f.get(), TRUE);
-    double x, y;
-    if (pointOf(*f, open.path, x, y) && (!transform || transform->Transform(1, &x, &y))) {
-      const auto start = std::chrono::steady_clock::now();
-      const LocatedPoint p = surface.locate(x, y, level, tile);
-      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (p.found()) {
-        copy.SetField(elevation, p.z);
-        copy.SetField(triangle, static_cast<GIntBig>(p.triangle) + 1);
-        if (tileField >= 0) copy.SetField(tileField, tile.c_str());
-        ++s.located;
-      }
-    }
-    writeFeature(*layer, copy);
+    PendingPoint point{OGRFeatureUniquePtr(OGRFeature::CreateFeature(layer->GetLayerDefn()))};
+    point.feature->SetFrom(f.get(), TRUE);
+    point.placed =
+        pointOf(*f, open.path, point.x, point.y) && (!transform || transform->Transform(1, &point.x, &point.y));
+    if (point.placed) point.tile = surface.firstTileAt(point.x, point.y);
+    chunk.push_back(std::move(point));
+    if (chunk.size() == kChunk) flush();
     if ((++s.points & 0x3FFF) == 0) all.report(0.4 + 0.4 * double(s.points) / count, "Locating points");
   }
+  flush();
   out.commit();
   out.finish(all.sub(0.8, 1));
   files.commit();
-  s.seconds = seconds;
+  s.tilesRead = surface.tilesRead();
   all.finish("Done");
   return s;
 }

@@ -32,6 +32,7 @@ PointSurface::Loaded& PointSurface::load(std::size_t tile) {
     }
   if (loaded_.size() >= kTilesKept) loaded_.pop_back();
   auto stored = std::make_unique<StoredHierarchy>(readHierarchy(tiles_[tile].file, ProgressRange(Feedback{}, 0, 1)));
+  ++tilesRead_;
   if (!loaded_.empty() && stored->hierarchy.coarsest() != coarsest_)
     throw Error("tile " + tiles_[tile].name + " ('" + tiles_[tile].file + "') has levels 0 to " +
                 std::to_string(stored->hierarchy.coarsest()) + ", the catalogue's other tiles 0 to " +
@@ -41,13 +42,23 @@ PointSurface::Loaded& PointSurface::load(std::size_t tile) {
   return loaded_.front();
 }
 
+bool PointSurface::holds(std::size_t tile, double x, double y) const {
+  const auto& b = tiles_[tile].box;
+  return x >= b[0] && x <= b[2] && y >= b[1] && y <= b[3];
+}
+
+std::size_t PointSurface::firstTileAt(double x, double y) const {
+  std::size_t t = 0;
+  while (t < tiles_.size() && !holds(t, x, y)) ++t;
+  return t;
+}
+
 LocatedPoint PointSurface::locate(double x, double y, int level, std::string& tile) {
   tile.clear();
   if (!tiled()) return loaded_.front().locator->locate(x, y, level);
   // Tiles share their border lines: a point there is in either, with the same height.
-  for (std::size_t t = 0; t < tiles_.size(); ++t) {
-    const auto& b = tiles_[t].box;
-    if (x < b[0] || x > b[2] || y < b[1] || y > b[3]) continue;
+  for (std::size_t t = firstTileAt(x, y); t < tiles_.size(); ++t) {
+    if (!holds(t, x, y)) continue;
     const LocatedPoint p = load(t).locator->locate(x, y, level);
     if (p.found()) {
       tile = tiles_[t].name;

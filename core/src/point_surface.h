@@ -24,6 +24,12 @@ class PointSurface {
   const std::string& crsWkt() const { return crsWkt_; }
   // The point at `level`; `tile` is set to the tile's name ("" for one hierarchy).
   LocatedPoint locate(double x, double y, int level, std::string& tile);
+  // The first tile whose extent holds the point (the one `locate` reads first), or the
+  // tile count when none does (and 0 for one hierarchy): points located in this order
+  // read each tile once, where points in any order would read a tile again and again.
+  std::size_t firstTileAt(double x, double y) const;
+  // The tile hierarchies read so far.
+  std::size_t tilesRead() const { return tilesRead_; }
 
  private:
   struct Loaded {
@@ -32,10 +38,12 @@ class PointSurface {
     std::unique_ptr<HierarchyLocator> locator;
   };
   Loaded& load(std::size_t tile);
+  bool holds(std::size_t tile, double x, double y) const;
 
   std::vector<CatalogueTile> tiles_;
   std::list<Loaded> loaded_;  // most recently used first
   int coarsest_ = 0;
+  std::size_t tilesRead_ = 0;
   std::string crsWkt_;
   ProgressRange progress_;
 };

@@ -12,6 +12,7 @@ struct LocateSummary {
   std::size_t points = 0, located = 0;  // located: on the TIN (not outside, not in a hole)
   int level = 0;
   double seconds = 0;                   // the point location itself
+  std::size_t tilesRead = 0;            // a catalogue's tile hierarchies read (a tile again once dropped)
 };
 
 // `tinlod locate`: every point feature of the first layer of `pointsPath` with its
