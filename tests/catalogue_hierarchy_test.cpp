@@ -706,25 +706,23 @@ TEST(CatalogueHierarchy, InfoNamesAFinishedTileItCannotRead) {
   EXPECT_NE(asFile.find("is a tinlod-tiles catalogue, not the hierarchy of one tile"), std::string::npos) << asFile;
 }
 
-TEST(CatalogueHierarchy, LocateReadsEachTileOnceWhateverTheOrderOfThePoints) {
-  // The 9 tiles' centres, round and round three times: with a few tiles kept, points in
-  // this order would read a tile for every point (27), not 9 tiles.
-  const std::string dir = test::tempDir();
+// A points file (in the tiles' CRS) of the 9 tiles' centres, round and round three times;
+// `tiles` gets each point's tile name.
+std::string tileCentresRoundAndRound(const std::string& dir, std::vector<std::string>& tiles) {
   GDALDataset* catalogue = static_cast<GDALDataset*>(
       GDALOpenEx(builtTiles().catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
-  ASSERT_NE(catalogue, nullptr);
   std::vector<std::pair<OGRPoint, std::string>> centres;
   for (auto& f : *catalogue->GetLayerByName("tiles")) {
     OGRPoint centre;
-    ASSERT_EQ(f->GetGeometryRef()->Centroid(&centre), OGRERR_NONE);
+    f->GetGeometryRef()->Centroid(&centre);
     centres.emplace_back(centre, std::to_string(f->GetFieldAsInteger("tile_col")) + "," +
                                      std::to_string(f->GetFieldAsInteger("tile_row")));
   }
   GDALClose(catalogue);
-  ASSERT_EQ(centres.size(), 9u);
+  EXPECT_EQ(centres.size(), 9u);
   const std::string points = dir + "/round.gpkg";
   OGRSpatialReference crs;  // the tiles' (a GeoPackage layer without one is taken as geographic)
-  ASSERT_EQ(crs.importFromWkt(merged().hierarchy.base.crsWkt.c_str()), OGRERR_NONE);
+  crs.importFromWkt(merged().hierarchy.base.crsWkt.c_str());
   GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(points.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
   OGRLayer* layer = ds->CreateLayer("points", &crs, wkbPoint, nullptr);
   addField(*layer, "n", OFTInteger);
@@ -732,9 +730,43 @@ TEST(CatalogueHierarchy, LocateReadsEachTileOnceWhateverTheOrderOfThePoints) {
     OGRFeature f(layer->GetLayerDefn());
     f.SetField("n", n);
     f.SetGeometry(&centres[n % 9].first);
-    ASSERT_EQ(layer->CreateFeature(&f), OGRERR_NONE);
+    EXPECT_EQ(layer->CreateFeature(&f), OGRERR_NONE);
+    tiles.push_back(centres[n % 9].second);
   }
   GDALClose(ds);
+  return points;
+}
+
+TEST(CatalogueHierarchy, JobsOnACatalogueWithUnfinishedTilesSayHowMany) {
+  const std::string catalogue = alteredCatalogue(
+      "two_unfinished.gpkg",
+      std::vector<std::string>{"UPDATE tiles SET status = 'failed' WHERE tile_col = 1 AND tile_row = 1",
+                               "UPDATE tiles SET status = 'pending' WHERE tile_col = 2 AND tile_row = 0",
+                               "UPDATE tiles SET status = 'empty' WHERE tile_col = 0 AND tile_row = 2"});
+  const std::string expected =
+      "2 of the catalogue's 9 tiles are not finished (1 failed, 1 pending): only the finished tiles are read; "
+      "run tinlod tiles again to finish them";
+  EXPECT_EQ(unfinishedTilesWarning(catalogue), expected);
+  EXPECT_EQ(unfinishedTilesWarning(builtTiles().catalogue), "");
+  const std::string dir = test::tempDir();
+  test::RecordingFeedback lod, accuracy;
+  LodJobOptions o;
+  o.lod.maxError = 6;
+  runLodJob(catalogue, dir + "/lod.gpkg", o, false, lod.feedback());
+  runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", accuracy.feedback());
+  std::vector<std::string> tiles;
+  test::RecordingFeedback locate;
+  runLocateJob(catalogue, tileCentresRoundAndRound(dir, tiles), dir + "/located.gpkg", 0, false, locate.feedback());
+  EXPECT_TRUE(lod.warned(expected));
+  EXPECT_TRUE(accuracy.warned(expected));
+  EXPECT_TRUE(locate.warned(expected));
+}
+
+TEST(CatalogueHierarchy, LocateReadsEachTileOnceWhateverTheOrderOfThePoints) {
+  // With a few tiles kept, points in this order would read a tile for every point (27), not 9.
+  const std::string dir = test::tempDir();
+  std::vector<std::string> tiles;
+  const std::string points = tileCentresRoundAndRound(dir, tiles);
   const LocateSummary s = runLocateJob(builtTiles().catalogue, points, dir + "/located.gpkg", 1, false, kQuiet);
   EXPECT_EQ(s.tilesRead, 9u);
   EXPECT_EQ(s.located, 27u);
@@ -746,8 +778,8 @@ TEST(CatalogueHierarchy, LocateReadsEachTileOnceWhateverTheOrderOfThePoints) {
   std::map<std::string, double> heights;
   for (auto& f : *out->GetLayerByName("points")) {
     EXPECT_EQ(f->GetFieldAsInteger("n"), n);
-    EXPECT_EQ(f->GetFieldAsString("tile"), centres[n % 9].second) << n;
-    const auto [it, first] = heights.emplace(centres[n % 9].second, f->GetFieldAsDouble("elevation"));
+    EXPECT_EQ(f->GetFieldAsString("tile"), tiles[n]) << n;
+    const auto [it, first] = heights.emplace(tiles[n], f->GetFieldAsDouble("elevation"));
     if (!first) EXPECT_EQ(f->GetFieldAsDouble("elevation"), it->second) << n;
     ++n;
   }

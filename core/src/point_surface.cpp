@@ -13,6 +13,7 @@ constexpr std::size_t kTilesKept = 4;
 PointSurface::PointSurface(const std::string& path, const ProgressRange& progress) : progress_(progress) {
   if (isCatalogue(path)) {
     tiles_ = readCatalogue(path);
+    if (const std::string warning = unfinishedTilesWarning(path); !warning.empty()) progress.warn(warning);
     const Loaded& first = load(0);
     coarsest_ = first.stored->hierarchy.coarsest();
     crsWkt_ = first.stored->hierarchy.base.crsWkt;

@@ -5,6 +5,7 @@
 #include <ogrsf_frmts.h>
 
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include "tinlod/error.h"
@@ -104,6 +105,21 @@ std::vector<TileStatus> readTileStatuses(const std::string& path) {
     tiles.push_back(std::move(t));
   }
   return tiles;
+}
+
+std::string unfinishedTilesWarning(const std::string& path) {
+  std::map<std::string, std::size_t> unfinished;
+  std::size_t all = 0, count = 0;
+  for (const TileStatus& tile : readTileStatuses(path)) {
+    ++all;
+    if (tile.status != "done" && tile.status != "empty") ++unfinished[tile.status], ++count;
+  }
+  if (count == 0) return "";
+  std::string statuses;
+  for (const auto& [status, n] : unfinished)
+    statuses += (statuses.empty() ? "" : ", ") + std::to_string(n) + " " + status;
+  return std::to_string(count) + " of the catalogue's " + std::to_string(all) + " tiles are not finished (" + statuses +
+         "): only the finished tiles are read; run tinlod tiles again to finish them";
 }
 
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles) {

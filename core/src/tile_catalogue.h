@@ -39,6 +39,11 @@ struct TileStatus {
 // Every tile of the catalogue, in the catalogue's order.
 std::vector<TileStatus> readTileStatuses(const std::string& path);
 
+// What a job that reads the catalogue warns of when some of its tiles are not finished
+// (pending or failed; an empty tile holds no data): the result covers the finished ones
+// only. Empty when every tile is done or empty.
+std::string unfinishedTilesWarning(const std::string& path);
+
 // Throws Error unless every tile says which cells it holds (xsize and ysize), as the jobs
 // that work a tile at a time need.
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles);
