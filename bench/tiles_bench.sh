@@ -6,7 +6,8 @@
 #     does by default (a survey pass, one threshold per level, the build pass): whether every
 #     level's union is conforming, and its accuracy (pooled RMSE and maximum error against
 #     the DEM, from the tiles' levels tables) against a whole-raster run with the same
-#     options, at the coarsest level and at equal vertex counts;
+#     options, at the coarsest level and at equal vertex counts; then swiss_alps (voids) and
+#     vancouver (sea) as 16 tiles;
 #  2. the peak memory of one tile of 4096 x 4096 cells (-tile_size 4095, tile 0,0 of a synthetic 8193 x 8193 DEM),
 #     to build it and to measure it (tinlod accuracy on that DEM as 4 such tiles, with the raster);
 #  3. tinlod accuracy on a catalogue (a tile at a time) against the same on the whole run's
@@ -212,6 +213,9 @@ for part in $parts; do
       accuracy_case alps4 "$data/alps_2x2_N46E007_N47E008.tif" 1200
       accuracy_case alps16 "$data/alps_2x2_N46E007_N47E008.tif" 600
       accuracy_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
+      # Beyond the issue's cases: voids (swiss_alps, 7 % nodata) and sea (vancouver).
+      accuracy_case swiss16 "$data/swiss_alps_N46E008.tif" 300
+      accuracy_case vancouver16 "$data/vancouver_N49W123.tif" 300
       ;;
     memory) memory_case ;;
     measure)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <set>
@@ -15,6 +16,7 @@
 #include "tinlod/sample_job.h"
 #include "tinlod/sampler.h"
 #include "tinlod/synthetic_dem.h"
+#include "tinlod/tile_borders.h"
 #include "tinlod/tile_reader.h"
 
 namespace tinlod {
@@ -136,14 +138,14 @@ TEST(TileSampling, VerticesLieExactlyWhereTheWholeRunPutsThemAndBorderVerticesAl
 }
 
 // A tile lists the cells of its edges near a missing cell of the whole raster, beyond the
-// tile included, and those that are peaks or pits of the whole raster, and no others: the
-// border rule pins them alike in both tiles.
+// tile included, those next to one, and those that are peaks or pits of the whole raster,
+// and no others: the border rule samples and pins them alike in both tiles.
 TEST(TileReader, EdgeCellsNearAMissingCellAndPeaksAndPitsAreThoseOfTheWholeRaster) {
   const Dem whole = wholeDem();  // its void is around row 20, column 33
   const std::string path = test::tempDir() + "/tile_reader_near.tif";
   writeDemGeoTiff(whole, path);
   const int reach = 4;
-  std::size_t anyNear = 0, anyExtreme = 0;
+  std::size_t anyNear = 0, anyExtreme = 0, anyNext = 0, nearOnLine = 0, nearOnLineSampled = 0;
   for (const TileSpec& tile : allTiles(whole, 30)) {
     const Dem dem = readTile(path, 1, tile, reach, kRange, {});
     const CellWindow w = tileWindow({whole.width, whole.height}, tile);
@@ -152,14 +154,25 @@ TEST(TileReader, EdgeCellsNearAMissingCellAndPeaksAndPitsAreThoseOfTheWholeRaste
     for (int r = 0; r < dem.height; ++r)
       for (int c = 0; c < dem.width; ++c) {
         const bool edge = r == 0 || c == 0 || r == dem.height - 1 || c == dem.width - 1;
-        bool near = false;
+        bool near = false, next = false;
         for (int dr = -reach; dr <= reach && edge; ++dr)
           for (int dc = -reach; dc <= reach; ++dc) {
             const int rr = w.yoff + r + dr, cc = w.xoff + c + dc;
-            near = near || (rr >= 0 && cc >= 0 && rr < whole.height && cc < whole.width && !whole.valid(rr, cc));
+            const bool missing = rr >= 0 && cc >= 0 && rr < whole.height && cc < whole.width && !whole.valid(rr, cc);
+            near = near || missing;
+            next = next || (missing && std::abs(dr) <= 1 && std::abs(dc) <= 1);
           }
         EXPECT_EQ(dem.nearNodataAt(r, c), near) << "tile " << tile.col << "," << tile.row << " cell " << r << "," << c;
-        listed += near;
+        EXPECT_EQ(dem.nextToNodataAt(r, c), next) << "tile " << tile.col << "," << tile.row << " cell " << r << "," << c;
+        listed += near, anyNext += next;
+        // On a shared line (its corners always vertices): every cell next to nodata a vertex,
+        // the others near it as the line's blocks say.
+        const bool rowEdge = r == 0 || r == dem.height - 1, colEdge = c == 0 || c == dem.width - 1;
+        if (dem.valid(r, c) && onSharedLine(dem, r, c) && rowEdge != colEdge) {
+          const bool sampled = lineCellSampled(dem, r, c, 3, 11);
+          if (next) EXPECT_TRUE(sampled) << "tile " << tile.col << "," << tile.row << " cell " << r << "," << c;
+          if (near && !next) ++nearOnLine, nearOnLineSampled += sampled;
+        }
         const bool extreme = edge && strictPeakOrPit(whole, w.yoff + r, w.xoff + c);
         EXPECT_EQ(dem.edgePeakOrPitAt(r, c), extreme) << "tile " << tile.col << "," << tile.row << " cell " << r << "," << c;
         extremes += extreme;
@@ -168,7 +181,10 @@ TEST(TileReader, EdgeCellsNearAMissingCellAndPeaksAndPitsAreThoseOfTheWholeRaste
     EXPECT_EQ(dem.edgePeaksAndPits.size(), extremes);
     anyNear += listed, anyExtreme += extremes;
   }
-  EXPECT_GT(anyNear, 0u);
+  EXPECT_GT(anyNear, anyNext);
+  EXPECT_GT(nearOnLineSampled, 0u);
+  EXPECT_LT(nearOnLineSampled * 2, nearOnLine);  // about one a block of 3, not every one
+  EXPECT_GT(anyNext, 0u);
   EXPECT_GT(anyExtreme, 0u);
 }
 

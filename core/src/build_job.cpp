@@ -251,7 +251,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   // the writing room (68 and 45 MB for a 4096 x 4096 tile). The DEM's size and window stay
   // for the metadata.
   if (!accuracy.wanted()) {
-    releaseMemory(dem.z), releaseMemory(dem.nearNodata);
+    releaseMemory(dem.z), releaseMemory(dem.nearNodata), releaseMemory(dem.nextToNodata);
     releaseMemory(h.base.triangles);
   }
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);

@@ -42,13 +42,21 @@ bool onOneSharedLine(const Dem& dem, int rowA, int colA, int rowB, int colB) {
   return false;
 }
 
-bool pinnedOnLine(const Dem& dem, int row, int col) {
-  const bool corner = (col == 0 || col == dem.width - 1) && (row == 0 || row == dem.height - 1);
-  return corner || dem.nearNodataAt(row, col);
+namespace {
+
+bool tileCorner(const Dem& dem, int row, int col) {
+  return (col == 0 || col == dem.width - 1) && (row == 0 || row == dem.height - 1);
 }
 
+}  // namespace
+
+bool pinnedOnLine(const Dem& dem, int row, int col) { return tileCorner(dem, row, col) || dem.nearNodataAt(row, col); }
+
 bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t seed) {
-  if (pinnedOnLine(dem, row, col)) return true;
+  // Next to nodata every cell is a vertex, as the outline's cells are in a whole run; the
+  // rest of the pinned cells are sampled as the line is, or a line near voids would keep a
+  // vertex on every cell for good (all levels of a tiled run of a DEM with voids).
+  if (tileCorner(dem, row, col) || dem.nextToNodataAt(row, col)) return true;
   const std::array<bool, 4> shared = sharedSides(dem);
   // On a vertical line its blocks run down it.
   const bool column = (shared[kFirstCol] && onSide(dem, kFirstCol, row, col)) ||

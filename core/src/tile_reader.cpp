@@ -82,9 +82,11 @@ Dem readTile(const std::string& path, int band, const TileSpec& tile, int pinnin
   wide.ysize = std::min(raster[1], w.yoff + w.ysize + pinning) - wide.yoff;
   Dem dem = readDemWindow(path, band, wide, progress, valid);
   std::vector<std::size_t> near = missingNearEdges(dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff, pinning);
+  std::vector<std::size_t> next = missingNearEdges(dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff, 1);
   std::vector<std::size_t> extremes = edgePeaksAndPits(dem, w, w.xoff - wide.xoff, w.yoff - wide.yoff);
   cropDem(dem, w.xoff - wide.xoff, w.yoff - wide.yoff, w.xsize, w.ysize);
   dem.nearNodata = std::move(near);  // by cell of the tile, as cropped
+  dem.nextToNodata = std::move(next);
   dem.edgePeaksAndPits = std::move(extremes);
   const std::size_t count = dem.validCount();
   if (count < 3)

@@ -41,12 +41,16 @@ struct Dem {
   // edges are asked about, so only they are listed, not a flag for every cell (17 MB for a
   // 4096 x 4096 tile).
   std::vector<std::size_t> nearNodata;
+  // A tile's: the cells of its edges next to a missing cell of the whole raster (among their
+  // 8 neighbours, beyond the tile included), listed as nearNodata is: the outline there.
+  std::vector<std::size_t> nextToNodata;
   // A tile's: the cells of its edges that are strict peaks or pits of the whole raster
   // (strictPeakOrPit, their 3 x 3 cells read beyond the tile), listed as nearNodata is.
   std::vector<std::size_t> edgePeaksAndPits;
 
   float at(int row, int col) const { return z[static_cast<std::size_t>(row) * width + col]; }
   bool nearNodataAt(int row, int col) const { return listed(nearNodata, row, col); }
+  bool nextToNodataAt(int row, int col) const { return listed(nextToNodata, row, col); }
   bool edgePeakOrPitAt(int row, int col) const { return listed(edgePeaksAndPits, row, col); }
   bool valid(int row, int col) const {
     return row >= 0 && col >= 0 && row < height && col < width && !std::isnan(at(row, col));

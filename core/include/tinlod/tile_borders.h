@@ -78,19 +78,19 @@ bool onSharedLine(const Dem& dem, int row, int col);
 // Whether two cells of a tile lie on one line it shares with a neighbouring tile.
 bool onOneSharedLine(const Dem& dem, int rowA, int colA, int rowB, int colB);
 
-// Whether a cell of a shared line never goes: a tile corner, or a cell near nodata
-// (Dem::nearNodata), where how a tile's level 0 meets its line depends on cells the other
-// tile does not read. Always sampled.
+// Whether a cell of a shared line never goes (when it is a vertex): a tile corner, or a cell
+// near nodata (Dem::nearNodata), where how a tile's level 0 meets its line depends on cells
+// the other tile does not read.
 bool pinnedOnLine(const Dem& dem, int row, int col);
 
 // Whether a cell of a shared line never goes in this job: pinnedOnLine, a peak or pit
 // kept by -fix_peaks_pits, or a cell the tiles agreed to keep (TileBorders::kept).
 bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int col);
 
-// Whether a valid cell of a shared line is a vertex: the pinned cells, and one valid cell
-// per block of the line, chosen by a hash of the seed
-// and the block's place in the whole raster: the same cells in both tiles, about as dense
-// as the interior's samples.
+// Whether a valid cell of a shared line is a vertex: the tile's corners, every cell next to
+// nodata (Dem::nextToNodata: the outline, as a whole run samples it), and one valid cell per
+// block of the line, chosen by a hash of the seed and the block's place in the whole raster:
+// the same cells in both tiles, about as dense as the interior's samples.
 bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t seed);
 
 // Levels that a whole run with these percentages makes when nothing stops it early.

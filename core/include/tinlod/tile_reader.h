@@ -21,7 +21,8 @@ std::array<int, 2> rasterSize(const std::string& path);
 CellWindow tileWindow(const std::array<int, 2>& raster, const TileSpec& tile);
 
 // Reads the tile, with Dem::nearNodata listing its edge cells within `pinning` cells of a
-// missing cell of the whole raster, and Dem::edgePeaksAndPits its edge cells that are
+// missing cell of the whole raster, Dem::nextToNodata those next to one, and
+// Dem::edgePeaksAndPits its edge cells that are
 // strict peaks or pits of it: both read from beyond the tile (`pinning` of at least 1), so
 // both tiles on a line agree. Throws EmptyTile when it holds fewer than 3 valid cells.
 Dem readTile(const std::string& path, int band, const TileSpec& tile, int pinning, const ProgressRange& progress,
