@@ -17,6 +17,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import zipfile
 
 from osgeo import gdal, ogr
 
@@ -311,6 +312,20 @@ def main(tinlod, tiles):
     bad = run(base + [os.path.join(work, "x.gpkg"), "-tile_size", "100", "-tinlod", program])
     check("-tile_size not a multiple of -block is refused, naming both",
           bad.returncode == 1 and "-tile_size 100" in bad.stderr and "-block 3" in bad.stderr, bad.stderr)
+    blocked = os.path.join(work, "blocked.gpkg")
+    open(os.path.join(work, "blocked_tiles"), "w").close()  # a file where the tiles folder goes
+    refused = run(base[:1] + [dem, blocked, "-tile_size", str(TILE_SIZE), "-tinlod", program])
+    check("a tiles folder that cannot be made is an error naming it, not a traceback",
+          refused.returncode == 1 and "cannot make the tiles folder" in refused.stderr
+          and "Traceback" not in refused.stderr, refused.stderr[-1500:])
+    zipped = os.path.join(work, "dem.zip")
+    with zipfile.ZipFile(zipped, "w") as archive:
+        archive.write(dem, "dem.tif")
+    virtual = run(base[:1] + ["/vsizip/" + zipped + "/dem.tif", os.path.join(work, "z.gpkg"), "-tile_size", str(TILE_SIZE),
+                              "-workers", "2", "-tinlod", program, "--", "-seed", "5"], env)
+    statuses = sorted(r["status"] for r in rows(os.path.join(work, "z.gpkg"))[0].values()) if virtual.returncode == 0 else []
+    check("a DEM given by a GDAL virtual path (/vsizip//absolute/path.zip/dem.tif) is built",
+          virtual.returncode == 0 and statuses == ["done"] * 5 + ["empty"], (statuses, virtual.stderr[-1500:]))
     wrong = run(base + [os.path.join(work, "w.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2", "-retries", "0",
                         "-tinlod", program, "--", "-delete_pct", "200"], env)
     check("options every tile refuses: the error says what the tiles said, and to correct them with -overwrite",

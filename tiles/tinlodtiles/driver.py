@@ -35,7 +35,11 @@ def run(arguments):
     if os.path.exists(arguments.catalogue) and not arguments.overwrite:
         Catalogue.open(arguments.catalogue).close()  # refused before anything is written
     folder = tiles_folder(arguments.catalogue)
-    os.makedirs(folder, exist_ok=True)
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as e:
+        raise TilesError("cannot make the tiles folder %s (%s): put the catalogue where you can write"
+                         % (folder, e.strerror)) from None
     with DriverLock(folder, arguments.catalogue):
         if arguments.overwrite:
             remove_job(arguments.catalogue)
@@ -99,10 +103,17 @@ def agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built):
 
 def job_settings(arguments, dem):
     """The catalogue's metadata: what a rerun must match."""
-    return {"TINLOD_SOURCE": os.path.abspath(arguments.dem), "TINLOD_TILE_SIZE": str(arguments.tile_size),
+    return {"TINLOD_SOURCE": dem_path(arguments.dem), "TINLOD_TILE_SIZE": str(arguments.tile_size),
             "TINLOD_BUILD_OPTIONS": shlex.join(arguments.build_options),
             "TINLOD_RASTER_SIZE": "%d,%d" % (dem.RasterXSize, dem.RasterYSize),
             "TINLOD_SELECTION": "global" if global_selection(arguments) else "tile"}
+
+
+def dem_path(path):
+    """The DEM as every worker opens it: a file's absolute path; a GDAL virtual path
+    (/vsizip/, /vsis3/, /vsicurl/...) as given, which making it absolute would break
+    (/vsizip//abs/path.zip/x.tif needs its two slashes)."""
+    return path if path.startswith("/vsi") else os.path.abspath(path)
 
 
 def global_selection(arguments):
@@ -174,7 +185,11 @@ class DriverLock:
         self.path, self.catalogue_path = os.path.join(folder, ".driver.lock"), catalogue_path
 
     def __enter__(self):
-        self.file = open(self.path, "w")
+        try:
+            self.file = open(self.path, "w")
+        except OSError as e:
+            raise TilesError("cannot write in the tiles folder %s (%s): make it writable, or put the catalogue "
+                             "where you can write" % (os.path.dirname(self.path), e.strerror)) from None
         try:
             fcntl.flock(self.file, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
@@ -320,7 +335,7 @@ def submit(client, pending, arguments, extra_options, survey, futures):
     cloudpickle.register_pickle_by_value(task)
     folder = os.path.abspath(tiles_folder(arguments.catalogue))
     for tile in pending:
-        job = {"tinlod": arguments.tinlod, "dem": os.path.abspath(arguments.dem), "tiles_dir": folder,
+        job = {"tinlod": arguments.tinlod, "dem": dem_path(arguments.dem), "tiles_dir": folder,
                "name": survey_name(tile) if survey else tile.name, "col": tile.col, "row": tile.row,
                "tile_size": arguments.tile_size,
                "build_options": list(arguments.build_options) + [o for o in extra_options if o != "-survey"],
