@@ -399,6 +399,16 @@ def main(tinlod, tiles):
         merged = run([tiles, "merge", catalogue, "-level", str(level), out])
         check("(d) merge -level %d gives one layer of the %d triangles" % (level, expected),
               merged.returncode == 0 and level_count(out, "level_%d" % level) == expected, merged.stderr)
+    some = os.path.join(work, "some.gpkg")
+    only = run(base + [some] + options + ["-levels", "0,last"], env)
+    written = sorted(os.listdir(os.path.join(work, "some_levels"))) if only.returncode == 0 else []
+    check("(d) with -levels 0,last the level files are those two levels, and the summary says so",
+          written == ["level_0.vrt", "level_%d.vrt" % (levels - 1)]
+          and ("levels 0, %d across the tiles" % (levels - 1)) in only.stdout, (written, only.stdout, only.stderr))
+    missing = run([tiles, "merge", some, "-level", "1", os.path.join(work, "some_1.gpkg")])
+    check("(d) merge of a level the tiles have no layer for is refused, naming those they have",
+          missing.returncode == 1 and ("have a layer only for level 0, %d" % (levels - 1)) in missing.stderr,
+          missing.stderr)
     box = tile_box(catalogue, (0, 0), inset=1.0)
     corner = os.path.join(work, "corner.gpkg")
     region = run([tiles, "merge", catalogue, "-level", "1", corner, "-te"] + ["%.3f" % v for v in box])

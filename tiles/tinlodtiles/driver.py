@@ -446,7 +446,7 @@ def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
         states[row["status"]] = states.get(row["status"], 0) + 1
     catalogue.close()
     if not arguments.quiet:
-        print_summary(arguments.catalogue, ran, sum(outcome.values()), rounds, skipped, states, levels if vrts else 0)
+        print_summary(arguments.catalogue, ran, sum(outcome.values()), rounds, skipped, states, levels, vrts)
     if states.get("failed"):
         print("ERROR: %d tiles failed after their retries; %s" % (states["failed"], failure_summary(rows)),
               file=sys.stderr)
@@ -474,11 +474,15 @@ def failure_summary(rows):
     return "\n  ".join(["they say:"] + lines) + "\n" + advice
 
 
-def print_summary(catalogue_path, ran, builds, rounds, skipped, states, levels):
+def print_summary(catalogue_path, ran, builds, rounds, skipped, states, levels, vrts):
     agreed = " (%d builds in %d rounds of border agreement)" % (builds, rounds) if builds > ran else ""
     print("%d tiles run%s, %d skipped (already finished); the catalogue %s has %s"
           % (ran, agreed, skipped, catalogue_path,
              ", ".join("%d %s" % (states[s], s) for s in ("done", "empty", "failed", "pending") if s in states)))
-    if levels:
-        print("levels 0 to %d across the tiles: %s"
-              % (levels - 1, os.path.join(levels_folder(catalogue_path), "level_K.vrt")))
+    pattern = os.path.join(levels_folder(catalogue_path), "level_K.vrt")
+    if vrts and len(vrts) == levels:
+        print("levels 0 to %d across the tiles: %s" % (levels - 1, pattern))
+    elif vrts:  # the tiles were built with -levels
+        written = [re.search(r"level_(\d+)\.vrt$", path).group(1) for path in vrts]
+        print("levels %s across the tiles (of 0 to %d: the others have no layer, -levels): %s"
+              % (", ".join(written), levels - 1, pattern))

@@ -2,6 +2,7 @@
 """Each level as one layer across tiles: an OGR VRT union of the tiles' `level_K` views,
 written beside the catalogue, and the same union merged into one GeoPackage on demand."""
 import os
+import re
 from xml.sax.saxutils import escape, quoteattr
 
 from osgeo import gdal, ogr
@@ -35,16 +36,27 @@ def union_vrt(level, files, vrt_folder=None):
             '  </OGRVRTUnionLayer>\n</OGRVRTDataSource>\n' % (level, "\n".join(layers)))
 
 
+def level_views(path):
+    """The levels whose `level_K` view a tile has: all, or those its build's -levels asked for."""
+    dataset = ogr.Open(path)
+    if dataset is None:
+        raise TilesError("%s is not a GeoPackage GDAL can open" % path)
+    names = (dataset.GetLayer(i).GetName() for i in range(dataset.GetLayerCount()))
+    return {int(name[len("level_"):]) for name in names if re.fullmatch(r"level_\d+", name)}
+
+
 def write_level_vrts(catalogue, catalogue_path, levels):
-    """`<stem>_levels/level_K.vrt` for K in 0..levels-1; returns their paths."""
+    """`<stem>_levels/level_K.vrt` for K in 0..levels-1 that the tiles have a view of; returns
+    their paths."""
     files = built_tile_files(catalogue, catalogue_path)
+    viewed = level_views(files[0]) if files else set()
     folder = levels_folder(catalogue_path)
     os.makedirs(folder, exist_ok=True)
     for stale in os.listdir(folder):
         if stale.startswith("level_") and stale.endswith(".vrt"):
             os.remove(os.path.join(folder, stale))
     paths = []
-    for level in range(levels if files else 0):
+    for level in sorted(viewed & set(range(levels))):
         path = os.path.join(folder, "level_%d.vrt" % level)
         with open(path + ".partial", "w", encoding="utf-8") as f:
             f.write(union_vrt(level, files, folder))
@@ -66,6 +78,10 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     catalogue.close()
     if not files:
         raise TilesError("-te: no finished tile meets %s" % " ".join("%g" % v for v in extent))
+    viewed = level_views(files[0])
+    if level not in viewed:
+        raise TilesError("-level %d: the tiles were built with -levels, and have a layer only for level %s"
+                         % (level, ", ".join(str(k) for k in sorted(viewed))))
     if os.path.exists(out_path) and not overwrite:
         raise TilesError("%s exists: add -overwrite to replace it" % out_path)
     source = "/vsimem/tinlod_tiles_merge_%d.vrt" % os.getpid()
