@@ -312,6 +312,11 @@ def main(tinlod, tiles):
     bad = run(base + [os.path.join(work, "x.gpkg"), "-tile_size", "100", "-tinlod", program])
     check("-tile_size not a multiple of -block is refused, naming both",
           bad.returncode == 1 and "-tile_size 100" in bad.stderr and "-block 3" in bad.stderr, bad.stderr)
+    levelless = run(base + [os.path.join(work, "t1.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program,
+                            "--", "-threshold", "1e6"])
+    check("-threshold without -max_levels is refused before any tile runs",
+          levelless.returncode == 1 and "-threshold after -- needs -max_levels" in levelless.stderr
+          and not os.path.exists(os.path.join(work, "t1.gpkg")), levelless.stderr)
     blocked = os.path.join(work, "blocked.gpkg")
     open(os.path.join(work, "blocked_tiles"), "w").close()  # a file where the tiles folder goes
     refused = run(base[:1] + [dem, blocked, "-tile_size", str(TILE_SIZE), "-tinlod", program])

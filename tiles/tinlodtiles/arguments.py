@@ -153,6 +153,10 @@ def check_run(arguments):
     for option in arguments.build_options:
         if option in REFUSED_BUILD_OPTIONS:
             raise TilesError("%s after --: %s" % (option, REFUSED_BUILD_OPTIONS[option]))
+    if build_option(arguments.build_options, "-threshold") is not None \
+            and build_option(arguments.build_options, "-max_levels") is None:
+        raise TilesError("-threshold after -- needs -max_levels N after -- too: every tile of a job must make "
+                         "the same levels")
     block = build_block(arguments.build_options)
     if arguments.tile_size % block:
         lower = arguments.tile_size - arguments.tile_size % block
