@@ -385,6 +385,16 @@ def main(tinlod, tiles):
     after = file_times(folder)
     after.pop("tile_0_1.gpkg", None)
     check("(c) ... and the others are left as they were", after == before)
+    original = open(os.path.join(folder, "tile_1_0.gpkg"), "rb").read()
+    copied = open(os.path.join(folder, "tile_0_0.gpkg"), "rb").read()
+    for damage, content in (("another tile's file copied over it", copied), ("a truncated file", original[:100])):
+        with open(os.path.join(folder, "tile_1_0.gpkg"), "wb") as f:
+            f.write(content)
+        repaired = run(base + [catalogue] + options, env)
+        check("(c) a tile whose file is %s is said and built again, alone" % damage,
+              "WARNING: tile 1,0 is built again: " in repaired.stderr and "1 tiles run, 5 skipped" in repaired.stdout
+              and open(os.path.join(folder, "tile_1_0.gpkg"), "rb").read()[:100] == original[:100],
+              repaired.stdout + repaired.stderr[-1000:])
     other = run(base + [catalogue] + options[:-1] + ["6"], env)
     check("(c) a rerun with other build options is refused, suggesting -overwrite",
           other.returncode == 1 and "-overwrite" in other.stderr, other.stderr)

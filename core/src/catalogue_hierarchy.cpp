@@ -147,6 +147,11 @@ StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange
   StoredHierarchy stored = readHierarchy(tile.file, progress);
   if (stored.info.kind != "hierarchy")
     throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
+  // A file copied or renamed over another tile's would put its triangles in the wrong place.
+  const auto holds = stored.info.metadata.find("tile");
+  if (holds != stored.info.metadata.end() && holds->second != tile.name)
+    throw Error("tile " + tile.name + " ('" + tile.file + "') holds tile " + holds->second +
+                ": remove the file and run tinlod tiles again to build it");
   return stored;
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "point_surface.h"
 
+#include "catalogue_hierarchy.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -32,7 +33,7 @@ PointSurface::Loaded& PointSurface::load(std::size_t tile) {
       return loaded_.front();
     }
   if (loaded_.size() >= kTilesKept) loaded_.pop_back();
-  auto stored = std::make_unique<StoredHierarchy>(readHierarchy(tiles_[tile].file, ProgressRange(Feedback{}, 0, 1)));
+  auto stored = std::make_unique<StoredHierarchy>(readCatalogueTile(tiles_[tile], ProgressRange(Feedback{}, 0, 1)));
   ++tilesRead_;
   if (!loaded_.empty() && stored->hierarchy.coarsest() != coarsest_)
     throw Error("tile " + tiles_[tile].name + " ('" + tiles_[tile].file + "') has levels 0 to " +

@@ -221,19 +221,32 @@ def remove_leftovers(folder):
 
 
 def pending_tiles(catalogue, tiles, catalogue_path):
-    """The tiles to build: all but those finished whose file is there."""
+    """The tiles to build: all but those finished whose file is there, readable and theirs."""
     rows = catalogue.rows()
     base = os.path.dirname(os.path.abspath(catalogue_path))
     pending = []
     for tile in tiles:
         row = rows[(tile.col, tile.row)]
         if row["status"] == "empty" or (row["status"] == "done" and row["file"]
-                                        and os.path.isfile(os.path.join(base, row["file"]))):
+                                        and finished_file(os.path.join(base, row["file"]), tile)):
             continue
         if row["status"] != "pending":
             catalogue.update(tile.col, tile.row, {"status": "pending", "file": None})
         pending.append(tile)
     return pending
+
+
+def finished_file(path, tile):
+    """Whether a done tile's file is there and holds that tile; a damaged one or another
+    tile's (copied or renamed over it) is said and built again."""
+    if not os.path.isfile(path):
+        return False
+    try:
+        read_tile_summary(path, "%d,%d" % (tile.col, tile.row))
+        return True
+    except TilesError as e:
+        print("WARNING: tile %d,%d is built again: %s" % (tile.col, tile.row, e), file=sys.stderr)
+        return False
 
 
 class Workers:

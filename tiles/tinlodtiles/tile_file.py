@@ -17,6 +17,13 @@ class TileSummary:
 
 
 def read_tile_summary(path, expected_tile):
+    try:
+        return summary_of(path, expected_tile)
+    except RuntimeError as e:  # GDAL's exceptions: a damaged file
+        raise TilesError("%s cannot be read (%s)" % (path, str(e).strip())) from None
+
+
+def summary_of(path, expected_tile):
     dataset = ogr.Open(path)
     if dataset is None:
         raise TilesError("%s is not a GeoPackage GDAL can open" % path)
