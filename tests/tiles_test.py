@@ -220,8 +220,8 @@ def border_agreement(base, options, work, env):
     check("(h) the bounded run succeeds", first.returncode == 0, first.stderr[-2000:])
     check("(h) its tiles agreed their lines in a second round", "border agreement, round 2" in first.stdout,
           first.stdout[-2000:])
-    check("(h) the summary counts the 5 tiles once, and their builds and rounds apart",
-          re.search(r"^5 tiles run \(\d+ builds in \d rounds of border agreement\), 1 skipped", first.stdout, re.M),
+    check("(h) the summary counts the 6 tiles once (the empty one run, not skipped), and the builds and rounds apart",
+          re.search(r"^6 tiles run \(\d+ builds in \d rounds of border agreement\), 0 skipped", first.stdout, re.M),
           first.stdout[-2000:])
     folder = os.path.join(work, "e_tiles")
     found = rows(catalogue)[0]
@@ -342,6 +342,8 @@ def main(tinlod, tiles):
     catalogue = os.path.join(work, "a.gpkg")
     first = run(base + [catalogue] + options, env)
     check("(a) the run succeeds", first.returncode == 0, first.stderr[-2000:])
+    check("(a) its summary counts every tile run, none skipped (the one its survey found empty included)",
+          "6 tiles run, 0 skipped" in first.stdout, first.stdout)
     found, metadata = check_complete(catalogue, "(a)")
     check("(a) the build options are recorded exactly", metadata.get("TINLOD_BUILD_OPTIONS") == "-seed 5", metadata)
 

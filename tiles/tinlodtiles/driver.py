@@ -52,6 +52,7 @@ def run(arguments):
             listed = set(pending)
             pending += [t for t in tiles_to_agree(catalogue, tiles, arguments)[0] if t not in listed]
         outcome, built, rounds = {}, set(pending), 1
+        started = set(pending)  # surveyed or built by this run (a survey may find a tile empty)
         if pending:
             with Workers(arguments) as workers:  # one cluster for every pass
                 extra = []
@@ -64,7 +65,8 @@ def run(arguments):
                 outcome = run_tiles(catalogue, pending, arguments, workers, extra) if pending else {}
                 if agreeing:
                     rounds = agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built)
-        return finish(catalogue, arguments, len(tiles) - len(built), outcome, len(built), rounds)
+        ran = len(started | built)
+        return finish(catalogue, arguments, len(tiles) - ran, outcome, ran, rounds)
 
 
 def tiles_to_agree(catalogue, tiles, arguments):
@@ -488,7 +490,7 @@ def failure_summary(rows):
 
 
 def print_summary(catalogue_path, ran, builds, rounds, skipped, states, levels, vrts):
-    agreed = " (%d builds in %d rounds of border agreement)" % (builds, rounds) if builds > ran else ""
+    agreed = " (%d builds in %d rounds of border agreement)" % (builds, rounds) if rounds > 1 else ""
     print("%d tiles run%s, %d skipped (already finished); the catalogue %s has %s"
           % (ran, agreed, skipped, catalogue_path,
              ", ".join("%d %s" % (states[s], s) for s in ("done", "empty", "failed", "pending") if s in states)))
