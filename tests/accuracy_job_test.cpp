@@ -162,6 +162,16 @@ TEST(AccuracyJob, AnotherDemThanTheTinsIsRefused) {
   EXPECT_THROW(runAccuracyJob(path, built().gpkg, a, 0, "", {}), Error);
 }
 
+TEST(AccuracyJob, TooFewTestPointsOnTheTinAreRefusedWithNothingWritten) {
+  AccuracyOutputs a;
+  a.reportPath = test::tempDir() + "/few.csv";
+  a.options.step = 1000;  // one test point of the 360 x 300 DEM: figures of zeros and NaN
+  EXPECT_EQ(test::errorOf([&] { runAccuracyJob(smallDem(), built().gpkg, a, 0, "", {}); }),
+            "only 1 test point of '" + smallDem() + "' lies on the TIN: give the DEM the TIN was made from, or a "
+            "smaller -step");
+  EXPECT_FALSE(fs::exists(a.reportPath));
+}
+
 TEST(AccuracyJob, CancelLeavesNoRasterOrReport) {
   const std::string dir = test::tempDir() + "/cancel";
   fs::create_directories(dir);

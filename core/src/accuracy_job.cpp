@@ -100,8 +100,7 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
   const double measured = outputs.compareInsert ? 0.5 : 0.9;
   std::vector<LevelAccuracy> rows = measureLevels(evaluator, h, demName(dem.path), outputs.rasterLevel,
                                                   canvas ? &toCanvas : nullptr, progress.sub(0.05, measured));
-  if (rows.empty() || rows.front().testPoints == 0)
-    throw Error("no test point of '" + dem.path + "' lies on the TIN: give the DEM the TIN was made from");
+  requireTestPoints(rows, dem.path);
   if (outputs.compareInsert) {
     const std::vector<std::size_t> counts = insertionCounts(rows);
     if (counts.empty())

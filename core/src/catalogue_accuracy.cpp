@@ -458,6 +458,15 @@ std::size_t measureMissingTiles(const WholeGrid& g, const std::vector<CatalogueT
 
 }  // namespace
 
+void requireTestPoints(const std::vector<LevelAccuracy>& rows, const std::string& demPath) {
+  constexpr std::size_t kFewest = 3;  // a correlation needs three
+  const std::size_t points = rows.empty() ? 0 : rows.front().testPoints;
+  if (points == 0) throw Error("no test point of '" + demPath + "' lies on the TIN: give the DEM the TIN was made from");
+  if (points < kFewest)
+    throw Error("only " + std::to_string(points) + " test point" + (points == 1 ? "" : "s") + " of '" + demPath +
+                (points == 1 ? "' lies" : "' lie") + " on the TIN: give the DEM the TIN was made from, or a smaller -step");
+}
+
 AccuracyReport measureCatalogue(const std::string& demPath, const std::string& cataloguePath, int band,
                                 const HeightRange& validHeights, const std::string& sourceSrs,
                                 const AccuracyOutputs& outputs, const AccuracyFiles& files, const ProgressRange& progress) {
@@ -517,8 +526,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
                   " (treated as nodata); widen with -valid_range");
   std::vector<LevelAccuracy> rows;
   for (std::size_t L = 0; L < sums.size(); ++L) rows.push_back(rowOf(sums[L], job, demName(demPath), std::int32_t(L)));
-  if (rows.empty() || rows.front().testPoints == 0)
-    throw Error("no test point of '" + demPath + "' lies on the TIN: give the DEM the TIN was made from");
+  requireTestPoints(rows, demPath);
   AccuracyReport report = makeReport(outputs.options, "Accuracy of the TIN hierarchy of " + demName(demPath),
                                      crsNameOf(g->header.crsWkt), std::move(rows));
   if (canvas) canvas->finish(progress.sub(0.95, 0.99));

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "tinlod/accuracy_job.h"
 #include "tinlod/height_range.h"
@@ -19,5 +20,10 @@ namespace tinlod {
 AccuracyReport measureCatalogue(const std::string& demPath, const std::string& cataloguePath, int band,
                                 const HeightRange& validHeights, const std::string& sourceSrs,
                                 const AccuracyOutputs& outputs, const AccuracyFiles& files, const ProgressRange& progress);
+
+// Throws Error unless enough of the DEM's test points lie on the TIN for the figures to mean
+// anything (a DEM beside the TIN's, touching it at a corner, gave one point and a table of
+// zeros and NaN); shared with the measurement of one hierarchy file.
+void requireTestPoints(const std::vector<LevelAccuracy>& rows, const std::string& demPath);
 
 }  // namespace tinlod
