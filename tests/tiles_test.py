@@ -432,6 +432,11 @@ def main(tinlod, tiles):
     expected = level_count(os.path.join(work, "a_tiles", "tile_0_0.gpkg"), "level_1")
     check("(d) merge -te of a box inside tile 0,0 holds that tile's %d triangles only" % expected,
           region.returncode == 0 and level_count(corner, "level_1") == expected, region.stderr)
+    coarsest = run([tiles, "merge", catalogue, "-level", "-1", os.path.join(work, "coarsest.gpkg")])
+    check("(d) merge -level -1 merges the coarsest level, as tinlod's -level -1",
+          coarsest.returncode == 0 and ("level_%d," % (levels - 1)) in coarsest.stdout
+          and level_count(os.path.join(work, "coarsest.gpkg"), "level_%d" % (levels - 1))
+          == sum(level_count(f, "level_%d" % (levels - 1)) for f in files), coarsest.stdout + coarsest.stderr)
     beyond = run([tiles, "merge", catalogue, "-level", str(levels), os.path.join(work, "m.gpkg")])
     check("(d) merge refuses a level the tiles do not have", beyond.returncode == 1 and "-level" in beyond.stderr,
           beyond.stderr)

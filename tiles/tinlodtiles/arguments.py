@@ -43,7 +43,7 @@ Tiles:
                    both sides stay within E), building again the tiles a round changed
 
 Merge:
-  -level K         merge: the level to merge, 0 to the catalogue's TINLOD_LEVELS - 1
+  -level K         merge: the level to merge, 0 to the catalogue's TINLOD_LEVELS - 1; -1 the coarsest
   -te xmin ymin xmax ymax
                    merge: only the tiles whose extent meets this box (in the catalogue's
                    CRS), a region of a large job
@@ -237,7 +237,8 @@ def parse_merge(args):
     check_output(out, "OUT")
     if os.path.abspath(out) == os.path.abspath(catalogue):
         raise TilesError("OUT %s is the catalogue itself: name another file" % out)
-    return MergeArguments(catalogue, whole_number(options["-level"], "-level", 0), out,
+    level = -1 if options["-level"] == "-1" else whole_number(options["-level"], "-level", 0)
+    return MergeArguments(catalogue, level, out,
                           extent(options["-te"]) if "-te" in options else None,
                           "-overwrite" in options, "-q" in options)
 

@@ -46,8 +46,8 @@ def run(arguments):
 def merge(arguments):
     from .levels import merge_level
 
-    count = merge_level(arguments.catalogue, arguments.level, arguments.out, arguments.overwrite,
-                        arguments.extent)
+    level, count = merge_level(arguments.catalogue, arguments.level, arguments.out, arguments.overwrite,
+                               arguments.extent)
     if not arguments.quiet:
-        print("%s: level_%d, %d triangles from the catalogue's tiles" % (arguments.out, arguments.level, count))
+        print("%s: level_%d, %d triangles from the catalogue's tiles" % (arguments.out, level, count))
     return 0

@@ -66,10 +66,12 @@ def write_level_vrts(catalogue, catalogue_path, levels):
 
 
 def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
-    """The tiles' level `level` (of the tiles meeting `extent`, if given) merged into one
-    layer `level_K` of a new GeoPackage."""
+    """The tiles' level `level` (-1: the coarsest; of the tiles meeting `extent`, if given)
+    merged into one layer `level_K` of a new GeoPackage; returns K and its triangle count."""
     catalogue = Catalogue.open(catalogue_path)
     levels = int(catalogue.setting("TINLOD_LEVELS") or 0)
+    if level == -1 and levels:  # the coarsest, as tinlod's -level -1
+        level = levels - 1
     if not 0 <= level < levels:
         raise TilesError("-level %d: the catalogue's tiles have levels 0 to %d" % (level, levels - 1)
                          if levels else "-level: %s has no finished tile yet; run tinlod-tiles on it first"
@@ -97,4 +99,4 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
         if os.path.exists(partial):
             os.remove(partial)
     merged = ogr.Open(out_path)  # held: the layer dies with it
-    return merged.GetLayer(0).GetFeatureCount()
+    return level, merged.GetLayer(0).GetFeatureCount()
