@@ -316,8 +316,10 @@ def start_client(distributed, arguments):
     # Threads, not processes: a task only waits on its tinlod (the GIL is free meanwhile),
     # and worker processes would each start Python and Dask again, seconds of a short run.
     # The tasks' tinlods are then this process's children (end_tile_processes).
+    # The scheduler's HTTP server on a port of its own: with None it still takes 8787, and a
+    # second run at once warns that the port is in use.
     cluster = distributed.LocalCluster(n_workers=arguments.workers, threads_per_worker=1, processes=False,
-                                       dashboard_address=None, silence_logs=logging.ERROR)
+                                       dashboard_address=":0", silence_logs=logging.ERROR)
     return distributed.Client(cluster), cluster
 
 
