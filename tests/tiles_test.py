@@ -318,6 +318,11 @@ def main(tinlod, tiles):
     check("-threshold without -max_levels is refused before any tile runs",
           levelless.returncode == 1 and "-threshold after -- needs -max_levels" in levelless.stderr
           and not os.path.exists(os.path.join(work, "t1.gpkg")), levelless.stderr)
+    away = run(base + [os.path.join(work, "away.gpkg"), "-tile_size", str(TILE_SIZE), "-scheduler", "tcp://127.0.0.1:9",
+                       "-tinlod", program])
+    check("an unreachable -scheduler is an error, and no catalogue is made",
+          away.returncode == 1 and "cannot reach the Dask scheduler tcp://127.0.0.1:9" in away.stderr
+          and not os.path.exists(os.path.join(work, "away.gpkg")), away.stderr[-1500:])
     blocked = os.path.join(work, "blocked.gpkg")
     open(os.path.join(work, "blocked_tiles"), "w").close()  # a file where the tiles folder goes
     refused = run(base[:1] + [dem, blocked, "-tile_size", str(TILE_SIZE), "-tinlod", program])

@@ -11,6 +11,7 @@ import os
 import re
 import shlex
 import signal
+import socket
 import sys
 import threading
 
@@ -34,6 +35,8 @@ def run(arguments):
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
     if os.path.exists(arguments.catalogue) and not arguments.overwrite:
         Catalogue.open(arguments.catalogue).close()  # refused before anything is written
+    if arguments.scheduler:
+        check_reachable(arguments.scheduler)  # before the catalogue records the job's settings
     folder = tiles_folder(arguments.catalogue)
     try:
         os.makedirs(folder, exist_ok=True)
@@ -109,6 +112,18 @@ def job_settings(arguments, dem):
             "TINLOD_BUILD_OPTIONS": shlex.join(arguments.build_options),
             "TINLOD_RASTER_SIZE": "%d,%d" % (dem.RasterXSize, dem.RasterYSize),
             "TINLOD_SELECTION": "global" if global_selection(arguments) else "tile"}
+
+
+def check_reachable(address):
+    """A TCP connection to the scheduler (tcp://host:port, or host:port), or TilesError."""
+    match = re.fullmatch(r"(?:tcp://)?\[?([^\]]+?)\]?:(\d+)/?", address)
+    if not match:
+        return  # another protocol: the client says what it finds
+    try:
+        socket.create_connection((match.group(1), int(match.group(2))), timeout=20).close()
+    except OSError as e:
+        raise TilesError("cannot reach the Dask scheduler %s (%s): is `dask scheduler` running there? "
+                         "Nothing was written" % (address, e.strerror or e)) from None
 
 
 def dem_path(path):
