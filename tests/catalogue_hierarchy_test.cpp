@@ -787,6 +787,19 @@ TEST(CatalogueHierarchy, LocateReadsEachTileOnceWhateverTheOrderOfThePoints) {
   EXPECT_EQ(n, 27);
 }
 
+TEST(CatalogueHierarchy, LocateOnACatalogueStopsOnCancelBeforeReadingTheNextTile) {
+  const std::string dir = test::tempDir();
+  std::vector<std::string> tiles;
+  const std::string points = tileCentresRoundAndRound(dir, tiles);
+  std::filesystem::create_directories(dir + "/out");
+  Feedback cancelling;
+  int asked = 0;  // the tiles read before the stop: the first (to open the catalogue) only
+  cancelling.progress = [&](double f, const std::string&) { return f < 0.4 || ++asked < 2; };
+  EXPECT_THROW(runLocateJob(builtTiles().catalogue, points, dir + "/out/located.gpkg", 0, false, cancelling), Cancelled);
+  EXPECT_EQ(asked, 2);
+  EXPECT_TRUE(std::filesystem::is_empty(dir + "/out"));
+}
+
 TEST(CatalogueHierarchy, LodOfACatalogueStopsOnCancelAndLeavesNothing) {
   const std::string dir = test::tempDir() + "/lod_cancel";
   std::filesystem::create_directories(dir);

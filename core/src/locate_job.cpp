@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <numeric>
 #include <vector>
 
@@ -85,15 +86,17 @@ struct OutputFields {
 };
 
 void locateChunk(std::vector<PendingPoint>& chunk, PointSurface& surface, int level, const OutputFields& fields,
-                 LocateSummary& s) {
+                 LocateSummary& s, const std::function<void()>& checkCancel) {
   std::vector<std::size_t> order(chunk.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return chunk[a].tile < chunk[b].tile; });
   std::string tile;
+  std::size_t lastTile = ~std::size_t{0};
   for (std::size_t i : order) {
     PendingPoint& point = chunk[i];
     if (!point.placed) continue;
+    if (point.tile != lastTile) checkCancel(), lastTile = point.tile;  // before each tile's read
     const auto start = std::chrono::steady_clock::now();
     const LocatedPoint p = surface.locate(point.x, point.y, level, tile);
     s.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -141,7 +144,8 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   const GIntBig count = std::max<GIntBig>(1, source.GetFeatureCount());
   std::vector<PendingPoint> chunk;
   const auto flush = [&] {
-    locateChunk(chunk, surface, level, fields, s);
+    locateChunk(chunk, surface, level, fields, s,
+                [&] { all.report(0.4 + 0.4 * double(s.points) / count, "Locating points"); });
     for (PendingPoint& point : chunk) writeFeature(*layer, *point.feature);
     chunk.clear();
   };
