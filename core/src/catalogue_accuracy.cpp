@@ -473,7 +473,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
   const std::vector<CatalogueTile> tiles = readCatalogue(cataloguePath);
   requireTileCells(cataloguePath, tiles);
   const std::vector<CatalogueTile> missing = readUnfinishedTiles(cataloguePath);
-  if (const std::string warning = unfinishedTilesWarning(cataloguePath); !warning.empty()) progress.warn(warning);
+  warnOfUnfinishedTiles(cataloguePath, progress);
   // The finished tiles, then the cells only unfinished ones hold, each tile a share.
   const double shares = double(tiles.size() + missing.size());
   const auto partOf = [&](std::size_t k) { return progress.sub(0.95 * k / shares, 0.95 * (k + 1) / shares); };

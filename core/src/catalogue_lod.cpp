@@ -113,7 +113,7 @@ ExtractedLod extractCatalogueLod(const std::string& cataloguePath,
                                  const ProgressRange& progress) {
   const std::vector<CatalogueTile> tiles = readCatalogue(cataloguePath);
   requireTileCells(cataloguePath, tiles);
-  if (const std::string warning = unfinishedTilesWarning(cataloguePath); !warning.empty()) progress.warn(warning);
+  warnOfUnfinishedTiles(cataloguePath, progress);
   const TileStarts starts(tiles);
   std::vector<TileLod> parts(tiles.size());
   PlaceSet back;

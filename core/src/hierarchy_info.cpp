@@ -19,6 +19,7 @@
 #include "gdal_handles.h"
 #include "number_text.h"
 #include "stored_table.h"
+#include "tile_catalogue.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
@@ -106,12 +107,8 @@ HierarchyInfo catalogueInfo(GDALDataset& ds, HierarchyInfo info) {
 
 std::string tileCounts(const HierarchyInfo& info) {
   std::size_t all = 0;
-  std::string counts;
-  for (const auto& [status, count] : info.tileStatuses) {
-    all += count;
-    counts += (counts.empty() ? "" : ", ") + std::to_string(count) + " " + status;
-  }
-  return std::to_string(all) + " tiles" + (counts.empty() ? "" : " (" + counts + ")");
+  for (const auto& [status, count] : info.tileStatuses) all += count;
+  return std::to_string(all) + " tiles" + (all ? " (" + statusCounts(info.tileStatuses) + ")" : "");
 }
 
 }  // namespace

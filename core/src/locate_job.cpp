@@ -98,7 +98,7 @@ void locateChunk(std::vector<PendingPoint>& chunk, PointSurface& surface, int le
     if (!point.placed) continue;
     if (point.tile != lastTile) checkCancel(), lastTile = point.tile;  // before each tile's read
     const auto start = std::chrono::steady_clock::now();
-    const LocatedPoint p = surface.locate(point.x, point.y, level, tile);
+    const LocatedPoint p = surface.locate(point.x, point.y, level, point.tile, tile);
     s.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!p.found()) continue;
     point.feature->SetField(fields.elevation, p.z);

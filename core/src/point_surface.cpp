@@ -14,7 +14,7 @@ constexpr std::size_t kTilesKept = 4;
 PointSurface::PointSurface(const std::string& path, const ProgressRange& progress) : progress_(progress) {
   if (isCatalogue(path)) {
     tiles_ = readCatalogue(path);
-    if (const std::string warning = unfinishedTilesWarning(path); !warning.empty()) progress.warn(warning);
+    warnOfUnfinishedTiles(path, progress);
     const Loaded& first = load(0);
     coarsest_ = first.stored->hierarchy.coarsest();
     crsWkt_ = first.stored->hierarchy.base.crsWkt;
@@ -55,11 +55,11 @@ std::size_t PointSurface::firstTileAt(double x, double y) const {
   return t;
 }
 
-LocatedPoint PointSurface::locate(double x, double y, int level, std::string& tile) {
+LocatedPoint PointSurface::locate(double x, double y, int level, std::size_t first, std::string& tile) {
   tile.clear();
   if (!tiled()) return loaded_.front().locator->locate(x, y, level);
   // Tiles share their border lines: a point there is in either, with the same height.
-  for (std::size_t t = firstTileAt(x, y); t < tiles_.size(); ++t) {
+  for (std::size_t t = first; t < tiles_.size(); ++t) {
     if (!holds(t, x, y)) continue;
     const LocatedPoint p = load(t).locator->locate(x, y, level);
     if (p.found()) {

@@ -115,11 +115,18 @@ std::string unfinishedTilesWarning(const std::string& path) {
     if (tile.status != "done" && tile.status != "empty") ++unfinished[tile.status], ++count;
   }
   if (count == 0) return "";
-  std::string statuses;
-  for (const auto& [status, n] : unfinished)
-    statuses += (statuses.empty() ? "" : ", ") + std::to_string(n) + " " + status;
-  return std::to_string(count) + " of the catalogue's " + std::to_string(all) + " tiles are not finished (" + statuses +
-         "): only the finished tiles are read; run tinlod tiles again to finish them";
+  return std::to_string(count) + " of the catalogue's " + std::to_string(all) + " tiles are not finished (" +
+         statusCounts(unfinished) + "): only the finished tiles are read; run tinlod tiles again to finish them";
+}
+
+void warnOfUnfinishedTiles(const std::string& path, const ProgressRange& progress) {
+  if (const std::string warning = unfinishedTilesWarning(path); !warning.empty()) progress.warn(warning);
+}
+
+std::string statusCounts(const std::map<std::string, std::size_t>& counts) {
+  std::string text;
+  for (const auto& [status, n] : counts) text += (text.empty() ? "" : ", ") + std::to_string(n) + " " + status;
+  return text;
 }
 
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles) {

@@ -2,8 +2,12 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
+
+#include "tinlod/feedback.h"
 
 namespace tinlod {
 
@@ -43,6 +47,11 @@ std::vector<TileStatus> readTileStatuses(const std::string& path);
 // (pending or failed; an empty tile holds no data): the result covers the finished ones
 // only. Empty when every tile is done or empty.
 std::string unfinishedTilesWarning(const std::string& path);
+// Warns of them through `progress`, if there are any.
+void warnOfUnfinishedTiles(const std::string& path, const ProgressRange& progress);
+
+// Counts of tiles by status as text: "2 done, 1 failed" (the map's order).
+std::string statusCounts(const std::map<std::string, std::size_t>& counts);
 
 // Throws Error unless every tile says which cells it holds (xsize and ysize), as the jobs
 // that work a tile at a time need.
