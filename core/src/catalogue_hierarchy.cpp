@@ -19,25 +19,14 @@ class TileMerger {
   Hierarchy finish();
 
  private:
-  void addLevels(const Hierarchy& h);
   std::vector<VertexId> addVertices(const CatalogueTile& tile, const Hierarchy& h);
   void addTriangles(const Hierarchy& h, const std::vector<VertexId>& id);
 
   Hierarchy all_;
-  std::vector<double> squares_;  // per level, the sum of squared errors over the tiles' cells
+  PooledLevels levels_;
   std::unordered_map<Place, VertexId, PlaceHash> places_;
   bool first_ = true;
 };
-
-void TileMerger::addLevels(const Hierarchy& h) {
-  if (first_) all_.levels = h.levels, squares_.assign(h.levels.size(), 0);
-  for (std::size_t L = 0; L < h.levels.size(); ++L) {
-    const LevelStats& s = h.levels[L];
-    LevelStats& m = all_.levels[L];
-    if (!first_) poolLevelStats(m, s);
-    squares_[L] += s.rmse * s.rmse * double(s.cells);
-  }
-}
 
 std::vector<VertexId> TileMerger::addVertices(const CatalogueTile& tile, const Hierarchy& h) {
   std::vector<VertexId> id(h.base.vertices.size());
@@ -88,10 +77,11 @@ void TileMerger::add(const CatalogueTile& tile, const Hierarchy& h) {
   if (first_) {
     all_.base.crsWkt = h.base.crsWkt, all_.base.crsName = h.base.crsName;
     all_.options = h.options, all_.tinMethod = h.tinMethod;
+    all_.levels = h.levels;  // what checkSameJob compares the next tiles with
   } else {
     checkSameJob(tile, h, all_);
   }
-  addLevels(h);
+  levels_.add(h.levels);
   addTriangles(h, addVertices(tile, h));
   if (!h.stopReason.empty() && all_.stopReason.empty()) all_.stopReason = "tile " + tile.name + ": " + h.stopReason;
   first_ = false;
@@ -113,6 +103,7 @@ std::vector<bool> outlineVertices(const Tin& tin) {
 Hierarchy TileMerger::finish() {
   const std::vector<bool> outline = outlineVertices(all_.base);
   for (std::size_t v = 0; v < outline.size(); ++v) all_.base.vertices[v].outline = outline[v];
+  all_.levels = levels_.finish();
   for (std::size_t L = 0; L < all_.levels.size(); ++L) {
     LevelStats& s = all_.levels[L];
     s.vertices = s.deleted = s.outlineVertices = 0;
@@ -121,7 +112,6 @@ Hierarchy TileMerger::finish() {
       s.deleted += L > 0 && all_.vertexLevel[v] == std::int32_t(L) - 1;
       s.outlineVertices += outline[v] && all_.vertexLevel[v] >= std::int32_t(L);
     }
-    s.rmse = s.cells > 0 ? std::sqrt(squares_[L] / double(s.cells)) : 0;
   }
   return std::move(all_);
 }
@@ -141,6 +131,21 @@ void poolLevelStats(LevelStats& pooled, const LevelStats& tile) {
   pooled.triangles += tile.triangles, pooled.cells += tile.cells;
   pooled.selectSeconds += tile.selectSeconds, pooled.deleteSeconds += tile.deleteSeconds;
   pooled.maxError = std::max(pooled.maxError, tile.maxError);
+}
+
+void PooledLevels::add(const std::vector<LevelStats>& tile) {
+  const bool first = levels_.empty();
+  if (first) levels_ = tile, squares_.assign(tile.size(), 0);
+  for (std::size_t L = 0; L < tile.size(); ++L) {
+    if (!first) poolLevelStats(levels_[L], tile[L]);
+    squares_[L] += tile[L].rmse * tile[L].rmse * double(tile[L].cells);
+  }
+}
+
+std::vector<LevelStats> PooledLevels::finish() {
+  for (std::size_t L = 0; L < levels_.size(); ++L)
+    levels_[L].rmse = levels_[L].cells > 0 ? std::sqrt(squares_[L] / double(levels_[L].cells)) : 0;
+  return std::move(levels_);
 }
 
 StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress) {

@@ -32,6 +32,23 @@ std::string sharedVertexDiffers(const CatalogueTile& tile, const TinVertex& v);
 // cells and times summed, the largest error the largest of them.
 void poolLevelStats(LevelStats& pooled, const LevelStats& tile);
 
+// Tiles' levels pooled level by level (the first tile's taken as they are, the others'
+// added by poolLevelStats), each level's RMSE pooled over the tiles' cells.
+class PooledLevels {
+ public:
+  // The tile's levels, as many as the first tile's (the caller checks).
+  void add(const std::vector<LevelStats>& tile);
+  bool empty() const { return levels_.empty(); }
+  // The pooled levels so far, their RMSE not yet pooled: for what the caller adds itself.
+  std::vector<LevelStats>& levels() { return levels_; }
+  // The pooled levels, with their RMSE.
+  std::vector<LevelStats> finish();
+
+ private:
+  std::vector<LevelStats> levels_;
+  std::vector<double> squares_;  // per level, the sum of squared errors over the tiles' cells
+};
+
 // A tile's hierarchy file; throws Error naming the tile when it is a single TIN.
 StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress);
 

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "catalogue_info.h"
 
-#include <cmath>
-
 #include "catalogue_hierarchy.h"
 #include "tile_catalogue.h"
 #include "tinlod/error.h"
@@ -20,46 +18,37 @@ HierarchyInfo finishedTileInfo(const TileStatus& tile) {
   }
 }
 
-// Adds a finished tile's levels to the catalogue's; `squares` gets each level's sum of
-// squared errors over the tile's cells, for the pooled RMSE.
-void addTileLevels(const TileStatus& tile, const std::vector<LevelStats>& levels, HierarchyInfo& info,
-                   std::vector<double>& squares) {
-  const bool first = squares.empty();
-  if (first) {
-    info.levels = levels;
-    squares.assign(levels.size(), 0);
-  } else if (levels.size() != info.levels.size()) {
-    throw Error("tile " + tile.name + " ('" + tile.file + "') has levels 0 to " + std::to_string(levels.size() - 1) +
-                ", the tiles before it 0 to " + std::to_string(info.levels.size() - 1) +
-                ": the catalogue's tiles were not built by one job");
+// Adds a finished tile's levels to the catalogue's, its vertices and deleted vertices summed
+// too (a vertex on a line two tiles share counted in each).
+void addTileLevels(const TileStatus& tile, const std::vector<LevelStats>& levels, PooledLevels& pooled) {
+  if (!pooled.empty()) {
+    std::vector<LevelStats>& sums = pooled.levels();
+    if (levels.size() != sums.size())
+      throw Error("tile " + tile.name + " ('" + tile.file + "') has levels 0 to " + std::to_string(levels.size() - 1) +
+                  ", the tiles before it 0 to " + std::to_string(sums.size() - 1) +
+                  ": the catalogue's tiles were not built by one job");
+    for (std::size_t L = 0; L < levels.size(); ++L)
+      sums[L].vertices += levels[L].vertices, sums[L].deleted += levels[L].deleted;
   }
-  for (std::size_t L = 0; L < levels.size(); ++L) {
-    LevelStats& pooled = info.levels[L];
-    if (!first) {
-      poolLevelStats(pooled, levels[L]);
-      pooled.vertices += levels[L].vertices, pooled.deleted += levels[L].deleted;
-    }
-    // A tile's outline runs along the lines it shares: its count says nothing of the union's.
-    pooled.outlineVertices = 0;
-    squares[L] += levels[L].rmse * levels[L].rmse * double(levels[L].cells);
-  }
+  pooled.add(levels);
 }
 
 }  // namespace
 
 void addCatalogueContents(HierarchyInfo& info) {
-  std::vector<double> squares;
+  PooledLevels pooled;
   for (const TileStatus& tile : readTileStatuses(info.path)) {
     ++info.tileStatuses[tile.status];
     if (tile.status == "failed")
       info.failedTiles.push_back(tile.name + ": " + (tile.error.empty() ? "no message" : tile.error));
     if (tile.status != "done" || tile.file.empty()) continue;
     const HierarchyInfo tileInfo = finishedTileInfo(tile);
-    addTileLevels(tile, tileInfo.levels, info, squares);
+    addTileLevels(tile, tileInfo.levels, pooled);
     info.tileBytes += tileInfo.bytes;
   }
-  for (std::size_t L = 0; L < info.levels.size(); ++L)
-    info.levels[L].rmse = info.levels[L].cells > 0 ? std::sqrt(squares[L] / double(info.levels[L].cells)) : 0;
+  info.levels = pooled.finish();
+  // A tile's outline runs along the lines it shares: its count says nothing of the union's.
+  for (LevelStats& l : info.levels) l.outlineVertices = 0;
 }
 
 }  // namespace tinlod
