@@ -61,7 +61,8 @@ def run(arguments):
                 extra = []
                 if global_selection(arguments):
                     extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments, workers)]
-                    pending = pending_tiles(catalogue, tiles, arguments.catalogue)  # the surveys found empty tiles
+                    rows = catalogue.rows()  # the surveys found some tiles empty: those are not built
+                    pending = [t for t in pending if rows[(t.col, t.row)]["status"] != "empty"]
                     built = set(pending)
                 if agreeing:
                     extra += ["-border_keep", os.path.abspath(agreement.keep_path(folder))]
