@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
 """tiles/tinlodtiles/agreement.py: which tiles hold a line cell (as the core's
-keptOnSharedLines, by brute force over every tile), the keep file, and the rounds' next
+cellsOnSharedLines, by brute force over every tile), the keep file, and the rounds' next
 step from the tiles' recorded kept and refused cells.
 
 Usage: agreement_test.py TILES_SOURCE_DIR"""

@@ -181,7 +181,7 @@ TEST(BorderLines, AKeptCellNeverGoesInEitherTile) {
     const std::map<int, double> after = taken(t, all);
     EXPECT_EQ(after.count(keptRow), 0u) << "tile " << col;
     EXPECT_FALSE(after.empty());
-    EXPECT_EQ(keptOnSharedLines(t.dem, t.borders.kept), std::vector<std::uint64_t>{globalCellKey(keptRow, kLineCol)});
+    EXPECT_EQ(cellsOnSharedLines(t.dem, t.borders.kept), std::vector<std::uint64_t>{globalCellKey(keptRow, kLineCol)});
     std::size_t pinned = 0;
     for (std::size_t v = 0; v < t.tin.vertices.size(); ++v)
       if (t.dem.globalRow(t.tin.vertices[v].row) == keptRow && t.dem.globalCol(t.tin.vertices[v].col) == kLineCol)

@@ -47,11 +47,21 @@ import glob
 from tinlodtiles.thresholds import read_survey, level_thresholds, as_option
 print(as_option(level_thresholds([read_survey(p) for p in sorted(glob.glob('$work/survey_*.json'))], 20, 5)))")
 check "the surveys give 14 thresholds" test "$(tr ',' '\n' <<< "$thresholds" | wc -l)" = 14
+# line_outline_union PATTERN OUT: the line cells on the outline the surveys list, in one file.
+line_outline_union() {
+  (cd "$here/../tiles" && /usr/bin/python3 -c "
+import glob, sys
+from tinlodtiles import line_outline
+line_outline.write(sys.argv[2], line_outline.gather(glob.glob(sys.argv[1])))" "$1" "$2")
+}
+line_outline_union "$work/survey_*.json" "$work/line_outline.txt"
+check "the surveys list line cells on the outline (the void reaches a line)" test -s "$work/line_outline.txt"
 for f in "$work"/syn_*.gpkg; do
   t=$(basename "$f" .gpkg); t=${t#syn_}
-  "$tinlod" build "$work/dem.tif" "$work/glob_$t.gpkg" -tile_size 120 -tile "${t/_/,}" -q -level_thresholds "$thresholds"
+  "$tinlod" build "$work/dem.tif" "$work/glob_$t.gpkg" -tile_size 120 -tile "${t/_/,}" -q -level_thresholds "$thresholds" \
+    -line_outline "$work/line_outline.txt"
 done
-check "tiles built with the thresholds fit together at every level" union "$work"/glob_*.gpkg
+check "tiles built with the thresholds and the line outline fit together at every level" union "$work"/glob_*.gpkg
 level_counts() { /usr/bin/python3 -c "import sqlite3,sys; print([r[0] for r in sqlite3.connect(sys.argv[1]).execute('select vertices from levels')])" "$1"; }
 check "... and the thresholds changed what they deleted" test "$(level_counts "$work/glob_1_1.gpkg")" != "$(level_counts "$work/syn_1_1.gpkg")"
 err=$("$tinlod" build "$work/dem.tif" "$work/x.gpkg" -tile_size 120 -tile 0,0 -level_thresholds 1,2 2>&1)
@@ -101,6 +111,25 @@ import re,sys
 line=[l for l in open('$work/union.log') if l.startswith('level  0')][0]
 sys.exit(abs(float(re.search(r'area ratio ([0-9.]+)', line).group(1)) - 1) > 1e-4)"
   tail -3 "$work/union.log"
+  # The two passes of tinlod tiles: the surveys' thresholds and line outline. Only the line
+  # cells on a tile's outline stay, of those near the voids; the union is still conforming.
+  for t in 0_0 0_1 1_0 1_1; do
+    "$tinlod" build "$dem" "$work/alps_survey_$t.json" -tile_size 600 -tile "${t/_/,}" -q -survey
+  done
+  thresholds=$(cd "$here/../tiles" && /usr/bin/python3 -c "
+import glob
+from tinlodtiles.thresholds import read_survey, level_thresholds, as_option
+print(as_option(level_thresholds([read_survey(p) for p in sorted(glob.glob('$work/alps_survey_*.json'))], 20, 5)))")
+  line_outline_union "$work/alps_survey_*.json" "$work/alps_line_outline.txt"
+  check "the swiss_alps surveys list line cells on the outline" test -s "$work/alps_line_outline.txt"
+  for t in 0_0 0_1 1_0 1_1; do
+    "$tinlod" build "$dem" "$work/alpsglob_$t.gpkg" -tile_size 600 -tile "${t/_/,}" -q -level_thresholds "$thresholds" \
+      -line_outline "$work/alps_line_outline.txt"
+  done
+  check "tiles of swiss_alps built so are conforming at every level, with the whole run's area" \
+    union --whole "$work/alps_whole.gpkg" "$work"/alpsglob_*.gpkg
+  check "... 15 levels" test "$(grep -c 'conforming=yes' "$work/union.log")" = 15
+  tail -1 "$work/union.log"
 else
   echo "SKIPPED (real DEM): $data/swiss_alps_N46E008.tif is absent; set TINLOD_TEST_DATA to run it"
 fi

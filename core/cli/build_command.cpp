@@ -16,7 +16,7 @@ namespace {
 const char* const kUsage =
     "tinlod build DEM OUT.gpkg [-method degree|volume|normal|error] [-delete_pct p] [-stop_pct s] "
     "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-outline_tolerance m] [-keep_outline] "
-    "[-tile_size N -tile C,R [-survey | -level_thresholds t[:s],...] [-border_keep FILE]] "
+    "[-tile_size N -tile C,R [-survey | -level_thresholds t[:s],...] [-border_keep FILE] [-line_outline FILE]] "
     "[-fixed POINTS] [-fix_peaks_pits] [-levels all|L,L,...] [-no_group_outlines] [-vertex_index] "
     "[sampling options] [accuracy options] [-overwrite] [-q]";
 
@@ -82,6 +82,12 @@ One tile of a raster (tinlod tiles runs them all; see docs/cli/tiles.md):
                    refuses stays and is listed in TINLOD_BORDER_REFUSED: the tile beyond the
                    line must then keep it too. tinlod tiles agrees these lists between tiles;
                    without -border_keep a bounded tile keeps all its line vertices
+  -line_outline FILE
+                   the second pass: of the line cells near nodata keep only those FILE lists
+                   ("row col" of the whole raster, one a line): the cells on the outline of
+                   either tile's level 0, which each tile's -survey lists (line_outline)
+                   and tinlod tiles gathers. Without it every line cell within 3 blocks of
+                   a missing cell stays at every level
 
 What the GeoPackage holds (vertices, triangles, the groups and the levels table are always
 written: lod, locate and accuracy need them):
@@ -182,6 +188,7 @@ int buildCommand(std::vector<std::string> args) {
   o.survey = a.flag("-survey");
   parseThresholds(a.text("-level_thresholds", ""), o.levelThresholds, o.levelShares);
   o.borderKeep = a.text("-border_keep", "");
+  o.lineOutline = a.text("-line_outline", "");
   TileSpec tile;
   tile.size = a.integer("-tile_size", 0);
   if (a.given("-tile") != (tile.size > 0)) throw Error("-tile C,R and -tile_size N go together: one tile of a raster cut into N x N-cell tiles");

@@ -77,6 +77,8 @@ void validateTile(const TileSpec& tile, const SampleOptions& sample, const Hiera
                 std::to_string(kMaxLevel) + " a hierarchy holds: raise -delete_pct or -stop_pct, or give -max_levels");
   if (options.thresholdMode && options.maxLevels == 0)
     throw Error("-threshold with -tile needs -max_levels: every tile of a job must make the same levels");
+  if (options.survey && !options.lineOutline.empty())
+    throw Error("-line_outline is for the build pass: a -survey lists the tile's own outline cells");
 }
 
 void addTileMetadata(const Dem& dem, const TileSpec& tile, std::map<std::string, std::string>& m) {
@@ -112,11 +114,12 @@ double cellAreaInTin(const Dem& dem, const SampleOptions& sample) {
   return std::isfinite(area) && area > 0 ? area : std::fabs(g[1] * g[5]);
 }
 
-// -border_keep's file: one "row col" of the whole raster per line ('#' starts a comment).
-std::unordered_set<std::uint64_t> readKeptCells(const std::string& path) {
+// A file of cells for `option` (-border_keep, -line_outline): one "row col" of the whole
+// raster per line ('#' starts a comment).
+std::unordered_set<std::uint64_t> readCellList(const std::string& path, const std::string& option) {
   std::ifstream in(path);
-  if (!in) throw Error("-border_keep: cannot read '" + path + "': give the file of line cells to keep (tinlod tiles writes it)");
-  std::unordered_set<std::uint64_t> kept;
+  if (!in) throw Error(option + ": cannot read '" + path + "': give the file of line cells (tinlod tiles writes it)");
+  std::unordered_set<std::uint64_t> cells;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
     line = line.substr(0, line.find('#'));
@@ -125,26 +128,34 @@ std::unordered_set<std::uint64_t> readKeptCells(const std::string& path) {
     std::string rest;
     if (!(fields >> row)) continue;  // a blank line
     if (!(fields >> col) || (fields >> rest) || row < 0 || col < 0 || row > INT32_MAX || col > INT32_MAX)
-      throw Error("-border_keep: line " + std::to_string(number) + " of '" + path +
+      throw Error(option + ": line " + std::to_string(number) + " of '" + path +
                   "' is not a cell \"row col\" of the raster (two whole numbers from 0)");
-    kept.insert(globalCellKey(row, col));
+    cells.insert(globalCellKey(row, col));
   }
-  return kept;
+  return cells;
 }
 
-// `kept`: -border_keep's cells (readKeptCells), or none for a tile whose lines need no agreement.
+// `kept`: -border_keep's cells, or none for a tile whose lines need no agreement;
+// `outline`: -line_outline's cells, or none (every line cell near nodata pinned).
 TileBorders bordersOf(const Dem& dem, const Tin& tin, const TileSpec& tile, const SampleOptions& sample,
-                      const HierarchyOptions& options, std::optional<std::unordered_set<std::uint64_t>> kept) {
-  if (!kept)
-    return tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample),
-                       options.fixPeaksPits);
-  return agreedTileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed, cellAreaInTin(dem, sample),
-                           options.fixPeaksPits, std::move(*kept));
+                      const HierarchyOptions& options, std::optional<std::unordered_set<std::uint64_t>> kept,
+                      std::optional<std::unordered_set<std::uint64_t>> outline) {
+  TileBorders b = kept ? agreedTileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed,
+                                           cellAreaInTin(dem, sample), options.fixPeaksPits, std::move(*kept))
+                       : tileBorders(dem, tin, tile, tileLevels(options), sample.block, sample.seed,
+                                     cellAreaInTin(dem, sample), options.fixPeaksPits);
+  if (outline) pinLineOutlineOnly(b, dem, tin, std::move(*outline), "-line_outline: '" + options.lineOutline + "'");
+  return b;
 }
 
 std::optional<std::unordered_set<std::uint64_t>> keptCellsOf(const HierarchyOptions& options) {
   if (options.borderKeep.empty()) return std::nullopt;
-  return readKeptCells(options.borderKeep);
+  return readCellList(options.borderKeep, "-border_keep");
+}
+
+std::optional<std::unordered_set<std::uint64_t>> outlineCellsOf(const HierarchyOptions& options) {
+  if (options.lineOutline.empty()) return std::nullopt;
+  return readCellList(options.lineOutline, "-line_outline");
 }
 
 std::string cellList(const std::vector<std::uint64_t>& keys) {
@@ -160,7 +171,7 @@ void addAgreementMetadata(const Dem& dem, const TileBorders& borders, const Hier
                           std::map<std::string, std::string>& m, const ProgressRange& progress) {
   if (!borders.agreed) return;
   m["TINLOD_BORDER_AGREED"] = "yes";  // GDAL drops empty items: the two lists below may be absent
-  m["TINLOD_BORDER_KEPT"] = cellList(keptOnSharedLines(dem, borders.kept));
+  m["TINLOD_BORDER_KEPT"] = cellList(cellsOnSharedLines(dem, borders.kept));
   std::vector<std::uint64_t> refused = h.borderRefused;
   std::sort(refused.begin(), refused.end());
   m["TINLOD_BORDER_REFUSED"] = cellList(refused);
@@ -185,13 +196,20 @@ BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, c
   const ProgressRange all(feedback, 0, 1);
   const Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
-  const TileBorders borders = tile.size > 0 ? bordersOf(dem, tin, tile, sample, options, keptCellsOf(options)) : TileBorders{};
+  // The tile pins its own outline's line cells: the other tile's are not known yet (the
+  // survey lists this tile's for the build pass, which pins both tiles' alike).
+  std::vector<std::uint64_t> outline;
+  if (tile.size > 0) outline = lineOutlineCells(dem, tin, sample.block, sample.seed);
+  const TileBorders borders =
+      tile.size > 0 ? bordersOf(dem, tin, tile, sample, options, keptCellsOf(options),
+                                std::unordered_set<std::uint64_t>(outline.begin(), outline.end()))
+                    : TileBorders{};
   const Hierarchy h = buildHierarchy(std::move(tin), dem, {}, options, all.sub(0.2, 0.95), {},
                                      tile.size > 0 ? &borders : nullptr);
   const std::string partial = outPath + ".partial";
   {
     std::ofstream out(partial);
-    out << surveyJson(h.survey);
+    out << surveyJson(h.survey, outline);
     if (!out) throw Error("cannot write '" + partial + "'");
   }
   std::filesystem::rename(partial, outPath);
@@ -226,7 +244,10 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
     throw Error("-level_thresholds is the second pass of a tiled run: give it with -tile_size and -tile");
   if (!options.borderKeep.empty() && tile.size == 0)
     throw Error("-border_keep is for a tile of a job with -method error -max_error: give it with -tile_size and -tile");
-  std::optional<std::unordered_set<std::uint64_t>> kept = keptCellsOf(options);  // a bad file fails before the long work
+  if (!options.lineOutline.empty() && tile.size == 0)
+    throw Error("-line_outline is for a tile of a job: give it with -tile_size and -tile");
+  // Bad files fail before the long work.
+  std::optional<std::unordered_set<std::uint64_t>> kept = keptCellsOf(options), outline = outlineCellsOf(options);
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   const std::string fixedName = "-fixed (points to keep)";
@@ -239,7 +260,8 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
-  const TileBorders borders = tile.size > 0 ? bordersOf(dem, tin, tile, sample, options, std::move(kept)) : TileBorders{};
+  const TileBorders borders =
+      tile.size > 0 ? bordersOf(dem, tin, tile, sample, options, std::move(kept), std::move(outline)) : TileBorders{};
   const std::vector<PointXY> keep =
       options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
   // With accuracy outputs the last quarter of the job is theirs.
@@ -257,6 +279,8 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
   if (tile.size > 0) addTileMetadata(dem, tile, writeOptions.metadata);
   if (tile.size > 0) addAgreementMetadata(dem, borders, h, writeOptions.metadata, all);
+  if (borders.outlineListed)  // how many of the -line_outline cells are on this tile's lines
+    writeOptions.metadata["TINLOD_LINE_OUTLINE"] = std::to_string(cellsOnSharedLines(dem, borders.lineOutline).size());
   writeOptions.metadata["TINLOD_LEVEL_VIEWS"] = levelListText(layers.levelViews);
   writeOptions.metadata["TINLOD_GROUP_OUTLINES"] = layers.groupOutlines ? "yes" : "no";
   writeOptions.metadata["TINLOD_VERTEX_INDEX"] = layers.vertexIndex ? "yes" : "no";

@@ -3,9 +3,11 @@
 
 #include <sstream>
 
+#include "tinlod/tile_borders.h"
+
 namespace tinlod {
 
-std::string surveyJson(const std::vector<LevelSurvey>& levels) {
+std::string surveyJson(const std::vector<LevelSurvey>& levels, const std::vector<std::uint64_t>& lineOutline) {
   std::ostringstream out;
   out.precision(17);
   out << "{\"bins_per_decade\": 200, \"lowest\": 1e-12, \"levels\": [";
@@ -18,7 +20,10 @@ std::string surveyJson(const std::vector<LevelSurvey>& levels) {
       if (l.histogram[b]) out << (first ? "" : ", ") << "[" << b << ", " << l.histogram[b] << "]", first = false;
     out << "]}";
   }
-  out << "\n]}\n";
+  out << "\n], \"line_outline\": [";
+  for (std::size_t i = 0; i < lineOutline.size(); ++i)
+    out << (i ? ", " : "") << "[" << globalCellRow(lineOutline[i]) << ", " << globalCellCol(lineOutline[i]) << "]";
+  out << "]}\n";
   return out.str();
 }
 

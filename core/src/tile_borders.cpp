@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <unordered_map>
 
 #include "tinlod/cell_hash.h"
 #include "tinlod/error.h"
@@ -90,8 +91,12 @@ int tileLevelCount(double deletePct, double stopPct) {
 }
 
 bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int col) {
-  return pinnedOnLine(dem, row, col) || (borders.pinPeaksAndPits && dem.edgePeakOrPitAt(row, col)) ||
-         (!borders.kept.empty() && borders.kept.count(globalCellKey(dem.globalRow(row), dem.globalCol(col))) > 0);
+  const std::uint64_t key = globalCellKey(dem.globalRow(row), dem.globalCol(col));
+  const bool pinned = borders.outlineListed
+                          ? tileCorner(dem, row, col) || borders.lineOutline.count(key) > 0
+                          : pinnedOnLine(dem, row, col);
+  return pinned || (borders.pinPeaksAndPits && dem.edgePeakOrPitAt(row, col)) ||
+         (!borders.kept.empty() && borders.kept.count(key) > 0);
 }
 
 namespace {
@@ -135,9 +140,101 @@ TileBorders agreedTileBorders(const Dem& dem, const Tin& tin, const TileSpec& ti
   return makeBorders(dem, tin, tile, levels, block, seed, cellArea, pinPeaksAndPits, true, std::move(kept));
 }
 
-std::vector<std::uint64_t> keptOnSharedLines(const Dem& dem, const std::unordered_set<std::uint64_t>& kept) {
+namespace {
+
+// The triangles and neighbours of a tile's line vertices.
+class LineStars {
+ public:
+  LineStars(const Dem& dem, const Tin& tin) : starOf_(tin.vertices.size(), -1) {
+    for (VertexId v = 0; v < tin.vertices.size(); ++v)
+      if (onSharedLine(dem, tin.vertices[v].row, tin.vertices[v].col)) {
+        vertexOf_.emplace(globalCellKey(tin.vertices[v].row, tin.vertices[v].col), v);
+        starOf_[v] = static_cast<std::int32_t>(stars_.size());
+        stars_.emplace_back();
+      }
+    for (const Triangle& t : tin.triangles)
+      for (int i = 0; i < 3; ++i)
+        if (starOf_[t[i]] >= 0) {
+          Star& s = stars_[starOf_[t[i]]];
+          ++s.triangles;
+          s.neighbours.push_back(t[(i + 1) % 3]), s.neighbours.push_back(t[(i + 2) % 3]);
+        }
+    for (Star& s : stars_) {
+      std::sort(s.neighbours.begin(), s.neighbours.end());
+      s.neighbours.erase(std::unique(s.neighbours.begin(), s.neighbours.end()), s.neighbours.end());
+    }
+  }
+
+  // Whether the cell at (row, col) of the tile is a vertex whose triangles make one fan
+  // from the cell at `before` to the one at `after`, its neighbours on the line.
+  bool fan(const std::array<int, 2>& before, int row, int col, const std::array<int, 2>& after) const {
+    const VertexId v = vertexAt(row, col), a = vertexAt(before[0], before[1]), b = vertexAt(after[0], after[1]);
+    if (v == kNone || a == kNone || b == kNone) return false;
+    const Star& s = stars_[starOf_[v]];
+    // One fan: a triangle fewer than neighbours; two or more pieces would have two fewer.
+    return s.triangles + 1 == static_cast<int>(s.neighbours.size()) &&
+           std::binary_search(s.neighbours.begin(), s.neighbours.end(), a) &&
+           std::binary_search(s.neighbours.begin(), s.neighbours.end(), b);
+  }
+
+ private:
+  static constexpr VertexId kNone = ~VertexId{0};
+  struct Star {
+    int triangles = 0;
+    std::vector<VertexId> neighbours;
+  };
+  VertexId vertexAt(int row, int col) const {
+    const auto found = vertexOf_.find(globalCellKey(row, col));
+    return found == vertexOf_.end() ? kNone : found->second;
+  }
+  std::unordered_map<std::uint64_t, VertexId> vertexOf_;  // by cell of the tile
+  std::vector<std::int32_t> starOf_;
+  std::vector<Star> stars_;
+};
+
+}  // namespace
+
+std::vector<std::uint64_t> lineOutlineCells(const Dem& dem, const Tin& tin, int block, std::uint64_t seed) {
+  const LineStars stars(dem, tin);
+  const std::array<bool, 4> shared = sharedSides(dem);
   std::vector<std::uint64_t> out;
-  for (const std::uint64_t key : kept) {
+  for (int side = 0; side < 4; ++side) {
+    if (!shared[side]) continue;
+    const bool column = side == kFirstCol || side == kLastCol;
+    const int at = sidePosition(dem, side), n = column ? dem.height : dem.width;
+    std::vector<std::array<int, 2>> cells;  // the line's vertices in a whole tile, in order
+    for (int i = 0; i < n; ++i) {
+      const int row = column ? i : at, col = column ? at : i;
+      if (dem.valid(row, col) && lineCellSampled(dem, row, col, block, seed)) cells.push_back({row, col});
+    }
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const auto [row, col] = cells[i];
+      if (tileCorner(dem, row, col)) continue;  // pinned in any case
+      if (i == 0 || i + 1 == cells.size() || !stars.fan(cells[i - 1], row, col, cells[i + 1]))
+        out.push_back(globalCellKey(dem.globalRow(row), dem.globalCol(col)));
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+void pinLineOutlineOnly(TileBorders& borders, const Dem& dem, const Tin& tin, std::unordered_set<std::uint64_t> outline,
+                        const std::string& source) {
+  for (const std::uint64_t key : lineOutlineCells(dem, tin, borders.block, borders.seed))
+    if (!outline.count(key))
+      throw Error(source + " does not list the line cell " + std::to_string(globalCellRow(key)) + " " +
+                  std::to_string(globalCellCol(key)) +
+                  " (row and column of the raster), on this tile's outline at level 0: the list is not this job's");
+  borders.outlineListed = true;
+  borders.lineOutline = std::move(outline);
+  for (std::size_t i = 0; i < tin.vertices.size(); ++i)
+    if (borders.side[i] >= 0) borders.pinned[i] = pinnedBorderCell(dem, borders, tin.vertices[i].row, tin.vertices[i].col);
+}
+
+std::vector<std::uint64_t> cellsOnSharedLines(const Dem& dem, const std::unordered_set<std::uint64_t>& cells) {
+  std::vector<std::uint64_t> out;
+  for (const std::uint64_t key : cells) {
     const std::int64_t row = globalCellRow(key) - dem.window.rowOffset;
     const std::int64_t col = globalCellCol(key) - dem.window.colOffset;
     if (row >= 0 && col >= 0 && row < dem.height && col < dem.width && onSharedLine(dem, int(row), int(col)))

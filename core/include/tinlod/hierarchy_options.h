@@ -45,6 +45,10 @@ struct HierarchyOptions {
   // empty), the border rule deletes line vertices under the bound (TileBorders::agreed);
   // not given, a bounded tile's line vertices all stay.
   std::string borderKeep;
+  // A tile of a job whose surveys listed the lines' outline cells: the file of them (one
+  // "row col" of the whole raster per line), which alone of the line cells near nodata stay
+  // (TileBorders::lineOutline). Not given, every line cell near nodata stays.
+  std::string lineOutline;
 
   // Throws Error naming the option when a value is out of range.
   void validate() const;

@@ -36,7 +36,8 @@ inline double surveyBinTop(int bin) { return bin == 0 ? 1e-12 : std::pow(10.0, b
 inline double surveyBinBottom(double top) { return top <= 1e-12 ? -INFINITY : top * std::pow(10.0, -1.0 / 200); }
 
 // The survey as JSON: {"levels": [{"level", "vertices", "picked", "considered", "last",
-// "histogram": [[bin, count], ...]}, ...]} (bins with a count only).
-std::string surveyJson(const std::vector<LevelSurvey>& levels);
+// "histogram": [[bin, count], ...]}, ...], "line_outline": [[row, col], ...]} (bins with a
+// count only; line_outline: the tile's lineOutlineCells, as globalCellKey).
+std::string surveyJson(const std::vector<LevelSurvey>& levels, const std::vector<std::uint64_t>& lineOutline);
 
 }  // namespace tinlod

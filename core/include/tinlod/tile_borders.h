@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <unordered_set>
 #include <vector>
 
@@ -53,6 +54,11 @@ struct TileBorders {
   // tiles check the two sides of the line, which neither sees whole.
   bool agreed = false;
   std::unordered_set<std::uint64_t> kept;
+  // With `outlineListed` (pinLineOutlineOnly), the line cells in `lineOutline` (globalCellKey)
+  // are pinned instead of every cell near nodata: those on the outline of either tile's
+  // level 0 (lineOutlineCells of both).
+  bool outlineListed = false;
+  std::unordered_set<std::uint64_t> lineOutline;
 };
 
 // A cell of the whole raster as one number: its row in the high half, its column in the low.
@@ -83,8 +89,9 @@ bool onOneSharedLine(const Dem& dem, int rowA, int colA, int rowB, int colB);
 // the other tile does not read.
 bool pinnedOnLine(const Dem& dem, int row, int col);
 
-// Whether a cell of a shared line never goes in this job: pinnedOnLine, a peak or pit
-// kept by -fix_peaks_pits, or a cell the tiles agreed to keep (TileBorders::kept).
+// Whether a cell of a shared line never goes in this job: pinnedOnLine (or, when
+// TileBorders::lineOutline is given, a tile corner or a cell it lists), a peak or pit kept by
+// -fix_peaks_pits, or a cell the tiles agreed to keep (TileBorders::kept).
 bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int col);
 
 // Whether a valid cell of a shared line is a vertex: the tile's corners, every cell next to
@@ -107,7 +114,21 @@ TileBorders agreedTileBorders(const Dem& dem, const Tin& tin, const TileSpec& ti
                               std::uint64_t seed, double cellArea, bool pinPeaksAndPits,
                               std::unordered_set<std::uint64_t> kept);
 
-// The cells of `kept` (globalCellKey) that lie on the tile's shared lines, sorted.
-std::vector<std::uint64_t> keptOnSharedLines(const Dem& dem, const std::unordered_set<std::uint64_t>& kept);
+// The sampled cells of the tile's shared lines (tile corners aside) on the outline of its
+// level 0 `tin` (globalCellKey, sorted): those the nodata filter left out of the TIN, or
+// took a triangle from (the cell's triangles are not one fan between its two neighbours on
+// the line). Only these need pinning, where the other tile cannot see how this one meets
+// the line: a line vertex off the outline at level 0 never comes onto it (an outline edge
+// joins two earlier outline vertices), so both tiles delete it by the line's rule alone.
+std::vector<std::uint64_t> lineOutlineCells(const Dem& dem, const Tin& tin, int block, std::uint64_t seed);
+
+// Pins the line cells `outline` lists instead of every cell near nodata: the union of both
+// tiles' lineOutlineCells (tinlod tiles gathers them from the surveys). Throws Error when it lacks
+// one of this tile's own, `source` naming where the list came from.
+void pinLineOutlineOnly(TileBorders& borders, const Dem& dem, const Tin& tin, std::unordered_set<std::uint64_t> outline,
+                        const std::string& source);
+
+// The cells of `cells` (globalCellKey) that lie on the tile's shared lines, sorted.
+std::vector<std::uint64_t> cellsOnSharedLines(const Dem& dem, const std::unordered_set<std::uint64_t>& cells);
 
 }  // namespace tinlod
