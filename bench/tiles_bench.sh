@@ -52,11 +52,16 @@ accuracy_case() {  # NAME DEM SIZE
 import glob
 from tinlodtiles.thresholds import read_survey, level_thresholds, as_option
 print(as_option(level_thresholds([read_survey(p) for p in sorted(glob.glob('$work/$name.survey_*.json'))], 20, 5)))")
-  echo "survey pass: $((SECONDS - start)) s"
+  # The lines' outline cells the tiles' surveys list: only these of the line cells near nodata stay.
+  (cd "$root/tiles" && /usr/bin/python3 -c "
+import glob
+from tinlodtiles import line_outline
+line_outline.write('$work/$name.line_outline.txt', line_outline.gather(glob.glob('$work/$name.survey_*.json')))")
+  echo "survey pass: $((SECONDS - start)) s, $(wc -l < "$work/$name.line_outline.txt") line cells on the outline"
   for ((c = 0; c < across; c++)); do
     for ((r = 0; r < down; r++)); do
       /usr/bin/time -o "$work/time.txt" -f "%M" "$tinlod" build "$dem" "$work/$name.tile_${c}_${r}.gpkg" \
-        -tile_size "$size" -tile "$c,$r" -q -overwrite -level_thresholds "$thresholds"
+        -tile_size "$size" -tile "$c,$r" -q -overwrite -level_thresholds "$thresholds" -line_outline "$work/$name.line_outline.txt"
       peak=$(( $(cat "$work/time.txt") > peak ? $(cat "$work/time.txt") : peak ))
     done
   done

@@ -384,7 +384,7 @@ def main(tinlod, tiles):
           (tile.get("seconds") or 0) > KILL_AFTER, tile.get("seconds"))
     check("(b) the other tiles took 1 attempt",
           all(r["attempts"] == 1 for k, r in found_b.items() if k != KILLED_TILE), found_b)
-    leftovers = [n for n in os.listdir(os.path.join(work, "b_tiles")) if not re.fullmatch(r"tile_\d+_\d+\.gpkg|\.driver\.lock", n)]
+    leftovers = [n for n in os.listdir(os.path.join(work, "b_tiles")) if not re.fullmatch(r"tile_\d+_\d+\.gpkg|\.driver\.lock|line_outline\.txt", n)]
     check("(b) nothing half-written is left in the tiles folder", not leftovers, leftovers)
 
     # (c) A rerun does no finished tile again.
@@ -463,6 +463,24 @@ def main(tinlod, tiles):
           metadata.get("TINLOD_SELECTION") == "global" and len(thresholds) == levels - 1
           and all(float(t.split(":")[0]) >= 0 for t in thresholds), metadata)
     check("(f) no survey file is left", not [n for n in os.listdir(folder) if "survey" in n], os.listdir(folder))
+    # (k) The line cells on a tile's outline, which the surveys list: the build pass keeps
+    # these, not every line cell near nodata (the empty corner's lines).
+    outline_file = os.path.join(folder, "line_outline.txt")
+    listed = [line.split() for line in open(outline_file)] if os.path.isfile(outline_file) else []
+    tile_listed = gdal.OpenEx(os.path.join(folder, "tile_1_1.gpkg"), gdal.OF_VECTOR).GetMetadataItem("TINLOD_LINE_OUTLINE")
+    check("(k) the surveys' line outline is in the tiles folder, recorded by the catalogue and read by the tiles",
+          metadata.get("TINLOD_LINE_OUTLINE") == "line_outline.txt" and len(listed) > 0
+          and all(len(cell) == 2 for cell in listed) and int(tile_listed or 0) > 0, (metadata, listed, tile_listed))
+    os.rename(outline_file, outline_file + ".moved")
+    os.remove(os.path.join(folder, "tile_0_1.gpkg"))
+    lost = run(base + [catalogue] + options, env)
+    check("(k) a rerun with tiles to build whose line outline file is gone is refused, naming it and -overwrite",
+          lost.returncode == 1 and "line_outline.txt is gone" in lost.stderr and "-overwrite" in lost.stderr
+          and "Traceback" not in lost.stderr, lost.stderr[-1500:])
+    os.rename(outline_file + ".moved", outline_file)
+    back = run(base + [catalogue] + options, env)
+    check("(k) with the file back the tile is built again", back.returncode == 0 and "1 tiles run, 5 skipped" in back.stdout,
+          back.stdout + back.stderr[-1000:])
     by_tile = os.path.join(work, "t.gpkg")
     one_pass = run(base + [by_tile, "-selection", "tile"] + options, env)
     tile_metadata = rows(by_tile)[2]

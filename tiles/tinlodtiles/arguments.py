@@ -58,6 +58,7 @@ REFUSED_BUILD_OPTIONS = {
     "-survey": "tinlod-tiles runs the survey pass itself (-selection global)",
     "-level_thresholds": "tinlod-tiles sets them from the survey pass (-selection global)",
     "-border_keep": "tinlod-tiles agrees the lines' kept cells itself (-method error -max_error)",
+    "-line_outline": "tinlod-tiles gathers the lines' outline cells from the survey pass (-selection global)",
     "-tile": "tinlod-tiles gives each task its tile",
     "-tile_size": "give -tile_size to tinlod-tiles itself, before --",
     "-accuracy": "one raster per run cannot hold every tile",

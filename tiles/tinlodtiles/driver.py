@@ -17,7 +17,7 @@ import threading
 
 from osgeo import gdal
 
-from . import agreement, task, thresholds
+from . import agreement, line_outline, task, thresholds
 from .arguments import build_option
 from .catalogue import Catalogue, levels_folder, tiles_folder
 from .errors import TilesError
@@ -61,6 +61,7 @@ def run(arguments):
                 extra = []
                 if global_selection(arguments):
                     extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments, workers)]
+                    extra += line_outline.build_option(catalogue, folder)
                     rows = catalogue.rows()  # the surveys found some tiles empty: those are not built
                     pending = [t for t in pending if rows[(t.col, t.row)]["status"] != "empty"]
                     built = set(pending)
@@ -163,6 +164,9 @@ def level_thresholds(catalogue, tiles, arguments, workers):
 
     values = thresholds.level_thresholds(surveys, percent("-delete_pct", 20), percent("-stop_pct", 5))
     text = thresholds.as_option(values)
+    cells = line_outline.gather(survey_path(folder, t) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty")
+    line_outline.write(line_outline.path(folder), cells)  # before the thresholds are recorded: a rerun has both
+    catalogue.set_setting(line_outline.SETTING, line_outline.NAME)
     catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
     for t in surveyed:
         task.remove_if_present(survey_path(folder, t))
@@ -184,7 +188,7 @@ def remove_job(catalogue_path):
     names, so that nothing else a user keeps in those folders is lost."""
     removable = {tiles_folder(catalogue_path): re.compile(
                      r"tile_\d+_\d+\.(gpkg|partial\.gpkg|gpkg\.log|gpkg\.attempts|survey\.json|survey\.partial\.json|survey\.json\.log|survey\.json\.attempts)"
-                     r"|border_keep\.txt(\.partial)?"),
+                     r"|(border_keep|line_outline)\.txt(\.partial)?"),
                  levels_folder(catalogue_path): re.compile(r"level_\d+\.vrt")}
     for folder, names in removable.items():
         if os.path.isdir(folder):
@@ -233,9 +237,9 @@ def remove_leftovers(folder):
         if name.startswith("tile_") and name.endswith((".partial.gpkg", ".gpkg.log", ".gpkg.attempts", ".partial.json",
                                                        ".survey.json.log", ".survey.json.attempts")):
             os.remove(os.path.join(folder, name))
-    agreement_partial = agreement.keep_path(folder) + ".partial"
-    if os.path.exists(agreement_partial):
-        os.remove(agreement_partial)
+    for partial in (agreement.keep_path(folder) + ".partial", line_outline.path(folder) + ".partial"):
+        if os.path.exists(partial):
+            os.remove(partial)
 
 
 def pending_tiles(catalogue, tiles, catalogue_path):
