@@ -382,3 +382,39 @@ TEST(BuildJob, InfoRefusesFilesTinlodDidNotWrite) {
 
 }  // namespace
 }  // namespace tinlod
+
+namespace tinlod {
+namespace {
+
+// -check: what a build would refuse before its long work, with the build's own message, and
+// nothing written; tinlod tiles runs it once for a job instead of failing every tile.
+TEST(BuildJob, CheckRefusesWhatTheBuildWouldAndWritesNothing) {
+  const auto check = [](const SampleOptions& sample, const HierarchyOptions& options, const TileSpec& tile) {
+    return test::errorOf([&] { checkBuildJob(smallDem(), sample, options, AccuracyOutputs(), tile, {}); });
+  };
+  EXPECT_EQ(check({}, {}, {}), "no error");
+  EXPECT_EQ(check({}, {}, {120, 1, 0}), "no error");  // 150 x 120 cells: 2 x 1 tiles
+  HierarchyOptions badPct;
+  badPct.deletePct = 200;
+  EXPECT_TRUE(test::contains(check({}, badPct, {}), "delete_pct must be more than 0 and at most 100 (got 200)"));
+  EXPECT_TRUE(test::contains(check({}, {}, {120, 9, 0}), "-tile 9,0 is outside the grid"));
+  EXPECT_TRUE(test::contains(check({}, {}, {100, 0, 0}), "-tile_size 100 must be a multiple of -block"));
+  SampleOptions farJitter;
+  farJitter.jitter = 500;  // the DEM's cells are 25 m
+  EXPECT_TRUE(test::contains(check(farJitter, {}, {}), "jitter 500 m is not smaller than the cell size"));
+  SampleOptions unknownCrs;
+  unknownCrs.targetSrs = "EPSG:999999";
+  EXPECT_TRUE(test::contains(check(unknownCrs, {}, {}), "target CRS"));
+  HierarchyOptions missingFile;
+  missingFile.fixedPoints = test::tempDir() + "/no_such_points.gpkg";
+  EXPECT_TRUE(test::contains(check({}, missingFile, {}), "does not exist"));
+  HierarchyOptions listWithoutTile;
+  listWithoutTile.lineOutline = test::tempDir() + "/outline.txt";
+  EXPECT_TRUE(test::contains(check({}, listWithoutTile, {}), "-line_outline is for a tile of a job"));
+  const std::size_t files = std::distance(std::filesystem::directory_iterator(test::tempDir()), {});
+  EXPECT_EQ(check({}, {}, {120, 0, 0}), "no error");
+  EXPECT_EQ(std::size_t(std::distance(std::filesystem::directory_iterator(test::tempDir()), {})), files);
+}
+
+}  // namespace
+}  // namespace tinlod

@@ -264,7 +264,7 @@ def ctrl_c(dem, tiles, work, env):
     the stop can end the tasks."""
     sleeper, pids = os.path.join(work, "sleeping_tinlod"), os.path.join(work, "sleeping.pids")
     with open(sleeper, "w") as f:
-        f.write("#!/bin/sh\necho $$ >> %s\nexec sleep 120\n" % pids)
+        f.write('#!/bin/sh\nfor a in "$@"; do [ "$a" = -check ] && exit 0; done\necho $$ >> %s\nexec sleep 120\n' % pids)
     os.chmod(sleeper, 0o755)
     catalogue = os.path.join(work, "g.gpkg")
     driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-selection", "tile",
@@ -316,7 +316,7 @@ def main(tinlod, tiles):
     levelless = run(base + [os.path.join(work, "t1.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program,
                             "--", "-threshold", "1e6"])
     check("-threshold without -max_levels is refused before any tile runs",
-          levelless.returncode == 1 and "-threshold after -- needs -max_levels" in levelless.stderr
+          levelless.returncode == 1 and "-threshold with -tile needs -max_levels" in levelless.stderr
           and not os.path.exists(os.path.join(work, "t1.gpkg")), levelless.stderr)
     away = run(base + [os.path.join(work, "away.gpkg"), "-tile_size", str(TILE_SIZE), "-scheduler", "tcp://127.0.0.1:9",
                        "-tinlod", program])
@@ -346,12 +346,24 @@ def main(tinlod, tiles):
     statuses = sorted(r["status"] for r in rows(os.path.join(work, "z.gpkg"))[0].values()) if virtual.returncode == 0 else []
     check("a DEM given by a GDAL virtual path (/vsizip//absolute/path.zip/dem.tif) is built",
           virtual.returncode == 0 and statuses == ["done"] * 5 + ["empty"], (statuses, virtual.stderr[-1500:]))
-    wrong = run(base + [os.path.join(work, "w.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2", "-retries", "0",
+    wrong = run(base + [os.path.join(work, "w.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2",
                         "-tinlod", program, "--", "-delete_pct", "200"], env)
-    check("options every tile refuses: the error says what the tiles said, and to correct them with -overwrite",
-          wrong.returncode == 1 and "tiles failed in the survey pass; they say:" in wrong.stderr
-          and "delete_pct must be more than 0 and at most 100 (got 200)" in wrong.stderr and " and 5 more)" in wrong.stderr
-          and "every tile failed alike" in wrong.stderr and "-overwrite" in wrong.stderr, wrong.stderr[-2000:])
+    check("build options every tile would refuse are refused once, with tinlod's message, before anything is written",
+          wrong.returncode == 1 and "tinlod build refuses the job: delete_pct must be more than 0 and at most 100 (got 200)"
+          in wrong.stderr and "Nothing was written" in wrong.stderr and "tiles failed" not in wrong.stderr
+          and not os.path.exists(os.path.join(work, "w.gpkg")) and not os.path.exists(os.path.join(work, "w_tiles")),
+          wrong.stderr[-2000:])
+    failing = os.path.join(work, "failing_tinlod")  # checks as tinlod does, then fails every tile
+    with open(failing, "w") as f:
+        f.write('#!/bin/sh\nfor a in "$@"; do [ "$a" = -check ] && exec "%s" "$@"; done\n'
+                'echo "ERROR: the worker\'s disk is full" >&2\nexit 1\n' % program)
+    os.chmod(failing, 0o755)
+    alike = run(base + [os.path.join(work, "f.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2", "-retries", "0",
+                        "-tinlod", failing], env)
+    check("tiles that all fail alike: the error says what the tiles said, and to correct the cause with -overwrite",
+          alike.returncode == 1 and "tiles failed in the survey pass; they say:" in alike.stderr
+          and "the worker's disk is full" in alike.stderr and " and 5 more)" in alike.stderr
+          and "every tile failed alike" in alike.stderr and "-overwrite" in alike.stderr, alike.stderr[-2000:])
 
     # (a) A run: the catalogue ends complete.
     catalogue = os.path.join(work, "a.gpkg")
@@ -412,6 +424,20 @@ def main(tinlod, tiles):
               "WARNING: tile 1,0 is built again: " in repaired.stderr and "1 tiles run, 5 skipped" in repaired.stdout
               and open(os.path.join(folder, "tile_1_0.gpkg"), "rb").read()[:100] == original[:100],
               repaired.stdout + repaired.stderr[-1000:])
+    link = os.path.join(work, "dem_link.tif")
+    os.symlink(dem, link)
+    linked = run([tiles, link, catalogue] + options, env)
+    check("(c) the DEM named by a link to it resumes the job", linked.returncode == 0
+          and "0 tiles run, 6 skipped" in linked.stdout, linked.stdout + linked.stderr[-1000:])
+    stat = os.stat(dem)
+    os.utime(dem, ns=(stat.st_atime_ns, stat.st_mtime_ns + 10 ** 9))
+    changed = run(base + [catalogue] + options, env)
+    os.utime(dem, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    check("(c) a DEM changed since the catalogue was made is refused, suggesting -overwrite",
+          changed.returncode == 1 and "has changed since" in changed.stderr and "-overwrite" in changed.stderr,
+          changed.stderr[-1000:])
+    check("(c) ... and the catalogue records the DEM's bytes and time of change",
+          ("%d bytes, changed " % stat.st_size) in (rows(catalogue)[2].get("TINLOD_SOURCE_STAMP") or ""), rows(catalogue)[2])
     other = run(base + [catalogue] + options[:-1] + ["6"], env)
     check("(c) a rerun with other build options is refused, suggesting -overwrite",
           other.returncode == 1 and "-overwrite" in other.stderr, other.stderr)

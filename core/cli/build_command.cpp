@@ -18,7 +18,7 @@ const char* const kUsage =
     "[-max_levels n] [-max_degree d] [-max_error m] [-threshold t] [-outline_tolerance m] [-keep_outline] "
     "[-tile_size N -tile C,R [-survey | -level_thresholds t[:s],...] [-border_keep FILE] [-line_outline FILE]] "
     "[-fixed POINTS] [-fix_peaks_pits] [-levels all|L,L,...] [-no_group_outlines] [-vertex_index] "
-    "[sampling options] [accuracy options] [-overwrite] [-q]";
+    "[sampling options] [accuracy options] [-check] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Samples a DEM into a TIN and simplifies it level by level into a triangulation
 hierarchy (Kirkpatrick's, as adapted to terrains by de Berg and Dobrindt), written to one
@@ -104,6 +104,10 @@ and RMS vertical distance, and the cells its outline gave up (levels table, tinl
 Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, -jitter m
   (above 0 for a hierarchy, whose levels are measured at every DEM cell), -seed n,
   -valid_range min max (heights outside it are nodata; default -12000 9000)
+  -check           check the options, the files they name, the DEM's band, size and CRS
+                   (with -tile: that the tile is in its grid) and the jitter against its
+                   cells, then stop: two cells of the DEM are read and nothing is written
+                   (tinlod tiles checks a job's build options so before any tile runs)
   -overwrite       replace existing outputs: tinlod's layers of the GeoPackage (its other
                    layers are kept), the -accuracy raster, the -report; never an input
   -q               quiet: no progress or information, warnings only
@@ -193,9 +197,15 @@ int buildCommand(std::vector<std::string> args) {
   tile.size = a.integer("-tile_size", 0);
   if (a.given("-tile") != (tile.size > 0)) throw Error("-tile C,R and -tile_size N go together: one tile of a raster cut into N x N-cell tiles");
   if (tile.size > 0) parseTile(a.text("-tile", ""), tile);
+  const bool check = a.flag("-check");
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
+  if (check) {
+    checkBuildJob(files[0], sample, o, accuracy, tile, terminalFeedback(quiet));
+    if (!quiet) std::cout << "The options are good for " << files[0] << "; nothing was written" << std::endl;
+    return 0;
+  }
 
   const BuildSummary s =
       runBuildJob(files[0], files[1], sample, o, overwrite, terminalFeedback(quiet), accuracy, layers, tile);

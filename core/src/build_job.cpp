@@ -36,6 +36,8 @@ std::map<std::string, std::string> buildMetadata(const std::string& demPath, con
           {"TINLOD_BLOCK", std::to_string(s.block)},
           {"TINLOD_JITTER", formatNumber(s.jitter)},
           {"TINLOD_SEED", std::to_string(s.seed)},
+          {"TINLOD_SOURCE_SRS", s.sourceSrs.empty() ? "from file" : s.sourceSrs},
+          {"TINLOD_TARGET_SRS", s.targetSrs.empty() ? "auto" : s.targetSrs},
           {"TINLOD_METHOD", measureName(o.measure)},
           {"TINLOD_DELETE_PCT", o.thresholdMode ? "none (threshold mode)" : formatNumber(o.deletePct)},
           {"TINLOD_STOP_PCT", formatNumber(o.stopPct)},
@@ -181,6 +183,23 @@ void addAgreementMetadata(const Dem& dem, const TileBorders& borders, const Hier
                   "adding them to the -border_keep file and building both again): TINLOD_BORDER_REFUSED lists them");
 }
 
+const std::string kFixedName = "-fixed (points to keep)";
+
+// The checks of the options alone, before anything is read.
+void validateBuildOptions(const SampleOptions& sample, const HierarchyOptions& options, const AccuracyOutputs& accuracy,
+                          const TileSpec& tile) {
+  sample.validateForHierarchy();
+  options.validate();
+  if (tile.size > 0) validateTile(tile, sample, options);
+  accuracy.validate();
+  if (!options.levelThresholds.empty() && tile.size == 0)
+    throw Error("-level_thresholds is the second pass of a tiled run: give it with -tile_size and -tile");
+  if (!options.borderKeep.empty() && tile.size == 0)
+    throw Error("-border_keep is for a tile of a job with -method error -max_error: give it with -tile_size and -tile");
+  if (!options.lineOutline.empty() && tile.size == 0)
+    throw Error("-line_outline is for a tile of a job: give it with -tile_size and -tile");
+}
+
 Dem readInput(const std::string& demPath, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {
   if (tile.size > 0) return readTile(demPath, sample.band, tile, pinningDistance(sample.block), progress, sample.validHeights);
   return readDem(demPath, sample.band, progress, sample.validHeights);
@@ -232,26 +251,34 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
   return fixed;
 }
 
+void checkBuildJob(const std::string& demPath, const SampleOptions& sample, const HierarchyOptions& options,
+                   const AccuracyOutputs& accuracy, const TileSpec& tile, const Feedback& feedback) {
+  validateBuildOptions(sample, options, accuracy, tile);
+  keptCellsOf(options);
+  outlineCellsOf(options);
+  if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints, kFixedName);
+  // Two cells at the middle of the tile, or of the raster: enough for the CRS and the jitter.
+  const std::array<int, 2> raster = rasterSize(demPath);
+  const CellWindow whole{0, 0, raster[0], raster[1]};
+  const CellWindow area = tile.size > 0 ? tileWindow(raster, tile) : whole;
+  CellWindow middle;
+  middle.xsize = std::min(2, raster[0]), middle.ysize = std::min(2, raster[1]);
+  middle.xoff = std::min(area.xoff + area.xsize / 2, raster[0] - middle.xsize);
+  middle.yoff = std::min(area.yoff + area.ysize / 2, raster[1] - middle.ysize);
+  const Dem two = readDemWindow(demPath, sample.band, middle, ProgressRange(Feedback{}, 0, 1), sample.validHeights);
+  samplingTransform(two, sample, ProgressRange(feedback, 0, 1));  // its warnings and notes are the build's
+}
+
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                          const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
                          const AccuracyOutputs& accuracy, const HierarchyLayers& layers, const TileSpec& tile) {
-  sample.validateForHierarchy();
-  options.validate();
-  if (tile.size > 0) validateTile(tile, sample, options);
-  accuracy.validate();
+  validateBuildOptions(sample, options, accuracy, tile);
   if (options.survey) return runSurvey(demPath, outPath, sample, options, overwrite, feedback, tile);
-  if (!options.levelThresholds.empty() && tile.size == 0)
-    throw Error("-level_thresholds is the second pass of a tiled run: give it with -tile_size and -tile");
-  if (!options.borderKeep.empty() && tile.size == 0)
-    throw Error("-border_keep is for a tile of a job with -method error -max_error: give it with -tile_size and -tile");
-  if (!options.lineOutline.empty() && tile.size == 0)
-    throw Error("-line_outline is for a tile of a job: give it with -tile_size and -tile");
   // Bad files fail before the long work.
   std::optional<std::unordered_set<std::uint64_t>> kept = keptCellsOf(options), outline = outlineCellsOf(options);
   GpkgWriteOptions writeOptions{overwrite, {}};
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
-  const std::string fixedName = "-fixed (points to keep)";
-  if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints, fixedName);
+  if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints, kFixedName);
   // The hierarchy and the accuracy files go into place together, or none of them.
   OutputFiles files(overwrite, datasetFiles({demPath, options.fixedPoints}));
   const StagedFile& out = files.add(outPath, "output", true);
@@ -263,7 +290,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const TileBorders borders =
       tile.size > 0 ? bordersOf(dem, tin, tile, sample, options, std::move(kept), std::move(outline)) : TileBorders{};
   const std::vector<PointXY> keep =
-      options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, fixedName);
+      options.fixedPoints.empty() ? std::vector<PointXY>() : readPoints(options.fixedPoints, tin.crsWkt, all, kFixedName);
   // With accuracy outputs the last quarter of the job is theirs.
   const double write = accuracy.wanted() ? 0.6 : 0.75, measure = accuracy.wanted() ? 0.75 : 1;
   Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,

@@ -127,10 +127,15 @@ std::string megabytes(double bytes) {
 
 }  // namespace
 
-Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange& progress) {
+CrsTransform samplingTransform(const Dem& dem, const SampleOptions& options, const ProgressRange& progress) {
   options.validate();
-  const CrsTransform transform = CrsTransform::forDem(dem, options.sourceSrs, options.targetSrs, progress);
+  CrsTransform transform = CrsTransform::forDem(dem, options.sourceSrs, options.targetSrs, progress);
   checkJitter(dem, transform, options.jitter, progress);
+  return transform;
+}
+
+Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange& progress) {
+  const CrsTransform transform = samplingTransform(dem, options, progress);
   const std::vector<SampleCell> cells = sampleCells(dem, options.block, options.seed, progress.sub(0, 0.2));
   Tin tin;
   tin.crsWkt = transform.targetWkt();

@@ -60,6 +60,7 @@ REFUSED_BUILD_OPTIONS = {
     "-border_keep": "tinlod-tiles agrees the lines' kept cells itself (-method error -max_error)",
     "-line_outline": "tinlod-tiles gathers the lines' outline cells from the survey pass (-selection global)",
     "-tile": "tinlod-tiles gives each task its tile",
+    "-check": "tinlod-tiles checks the build options itself before any tile runs",
     "-tile_size": "give -tile_size to tinlod-tiles itself, before --",
     "-accuracy": "one raster per run cannot hold every tile",
     "-report": "one report per run cannot hold every tile",
@@ -154,10 +155,6 @@ def check_run(arguments):
     for option in arguments.build_options:
         if option in REFUSED_BUILD_OPTIONS:
             raise TilesError("%s after --: %s" % (option, REFUSED_BUILD_OPTIONS[option]))
-    if build_option(arguments.build_options, "-threshold") is not None \
-            and build_option(arguments.build_options, "-max_levels") is None:
-        raise TilesError("-threshold after -- needs -max_levels N after -- too: every tile of a job must make "
-                         "the same levels")
     block = build_block(arguments.build_options)
     if arguments.tile_size % block:
         lower = arguments.tile_size - arguments.tile_size % block

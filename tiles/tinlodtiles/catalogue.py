@@ -6,6 +6,7 @@ Only the driver writes it, one tile at a time, each change committed on its own:
 stopped anyhow leaves a catalogue that says which tiles are finished.
 """
 import os
+import time
 
 from osgeo import ogr, osr
 
@@ -22,6 +23,25 @@ FIELDS = (  # (name, OGR type)
 )
 # The settings a rerun must share with the catalogue's first run.
 JOB_KEYS = ("TINLOD_SOURCE", "TINLOD_TILE_SIZE", "TINLOD_BUILD_OPTIONS", "TINLOD_RASTER_SIZE", "TINLOD_SELECTION")
+# The DEM file's size and time of change (source_stamp), which a rerun must find unchanged.
+SOURCE_STAMP = "TINLOD_SOURCE_STAMP"
+
+
+def source_stamp(path):
+    """A local DEM file's bytes and time of change; "" for a GDAL virtual path (/vsi...).
+    A VRT's stamp is its own, not its sources'."""
+    if path.startswith("/vsi"):
+        return ""
+    status = os.stat(path)
+    return "%d bytes, changed %s UTC" % (status.st_size, time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(status.st_mtime))
+                                         + ".%09d" % (status.st_mtime_ns % 1000000000))
+
+
+def same_file(recorded, given):
+    """Whether two paths of the DEM name one file (a link to it, or the link's target)."""
+    if recorded == given or recorded.startswith("/vsi") or given.startswith("/vsi"):
+        return recorded == given
+    return os.path.realpath(recorded) == os.path.realpath(given)
 
 
 class Catalogue:
@@ -60,12 +80,20 @@ class Catalogue:
         self.dataset.FlushCache()
 
     def check_same_job(self, settings, path):
-        """A rerun resumes the catalogue's own job only: the same DEM, tile size and options."""
+        """A rerun resumes the catalogue's own job only: the same DEM, unchanged, tile size and
+        options. The DEM by another path to the same file (a link) is the same DEM."""
         for key in JOB_KEYS:
+            if key == "TINLOD_SOURCE" and same_file(self.setting(key) or "", settings[key]):
+                continue
             if (self.setting(key) or "") != settings[key]:
                 raise TilesError("%s was made with %s=%s, not %s: run with the same settings to resume it, "
                                  "or add -overwrite to start again"
                                  % (path, key, self.setting(key) or "(none)", settings[key] or "(none)"))
+        recorded = self.setting(SOURCE_STAMP)  # absent in a catalogue of an earlier tinlod-tiles
+        if recorded and settings.get(SOURCE_STAMP) and recorded != settings[SOURCE_STAMP]:
+            raise TilesError("the DEM %s has changed since %s was made (it was %s, it is %s): its finished tiles "
+                             "hold the old heights; add -overwrite to build every tile from the DEM as it is"
+                             % (settings["TINLOD_SOURCE"], path, recorded, settings[SOURCE_STAMP]))
 
     def rows(self):
         """Each tile's (col, row) -> its fields, as a dict."""

@@ -12,6 +12,7 @@ import re
 import shlex
 import signal
 import socket
+import subprocess
 import sys
 import threading
 
@@ -19,7 +20,7 @@ from osgeo import gdal
 
 from . import agreement, line_outline, task, thresholds
 from .arguments import build_option
-from .catalogue import Catalogue, levels_folder, tiles_folder
+from .catalogue import SOURCE_STAMP, Catalogue, levels_folder, source_stamp, tiles_folder
 from .errors import TilesError
 from .grid import tile_grid
 from .levels import write_level_vrts
@@ -30,6 +31,7 @@ from .tin_crs import predicted_tin_srs
 
 def run(arguments):
     """Runs the job; returns the exit code (0, or 1 when tiles failed for good)."""
+    check_build_options(arguments)
     dem = gdal.Open(arguments.dem)
     settings = job_settings(arguments, dem)
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
@@ -74,6 +76,18 @@ def run(arguments):
         return finish(catalogue, arguments, len(tiles) - ran, outcome, ran, rounds)
 
 
+def check_build_options(arguments):
+    """tinlod build -check on the first tile with the job's build options: what every tile
+    would refuse is said once, before the catalogue is made, not by every task and retry."""
+    command = [arguments.tinlod, "build", dem_path(arguments.dem), arguments.catalogue,
+               "-tile_size", str(arguments.tile_size), "-tile", "0,0"] + list(arguments.build_options) + ["-check", "-q"]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        errors = [line[len("ERROR: "):] for line in result.stderr.splitlines() if line.startswith("ERROR: ")]
+        message = errors[-1] if errors else (result.stderr.strip() or "exit code %d" % result.returncode)
+        raise TilesError("tinlod build refuses the job: %s. Nothing was written" % message)
+
+
 def tiles_to_agree(catalogue, tiles, arguments):
     """The finished tiles to build again so that their lines agree (agreement.next_round),
     marked pending, and how many line cells are kept; the keep file updated first."""
@@ -113,7 +127,8 @@ def job_settings(arguments, dem):
     return {"TINLOD_SOURCE": dem_path(arguments.dem), "TINLOD_TILE_SIZE": str(arguments.tile_size),
             "TINLOD_BUILD_OPTIONS": shlex.join(arguments.build_options),
             "TINLOD_RASTER_SIZE": "%d,%d" % (dem.RasterXSize, dem.RasterYSize),
-            "TINLOD_SELECTION": "global" if global_selection(arguments) else "tile"}
+            "TINLOD_SELECTION": "global" if global_selection(arguments) else "tile",
+            SOURCE_STAMP: source_stamp(dem_path(arguments.dem))}
 
 
 def check_reachable(address):

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string>
 
+#include "tinlod/crs_transform.h"
 #include "tinlod/dem.h"
 #include "tinlod/feedback.h"
 #include "tinlod/gpkg_writer.h"
@@ -20,6 +21,11 @@ struct SampleSummary {
   double area = 0;  // square metres covered by the TIN
   std::string crsName;
 };
+
+// The transform to the TIN's CRS that sampleTin uses, after the checks it makes of the
+// options, the CRS and the jitter against the cell size: any window of the DEM (two cells
+// across at least, for the jitter) gives the whole raster's.
+CrsTransform samplingTransform(const Dem& dem, const SampleOptions& options, const ProgressRange& progress);
 
 // DEM in memory to TIN: sample cells, transform to the metric CRS, perturb, triangulate,
 // cut out nodata holes.
