@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -160,6 +161,23 @@ TEST(AccuracyJob, AnotherDemThanTheTinsIsRefused) {
   AccuracyOutputs a;
   a.reportPath = test::tempDir() + "/r.csv";
   EXPECT_THROW(runAccuracyJob(path, built().gpkg, a, 0, "", {}), Error);
+}
+
+TEST(AccuracyJob, ADemWithoutCrsIsReadWithTheSourceSrsTheBuildWasGiven) {
+  Dem dem = test::makeGeographicDem(60, 50, 7.0, 46.0);
+  dem.crsWkt.clear();
+  const std::string path = test::tempDir() + "/degrees_without_crs.tif", gpkg = test::tempDir() + "/degrees.gpkg";
+  writeDemGeoTiff(dem, path);
+  SampleOptions sample;
+  sample.sourceSrs = "EPSG:4326";
+  runBuildJob(path, gpkg, sample, {}, true, {}, AccuracyOutputs());
+  AccuracyOutputs a;
+  a.reportPath = test::tempDir() + "/degrees.csv";
+  a.overwrite = true;
+  const AccuracyReport r = runAccuracyJob(path, gpkg, a, 0, "", {});
+  ASSERT_FALSE(r.rows.empty());
+  EXPECT_GT(r.rows.size(), 2u);
+  EXPECT_TRUE(std::isfinite(r.rows.back().rmse)) << "every level measured at the DEM's test points";
 }
 
 TEST(AccuracyJob, TooFewTestPointsOnTheTinAreRefusedWithNothingWritten) {

@@ -134,7 +134,25 @@ TEST(Crs, DegreesWithoutCrsWarnAndSourceSrsFixesIt) {
   EXPECT_TRUE(fb.warned("-s_srs EPSG:4326"));
   const CrsTransform fixed = CrsTransform::forDem(dem, "EPSG:4326", "", ProgressRange(feedback, 0, 1));
   EXPECT_NE(fixed.targetName().find("32632"), std::string::npos);
-  EXPECT_THROW(CrsTransform::forDem(dem, "", "EPSG:32632", ProgressRange(feedback, 0, 1)), Error);
+  EXPECT_EQ(test::errorOf([&] { CrsTransform::forDem(dem, "", "EPSG:32632", ProgressRange(feedback, 0, 1)); }),
+            "'test DEM' has no CRS, so it cannot be transformed to WGS 84 / UTM zone 32N (EPSG:32632): name its CRS "
+            "with -s_srs, e.g. -s_srs EPSG:4326");
+}
+
+TEST(Crs, ALocalCrsIsNoPlaceToTransformFromAndTheErrorSaysSoWithoutWkt) {
+  Dem dem = test::makeGeographicDem(5, 5, 7.0, 46.0);
+  OGRSpatialReference local;
+  local.SetLocalCS("unnamed");
+  char* wkt = nullptr;
+  local.exportToWkt(&wkt);
+  dem.crsWkt = wkt;
+  CPLFree(wkt);
+  const std::string error =
+      test::errorOf([&] { CrsTransform::forDem(dem, "", "EPSG:32632", ProgressRange(Feedback{}, 0, 1)); });
+  EXPECT_EQ(error, "'test DEM' has no CRS (only a local one, unnamed), so it cannot be transformed to WGS 84 / UTM "
+                   "zone 32N (EPSG:32632): name its CRS with -s_srs, e.g. -s_srs EPSG:4326");
+  EXPECT_NE(CrsTransform::forDem(dem, "EPSG:4326", "EPSG:32632", ProgressRange(Feedback{}, 0, 1)).targetName().find("32632"),
+            std::string::npos);
 }
 
 }  // namespace

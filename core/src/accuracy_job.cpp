@@ -132,6 +132,14 @@ int sampledBand(const HierarchyInfo& info) {
   return band;
 }
 
+// -s_srs when given, else the one the file was sampled with (TINLOD_SOURCE_SRS): a DEM whose
+// file names no CRS is read as the build read it.
+std::string sourceSrsOf(const std::string& given, const HierarchyInfo& info) {
+  if (!given.empty()) return given;
+  const auto item = info.metadata.find("source_srs");
+  return item == info.metadata.end() || item->second == "from file" ? "" : item->second;
+}
+
 }  // namespace
 
 AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hierarchyPath, const AccuracyOutputs& outputs,
@@ -148,7 +156,8 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     const HierarchyInfo first = readHierarchyInfo(readCatalogue(hierarchyPath).front().file);
     if (band == 0) band = sampledBand(first);
     AccuracyReport report = measureCatalogue(demPath, hierarchyPath, band,
-                                             validHeights ? *validHeights : recordedRange(first.metadata), sourceSrs,
+                                             validHeights ? *validHeights : recordedRange(first.metadata),
+                                             sourceSrsOf(sourceSrs, first),
                                              outputs, staged, all);
     files.commit();
     all.finish("Done");
@@ -158,7 +167,8 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   if (band == 0) band = sampledBand(stored.info);
   const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), validHeights ? *validHeights : recordedRange(stored.info.metadata));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
-  const CrsTransform toTin = CrsTransform::forDem(dem, sourceSrs, stored.hierarchy.base.crsWkt, quiet);
+  const CrsTransform toTin =
+      CrsTransform::forDem(dem, sourceSrsOf(sourceSrs, stored.info), stored.hierarchy.base.crsWkt, quiet);
   AccuracyOutputs chosen = outputs;
   if (stored.info.kind != "hierarchy" && outputs.options.reference == Reference::Tin) {
     // A single TIN against itself says nothing.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/crs_transform.h"
 
+#include <cpl_error.h>
 #include <ogr_spatialref.h>
 #include <proj.h>
 
@@ -160,10 +161,11 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
 
   OGRSpatialReference dst;
   if (!targetSrs.empty()) {
-    if (!hasSrc)
-      throw Error("'" + dem.path + "' has no CRS, so it cannot be transformed to '" + targetSrs +
-                  "': name its CRS with -s_srs, e.g. -s_srs EPSG:4326");
     dst = parseTarget(targetSrs);
+    // A local CRS (such as a file's "unnamed" engineering one) ties the grid to no place on Earth.
+    if (!hasSrc || (src.IsLocal() && !src.IsSame(&dst)))
+      throw Error("'" + dem.path + "' has no CRS" + (hasSrc ? " (only a local one, " + describe(src) + ")" : "") +
+                  ", so it cannot be transformed to " + describe(dst) + ": name its CRS with -s_srs, e.g. -s_srs EPSG:4326");
   } else if (!hasSrc) {
     warnAboutMissingCrs(dem, progress);
     impl->name = "no CRS";
@@ -181,7 +183,9 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
   impl->wkt = wkt2(dst);
   impl->name = describe(dst);
   if (!src.IsSame(&dst)) {
+    CPLPushErrorHandler(CPLQuietErrorHandler);  // the error below says it, once
     impl->transform.reset(OGRCreateCoordinateTransformation(&src, &dst));
+    CPLPopErrorHandler();
     if (!impl->transform)
       throw Error("no transformation from " + describe(src) + " to " + impl->name + ": " +
                   CPLGetLastErrorMsg());
