@@ -55,8 +55,8 @@ print(as_option(level_thresholds([read_survey(p) for p in sorted(glob.glob('$wor
   # The lines' outline cells the tiles' surveys list: only these of the line cells near nodata stay.
   (cd "$root/tiles" && /usr/bin/python3 -c "
 import glob
-from tinlodtiles import line_outline
-line_outline.write('$work/$name.line_outline.txt', line_outline.gather(glob.glob('$work/$name.survey_*.json')))")
+from tinlodtiles import cell_file, line_outline
+cell_file.write_cells('$work/$name.line_outline.txt', line_outline.gather(glob.glob('$work/$name.survey_*.json')))")
   echo "survey pass: $((SECONDS - start)) s, $(wc -l < "$work/$name.line_outline.txt") line cells on the outline"
   for ((c = 0; c < across; c++)); do
     for ((r = 0; r < down; r++)); do

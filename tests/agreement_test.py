@@ -12,7 +12,7 @@ import tempfile
 sys.path.insert(0, sys.argv[1])
 from osgeo import gdal, ogr  # noqa: E402
 
-from tinlodtiles import agreement  # noqa: E402
+from tinlodtiles import agreement, cell_file  # noqa: E402
 from tinlodtiles.grid import tile_grid  # noqa: E402
 from script_checks import check, exit_code  # noqa: E402
 
@@ -57,12 +57,12 @@ check("needed: -method error with a finite -max_error only",
 
 work = tempfile.mkdtemp(prefix="tinlod_agreement_test_")
 keep = agreement.keep_path(work)
-agreement.write_keep(keep, {(20, 150), (3, 150)})
+cell_file.write_cells(keep, {(20, 150), (3, 150)})
 with open(keep, "a") as f:
     f.write("# a comment\n\n7 300  # and one after a cell\n")
 check("the keep file reads back, comments and blank lines skipped",
-      agreement.read_keep(keep) == {(3, 150), (20, 150), (7, 300)}, agreement.read_keep(keep))
-check("a missing keep file is no kept cell", agreement.read_keep(os.path.join(work, "absent.txt")) == set())
+      cell_file.read_cells(keep) == {(3, 150), (20, 150), (7, 300)}, cell_file.read_cells(keep))
+check("a missing keep file is no kept cell", cell_file.read_cells(os.path.join(work, "absent.txt")) == set())
 
 # Tile 0,0 refused (40, 150) on the line it shares with 1,0; 1,0 was built with nothing
 # kept; 2,0 was built with its own line's cell (7, 300) kept; 0,1 and 1,1 say nothing of

@@ -51,8 +51,8 @@ check "the surveys give 14 thresholds" test "$(tr ',' '\n' <<< "$thresholds" | w
 line_outline_union() {
   (cd "$here/../tiles" && /usr/bin/python3 -c "
 import glob, sys
-from tinlodtiles import line_outline
-line_outline.write(sys.argv[2], line_outline.gather(glob.glob(sys.argv[1])))" "$1" "$2")
+from tinlodtiles import cell_file, line_outline
+cell_file.write_cells(sys.argv[2], line_outline.gather(glob.glob(sys.argv[1])))" "$1" "$2")
 }
 line_outline_union "$work/survey_*.json" "$work/line_outline.txt"
 check "the surveys list line cells on the outline (the void reaches a line)" test -s "$work/line_outline.txt"

@@ -33,25 +33,6 @@ def keep_path(folder):
     return os.path.join(folder, KEEP_NAME)
 
 
-def read_keep(path):
-    """The kept cells, as (row, col) of the whole raster."""
-    try:
-        with open(path) as f:
-            lines = [line.split("#", 1)[0].split() for line in f]
-    except FileNotFoundError:
-        return set()
-    return {(int(fields[0]), int(fields[1])) for fields in lines if fields}
-
-
-def write_keep(path, cells):
-    """Whole or not at all: a task may read it while a later round is prepared."""
-    partial = path + ".partial"
-    with open(partial, "w") as f:
-        for row, col in sorted(cells):
-            f.write("%d %d\n" % (row, col))
-    os.replace(partial, path)
-
-
 def cells_of(text):
     """TINLOD_BORDER_KEPT or _REFUSED ("row col;row col"; GDAL drops an empty one)."""
     return {tuple(int(v) for v in part.split()) for part in (text or "").split(";") if part.strip()}

@@ -19,6 +19,7 @@ import threading
 from osgeo import gdal
 
 from . import agreement, line_outline, task, thresholds
+from .cell_file import read_cells, write_cells
 from .arguments import build_option
 from .catalogue import SOURCE_STAMP, Catalogue, levels_folder, source_stamp, tiles_folder
 from .errors import TilesError
@@ -96,8 +97,8 @@ def tiles_to_agree(catalogue, tiles, arguments):
     done = {t: os.path.join(base, rows[(t.col, t.row)]["file"]) for t in tiles
             if rows[(t.col, t.row)]["status"] == "done" and rows[(t.col, t.row)]["file"]}
     path = agreement.keep_path(tiles_folder(arguments.catalogue))
-    kept, again = agreement.next_round(done, agreement.read_keep(path), agreement.TileLines(tiles, arguments.tile_size))
-    agreement.write_keep(path, kept)
+    kept, again = agreement.next_round(done, read_cells(path), agreement.TileLines(tiles, arguments.tile_size))
+    write_cells(path, kept)
     for t in again:
         catalogue.update(t.col, t.row, {"status": "pending", "file": None})
     return again, len(kept)
@@ -180,7 +181,7 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     values = thresholds.level_thresholds(surveys, percent("-delete_pct", 20), percent("-stop_pct", 5))
     text = thresholds.as_option(values)
     cells = line_outline.gather(survey_path(folder, t) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty")
-    line_outline.write(line_outline.path(folder), cells)  # before the thresholds are recorded: a rerun has both
+    write_cells(line_outline.path(folder), cells)  # before the thresholds are recorded: a rerun has both
     catalogue.set_setting(line_outline.SETTING, line_outline.NAME)
     catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
     for t in surveyed:

@@ -12,7 +12,6 @@ than a whole run's on swiss_alps as 16 tiles, 4 % with the list).
 import json
 import os
 
-from . import task
 from .errors import TilesError
 
 NAME = "line_outline.txt"
@@ -33,15 +32,6 @@ def gather(survey_paths):
             raise TilesError("%s was written by an older tinlod (no line_outline): run again with -overwrite" % survey_path)
         cells.update((int(row), int(col)) for row, col in survey["line_outline"])
     return cells
-
-
-def write(final, cells):
-    """Whole or not at all, and on disk before the catalogue records it."""
-    partial = final + ".partial"
-    with open(partial, "w") as f:
-        for row, col in sorted(cells):
-            f.write("%d %d\n" % (row, col))
-    task.publish(partial, final)
 
 
 def build_option(catalogue, folder):
