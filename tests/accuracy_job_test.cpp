@@ -11,6 +11,7 @@
 #include "test_support.h"
 #include "tinlod/accuracy_job.h"
 #include "tinlod/build_job.h"
+#include "tinlod/crs_transform.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_builder.h"
@@ -178,6 +179,18 @@ TEST(AccuracyJob, ADemWithoutCrsIsReadWithTheSourceSrsTheBuildWasGiven) {
   ASSERT_FALSE(r.rows.empty());
   EXPECT_GT(r.rows.size(), 2u);
   EXPECT_TRUE(std::isfinite(r.rows.back().rmse)) << "every level measured at the DEM's test points";
+
+  // Another DEM with a CRS of its own keeps it: the same heights on the TIN's UTM grid would
+  // lie nowhere near the TIN read as degrees.
+  const CrsTransform toUtm = CrsTransform::forDem(dem, "EPSG:4326", "EPSG:32632", ProgressRange(Feedback{}, 0, 1));
+  std::vector<double> x{dem.centreX(0)}, y{dem.centreY(0)};
+  toUtm.apply(x, y);
+  Dem metric = test::makeDem(40, 40, 50, [](int r, int c) { return float(100 + r + 2 * c); });
+  metric.geotransform = {std::floor(x[0]), 50.0, 0.0, std::ceil(y[0]), 0.0, -50.0};
+  const std::string utm = test::tempDir() + "/utm_dem.tif";
+  writeDemGeoTiff(metric, utm);
+  a.reportPath = test::tempDir() + "/utm.csv";
+  EXPECT_EQ(test::errorOf([&] { runAccuracyJob(utm, gpkg, a, 0, "", {}); }), "no error");
 }
 
 TEST(AccuracyJob, TooFewTestPointsOnTheTinAreRefusedWithNothingWritten) {

@@ -133,6 +133,23 @@ TEST(Cli, ErrorsExitOneWithAMessageAndWriteNothing) {
   }
 }
 
+TEST(Cli, BuildCheckSaysWhetherTheOptionsAreGoodAndWritesNothing) {
+  const std::string out = test::tempDir() + "/checked.gpkg";
+  const CliRun good = tinlod("build " + defaultDem() + " " + out + " -check -tile_size 120 -tile 1,1");
+  EXPECT_EQ(good.exitCode, 0) << good.err;
+  EXPECT_TRUE(has(good.out, "The options are good for " + defaultDem() + "; nothing was written")) << good.out;
+  EXPECT_FALSE(fs::exists(out));
+  const CliRun bad = tinlod("build " + defaultDem() + " " + out + " -check -delete_pct 200");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_TRUE(has(bad.err, "ERROR: delete_pct must be more than 0 and at most 100 (got 200)")) << bad.err;
+  EXPECT_FALSE(fs::exists(out));
+  const std::string list = test::tempDir() + "/bad_outline.txt";
+  std::ofstream(list) << "12 x\n";
+  const CliRun badList = tinlod("build " + defaultDem() + " " + out + " -check -tile_size 120 -tile 0,0 -line_outline " + list);
+  EXPECT_EQ(badList.exitCode, 1);
+  EXPECT_TRUE(has(badList.err, "-line_outline: line 1 of '" + list + "' is not a cell")) << badList.err;
+}
+
 TEST(Cli, BuildWritesAHierarchyThatInfoDescribes) {
   const std::string dir = test::tempDir();
   const CliRun build = tinlod("build -method error -delete_pct 10 -max_levels 6 -fix_peaks_pits " + defaultDem() + " " +

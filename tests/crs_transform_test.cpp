@@ -155,5 +155,18 @@ TEST(Crs, ALocalCrsIsNoPlaceToTransformFromAndTheErrorSaysSoWithoutWkt) {
             std::string::npos);
 }
 
+TEST(Crs, ALocalCrsInFeetHasNoUtmZoneToGoToAndSaysSo) {
+  Dem dem = test::makeDem(5, 5, 10, [](int, int) { return 1.0f; });
+  OGRSpatialReference local;
+  local.SetLocalCS("site grid");
+  local.SetLinearUnits("foot", 0.3048);
+  char* wkt = nullptr;
+  local.exportToWkt(&wkt);
+  dem.crsWkt = wkt;
+  CPLFree(wkt);
+  EXPECT_TRUE(test::contains(test::errorOf([&] { CrsTransform::forDem(dem, "", "", ProgressRange(Feedback{}, 0, 1)); }),
+                             "has only a local CRS (site grid) in units that are not metres: name its CRS with -s_srs"));
+}
+
 }  // namespace
 }  // namespace tinlod

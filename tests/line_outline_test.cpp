@@ -31,11 +31,12 @@ bool missing(int r, int c) {
   return (r >= 10 && r <= 13 && c >= 58 && c <= 62) ||  // across the line
          (r >= 28 && r <= 31 && c >= 55 && c <= 57) ||  // three cells left of it
          (r >= 44 && r <= 46 && c >= 62 && c <= 64) ||  // two cells right of it
-         (r >= 36 && r <= 38 && c >= 61 && c <= 63) ||  // beside it, on the right
+         (r >= 36 && r <= 38 && c >= 61 && c <= 63) ||  // beside it, on the right,
+         ((r == 36 || r == 38) && c == kLine) ||         // round one line cell there
          (r == 52 && c == kLine);                       // one cell on it
 }
 
-// Rolling terrain with five voids near the line.
+// Rolling terrain with voids near the line, one of them leaving a line cell to one tile only.
 std::string demWithVoids() {
   static const std::string path = [] {
     Dem dem = test::makeDem(2 * kSize + 1, 61, 10, [](int r, int c) {
@@ -152,6 +153,16 @@ TEST(LineOutline, TilesKeepingTheUnionDeleteTheSameLineVerticesAndMoreOfThem) {
     if (right[0].count(row)) shared.insert(row);
   for (std::size_t level = 0; level < left.size(); ++level)
     for (long long row : shared) EXPECT_EQ(left[level].count(row), right[level].count(row)) << "level " << level << " row " << row;
+  // A line cell only one tile has (the other's level 0 left it out: on the list) stays there.
+  std::size_t alone = 0;
+  for (const auto* one : {&left, &right})
+    for (long long row : (*one)[0])
+      if (!shared.count(row)) {
+        ++alone;
+        EXPECT_TRUE(both.count(globalCellKey(row, kLine))) << "row " << row;
+        for (std::size_t level = 0; level < one->size(); ++level) EXPECT_EQ((*one)[level].count(row), 1u) << "level " << level;
+      }
+  EXPECT_GT(alone, 0u) << "the void beside the line leaves a line cell out of one tile";
   const auto keptAll = lineRowsByLevel(buildTile(0, ""), 0);
   EXPECT_LT(left.back().size() + 5, keptAll.back().size()) << "the list should free line vertices near the voids";
 }

@@ -316,7 +316,7 @@ def main(tinlod, tiles):
     levelless = run(base + [os.path.join(work, "t1.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program,
                             "--", "-threshold", "1e6"])
     check("-threshold without -max_levels is refused before any tile runs",
-          levelless.returncode == 1 and "-threshold with -tile needs -max_levels" in levelless.stderr
+          levelless.returncode == 1 and "-threshold in a tiled run needs -max_levels" in levelless.stderr
           and not os.path.exists(os.path.join(work, "t1.gpkg")), levelless.stderr)
     away = run(base + [os.path.join(work, "away.gpkg"), "-tile_size", str(TILE_SIZE), "-scheduler", "tcp://127.0.0.1:9",
                        "-tinlod", program])
@@ -349,7 +349,7 @@ def main(tinlod, tiles):
     wrong = run(base + [os.path.join(work, "w.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2",
                         "-tinlod", program, "--", "-delete_pct", "200"], env)
     check("build options every tile would refuse are refused once, with tinlod's message, before anything is written",
-          wrong.returncode == 1 and "tinlod build refuses the job: delete_pct must be more than 0 and at most 100 (got 200)"
+          wrong.returncode == 1 and "tinlod build refuses the job (tile 0,0): delete_pct must be more than 0 and at most 100 (got 200)"
           in wrong.stderr and "Nothing was written" in wrong.stderr and "tiles failed" not in wrong.stderr
           and not os.path.exists(os.path.join(work, "w.gpkg")) and not os.path.exists(os.path.join(work, "w_tiles")),
           wrong.stderr[-2000:])
@@ -493,7 +493,7 @@ def main(tinlod, tiles):
     # these, not every line cell near nodata (the empty corner's lines).
     outline_file = os.path.join(folder, "line_outline.txt")
     listed = [line.split() for line in open(outline_file)] if os.path.isfile(outline_file) else []
-    tile_listed = gdal.OpenEx(os.path.join(folder, "tile_1_1.gpkg"), gdal.OF_VECTOR).GetMetadataItem("TINLOD_LINE_OUTLINE")
+    tile_listed = gdal.OpenEx(os.path.join(folder, "tile_1_1.gpkg"), gdal.OF_VECTOR).GetMetadataItem("TINLOD_LINE_OUTLINE_CELLS")
     check("(k) the surveys' line outline is in the tiles folder, recorded by the catalogue and read by the tiles",
           metadata.get("TINLOD_LINE_OUTLINE") == "line_outline.txt" and len(listed) > 0
           and all(len(cell) == 2 for cell in listed) and int(tile_listed or 0) > 0, (metadata, listed, tile_listed))

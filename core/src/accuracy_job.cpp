@@ -2,6 +2,7 @@
 #include "tinlod/accuracy_job.h"
 
 #include <gdal_priv.h>
+#include <ogr_spatialref.h>
 
 #include <charconv>
 #include <filesystem>
@@ -132,12 +133,24 @@ int sampledBand(const HierarchyInfo& info) {
   return band;
 }
 
-// -s_srs when given, else the one the file was sampled with (TINLOD_SOURCE_SRS): a DEM whose
-// file names no CRS is read as the build read it.
-std::string sourceSrsOf(const std::string& given, const HierarchyInfo& info) {
+// Whether a DEM's file names a CRS that places it on Earth (not none, nor a local one).
+bool placedOnEarth(const std::string& demPath, int band) {
+  const Dem corner = readDemWindow(demPath, band, CellWindow{0, 0, 1, 1}, ProgressRange(Feedback{}, 0, 1));
+  OGRSpatialReference srs;
+  return !corner.crsWkt.empty() && srs.importFromWkt(corner.crsWkt.c_str()) == OGRERR_NONE && !srs.IsLocal();
+}
+
+// -s_srs when given, else the one the file was sampled with (TINLOD_SOURCE_SRS) for the DEM
+// the build read, or a DEM whose file places it nowhere: read as the build read it. Another
+// DEM with a CRS of its own keeps it.
+std::string sourceSrsOf(const std::string& given, const HierarchyInfo& info, const std::string& demPath, int band) {
   if (!given.empty()) return given;
   const auto item = info.metadata.find("source_srs");
-  return item == info.metadata.end() || item->second == "from file" ? "" : item->second;
+  if (item == info.metadata.end() || item->second == "from file") return "";
+  const auto source = info.metadata.find("source");
+  const bool same =
+      source != info.metadata.end() && std::filesystem::path(source->second) == std::filesystem::path(demPath);
+  return same || !placedOnEarth(demPath, band) ? item->second : "";
 }
 
 }  // namespace
@@ -157,7 +170,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     if (band == 0) band = sampledBand(first);
     AccuracyReport report = measureCatalogue(demPath, hierarchyPath, band,
                                              validHeights ? *validHeights : recordedRange(first.metadata),
-                                             sourceSrsOf(sourceSrs, first),
+                                             sourceSrsOf(sourceSrs, first, demPath, band),
                                              outputs, staged, all);
     files.commit();
     all.finish("Done");
@@ -168,7 +181,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), validHeights ? *validHeights : recordedRange(stored.info.metadata));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
   const CrsTransform toTin =
-      CrsTransform::forDem(dem, sourceSrsOf(sourceSrs, stored.info), stored.hierarchy.base.crsWkt, quiet);
+      CrsTransform::forDem(dem, sourceSrsOf(sourceSrs, stored.info, demPath, band), stored.hierarchy.base.crsWkt, quiet);
   AccuracyOutputs chosen = outputs;
   if (stored.info.kind != "hierarchy" && outputs.options.reference == Reference::Tin) {
     // A single TIN against itself says nothing.

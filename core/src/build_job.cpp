@@ -78,7 +78,7 @@ void validateTile(const TileSpec& tile, const SampleOptions& sample, const Hiera
                 " make " + std::to_string(tileLevels(options)) + " levels in every tile, more than the " +
                 std::to_string(kMaxLevel) + " a hierarchy holds: raise -delete_pct or -stop_pct, or give -max_levels");
   if (options.thresholdMode && options.maxLevels == 0)
-    throw Error("-threshold with -tile needs -max_levels: every tile of a job must make the same levels");
+    throw Error("-threshold in a tiled run needs -max_levels: every tile of a job must make the same levels");
   if (options.survey && !options.lineOutline.empty())
     throw Error("-line_outline is for the build pass: a -survey lists the tile's own outline cells");
 }
@@ -307,7 +307,8 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   if (tile.size > 0) addTileMetadata(dem, tile, writeOptions.metadata);
   if (tile.size > 0) addAgreementMetadata(dem, borders, h, writeOptions.metadata, all);
   if (borders.outlineListed)  // how many of the -line_outline cells are on this tile's lines
-    writeOptions.metadata["TINLOD_LINE_OUTLINE"] = std::to_string(cellsOnSharedLines(dem, borders.lineOutline).size());
+    writeOptions.metadata["TINLOD_LINE_OUTLINE_CELLS"] =
+        std::to_string(cellsOnSharedLines(dem, borders.lineOutline).size());
   writeOptions.metadata["TINLOD_LEVEL_VIEWS"] = levelListText(layers.levelViews);
   writeOptions.metadata["TINLOD_GROUP_OUTLINES"] = layers.groupOutlines ? "yes" : "no";
   writeOptions.metadata["TINLOD_VERTEX_INDEX"] = layers.vertexIndex ? "yes" : "no";

@@ -41,6 +41,9 @@ void centreLonLat(const Dem& dem, const OGRSpatialReference& src, double& lon, d
   lat = gt[3] + 0.5 * dem.wholeHeight() * gt[5];
   if (src.IsGeographic()) return;
   std::unique_ptr<OGRSpatialReference> geog(src.CloneGeogCS());
+  if (!geog)  // a local or engineering CRS has no longitude and latitude
+    throw Error("'" + dem.path + "' has only a local CRS (" + describe(src) + ") in units that are not metres: name its "
+                "CRS with -s_srs (e.g. -s_srs EPSG:4326 for degrees), or a projected one with -t_srs");
   geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&src, geog.get()));
   if (!ct || !ct->Transform(1, &lon, &lat))
@@ -165,7 +168,8 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
     // A local CRS (such as a file's "unnamed" engineering one) ties the grid to no place on Earth.
     if (!hasSrc || (src.IsLocal() && !src.IsSame(&dst)))
       throw Error("'" + dem.path + "' has no CRS" + (hasSrc ? " (only a local one, " + describe(src) + ")" : "") +
-                  ", so it cannot be transformed to " + describe(dst) + ": name its CRS with -s_srs, e.g. -s_srs EPSG:4326");
+                  ", so it cannot be transformed to " + describe(dst) +
+                  ": name its CRS with -s_srs, e.g. -s_srs EPSG:4326");
   } else if (!hasSrc) {
     warnAboutMissingCrs(dem, progress);
     impl->name = "no CRS";

@@ -94,7 +94,9 @@ void checkJitter(const Dem& dem, const CrsTransform& transform, double jitter, c
   if (jitter >= cell) {
     std::ostringstream msg;
     msg << "jitter " << jitter << " m is not smaller than the cell size (" << cell << " m): points would leave their cells; ";
-    if (transform.targetWkt().empty()) msg << "if the DEM is in degrees, name its CRS with -s_srs EPSG:4326; otherwise ";
+    // Cells under a centimetre are degrees read as metres (no CRS, or a local one).
+    if (transform.targetWkt().empty() || cell < 0.01)
+      msg << "if the DEM is in degrees, name its CRS with -s_srs EPSG:4326; otherwise ";
     msg << "use e.g. -jitter " << std::setprecision(2) << 0.1 * cell;
     throw Error(msg.str());
   }

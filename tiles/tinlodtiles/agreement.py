@@ -39,7 +39,7 @@ def cells_of(text):
 
 
 class TileLines:
-    """Which cells lie on a tile's shared lines, as the core finds them (keptOnSharedLines)."""
+    """Which cells lie on a tile's shared lines, as the core finds them (cellsOnSharedLines)."""
 
     def __init__(self, tiles, tile_size):
         self.width = max(t.xoff + t.xsize for t in tiles)

@@ -33,7 +33,7 @@ def source_stamp(path):
     if path.startswith("/vsi"):
         return ""
     status = os.stat(path)
-    return "%d bytes, changed %s UTC" % (status.st_size, time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(status.st_mtime))
+    return "%d bytes, changed %s UTC" % (status.st_size, time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(status.st_mtime_ns // 10 ** 9))
                                          + ".%09d" % (status.st_mtime_ns % 1000000000))
 
 

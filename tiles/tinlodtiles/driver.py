@@ -32,10 +32,10 @@ from .tin_crs import predicted_tin_srs
 
 def run(arguments):
     """Runs the job; returns the exit code (0, or 1 when tiles failed for good)."""
-    check_build_options(arguments)
     dem = gdal.Open(arguments.dem)
     settings = job_settings(arguments, dem)
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
+    check_build_options(arguments, tiles)
     if os.path.exists(arguments.catalogue) and not arguments.overwrite:
         Catalogue.open(arguments.catalogue).close()  # refused before anything is written
     if arguments.scheduler:
@@ -77,16 +77,20 @@ def run(arguments):
         return finish(catalogue, arguments, len(tiles) - ran, outcome, ran, rounds)
 
 
-def check_build_options(arguments):
-    """tinlod build -check on the first tile with the job's build options: what every tile
-    would refuse is said once, before the catalogue is made, not by every task and retry."""
-    command = [arguments.tinlod, "build", dem_path(arguments.dem), arguments.catalogue,
-               "-tile_size", str(arguments.tile_size), "-tile", "0,0"] + list(arguments.build_options) + ["-check", "-q"]
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        errors = [line[len("ERROR: "):] for line in result.stderr.splitlines() if line.startswith("ERROR: ")]
-        message = errors[-1] if errors else (result.stderr.strip() or "exit code %d" % result.returncode)
-        raise TilesError("tinlod build refuses the job: %s. Nothing was written" % message)
+def check_build_options(arguments, tiles):
+    """tinlod build -check with the job's build options on the first and the last tile (the
+    raster's two ends, where a geographic DEM's cells are widest and narrowest): what every
+    tile would refuse is said once, before the catalogue is made, not by every task and
+    retry. Our options go first, so that a user's option without its value cannot take one."""
+    for tile in (tiles[0], tiles[-1]):
+        command = [arguments.tinlod, "build", dem_path(arguments.dem), arguments.catalogue, "-check", "-q",
+                   "-tile_size", str(arguments.tile_size), "-tile", "%d,%d" % (tile.col, tile.row)]
+        result = subprocess.run(command + list(arguments.build_options), capture_output=True, text=True)
+        if result.returncode != 0:
+            errors = [line[len("ERROR: "):] for line in result.stderr.splitlines() if line.startswith("ERROR: ")]
+            message = errors[-1] if errors else (result.stderr.strip() or "exit code %d" % result.returncode)
+            raise TilesError("tinlod build refuses the job (tile %d,%d): %s. Nothing was written"
+                             % (tile.col, tile.row, message))
 
 
 def tiles_to_agree(catalogue, tiles, arguments):
@@ -203,7 +207,7 @@ def remove_job(catalogue_path):
     """-overwrite: the catalogue, its tiles and its level files go; only files tinlod-tiles
     names, so that nothing else a user keeps in those folders is lost."""
     removable = {tiles_folder(catalogue_path): re.compile(
-                     r"tile_\d+_\d+\.(gpkg|partial\.gpkg|gpkg\.log|gpkg\.attempts|survey\.json|survey\.partial\.json|survey\.json\.log|survey\.json\.attempts)"
+                     r"tile_\d+_\d+\.(gpkg|partial\.gpkg|gpkg\.log|gpkg\.attempts|survey\.json|survey\.partial\.json|survey\.partial\.json\.partial|survey\.json\.log|survey\.json\.attempts)"
                      r"|(border_keep|line_outline)\.txt(\.partial)?"),
                  levels_folder(catalogue_path): re.compile(r"level_\d+\.vrt")}
     for folder, names in removable.items():
@@ -244,13 +248,15 @@ def open_catalogue(arguments, settings, srs, tiles):
         return Catalogue.create(arguments.catalogue, settings, srs, tiles)
     catalogue = Catalogue.open(arguments.catalogue)
     catalogue.check_same_job(settings, arguments.catalogue)
+    if settings[SOURCE_STAMP] and not catalogue.setting(SOURCE_STAMP):  # made by an earlier tinlod-tiles
+        catalogue.set_setting(SOURCE_STAMP, settings[SOURCE_STAMP])
     return catalogue
 
 
 def remove_leftovers(folder):
     """What a run killed outright left: half-written tiles, logs, attempt counts."""
     for name in os.listdir(folder):
-        if name.startswith("tile_") and name.endswith((".partial.gpkg", ".gpkg.log", ".gpkg.attempts", ".partial.json",
+        if name.startswith("tile_") and name.endswith((".partial.gpkg", ".gpkg.log", ".gpkg.attempts", ".partial.json", ".partial.json.partial",
                                                        ".survey.json.log", ".survey.json.attempts")):
             os.remove(os.path.join(folder, name))
     for partial in (agreement.keep_path(folder) + ".partial", line_outline.path(folder) + ".partial"):
