@@ -391,7 +391,7 @@ namespace {
 // job instead of failing every tile.
 TEST(BuildJob, CheckRefusesWhatTheBuildWouldAndWritesNothing) {
   const auto check = [](const SampleOptions& sample, const HierarchyOptions& options, const TileSpec& tile) {
-    return test::errorOf([&] { checkBuildJob(smallDem(), sample, options, AccuracyOutputs(), tile, {}); });
+    return test::errorOf([&] { checkBuildJob(smallDem(), sample, options, AccuracyOutputs(), {}, tile, {}); });
   };
   EXPECT_EQ(check({}, {}, {}), "no error");
   EXPECT_EQ(check({}, {}, {120, 1, 0}), "no error");  // 150 x 120 cells: 2 x 1 tiles
@@ -412,6 +412,14 @@ TEST(BuildJob, CheckRefusesWhatTheBuildWouldAndWritesNothing) {
   HierarchyOptions listWithoutTile;
   listWithoutTile.lineOutline = test::tempDir() + "/outline.txt";
   EXPECT_TRUE(test::contains(check({}, listWithoutTile, {}), "-line_outline is for a tile of a job"));
+  HierarchyLayers beyond;
+  beyond.levelViews = {0, 99};  // a tile makes exactly 14 levels by default: level 99 would be in none
+  EXPECT_EQ(test::errorOf([&] { checkBuildJob(smallDem(), {}, {}, AccuracyOutputs(), beyond, {120, 0, 0}, {}); }),
+            "-levels 0,99: every tile makes levels 0 to 14 (-max_levels, or -delete_pct and -stop_pct): give levels up "
+            "to 14, or last");
+  beyond.levelViews = {0, 14, HierarchyLayers::kCoarsest};
+  EXPECT_EQ(test::errorOf([&] { checkBuildJob(smallDem(), {}, {}, AccuracyOutputs(), beyond, {120, 0, 0}, {}); }),
+            "no error");
 }
 
 }  // namespace

@@ -353,6 +353,11 @@ def main(tinlod, tiles):
           in wrong.stderr and "Nothing was written" in wrong.stderr and "tiles failed" not in wrong.stderr
           and not os.path.exists(os.path.join(work, "w.gpkg")) and not os.path.exists(os.path.join(work, "w_tiles")),
           wrong.stderr[-2000:])
+    beyond = run(base + [os.path.join(work, "v.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program,
+                         "--", "-levels", "0,99"], env)
+    check("-levels beyond the tiles' levels is refused before anything is written (no tile would have level 99)",
+          beyond.returncode == 1 and "every tile makes levels 0 to 14" in beyond.stderr
+          and not os.path.exists(os.path.join(work, "v.gpkg")), beyond.stderr[-1000:])
     failing = os.path.join(work, "failing_tinlod")  # checks as tinlod does, then fails every tile
     with open(failing, "w") as f:
         f.write('#!/bin/sh\nfor a in "$@"; do [ "$a" = -check ] && exec "%s" "$@"; done\n'

@@ -202,7 +202,7 @@ int buildCommand(std::vector<std::string> args) {
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
   if (check) {
-    checkBuildJob(files[0], sample, o, accuracy, tile, terminalFeedback(quiet));
+    checkBuildJob(files[0], sample, o, accuracy, layers, tile, terminalFeedback(quiet));
     if (!quiet) std::cout << "The options are good for " << files[0] << "; nothing was written" << std::endl;
     return 0;
   }

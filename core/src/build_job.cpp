@@ -185,12 +185,23 @@ void addAgreementMetadata(const Dem& dem, const TileBorders& borders, const Hier
 
 const std::string kFixedName = "-fixed (points to keep)";
 
+// A tile makes exactly tileLevels levels: a view beyond them would be missing from every
+// tile, where a whole run only warns (its levels are known at the end).
+void validateTileViews(const HierarchyLayers& layers, const HierarchyOptions& options) {
+  const int levels = tileLevels(options);
+  for (const std::int32_t level : layers.levelViews)
+    if (level != HierarchyLayers::kCoarsest && level > levels)
+      throw Error("-levels " + levelListText(layers.levelViews) + ": every tile makes levels 0 to " +
+                  std::to_string(levels) + " (-max_levels, or -delete_pct and -stop_pct): give levels up to " +
+                  std::to_string(levels) + ", or last");
+}
+
 // The checks of the options alone, before anything is read.
 void validateBuildOptions(const SampleOptions& sample, const HierarchyOptions& options, const AccuracyOutputs& accuracy,
-                          const TileSpec& tile) {
+                          const HierarchyLayers& layers, const TileSpec& tile) {
   sample.validateForHierarchy();
   options.validate();
-  if (tile.size > 0) validateTile(tile, sample, options);
+  if (tile.size > 0) validateTile(tile, sample, options), validateTileViews(layers, options);
   accuracy.validate();
   if (!options.levelThresholds.empty() && tile.size == 0)
     throw Error("-level_thresholds is the second pass of a tiled run: give it with -tile_size and -tile");
@@ -252,8 +263,9 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin) {
 }
 
 void checkBuildJob(const std::string& demPath, const SampleOptions& sample, const HierarchyOptions& options,
-                   const AccuracyOutputs& accuracy, const TileSpec& tile, const Feedback& feedback) {
-  validateBuildOptions(sample, options, accuracy, tile);
+                   const AccuracyOutputs& accuracy, const HierarchyLayers& layers, const TileSpec& tile,
+                   const Feedback& feedback) {
+  validateBuildOptions(sample, options, accuracy, layers, tile);
   keptCellsOf(options);
   outlineCellsOf(options);
   if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints, kFixedName);
@@ -272,7 +284,7 @@ void checkBuildJob(const std::string& demPath, const SampleOptions& sample, cons
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                          const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
                          const AccuracyOutputs& accuracy, const HierarchyLayers& layers, const TileSpec& tile) {
-  validateBuildOptions(sample, options, accuracy, tile);
+  validateBuildOptions(sample, options, accuracy, layers, tile);
   if (options.survey) return runSurvey(demPath, outPath, sample, options, overwrite, feedback, tile);
   // Bad files fail before the long work.
   std::optional<std::unordered_set<std::uint64_t>> kept = keptCellsOf(options), outline = outlineCellsOf(options);

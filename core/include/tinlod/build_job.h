@@ -36,7 +36,8 @@ std::vector<std::uint8_t> peaksAndPits(const Dem& dem, const Tin& tin);
 // name, the DEM's band and size (the tile in its grid), its CRS against -s_srs and -t_srs, and
 // the jitter against its cells; only two cells of the DEM are read. Throws Error.
 void checkBuildJob(const std::string& demPath, const SampleOptions& sample, const HierarchyOptions& options,
-                   const AccuracyOutputs& accuracy, const TileSpec& tile, const Feedback& feedback);
+                   const AccuracyOutputs& accuracy, const HierarchyLayers& layers, const TileSpec& tile,
+                   const Feedback& feedback);
 
 // The whole `tinlod build` job: read, sample, simplify into a hierarchy, write it, and
 // measure its accuracy when `accuracy` asks for a raster or a report.
