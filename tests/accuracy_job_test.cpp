@@ -191,6 +191,11 @@ TEST(AccuracyJob, ADemWithoutCrsIsReadWithTheSourceSrsTheBuildWasGiven) {
   writeDemGeoTiff(metric, utm);
   a.reportPath = test::tempDir() + "/utm.csv";
   EXPECT_EQ(test::errorOf([&] { runAccuracyJob(utm, gpkg, a, 0, "", {}); }), "no error");
+
+  // Another -s_srs than the build's is warned of before the test points are found off the TIN.
+  test::RecordingFeedback fb;
+  EXPECT_THROW(runAccuracyJob(path, gpkg, a, 0, "EPSG:32612", fb.feedback()), Error);
+  EXPECT_TRUE(fb.warned("-s_srs EPSG:32612 is not the EPSG:4326 '" + gpkg + "' was built with")) << "no such warning";
 }
 
 TEST(AccuracyJob, TooFewTestPointsOnTheTinAreRefusedWithNothingWritten) {

@@ -509,6 +509,15 @@ def main(tinlod, tiles):
           lost.returncode == 1 and "line_outline.txt is gone" in lost.stderr and "-overwrite" in lost.stderr
           and "Traceback" not in lost.stderr, lost.stderr[-1500:])
     os.rename(outline_file + ".moved", outline_file)
+    whole_list = open(outline_file).read()
+    with open(outline_file, "w") as f:
+        f.write(whole_list[: len(whole_list) // 2])
+    cut = run(base + [catalogue] + options, env)
+    check("(k) ... and so is one whose line outline file was cut short",
+          cut.returncode == 1 and "line_outline.txt has changed since" in cut.stderr and "-overwrite" in cut.stderr,
+          cut.stderr[-1500:])
+    with open(outline_file, "w") as f:
+        f.write(whole_list)
     back = run(base + [catalogue] + options, env)
     check("(k) with the file back the tile is built again", back.returncode == 0 and "1 tiles run, 5 skipped" in back.stdout,
           back.stdout + back.stderr[-1000:])

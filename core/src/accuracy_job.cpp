@@ -153,6 +153,15 @@ std::string sourceSrsOf(const std::string& given, const HierarchyInfo& info, con
   return same || !placedOnEarth(demPath, band) ? item->second : "";
 }
 
+// A -s_srs other than the build's reads the DEM elsewhere than the TIN: say so before the
+// test points are found off the TIN.
+void warnOfAnotherSourceSrs(const std::string& given, const HierarchyInfo& info, const ProgressRange& progress) {
+  const auto item = info.metadata.find("source_srs");
+  if (given.empty() || item == info.metadata.end() || item->second == "from file" || item->second == given) return;
+  progress.warn("-s_srs " + given + " is not the " + item->second + " '" + info.path +
+                "' was built with: the DEM is read as being elsewhere (leave -s_srs out to take the build's)");
+}
+
 }  // namespace
 
 AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hierarchyPath, const AccuracyOutputs& outputs,
@@ -168,6 +177,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     // A tile at a time: the memory of one tile, whatever the catalogue's size.
     const HierarchyInfo first = readHierarchyInfo(readCatalogue(hierarchyPath).front().file);
     if (band == 0) band = sampledBand(first);
+    warnOfAnotherSourceSrs(sourceSrs, first, all);
     AccuracyReport report = measureCatalogue(demPath, hierarchyPath, band,
                                              validHeights ? *validHeights : recordedRange(first.metadata),
                                              sourceSrsOf(sourceSrs, first, demPath, band),
@@ -178,6 +188,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   }
   const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.15));
   if (band == 0) band = sampledBand(stored.info);
+  warnOfAnotherSourceSrs(sourceSrs, stored.info, all);
   const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), validHeights ? *validHeights : recordedRange(stored.info.metadata));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
   const CrsTransform toTin =

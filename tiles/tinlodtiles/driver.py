@@ -186,6 +186,7 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     text = thresholds.as_option(values)
     cells = line_outline.gather(survey_path(folder, t) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty")
     write_cells(line_outline.path(folder), cells)  # before the thresholds are recorded: a rerun has both
+    catalogue.set_setting(line_outline.DIGEST, line_outline.digest(line_outline.path(folder)))
     catalogue.set_setting(line_outline.SETTING, line_outline.NAME)
     catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
     for t in surveyed:

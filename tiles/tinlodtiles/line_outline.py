@@ -9,6 +9,7 @@ cells. Without it a tile keeps every line cell within 3 blocks of a missing cell
 costs accuracy on DEMs with voids or sea (a tiled run's coarse levels were up to 22 % worse
 than a whole run's on swiss_alps as 16 tiles, 4 % with the list).
 """
+import hashlib
 import json
 import os
 
@@ -16,6 +17,12 @@ from .errors import TilesError
 
 NAME = "line_outline.txt"
 SETTING = "TINLOD_LINE_OUTLINE"  # the catalogue's record that the tiles are built with the file
+DIGEST = "TINLOD_LINE_OUTLINE_SHA256"  # and of what it held
+
+
+def digest(file_path):
+    with open(file_path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
 
 
 def path(folder):
@@ -43,4 +50,9 @@ def build_option(catalogue, folder):
     if not os.path.isfile(path(folder)):
         raise TilesError("%s is gone: the job's tiles were built with it (the line cells they keep) and it cannot be "
                          "made again; run again with -overwrite to build every tile anew" % path(folder))
+    recorded = catalogue.setting(DIGEST)  # absent in a catalogue of an earlier tinlod-tiles
+    if recorded and digest(path(folder)) != recorded:
+        raise TilesError("%s has changed since the job's tiles were built with it (the line cells they keep), and the "
+                         "job's list cannot be made again; run again with -overwrite to build every tile anew"
+                         % path(folder))
     return ["-line_outline", os.path.abspath(path(folder))]
