@@ -6,6 +6,7 @@
 
 #include <charconv>
 #include <filesystem>
+#include <functional>
 #include <memory>
 
 #include "accuracy_raster_canvas.h"
@@ -133,32 +134,38 @@ int sampledBand(const HierarchyInfo& info) {
   return band;
 }
 
-// Whether a DEM's file names a CRS that places it on Earth (not none, nor a local one).
-bool placedOnEarth(const std::string& demPath, int band) {
-  const Dem corner = readDemWindow(demPath, band, CellWindow{0, 0, 1, 1}, ProgressRange(Feedback{}, 0, 1));
-  OGRSpatialReference srs;
-  return !corner.crsWkt.empty() && srs.importFromWkt(corner.crsWkt.c_str()) == OGRERR_NONE && !srs.IsLocal();
+// The -s_srs the file was sampled with (TINLOD_SOURCE_SRS); empty when it took the DEM's own.
+std::string recordedSourceSrs(const HierarchyInfo& info) {
+  const auto item = info.metadata.find("source_srs");
+  return item == info.metadata.end() || item->second == "from file" ? "" : item->second;
 }
 
-// -s_srs when given, else the one the file was sampled with (TINLOD_SOURCE_SRS) for the DEM
-// the build read, or a DEM whose file places it nowhere: read as the build read it. Another
-// DEM with a CRS of its own keeps it.
-std::string sourceSrsOf(const std::string& given, const HierarchyInfo& info, const std::string& demPath, int band) {
+// Whether a CRS places a DEM on Earth (not none, nor a local one).
+bool placedOnEarth(const std::string& crsWkt) {
+  OGRSpatialReference srs;
+  return !crsWkt.empty() && srs.importFromWkt(crsWkt.c_str()) == OGRERR_NONE && !srs.IsLocal();
+}
+
+// -s_srs when given, else the recorded one for the DEM the build read, or a DEM whose file
+// places it nowhere (`demCrsWkt` gives its CRS, read only when needed): read as the build
+// read it. Another DEM with a CRS of its own keeps it.
+std::string sourceSrsOf(const std::string& given, const HierarchyInfo& info, const std::string& demPath,
+                        const std::function<std::string()>& demCrsWkt) {
   if (!given.empty()) return given;
-  const auto item = info.metadata.find("source_srs");
-  if (item == info.metadata.end() || item->second == "from file") return "";
+  const std::string recorded = recordedSourceSrs(info);
+  if (recorded.empty()) return "";
   const auto source = info.metadata.find("source");
   const bool same =
       source != info.metadata.end() && std::filesystem::path(source->second) == std::filesystem::path(demPath);
-  return same || !placedOnEarth(demPath, band) ? item->second : "";
+  return same || !placedOnEarth(demCrsWkt()) ? recorded : "";
 }
 
 // A -s_srs other than the build's reads the DEM elsewhere than the TIN: say so before the
 // test points are found off the TIN.
 void warnOfAnotherSourceSrs(const std::string& given, const HierarchyInfo& info, const ProgressRange& progress) {
-  const auto item = info.metadata.find("source_srs");
-  if (given.empty() || item == info.metadata.end() || item->second == "from file" || item->second == given) return;
-  progress.warn("-s_srs " + given + " is not the " + item->second + " '" + info.path +
+  const std::string recorded = recordedSourceSrs(info);
+  if (given.empty() || recorded.empty() || recorded == given) return;
+  progress.warn("-s_srs " + given + " is not the " + recorded + " '" + info.path +
                 "' was built with: the DEM is read as being elsewhere (leave -s_srs out to take the build's)");
 }
 
@@ -178,10 +185,12 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     const HierarchyInfo first = readHierarchyInfo(readCatalogue(hierarchyPath).front().file);
     if (band == 0) band = sampledBand(first);
     warnOfAnotherSourceSrs(sourceSrs, first, all);
+    const auto demCrsWkt = [&] {
+      return readDemWindow(demPath, band, CellWindow{0, 0, 1, 1}, ProgressRange(Feedback{}, 0, 1)).crsWkt;
+    };
     AccuracyReport report = measureCatalogue(demPath, hierarchyPath, band,
                                              validHeights ? *validHeights : recordedRange(first.metadata),
-                                             sourceSrsOf(sourceSrs, first, demPath, band),
-                                             outputs, staged, all);
+                                             sourceSrsOf(sourceSrs, first, demPath, demCrsWkt), outputs, staged, all);
     files.commit();
     all.finish("Done");
     return report;
@@ -192,7 +201,8 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), validHeights ? *validHeights : recordedRange(stored.info.metadata));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
   const CrsTransform toTin =
-      CrsTransform::forDem(dem, sourceSrsOf(sourceSrs, stored.info, demPath, band), stored.hierarchy.base.crsWkt, quiet);
+      CrsTransform::forDem(dem, sourceSrsOf(sourceSrs, stored.info, demPath, [&] { return dem.crsWkt; }),
+                           stored.hierarchy.base.crsWkt, quiet);
   AccuracyOutputs chosen = outputs;
   if (stored.info.kind != "hierarchy" && outputs.options.reference == Reference::Tin) {
     // A single TIN against itself says nothing.

@@ -15,12 +15,8 @@ BorderLines::BorderLines(const Tin& base, const Dem& dem, const TileBorders& til
     if (tile.lineClass[s] < 0) continue;
     Line line;
     line.lineClass = tile.lineClass[s];
-    const bool column = s == kFirstCol || s == kLastCol;  // a column of cells, ordered by row
-    const int at = sidePosition(dem, s);
-    const int n = column ? dem.height : dem.width;
-    for (int i = 0; i < n; ++i) {
-      const int row = column ? i : at, col = column ? at : i;
-      if (!dem.valid(row, col) || !lineCellSampled(dem, row, col, tile.block, tile.seed)) continue;
+    const bool column = s == kFirstCol || s == kLastCol;
+    for (const auto& [row, col] : lineVertexCells(dem, s, tile.block, tile.seed)) {
       const auto found = vertexOf.find(globalCellKey(row, col));
       const VertexId v = found == vertexOf.end() ? kNoVertex : found->second;
       // The cell's place, not its vertex's: the other tile may have left the vertex out.

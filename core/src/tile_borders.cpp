@@ -78,6 +78,17 @@ bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t 
   return count > 0 && index == static_cast<int>(h % static_cast<std::uint64_t>(count));
 }
 
+std::vector<std::array<int, 2>> lineVertexCells(const Dem& dem, int side, int block, std::uint64_t seed) {
+  const bool column = side == kFirstCol || side == kLastCol;  // a column of cells, ordered by row
+  const int at = sidePosition(dem, side), n = column ? dem.height : dem.width;
+  std::vector<std::array<int, 2>> cells;
+  for (int i = 0; i < n; ++i) {
+    const int row = column ? i : at, col = column ? at : i;
+    if (dem.valid(row, col) && lineCellSampled(dem, row, col, block, seed)) cells.push_back({row, col});
+  }
+  return cells;
+}
+
 int tileLevelCount(double deletePct, double stopPct) {
   if (deletePct <= 0 || deletePct >= 100 || stopPct <= 0) return 1;
   // A tiny delete percentage gives more levels than an int holds, or infinitely many
@@ -200,13 +211,7 @@ std::vector<std::uint64_t> lineOutlineCells(const Dem& dem, const Tin& tin, int 
   std::vector<std::uint64_t> out;
   for (int side = 0; side < 4; ++side) {
     if (!shared[side]) continue;
-    const bool column = side == kFirstCol || side == kLastCol;
-    const int at = sidePosition(dem, side), n = column ? dem.height : dem.width;
-    std::vector<std::array<int, 2>> cells;  // the line's vertices in a whole tile, in order
-    for (int i = 0; i < n; ++i) {
-      const int row = column ? i : at, col = column ? at : i;
-      if (dem.valid(row, col) && lineCellSampled(dem, row, col, block, seed)) cells.push_back({row, col});
-    }
+    const std::vector<std::array<int, 2>> cells = lineVertexCells(dem, side, block, seed);
     for (std::size_t i = 0; i < cells.size(); ++i) {
       const auto [row, col] = cells[i];
       if (tileCorner(dem, row, col)) continue;  // pinned in any case

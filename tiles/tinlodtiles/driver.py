@@ -82,7 +82,7 @@ def check_build_options(arguments, tiles):
     raster's two ends, where a geographic DEM's cells are widest and narrowest): what every
     tile would refuse is said once, before the catalogue is made, not by every task and
     retry. Our options go first, so that a user's option without its value cannot take one."""
-    for tile in (tiles[0], tiles[-1]):
+    for tile in dict.fromkeys((tiles[0], tiles[-1])):  # once for a single tile
         command = [arguments.tinlod, "build", dem_path(arguments.dem), arguments.catalogue, "-check", "-q",
                    "-tile_size", str(arguments.tile_size), "-tile", "%d,%d" % (tile.col, tile.row)]
         result = subprocess.run(command + list(arguments.build_options), capture_output=True, text=True)
@@ -178,13 +178,16 @@ def level_thresholds(catalogue, tiles, arguments, workers):
             raise TilesError("%d tiles failed in the survey pass; %s"
                              % (outcome["failed"], failure_summary(catalogue.rows().values())))
     rows = catalogue.rows()
-    surveys = [thresholds.read_survey(survey_path(folder, t)) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
+    paths = [survey_path(folder, t) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
+    surveys = [thresholds.load_survey(p) for p in paths]  # each read once: thousands of them
+
     def percent(name, default):
         return float(build_option(arguments.build_options, name) or default)
 
-    values = thresholds.level_thresholds(surveys, percent("-delete_pct", 20), percent("-stop_pct", 5))
+    values = thresholds.level_thresholds([s["levels"] for s in surveys], percent("-delete_pct", 20),
+                                         percent("-stop_pct", 5))
     text = thresholds.as_option(values)
-    cells = line_outline.gather(survey_path(folder, t) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty")
+    cells = set().union(*(line_outline.survey_cells(s, p) for s, p in zip(surveys, paths)))
     write_cells(line_outline.path(folder), cells)  # before the thresholds are recorded: a rerun has both
     catalogue.set_setting(line_outline.DIGEST, line_outline.digest(line_outline.path(folder)))
     catalogue.set_setting(line_outline.SETTING, line_outline.NAME)

@@ -10,10 +10,10 @@ costs accuracy on DEMs with voids or sea (a tiled run's coarse levels were up to
 than a whole run's on swiss_alps as 16 tiles, 4 % with the list).
 """
 import hashlib
-import json
 import os
 
 from .errors import TilesError
+from .thresholds import load_survey
 
 NAME = "line_outline.txt"
 SETTING = "TINLOD_LINE_OUTLINE"  # the catalogue's record that the tiles are built with the file
@@ -29,15 +29,19 @@ def path(folder):
     return os.path.join(folder, NAME)
 
 
+def survey_cells(survey, survey_path):
+    """The line cells one survey (its JSON, loaded from `survey_path`) lists, as (row, col) of
+    the whole raster."""
+    if "line_outline" not in survey:
+        raise TilesError("%s was written by an older tinlod (no line_outline): run again with -overwrite" % survey_path)
+    return {(int(row), int(col)) for row, col in survey["line_outline"]}
+
+
 def gather(survey_paths):
-    """The line cells the surveys list, as (row, col) of the whole raster."""
+    """The line cells the surveys at these paths list."""
     cells = set()
     for survey_path in survey_paths:
-        with open(survey_path) as f:
-            survey = json.load(f)
-        if "line_outline" not in survey:
-            raise TilesError("%s was written by an older tinlod (no line_outline): run again with -overwrite" % survey_path)
-        cells.update((int(row), int(col)) for row, col in survey["line_outline"])
+        cells |= survey_cells(load_survey(survey_path), survey_path)
     return cells
 
 

@@ -19,12 +19,18 @@ def bin_top(b):
     return LOWEST if b == 0 else 10.0 ** (b / BINS_PER_DECADE - 12)
 
 
-def read_survey(path):
+def load_survey(path):
+    """A tile's survey (tinlod build -survey's JSON), checked to have this tinlod's bins."""
     with open(path) as f:
         survey = json.load(f)
     if survey.get("bins_per_decade") != BINS_PER_DECADE or survey.get("lowest") != LOWEST:
         raise ValueError("%s was written by another tinlod (bins %s): survey again" % (path, survey.get("bins_per_decade")))
-    return survey["levels"]
+    return survey
+
+
+def read_survey(path):
+    """A survey's levels."""
+    return load_survey(path)["levels"]
 
 
 def level_thresholds(surveys, delete_pct, stop_pct):

@@ -100,6 +100,10 @@ bool pinnedBorderCell(const Dem& dem, const TileBorders& borders, int row, int c
 // the same cells in both tiles, about as dense as the interior's samples.
 bool lineCellSampled(const Dem& dem, int row, int col, int block, std::uint64_t seed);
 
+// The cells of a side's line that are vertices in a whole tile (valid and lineCellSampled),
+// as {row, col} of the tile, in order along the line: what the border rule reads.
+std::vector<std::array<int, 2>> lineVertexCells(const Dem& dem, int side, int block, std::uint64_t seed);
+
 // Levels that a whole run with these percentages makes when nothing stops it early.
 int tileLevelCount(double deletePct, double stopPct);
 
