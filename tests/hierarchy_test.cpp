@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <random>
 #include <set>
 #include <tuple>
@@ -383,6 +384,30 @@ TEST(Hierarchy, SurveyMakesTheSameLevelsKeepingOnlyTheirCounts) {
     EXPECT_TRUE(surveyed.triangles.empty() && surveyed.groups.empty() && surveyed.links.empty() &&
                 surveyed.rings.empty() && surveyed.base.triangles.empty());
     EXPECT_EQ(surveyed.rings.capacity(), 0u);
+  }
+}
+
+// With one threshold per level (a tile's second pass), the share of the threshold's bin is
+// the share of its candidates that go: on a flat half, where every importance is 0 and
+// independence blocks some candidates, exactly that share of them is deleted, not that
+// share gone through (fewer, by what the neighbours block).
+TEST(Hierarchy, LevelShareIsTheShareOfTiesDeleted) {
+  const Dem dem = test::makeDem(90, 60, 10, [](int x, int y) { return x < 45 ? 0.f : float(40 * std::sin(0.3 * x) * std::cos(0.2 * y)); });
+  const Tin tin = sampleTin(dem, {}, kQuiet);
+  HierarchyOptions o;
+  o.survey = true;
+  o.maxLevels = 3;
+  o.levelThresholds = {surveyBinTop(0), surveyBinTop(0), surveyBinTop(0)};
+  o.levelShares = {0.3, 0.15, 0.1};
+  const Hierarchy h = buildHierarchy(tin, dem, {}, o, kQuiet);
+  ASSERT_EQ(h.survey.size(), 3u);
+  for (const LevelSurvey& l : h.survey) {
+    SCOPED_TRACE("level " + std::to_string(l.level));
+    const std::uint64_t ties = l.histogram[0];
+    ASSERT_GT(ties, 100u);
+    EXPECT_EQ(std::accumulate(l.histogram.begin(), l.histogram.end(), std::uint64_t{0}), ties);  // all flat
+    EXPECT_EQ(l.picked, static_cast<std::size_t>(std::floor(o.levelShares[l.level - 1] * double(ties))));
+    EXPECT_GT(l.considered, l.picked);  // some were blocked: a share gone through would fall short
   }
 }
 

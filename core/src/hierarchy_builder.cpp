@@ -42,6 +42,13 @@ struct Pick {
   std::uint32_t triangles() const { return open ? degree - 1 : degree; }
 };
 
+// With one threshold per level: the candidates from `bottom` up (the threshold's survey
+// bin) of which at most `picks` may go.
+struct TieQuota {
+  double bottom = INFINITY;
+  std::size_t picks = SIZE_MAX;
+};
+
 // Deletes independent sets of vertices level by level from level 0, recording the
 // hierarchy. The stars of an independent set are disjoint, so each level is done on
 // every core in two passes: one plans every deletion and records it in the hierarchy
@@ -363,7 +370,7 @@ class Simplifier {
     if (scheduled) limit = current_;  // the raster's threshold, not this tile's share, says how many
     else if (!options_.thresholdMode)
       limit = std::min(limit, static_cast<std::size_t>(std::floor(options_.deletePct / 100.0 * current_)));
-    considerLimit_ = scheduled ? consideredBelowThreshold(level) : SIZE_MAX;
+    tieQuota_ = scheduled ? tieQuota(level) : TieQuota{};
     std::vector<Pick> picks;
     if (tile_) {
       pickBorders(level, picks);
@@ -400,17 +407,19 @@ class Simplifier {
     if (3 * n < 2 * v.capacity()) v.shrink_to_fit();
   }
 
-  // How many of the level's candidates (all below its threshold) may be considered: those
-  // below the threshold's survey bin, and its share of those in the bin.
-  std::size_t consideredBelowThreshold(std::int32_t level) const {
+  // How many of the level's candidates in its threshold's survey bin may go: its share of
+  // them (a flat area's ties), whatever independence blocks among them on the way. Those
+  // below the bin all may. A share of the picks, not of the candidates gone through: how
+  // many of a flat area's ties its neighbours block depends on what earlier levels left.
+  TieQuota tieQuota(std::int32_t level) const {
     const std::size_t k = std::min<std::size_t>(level, options_.levelThresholds.size()) - 1;
     const double share = k < options_.levelShares.size() ? options_.levelShares[k] : 1.0;
-    if (share >= 1) return SIZE_MAX;
+    if (share >= 1) return {};
     const double bottom = surveyBinBottom(levelThreshold_);
-    std::size_t below = 0, inBin = 0;
+    std::size_t inBin = 0;
     for (const std::vector<Candidate>& half : candidates_)
-      for (const Candidate& c : half) (c.first < bottom ? below : inBin) += 1;
-    return below + static_cast<std::size_t>(std::floor(share * double(inBin)));
+      for (const Candidate& c : half) inBin += c.first >= bottom;
+    return {bottom, static_cast<std::size_t>(std::floor(share * double(inBin)))};
   }
 
   // The level's candidates by importance, and how many of them the pick went through to
@@ -515,12 +524,14 @@ class Simplifier {
   // neighbours (from the ring lines: the picks jump about the TIN).
   void pickBestFirst(std::size_t limit, std::int32_t level, std::vector<Pick>& picks) {
     const std::vector<Candidate>&a = candidates_[0], &b = candidates_[1];
-    std::size_t i = 0, j = 0;
+    std::size_t i = 0, j = 0, tiesPicked = 0;
     constexpr std::size_t kAhead = 16;  // the candidates lie all over the TIN: ask ahead for their lines
-    while (picks.size() < limit && (i < a.size() || j < b.size()) && i + j < considerLimit_) {
+    while (picks.size() < limit && (i < a.size() || j < b.size())) {
       if (i + kAhead < a.size()) __builtin_prefetch(&stamp_[a[i + kAhead].second]), rings_.prefetch(a[i + kAhead].second);
       if (j + kAhead < b.size()) __builtin_prefetch(&stamp_[b[j + kAhead].second]), rings_.prefetch(b[j + kAhead].second);
       const bool first = j == b.size() || (i < a.size() && orderedBits(a[i].first) <= orderedBits(b[j].first));
+      const bool tie = (first ? a[i] : b[j]).first >= tieQuota_.bottom;
+      if (tie && tiesPicked == tieQuota_.picks) break;
       const auto [imp, v] = first ? a[i++] : b[j++];
       if (stamp_[v] == level) continue;
       stamp_[v] = level;
@@ -533,6 +544,7 @@ class Simplifier {
         });
       }
       picks.push_back({imp, v, static_cast<std::uint32_t>(rings_.degree(v)), mesh_.open(v)});
+      tiesPicked += tie;
     }
     considered_ = i + j;
   }
@@ -751,8 +763,8 @@ class Simplifier {
   std::size_t lastPicks_ = 0;
   double lastFraction_ = 0.1;
   double levelThreshold_ = 0;  // with levelThresholds: the level's
-  std::size_t considerLimit_ = SIZE_MAX;  //   and how many candidates it may consider
-  std::size_t considered_ = 0;            // candidates the last pick went through
+  TieQuota tieQuota_;          //   and how many of its bin's candidates may go
+  std::size_t considered_ = 0;  // candidates the last pick went through
 };
 
 }  // namespace

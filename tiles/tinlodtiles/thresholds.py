@@ -4,9 +4,10 @@
 A tile alone deletes at each level a share of its own vertices: smooth tiles keep vertices a
 run over the whole raster would delete, rough tiles lose vertices it would keep. The surveys
 (`tinlod build -survey`) say how many candidates of each importance every tile had at each
-level and how many of those it could take (independence blocks the others); the threshold of
-a level is the importance below which the tiles' candidates, so thinned, make the delete
-percentage of all the raster's vertices, as a whole run's best-first selection would.
+level and how many of those it could take (independence blocks the others); the threshold
+of a level is the importance below which the tiles' candidates, so thinned, make the delete
+percentage of all the raster's vertices, as a whole run's best-first selection would. In
+the threshold's own bin (a flat area's ties), a share of its candidates may go.
 """
 import json
 
@@ -35,11 +36,16 @@ def read_survey(path):
 
 def level_thresholds(surveys, delete_pct, stop_pct):
     """The (threshold, share) of levels 1, 2, ... from the tiles' surveys (lists of levels):
-    the level deletes the candidates below the threshold's bin and that share of those in
-    it."""
+    the level deletes the independent candidates below the threshold's bin and at most that
+    share of those in it."""
     levels = max(len(s) for s in surveys)
     original = sum(s[0]["vertices"] for s in surveys if s)
     stop = stop_pct / 100.0 * original
+    # The count the build pass reaches, level by level: each level deletes a share of the
+    # vertices it finds. The surveys' own counts drift from it (each tile deletes a fifth
+    # of its own vertices, the build pass the raster's least important): aimed at the stop
+    # from their count, the last level would delete what is left of a small difference.
+    expected = float(original)
     thresholds = []
     for k in range(levels):
         rows = [s[k] for s in surveys if len(s) > k]
@@ -48,20 +54,28 @@ def level_thresholds(surveys, delete_pct, stop_pct):
             for b, n in r["histogram"]:
                 counts[b] = counts.get(b, 0) + n
         vertices = sum(r["vertices"] for r in rows)
-        picked, considered = sum(r["picked"] for r in rows), sum(r["considered"] for r in rows)
-        taken = picked / considered if considered else 1.0  # the share of candidates independence lets through
-        target = max(0.0, min(delete_pct / 100.0 * vertices, vertices - stop))
-        threshold, share, seen = 0.0, 1.0, 0
-        if target > 0:
-            for b in sorted(counts):
-                threshold = bin_top(b)
-                if taken * (seen + counts[b]) >= target:
-                    # Only part of this bin's candidates: a flat area's ties share the rest.
-                    share = min(1.0, max(0.0, (target / taken - seen) / counts[b]))
-                    break
-                seen += counts[b]
-        thresholds.append((threshold, share))
+        fraction = max(0.0, min(delete_pct / 100.0, 1 - stop / expected)) if expected > 0 else 0.0
+        expected *= 1 - fraction
+        thresholds.append(level_threshold(rows, counts, fraction * vertices))
     return thresholds
+
+
+def level_threshold(rows, counts, target):
+    """The (threshold, share) that deletes `target` of the level's vertices: the bin where
+    the candidates, times the share of them the levels' own picks took (independence blocks
+    the others), reach it, and the share of the bin's candidates still needed (a flat area's
+    ties share the rest)."""
+    if target <= 0:
+        return 0.0, 1.0
+    picked, considered = sum(r["picked"] for r in rows), sum(r["considered"] for r in rows)
+    taken = picked / considered if considered else 1.0  # the share of candidates independence lets through
+    threshold, seen = 0.0, 0.0
+    for b in sorted(counts):
+        threshold = bin_top(b)
+        if seen + taken * counts[b] >= target:
+            return threshold, min(1.0, max(0.0, (target - seen) / counts[b]))
+        seen += taken * counts[b]
+    return threshold, 1.0
 
 
 def as_option(thresholds):
