@@ -207,20 +207,29 @@ def survey_name(tile):
     return tile.name[: -len(".gpkg")] + ".survey.json"
 
 
+# The tiles folder's files, by what leaves them: a finished run, and a run killed outright
+# (half-written files, logs, attempt counts). Nothing else there is ours to remove.
+CELL_FILES = "|".join(re.escape(name) for name in (agreement.KEEP_NAME, line_outline.NAME))
+RUN_FILES = re.compile(r"tile_\d+_\d+\.(gpkg|survey\.json)|(%s)" % CELL_FILES)
+LEFTOVER_FILES = re.compile(r"tile_\d+_\d+\.(partial\.gpkg|gpkg\.log|gpkg\.attempts|survey\.partial\.json(\.partial)?"
+                            r"|survey\.json\.log|survey\.json\.attempts)|(%s)\.partial" % CELL_FILES)
+
+
 def remove_job(catalogue_path):
     """-overwrite: the catalogue, its tiles and its level files go; only files tinlod-tiles
     names, so that nothing else a user keeps in those folders is lost."""
-    removable = {tiles_folder(catalogue_path): re.compile(
-                     r"tile_\d+_\d+\.(gpkg|partial\.gpkg|gpkg\.log|gpkg\.attempts|survey\.json|survey\.partial\.json|survey\.partial\.json\.partial|survey\.json\.log|survey\.json\.attempts)"
-                     r"|(border_keep|line_outline)\.txt(\.partial)?"),
-                 levels_folder(catalogue_path): re.compile(r"level_\d+\.vrt")}
-    for folder, names in removable.items():
-        if os.path.isdir(folder):
-            for name in os.listdir(folder):
-                if names.fullmatch(name):
-                    os.remove(os.path.join(folder, name))
+    remove_matching(tiles_folder(catalogue_path), lambda name: RUN_FILES.fullmatch(name) or LEFTOVER_FILES.fullmatch(name))
+    remove_matching(levels_folder(catalogue_path), re.compile(r"level_\d+\.vrt").fullmatch)
     if os.path.exists(catalogue_path):
         os.remove(catalogue_path)
+
+
+def remove_matching(folder, names):
+    """The files of `folder` whose name `names` accepts."""
+    if os.path.isdir(folder):
+        for name in os.listdir(folder):
+            if names(name):
+                os.remove(os.path.join(folder, name))
 
 
 class DriverLock:
@@ -259,13 +268,7 @@ def open_catalogue(arguments, settings, srs, tiles):
 
 def remove_leftovers(folder):
     """What a run killed outright left: half-written tiles, logs, attempt counts."""
-    for name in os.listdir(folder):
-        if name.startswith("tile_") and name.endswith((".partial.gpkg", ".gpkg.log", ".gpkg.attempts", ".partial.json", ".partial.json.partial",
-                                                       ".survey.json.log", ".survey.json.attempts")):
-            os.remove(os.path.join(folder, name))
-    for partial in (agreement.keep_path(folder) + ".partial", line_outline.path(folder) + ".partial"):
-        if os.path.exists(partial):
-            os.remove(partial)
+    remove_matching(folder, LEFTOVER_FILES.fullmatch)
 
 
 def pending_tiles(catalogue, tiles, catalogue_path):
