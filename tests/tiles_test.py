@@ -521,6 +521,29 @@ def main(tinlod, tiles):
     back = run(base + [catalogue] + options, env)
     check("(k) with the file back the tile is built again", back.returncode == 0 and "1 tiles run, 5 skipped" in back.stdout,
           back.stdout + back.stderr[-1000:])
+    # (f) A threshold's share (t:s) is the share of its bin's ties deleted, as the catalogue
+    # records; one whose thresholds an earlier tinlod-tiles set (shares of the ties gone
+    # through) is resumed with a warning that its tiles built now delete more of them.
+    check("(f) the catalogue records that its shares are of the ties deleted",
+          metadata.get("TINLOD_THRESHOLD_SHARES") == "deleted", metadata)
+    edit = gdal.OpenEx(catalogue, gdal.OF_VECTOR | gdal.OF_UPDATE)
+    first, rest = edit.GetMetadataItem("TINLOD_LEVEL_THRESHOLDS").split(",", 1)
+    edit.SetMetadataItem("TINLOD_LEVEL_THRESHOLDS", first.split(":")[0] + ":0.500000," + rest)  # a share, at level 1
+    edit = None
+    os.remove(os.path.join(folder, "tile_0_1.gpkg"))
+    ours = run(base + [catalogue] + options, env)
+    check("(f) a rerun of this tinlod-tiles' catalogue with a share says nothing of it",
+          ours.returncode == 0 and "1 tiles run, 5 skipped" in ours.stdout and "earlier tinlod-tiles" not in ours.stderr,
+          ours.stdout + ours.stderr[-1000:])
+    edit = gdal.OpenEx(catalogue, gdal.OF_VECTOR | gdal.OF_UPDATE)
+    edit.SetMetadataItem("TINLOD_THRESHOLD_SHARES", None)
+    edit = None
+    os.remove(os.path.join(folder, "tile_0_1.gpkg"))
+    earlier = run(base + [catalogue] + options, env)
+    check("(f) a catalogue an earlier tinlod-tiles set the thresholds of is resumed, with a warning",
+          earlier.returncode == 0 and "1 tiles run, 5 skipped" in earlier.stdout
+          and "set by an earlier tinlod-tiles" in earlier.stderr and "-overwrite" in earlier.stderr,
+          earlier.stdout + earlier.stderr[-1000:])
     by_tile = os.path.join(work, "t.gpkg")
     one_pass = run(base + [by_tile, "-selection", "tile"] + options, env)
     tile_metadata = rows(by_tile)[2]

@@ -165,6 +165,11 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     has run over every tile (a rerun reuses them), as text for -level_thresholds."""
     recorded = catalogue.setting("TINLOD_LEVEL_THRESHOLDS")
     if recorded:
+        if ":" in recorded and catalogue.setting(thresholds.SHARES_SETTING) != thresholds.SHARES_DELETED:
+            print("warning: %s's thresholds were set by an earlier tinlod-tiles, whose share of a bin's flat ties "
+                  "counted the ties gone through, not those deleted: the tiles built now delete more of their flat "
+                  "ties at those levels (the union still fits together); add -overwrite to build every tile alike"
+                  % arguments.catalogue, file=sys.stderr)
         return recorded
     folder = tiles_folder(arguments.catalogue)
     rows = catalogue.rows()
@@ -191,6 +196,7 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     write_cells(line_outline.path(folder), cells)  # before the thresholds are recorded: a rerun has both
     catalogue.set_setting(line_outline.DIGEST, line_outline.digest(line_outline.path(folder)))
     catalogue.set_setting(line_outline.SETTING, line_outline.NAME)
+    catalogue.set_setting(thresholds.SHARES_SETTING, thresholds.SHARES_DELETED)
     catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
     for t in surveyed:
         task.remove_if_present(survey_path(folder, t))

@@ -13,6 +13,10 @@ import json
 
 BINS_PER_DECADE = 200
 LOWEST = 1e-12
+# The catalogue's record that a threshold's share (t:s) is the share of its bin's candidates
+# deleted (tinlod build since 2026-11-28), not of those the pick went through.
+SHARES_SETTING = "TINLOD_THRESHOLD_SHARES"
+SHARES_DELETED = "deleted"
 
 
 def bin_top(b):
