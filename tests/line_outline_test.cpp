@@ -183,7 +183,7 @@ TEST(LineOutline, OnlyATileOfABuildPassTakesAList) {
   o.survey = true;
   EXPECT_TRUE(test::contains(test::errorOf([&] {
     runBuildJob(demWithVoids(), test::tempDir() + "/x.json", {}, o, true, {}, AccuracyOutputs(), HierarchyLayers(), {kSize, 0, 0});
-  }), "-line_outline is for the build pass"));
+  }), "a first -survey lists the tile's own outline cells"));
 }
 
 }  // namespace

@@ -55,6 +55,30 @@ check("the last level deletes the share that takes the expected count to the sto
       abs(levels[1][0] - thresholds.bin_top(20)) < 1e-30 and abs(levels[1][1] - 0.3) < 1e-12, levels)
 check("a level after the stop deletes nothing", levels[2] == (0.0, 1.0), levels)
 
+# -exact_stop: a second round of surveys, made with the first round's thresholds (the build
+# pass's state) and every candidate walked at the stop level (index 2), counts the union's
+# vertices and each level's picks by bin. With -stop_pct 30 the stop is 60 of the union's
+# 200. Levels 1 and 2 leave 160 and 128: above it. At index 2 the union has 80: 20 must go,
+# the smooth tile's 12 picks and 8 of the rough tile's 10, whose bin has 30 candidates.
+def walked(union, picked, counts, picks):
+    return dict(level(2 * union, picked, 2 * picked, counts), union_vertices=union, picked_histogram=list(picks.items()))
+
+
+first_values = [(1.0, 1.0), (2.0, 1.0), (3.0, 1.0), (4.0, 1.0)]
+second = [[walked(100, 20, {}, {}), walked(80, 16, {}, {}), walked(40, 12, {10: 30}, {10: 12})],
+          [walked(100, 20, {}, {}), walked(80, 16, {}, {}), walked(40, 10, {20: 30}, {20: 10})]]
+exact = thresholds.exact_stop_thresholds(first_values, second, 30, 2)
+check("-exact_stop: the walked level deletes what is above the stop, best first, and the next nothing",
+      exact[:2] == first_values[:2] and abs(exact[2][0] - thresholds.bin_top(20)) < 1e-30
+      and abs(exact[2][1] - 8 / 30) < 1e-12 and exact[3] == (0.0, 1.0), exact)
+# When the first round's picks at index 1 (60 a tile) would already go below the stop, that
+# level deletes only the 100 above it: the smooth tile's 60 and 40 of the rough one's 80.
+second[0][1], second[1][1] = walked(80, 60, {10: 80}, {10: 60}), walked(80, 60, {20: 80}, {20: 60})
+exact = thresholds.exact_stop_thresholds(first_values, second, 30, 2)
+check("-exact_stop: an earlier level that reaches the stop deletes only down to it",
+      exact[0] == first_values[0] and abs(exact[1][0] - thresholds.bin_top(20)) < 1e-30
+      and abs(exact[1][1] - 0.5) < 1e-12 and exact[2:] == [(0.0, 1.0), (0.0, 1.0)], exact)
+
 # A survey of another binning is refused.
 with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
     json.dump({"bins_per_decade": 50, "lowest": 1e-12, "levels": []}, f)

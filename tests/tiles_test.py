@@ -293,6 +293,44 @@ def ctrl_c(dem, tiles, work, env):
           pending.count("pending") >= 5 and "done" not in pending, pending)
 
 
+def union_counts(files):
+    """Each level's vertex count of the tiles' union (tile_union.py)."""
+    with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
+        path = f.name
+    subprocess.run(["/usr/bin/python3", os.path.join(os.path.dirname(os.path.abspath(__file__)), "tile_union.py"),
+                    "--json", path] + files, capture_output=True, text=True, check=True)
+    with open(path) as f:
+        counts = [r["vertices"] for r in json.load(f)]
+    os.remove(path)
+    return counts
+
+
+def exact_stop(base, options, work, env):
+    """(l) -exact_stop: a second survey pass, made as the build pass deletes, sets the stop
+    level: the union's coarsest level ends at -stop_pct (5 %) of its level 0's vertices, nearer
+    than a run without it, whose levels above it are the same."""
+    def tile_files(stem):
+        folder = os.path.join(work, stem + "_tiles")
+        return folder, sorted(os.path.join(folder, n) for n in os.listdir(folder) if n.endswith(".gpkg"))
+
+    first = run(base + [os.path.join(work, "exact.gpkg"), "-exact_stop"] + options, env)
+    without = run(base + [os.path.join(work, "plain.gpkg")] + options, env)
+    folder, files = tile_files("exact")
+    exact, plain = union_counts(files), union_counts(tile_files("plain")[1])
+    off = [abs(c[-1] - 0.05 * c[0]) / (0.05 * c[0]) for c in (exact, plain)]
+    # The level that reaches the stop is the first that differs; the levels after it delete nothing.
+    stop = next((k for k, (a, b) in enumerate(zip(exact, plain)) if a != b), len(exact))
+    check("(l) -exact_stop ends the union's coarsest level within 1 %% of -stop_pct, nearer than without "
+          "(%d and %d vertices, the stop %.0f)" % (exact[-1], plain[-1], 0.05 * exact[0]),
+          first.returncode == 0 and without.returncode == 0 and "second survey pass (-exact_stop): 5 tiles" in first.stdout
+          and off[0] < 0.01 and off[0] < off[1] and 0 < stop < len(exact) and set(exact[stop:]) == {exact[-1]},
+          (exact, plain, first.stdout + first.stderr[-1000:]))
+    check("(l) ... and leaves no survey behind", not [n for n in os.listdir(folder) if "survey" in n], os.listdir(folder))
+    tile = run(base + [os.path.join(work, "x.gpkg"), "-exact_stop", "-selection", "tile"] + options, env)
+    check("(l) -exact_stop with -selection tile is refused", tile.returncode == 1 and "-exact_stop" in tile.stderr
+          and not os.path.exists(os.path.join(work, "x.gpkg")), tile.stderr)
+
+
 def main(tinlod, tiles):
     try:
         import distributed  # noqa: F401
@@ -568,6 +606,7 @@ def main(tinlod, tiles):
           and heights[0] == (one[0][0][0], "0,0") and heights[1] == (one[1][1][0], "1,0")
           and heights[0][0] is not None, (heights, one, via_catalogue.stderr))
 
+    exact_stop(base, options, work, env)
     info_of_catalogue(tinlod, catalogue)
     lod_and_accuracy(tinlod, catalogue, dem, work)
     border_agreement(base, options, work, env)

@@ -86,8 +86,9 @@ One tile of a raster (tinlod tiles runs them all; see docs/cli/tiles.md):
                    the second pass: of the line cells near nodata keep only those FILE lists
                    ("row col" of the whole raster, one a line): the cells on the outline of
                    either tile's level 0, which each tile's -survey lists (line_outline)
-                   and tinlod tiles gathers. Without it every line cell within 3 blocks of
-                   a missing cell stays at every level
+                   and tinlod tiles gathers (also a second -survey with -level_thresholds,
+                   which then makes the build pass's levels). Without it every line cell
+                   within 3 blocks of a missing cell stays at every level
 
 What the GeoPackage holds (vertices, triangles, the groups and the levels table are always
 written: lod, locate and accuracy need them):

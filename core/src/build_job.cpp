@@ -79,8 +79,9 @@ void validateTile(const TileSpec& tile, const SampleOptions& sample, const Hiera
                 std::to_string(kMaxLevel) + " a hierarchy holds: raise -delete_pct or -stop_pct, or give -max_levels");
   if (options.thresholdMode && options.maxLevels == 0)
     throw Error("-threshold in a tiled run needs -max_levels: every tile of a job must make the same levels");
-  if (options.survey && !options.lineOutline.empty())
-    throw Error("-line_outline is for the build pass: a -survey lists the tile's own outline cells");
+  if (options.survey && !options.lineOutline.empty() && options.levelThresholds.empty())
+    throw Error("-line_outline is for the build pass, or a second -survey with its -level_thresholds: a first "
+                "-survey lists the tile's own outline cells");
 }
 
 void addTileMetadata(const Dem& dem, const TileSpec& tile, std::map<std::string, std::string>& m) {
@@ -227,13 +228,14 @@ BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, c
   const Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, tile, all.sub(0.05, 0.2));
   // The tile pins its own outline's line cells: the other tile's are not known yet (the
-  // survey lists this tile's for the build pass, which pins both tiles' alike).
+  // survey lists this tile's for the build pass, which pins both tiles' alike). A second
+  // survey (tinlod tiles -exact_stop) pins the job's list, as the build pass does.
   std::vector<std::uint64_t> outline;
   if (tile.size > 0) outline = lineOutlineCells(dem, tin, sample.block, sample.seed);
+  std::optional<std::unordered_set<std::uint64_t>> pinned = outlineCellsOf(options);
+  if (!pinned) pinned.emplace(outline.begin(), outline.end());
   const TileBorders borders =
-      tile.size > 0 ? bordersOf(dem, tin, tile, sample, options, keptCellsOf(options),
-                                std::unordered_set<std::uint64_t>(outline.begin(), outline.end()))
-                    : TileBorders{};
+      tile.size > 0 ? bordersOf(dem, tin, tile, sample, options, keptCellsOf(options), std::move(pinned)) : TileBorders{};
   const Hierarchy h = buildHierarchy(std::move(tin), dem, {}, options, all.sub(0.2, 0.95), {},
                                      tile.size > 0 ? &borders : nullptr);
   const std::string partial = outPath + ".partial";

@@ -435,6 +435,14 @@ class Simplifier {
     l.histogram.assign(kSurveyBins, 0);
     for (const std::vector<Candidate>& half : candidates_)
       for (const Candidate& c : half) ++l.histogram[surveyBin(c.first)];
+    l.pickedHistogram.assign(kSurveyBins, 0);
+    for (std::size_t k = borderPicks; k < picks.size(); ++k) ++l.pickedHistogram[surveyBin(picks[k].importance)];
+    l.unionVertices = double(current_);
+    if (tile_) {
+      l.unionVertices = 0;
+      for (std::size_t v = 0; v < h_.vertexLevel.size(); ++v)
+        if (h_.vertexLevel[v] == kOpenLevel) l.unionVertices += unionShare(dem_, h_.base.vertices[v]);
+    }
     h_.survey.push_back(std::move(l));
   }
 

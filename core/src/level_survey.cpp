@@ -6,6 +6,16 @@
 #include "tinlod/tile_borders.h"
 
 namespace tinlod {
+namespace {
+
+// The bins with a count, as [bin, count] pairs.
+void bins(std::ostream& out, const std::vector<std::uint64_t>& counts) {
+  bool first = true;
+  for (std::size_t b = 0; b < counts.size(); ++b)
+    if (counts[b]) out << (first ? "" : ", ") << "[" << b << ", " << counts[b] << "]", first = false;
+}
+
+}  // namespace
 
 std::string surveyJson(const std::vector<LevelSurvey>& levels, const std::vector<std::uint64_t>& lineOutline) {
   std::ostringstream out;
@@ -15,10 +25,10 @@ std::string surveyJson(const std::vector<LevelSurvey>& levels, const std::vector
     const LevelSurvey& l = levels[i];
     out << (i ? ",\n" : "\n") << "{\"level\": " << l.level << ", \"vertices\": " << l.vertices << ", \"picked\": " << l.picked
         << ", \"considered\": " << l.considered << ", \"last\": " << l.last << ", \"histogram\": [";
-    bool first = true;
-    for (std::size_t b = 0; b < l.histogram.size(); ++b)
-      if (l.histogram[b]) out << (first ? "" : ", ") << "[" << b << ", " << l.histogram[b] << "]", first = false;
-    out << "]}";
+    bins(out, l.histogram);
+    out << "], \"picked_histogram\": [";
+    bins(out, l.pickedHistogram);
+    out << "], \"union_vertices\": " << l.unionVertices << "}";
   }
   out << "\n], \"line_outline\": [";
   for (std::size_t i = 0; i < lineOutline.size(); ++i)

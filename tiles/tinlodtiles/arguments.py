@@ -36,6 +36,10 @@ Tiles:
                    the raster's least important vertices, as a whole run does; tile: one
                    pass, each tile deleting -delete_pct of its own vertices per level
                    (faster, but a few per cent to 20 % less accurate at equal vertex counts)
+  -exact_stop      with -selection global: a second survey pass, the tiles deleting as the
+                   build pass will, sets the last level so that the coarsest level ends at
+                   the stop percentage of the vertices (a quarter more time; without it the
+                   coarsest level ends a few per cent above, 10 % on a flat sea)
   -- options       everything after -- goes to each tile's tinlod build, but for what belongs
                    to the run: the tile options -tile and -tile_size, the outputs -accuracy
                    and -report, and -overwrite and -q. With -method error -max_error E the
@@ -79,6 +83,7 @@ class RunArguments:
     retries: int = 2
     tinlod: str = None
     selection: str = "global"
+    exact_stop: bool = False
     overwrite: bool = False
     quiet: bool = False
     build_options: list = field(default_factory=list)
@@ -127,7 +132,7 @@ def split_options(args, valued, flags):
 def parse_run(args):
     ours, build_options = (args[: args.index("--")], args[args.index("--") + 1:]) if "--" in args else (args, [])
     positionals, options = split_options(ours, dict.fromkeys(("-tile_size", "-workers", "-scheduler", "-retries",
-                                                              "-tinlod", "-selection"), 1), ("-overwrite", "-q"))
+                                                              "-tinlod", "-selection"), 1), ("-exact_stop", "-overwrite", "-q"))
     if len(positionals) != 2:
         raise TilesError("give the DEM and the catalogue: tinlod-tiles DEM CATALOGUE.gpkg -tile_size N")
     if "-tile_size" not in options:
@@ -146,6 +151,10 @@ def parse_run(args):
     if arguments.selection not in ("global", "tile"):
         raise TilesError("-selection %s: give global (one threshold per level for the whole raster) or tile"
                          % arguments.selection)
+    arguments.exact_stop = "-exact_stop" in options
+    if arguments.exact_stop and (arguments.selection != "global" or "-threshold" in build_options):
+        raise TilesError("-exact_stop sets the last level from a second survey pass of -selection global: "
+                         "it does nothing with -selection tile or -- -threshold; leave it out")
     check_run(arguments)
     arguments.tinlod = find_tinlod(options.get("-tinlod"))
     return arguments

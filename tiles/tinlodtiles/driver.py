@@ -178,47 +178,77 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     if missing:
         if not arguments.quiet:
             print("survey pass: %d tiles" % len(missing))
-        outcome = run_tiles(catalogue, missing, arguments, workers, ["-survey"], survey=True)
+        outcome = run_tiles(catalogue, missing, arguments, workers, ["-survey"], survey="survey")
         if outcome.get("failed"):
             raise TilesError("%d tiles failed in the survey pass; %s"
                              % (outcome["failed"], failure_summary(catalogue.rows().values())))
     rows = catalogue.rows()
-    paths = [survey_path(folder, t) for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
+    surveyed = [t for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
+    paths = [survey_path(folder, t) for t in surveyed]
     surveys = [thresholds.load_survey(p) for p in paths]  # each read once: thousands of them
-
-    def percent(name, default):
-        return float(build_option(arguments.build_options, name) or default)
-
-    values = thresholds.level_thresholds([s["levels"] for s in surveys], percent("-delete_pct", 20),
-                                         percent("-stop_pct", 5))
-    text = thresholds.as_option(values)
+    percents = percent(arguments, "-delete_pct", 20), percent(arguments, "-stop_pct", 5)
+    values = thresholds.level_thresholds([s["levels"] for s in surveys], *percents)
     cells = set().union(*(line_outline.survey_cells(s, p) for s, p in zip(surveys, paths)))
     write_cells(line_outline.path(folder), cells)  # before the thresholds are recorded: a rerun has both
     catalogue.set_setting(line_outline.DIGEST, line_outline.digest(line_outline.path(folder)))
     catalogue.set_setting(line_outline.SETTING, line_outline.NAME)
+    if arguments.exact_stop:
+        values = exact_stop(catalogue, surveyed, arguments, workers, values, [s["levels"] for s in surveys], percents)
+    text = thresholds.as_option(values)
     catalogue.set_setting(thresholds.SHARES_SETTING, thresholds.SHARES_DELETED)
     catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
     for t in surveyed:
         task.remove_if_present(survey_path(folder, t))
+        task.remove_if_present(survey_path(folder, t, SECOND_SURVEY))
     if not arguments.quiet:
         print("build pass: one importance threshold per level for the whole raster")
     return text
 
 
-def survey_path(folder, tile):
-    return os.path.join(folder, survey_name(tile))
+def percent(arguments, name, default):
+    return float(build_option(arguments.build_options, name) or default)
 
 
-def survey_name(tile):
-    return tile.name[: -len(".gpkg")] + ".survey.json"
+# -exact_stop's second survey pass, as the build pass deletes: its surveys' file kind.
+SECOND_SURVEY = "survey2"
+
+
+def exact_stop(catalogue, surveyed, arguments, workers, values, first, percents):
+    """-exact_stop: the first round's thresholds with the level that reaches the stop set
+    from a second survey pass, which makes the levels below the stop level they aim at with
+    them (the build pass's very state) and walks every candidate at it."""
+    level = thresholds.stop_level(first, *percents)
+    if level is None:
+        return values
+    folder = tiles_folder(arguments.catalogue)
+    missing = [t for t in surveyed if not os.path.isfile(survey_path(folder, t, SECOND_SURVEY))]
+    if missing:
+        if not arguments.quiet:
+            print("second survey pass (-exact_stop): %d tiles" % len(missing))
+        walked = values[:level] + [(1e308, 1.0)] + values[level + 1:]
+        extra = ["-survey", "-level_thresholds", thresholds.as_option(walked)] + line_outline.build_option(catalogue, folder)
+        outcome = run_tiles(catalogue, missing, arguments, workers, extra, survey=SECOND_SURVEY)
+        if outcome.get("failed"):
+            raise TilesError("%d tiles failed in the second survey pass; %s"
+                             % (outcome["failed"], failure_summary(catalogue.rows().values())))
+    second = [thresholds.load_survey(survey_path(folder, t, SECOND_SURVEY))["levels"] for t in surveyed]
+    return thresholds.exact_stop_thresholds(values, second, percents[1], level)
+
+
+def survey_path(folder, tile, kind="survey"):
+    return os.path.join(folder, survey_name(tile, kind))
+
+
+def survey_name(tile, kind="survey"):
+    return tile.name[: -len(".gpkg")] + "." + kind + ".json"
 
 
 # The tiles folder's files, by what leaves them: a finished run, and a run killed outright
 # (half-written files, logs, attempt counts). Nothing else there is ours to remove.
 CELL_FILES = "|".join(re.escape(name) for name in (agreement.KEEP_NAME, line_outline.NAME))
-RUN_FILES = re.compile(r"tile_\d+_\d+\.(gpkg|survey\.json)|(%s)" % CELL_FILES)
-LEFTOVER_FILES = re.compile(r"tile_\d+_\d+\.(partial\.gpkg|gpkg\.log|gpkg\.attempts|survey\.partial\.json(\.partial)?"
-                            r"|survey\.json\.log|survey\.json\.attempts)|(%s)\.partial" % CELL_FILES)
+RUN_FILES = re.compile(r"tile_\d+_\d+\.(gpkg|survey2?\.json)|(%s)" % CELL_FILES)
+LEFTOVER_FILES = re.compile(r"tile_\d+_\d+\.(partial\.gpkg|gpkg\.log|gpkg\.attempts|survey2?\.partial\.json(\.partial)?"
+                            r"|survey2?\.json\.log|survey2?\.json\.attempts)|(%s)\.partial" % CELL_FILES)
 
 
 def remove_job(catalogue_path):
@@ -322,10 +352,11 @@ class Workers:
         stop(self.client, self.cluster)
 
 
-def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=False):
+def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=None):
     """One task per pending tile; the catalogue follows their futures. Returns the count of
-    tiles per status. With `survey`, the tasks write each tile's survey, and the catalogue
-    records only the tiles found empty (or failed)."""
+    tiles per status. With `survey` (the surveys' kind, as survey_name takes it), the tasks
+    write each tile's survey, and the catalogue records only the tiles found empty (or
+    failed)."""
     distributed, client = workers.distributed, workers.client
     outcome = {}
     progress = Progress(len(pending), arguments.quiet)
@@ -334,7 +365,8 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=F
         submit(client, pending, arguments, extra_options, survey, futures)
         for future in distributed.as_completed(list(futures)):
             tile = futures.pop(future)
-            status = record_survey(catalogue, tile, future, tiles_folder(arguments.catalogue)) if survey else record(catalogue, tile, future, arguments.catalogue)
+            status = (record_survey(catalogue, tile, future, survey_path(tiles_folder(arguments.catalogue), tile, survey))
+                      if survey else record(catalogue, tile, future, arguments.catalogue))
             outcome[status] = outcome.get(status, 0) + 1
             progress.tile(tile.col, tile.row, status)
     except KeyboardInterrupt:
@@ -386,10 +418,11 @@ def worker_threads(arguments):
     return None if arguments.scheduler else max(1, (os.cpu_count() or 1) // arguments.workers)
 
 
-def record_survey(catalogue, tile, future, folder):
-    """A survey task's end: only an empty or failed tile changes the catalogue."""
-    attempts = read_attempts(survey_path(folder, tile))
-    task.remove_if_present(task.attempts_path(survey_path(folder, tile)))
+def record_survey(catalogue, tile, future, path):
+    """A survey task's end (its survey at `path`): only an empty or failed tile changes the
+    catalogue."""
+    attempts = read_attempts(path)
+    task.remove_if_present(task.attempts_path(path))
     if future.status != "finished":
         catalogue.update(tile.col, tile.row, {"status": "failed", "error": failure_message(future), "attempts": attempts})
         return "failed"
@@ -408,14 +441,14 @@ def submit(client, pending, arguments, extra_options, survey, futures):
     folder = os.path.abspath(tiles_folder(arguments.catalogue))
     for tile in pending:
         job = {"tinlod": arguments.tinlod, "dem": dem_path(arguments.dem), "tiles_dir": folder,
-               "name": survey_name(tile) if survey else tile.name, "col": tile.col, "row": tile.row,
+               "name": survey_name(tile, survey) if survey else tile.name, "col": tile.col, "row": tile.row,
                "tile_size": arguments.tile_size,
                "build_options": list(arguments.build_options) + [o for o in extra_options if o != "-survey"],
                "survey": survey,
                "kill_hook": os.environ.get(task.KILL_HOOK_VARIABLE),
                "threads": worker_threads(arguments)}
         futures[client.submit(task.run_tile, job, retries=arguments.retries, pure=False,
-                              key="%s-%d-%d-%s" % ("survey" if survey else "tile", tile.col, tile.row,
+                              key="%s-%d-%d-%s" % (survey or "tile", tile.col, tile.row,
                                                    os.urandom(4).hex()))] = tile
 
 

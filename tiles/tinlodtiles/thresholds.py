@@ -42,26 +42,78 @@ def level_thresholds(surveys, delete_pct, stop_pct):
     """The (threshold, share) of levels 1, 2, ... from the tiles' surveys (lists of levels):
     the level deletes the independent candidates below the threshold's bin and at most that
     share of those in it."""
-    levels = max(len(s) for s in surveys)
+    thresholds = []
+    for k, fraction in enumerate(level_fractions(surveys, delete_pct, stop_pct)):
+        rows = [s[k] for s in surveys if len(s) > k]
+        vertices = sum(r["vertices"] for r in rows)
+        thresholds.append(level_threshold(rows, pooled(rows, "histogram"), fraction * vertices))
+    return thresholds
+
+
+def level_fractions(surveys, delete_pct, stop_pct):
+    """The share of its vertices each level deletes: the delete percentage, and at the stop
+    level what takes the count the levels before leave down to the stop. The surveys' own
+    counts drift from the build pass's (each tile deletes a fifth of its own vertices, the
+    build pass the raster's least important): aimed at the stop from their count, the last
+    level would delete what is left of a small difference."""
     original = sum(s[0]["vertices"] for s in surveys if s)
     stop = stop_pct / 100.0 * original
-    # The count the build pass reaches, level by level: each level deletes a share of the
-    # vertices it finds. The surveys' own counts drift from it (each tile deletes a fifth
-    # of its own vertices, the build pass the raster's least important): aimed at the stop
-    # from their count, the last level would delete what is left of a small difference.
     expected = float(original)
-    thresholds = []
-    for k in range(levels):
-        rows = [s[k] for s in surveys if len(s) > k]
-        counts = {}
-        for r in rows:
-            for b, n in r["histogram"]:
-                counts[b] = counts.get(b, 0) + n
-        vertices = sum(r["vertices"] for r in rows)
+    fractions = []
+    for _ in range(max(len(s) for s in surveys)):
         fraction = max(0.0, min(delete_pct / 100.0, 1 - stop / expected)) if expected > 0 else 0.0
         expected *= 1 - fraction
-        thresholds.append(level_threshold(rows, counts, fraction * vertices))
-    return thresholds
+        fractions.append(fraction)
+    return fractions
+
+
+def stop_level(surveys, delete_pct, stop_pct):
+    """The level that reaches the stop (the first to delete less than the delete
+    percentage), or None."""
+    fractions = level_fractions(surveys, delete_pct, stop_pct)
+    return next((k for k, f in enumerate(fractions) if f < delete_pct / 100.0), None)
+
+
+def exact_stop_thresholds(values, second, stop_pct, walked):
+    """-exact_stop: `values` with the level that reaches the stop set from a second round of
+    surveys, made with `values` below the stop level they aim at (the build pass's very
+    state there) and every candidate walked at it (level index `walked`): the first level
+    whose picks would take the union below the stop deletes only what is above it (its
+    picks' bins, best first), and the levels after it nothing."""
+    count = "union_vertices" if all("union_vertices" in s[0] for s in second if s) else "vertices"
+    stop = stop_pct / 100.0 * sum(s[0][count] for s in second if s)  # as the union counts: a shared vertex once
+    out = list(values)
+    for k in range(walked + 1):
+        rows = [s[k] for s in second if len(s) > k]
+        vertices = sum(r[count] for r in rows)
+        if not rows or vertices - sum(r["picked"] for r in rows) <= stop or k == walked:
+            out[k] = threshold_for_picks(rows, max(0.0, vertices - stop))
+            return out[: k + 1] + [(0.0, 1.0)] * (len(values) - k - 1)
+    return out
+
+
+def threshold_for_picks(rows, target):
+    """The (threshold, share) whose picks, among those the rows' walk made best first,
+    delete `target`."""
+    if target <= 0:
+        return 0.0, 1.0
+    counts, picked = pooled(rows, "histogram"), pooled(rows, "picked_histogram")
+    threshold, seen = 0.0, 0
+    for b in sorted(counts):
+        threshold = bin_top(b)
+        if seen + picked.get(b, 0) >= target:
+            return threshold, min(1.0, max(0.0, (target - seen) / counts[b]))
+        seen += picked.get(b, 0)
+    return threshold, 1.0
+
+
+def pooled(rows, key):
+    """The rows' histograms (key) added up, bin: count."""
+    counts = {}
+    for r in rows:
+        for b, n in r.get(key, []):
+            counts[b] = counts.get(b, 0) + n
+    return counts
 
 
 def level_threshold(rows, counts, target):

@@ -20,6 +20,8 @@ struct LevelSurvey {
   std::size_t considered = 0;  // candidates the pick went through (picked, or blocked by a neighbour)
   double last = 0;           // the importance of the last pick
   std::vector<std::uint64_t> histogram;  // candidates by surveyBin of their importance
+  std::vector<std::uint64_t> pickedHistogram;  // the tile's own picks, by the same bins
+  double unionVertices = 0;  // `vertices` as a job's union counts them (tile_borders.h: unionShare)
 };
 
 // Importances in bins of 1/200 of a decade from 1e-12 to 1e15; bin 0 holds 0 and below 1e-12.
@@ -36,7 +38,9 @@ inline double surveyBinTop(int bin) { return bin == 0 ? 1e-12 : std::pow(10.0, b
 inline double surveyBinBottom(double top) { return top <= 1e-12 ? -INFINITY : top * std::pow(10.0, -1.0 / 200); }
 
 // The survey as JSON: {"levels": [{"level", "vertices", "picked", "considered", "last",
-// "histogram": [[bin, count], ...]}, ...], "line_outline": [[row, col], ...]} (bins with a
+// "histogram": [[bin, count], ...], "picked_histogram": [[bin, count], ...],
+// "union_vertices"}, ...],
+// "line_outline": [[row, col], ...]} (bins with a
 // count only; line_outline: the tile's lineOutlineCells, as globalCellKey).
 std::string surveyJson(const std::vector<LevelSurvey>& levels, const std::vector<std::uint64_t>& lineOutline);
 
