@@ -14,9 +14,11 @@
 #     hierarchy: time, peak memory, figures (alps_2x2 and patagonia_coast as 16 tiles);
 #  4. with tinlod-tiles (Dask): cells per second on 1 and on 2 workers (alps_2x2, 16 tiles);
 #  5. under -method error -max_error 25, the rounds that agree the border lines, and the
-#     union against a whole run (alps_2x2 as 4 and 16 tiles, patagonia_coast as 16).
+#     union against a whole run (alps_2x2 as 4 and 16 tiles, patagonia_coast as 16);
+#  6. with tinlod tiles -exact_stop: the union's coarsest level against a whole run's count
+#     (alps_2x2 as 4 and 16 tiles, patagonia_coast as 16).
 # Usage: bash bench/tiles_bench.sh [parts...]
-#   (parts: accuracy memory measure throughput bounded; default all)
+#   (parts: accuracy memory measure throughput bounded exact_stop; default all)
 # Environment: TINLOD (default build/core/tinlod), TINLOD_TILES (default build/tiles/tinlod-tiles),
 #   WORK (default build/tiles-bench: outputs go there), TINLOD_TEST_DATA (default ../shared/data),
 #   THROUGHPUT_ROUNDS (default 3: rounds of the three throughput runs, taken in turn).
@@ -26,7 +28,7 @@ tinlod=${TINLOD:-$root/build/core/tinlod}
 tiles=${TINLOD_TILES:-$root/build/tiles/tinlod-tiles}
 data=${TINLOD_TEST_DATA:-$root/../shared/data}
 work=${WORK:-$root/build/tiles-bench}
-parts=${*:-accuracy memory measure throughput bounded}
+parts=${*:-accuracy memory measure throughput bounded exact_stop}
 mkdir -p "$work"
 
 # tile_grid DEM SIZE: "across down"
@@ -212,6 +214,39 @@ print(f"speed-up of 2 workers over 1: {t1 / t2:.3f}x; over 1 single-threaded wor
 PY
 }
 
+# tinlod tiles -exact_stop (a second survey pass sets the level that reaches the stop): the
+# union's coarsest level against a whole run's count, and the accuracy at equal counts.
+exact_stop_case() {  # NAME DEM SIZE
+  local name=$1 dem=$2 size=$3
+  if ! /usr/bin/python3 -c "import distributed" 2> /dev/null || [[ ! -x $tiles ]]; then
+    echo "== $name with -exact_stop: SKIPPED (python3-distributed or $tiles absent)"
+    return 0
+  fi
+  [[ -f $work/$name.whole.gpkg ]] || "$tinlod" build "$dem" "$work/$name.whole.gpkg" -q
+  rm -rf "$work/$name.exact.gpkg" "$work/$name.exact_tiles" "$work/$name.exact_levels"
+  local start=$SECONDS
+  "$tiles" "$dem" "$work/$name.exact.gpkg" -tile_size "$size" -exact_stop -tinlod "$tinlod" -q
+  echo "== $name with -exact_stop: $((SECONDS - start)) s on $(nproc) workers"
+  /usr/bin/python3 "$root/tests/tile_union.py" --whole "$work/$name.whole.gpkg" --json "$work/$name.exact.json" \
+    "$work/$name.exact_tiles"/tile_*.gpkg > "$work/$name.exact.union.txt" || { cat "$work/$name.exact.union.txt"; return 1; }
+  tail -1 "$work/$name.exact.union.txt"
+  /usr/bin/python3 - "$work/$name.exact.json" << 'PY'
+import json, math, sys
+rows = json.load(open(sys.argv[1]))
+whole = sorted((r['whole_vertices'], r['whole_rmse']) for r in rows)
+worst = 0
+for r in rows:
+    for (v0, e0), (v1, e1) in zip(whole, whole[1:]):
+        if v0 <= r['vertices'] <= v1 and v1 > v0:
+            t = (math.log(r['vertices']) - math.log(v0)) / (math.log(v1) - math.log(v0))
+            worst = max(worst, r['rmse'] / math.exp(math.log(e0) + t * (math.log(e1) - math.log(e0))))
+            break
+last = rows[-1]
+print(f"coarsest level {last['level']}: {last['vertices']} vertices against a whole run's {last['whole_vertices']}"
+      f" ({100 * (last['vertices'] / last['whole_vertices'] - 1):+.1f} %); largest RMSE ratio at equal vertex counts {worst:.4f}")
+PY
+}
+
 for part in $parts; do
   case $part in
     accuracy)
@@ -228,6 +263,11 @@ for part in $parts; do
       measure_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
       ;;
     throughput) throughput_case ;;
+    exact_stop)
+      exact_stop_case alps4 "$data/alps_2x2_N46E007_N47E008.tif" 1200
+      exact_stop_case alps16 "$data/alps_2x2_N46E007_N47E008.tif" 600
+      exact_stop_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
+      ;;
     bounded)
       bounded_case alps4 "$data/alps_2x2_N46E007_N47E008.tif" 1200
       bounded_case alps16 "$data/alps_2x2_N46E007_N47E008.tif" 600
