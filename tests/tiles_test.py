@@ -325,7 +325,15 @@ def exact_stop(base, options, work, env):
           first.returncode == 0 and without.returncode == 0 and "second survey pass (-exact_stop): 5 tiles" in first.stdout
           and off[0] < 0.01 and off[0] < off[1] and 0 < stop < len(exact) and set(exact[stop:]) == {exact[-1]},
           (exact, plain, first.stdout + first.stderr[-1000:]))
-    check("(l) ... and leaves no survey behind", not [n for n in os.listdir(folder) if "survey" in n], os.listdir(folder))
+    check("(l) ... and leaves no survey behind, the catalogue recording TINLOD_EXACT_STOP=yes",
+          not [n for n in os.listdir(folder) if "survey" in n]
+          and rows(os.path.join(work, "exact.gpkg"))[2].get("TINLOD_EXACT_STOP") == "yes"
+          and not rows(os.path.join(work, "plain.gpkg"))[2].get("TINLOD_EXACT_STOP"), os.listdir(folder))
+    os.remove(os.path.join(work, "plain_tiles", "tile_0_0.gpkg"))
+    late = run(base + [os.path.join(work, "plain.gpkg"), "-exact_stop"] + options, env)
+    check("(l) -exact_stop on a catalogue whose thresholds were set without it says they are reused, naming -overwrite",
+          late.returncode == 0 and "set without -exact_stop" in late.stderr and "-overwrite" in late.stderr
+          and "second survey pass" not in late.stdout, late.stdout + late.stderr[-1000:])
     tile = run(base + [os.path.join(work, "x.gpkg"), "-exact_stop", "-selection", "tile"] + options, env)
     check("(l) -exact_stop with -selection tile is refused", tile.returncode == 1 and "-exact_stop" in tile.stderr
           and not os.path.exists(os.path.join(work, "x.gpkg")), tile.stderr)

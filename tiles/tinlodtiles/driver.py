@@ -170,6 +170,9 @@ def level_thresholds(catalogue, tiles, arguments, workers):
                   "counted the ties gone through, not those deleted: the tiles built now delete more of their flat "
                   "ties at those levels (the union still fits together); add -overwrite to build every tile alike"
                   % arguments.catalogue, file=sys.stderr)
+        if arguments.exact_stop and catalogue.setting(EXACT_STOP) != "yes":
+            print("warning: %s's thresholds were set without -exact_stop, and a rerun reuses them: add -overwrite "
+                  "to set them again with it" % arguments.catalogue, file=sys.stderr)
         return recorded
     folder = tiles_folder(arguments.catalogue)
     rows = catalogue.rows()
@@ -194,6 +197,7 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     catalogue.set_setting(line_outline.SETTING, line_outline.NAME)
     if arguments.exact_stop:
         values = exact_stop(catalogue, surveyed, arguments, workers, values, [s["levels"] for s in surveys], percents)
+        catalogue.set_setting(EXACT_STOP, "yes")
     text = thresholds.as_option(values)
     catalogue.set_setting(thresholds.SHARES_SETTING, thresholds.SHARES_DELETED)
     catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
@@ -209,8 +213,10 @@ def percent(arguments, name, default):
     return float(build_option(arguments.build_options, name) or default)
 
 
-# -exact_stop's second survey pass, as the build pass deletes: its surveys' file kind.
+# -exact_stop's second survey pass, as the build pass deletes: its surveys' file kind, and
+# the catalogue's record that the thresholds were so set.
 SECOND_SURVEY = "survey2"
+EXACT_STOP = "TINLOD_EXACT_STOP"
 
 
 def exact_stop(catalogue, surveyed, arguments, workers, values, first, percents):
