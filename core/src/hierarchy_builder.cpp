@@ -437,11 +437,12 @@ class Simplifier {
       for (const Candidate& c : half) ++l.histogram[surveyBin(c.first)];
     l.pickedHistogram.assign(kSurveyBins, 0);
     for (std::size_t k = borderPicks; k < picks.size(); ++k) ++l.pickedHistogram[surveyBin(picks[k].importance)];
+    // Only border vertices are shared with another tile: each counts its share less than 1.
     l.unionVertices = double(current_);
     if (tile_) {
-      l.unionVertices = 0;
-      for (std::size_t v = 0; v < h_.vertexLevel.size(); ++v)
-        if (h_.vertexLevel[v] == kOpenLevel) l.unionVertices += unionShare(dem_, h_.base.vertices[v]);
+      const std::array<bool, 4> shared = sharedSides(dem_);
+      for (VertexId v = 0; v < static_cast<VertexId>(h_.vertexLevel.size()); ++v)
+        if (onBorder(v) && h_.vertexLevel[v] == kOpenLevel) l.unionVertices -= 1 - unionShare(shared, dem_, h_.base.vertices[v]);
     }
     h_.survey.push_back(std::move(l));
   }

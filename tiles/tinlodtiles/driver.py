@@ -190,13 +190,14 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     paths = [survey_path(folder, t) for t in surveyed]
     surveys = [thresholds.load_survey(p) for p in paths]  # each read once: thousands of them
     percents = percent(arguments, "-delete_pct", 20), percent(arguments, "-stop_pct", 5)
-    values = thresholds.level_thresholds([s["levels"] for s in surveys], *percents)
+    levels = [s["levels"] for s in surveys]
+    values = thresholds.level_thresholds(levels, *percents)
     cells = set().union(*(line_outline.survey_cells(s, p) for s, p in zip(surveys, paths)))
     write_cells(line_outline.path(folder), cells)  # before the thresholds are recorded: a rerun has both
     catalogue.set_setting(line_outline.DIGEST, line_outline.digest(line_outline.path(folder)))
     catalogue.set_setting(line_outline.SETTING, line_outline.NAME)
     if arguments.exact_stop:
-        values = exact_stop(catalogue, surveyed, arguments, workers, values, [s["levels"] for s in surveys], percents)
+        values = exact_stop(catalogue, surveyed, arguments, workers, values, levels, percents)
         catalogue.set_setting(EXACT_STOP, "yes")
     text = thresholds.as_option(values)
     catalogue.set_setting(thresholds.SHARES_SETTING, thresholds.SHARES_DELETED)

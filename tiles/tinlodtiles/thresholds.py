@@ -82,28 +82,37 @@ def exact_stop_thresholds(values, second, stop_pct, walked):
     picks' bins, best first), and the levels after it nothing."""
     count = "union_vertices" if all("union_vertices" in s[0] for s in second if s) else "vertices"
     stop = stop_pct / 100.0 * sum(s[0][count] for s in second if s)  # as the union counts: a shared vertex once
-    out = list(values)
     for k in range(walked + 1):
         rows = [s[k] for s in second if len(s) > k]
         vertices = sum(r[count] for r in rows)
         if not rows or vertices - sum(r["picked"] for r in rows) <= stop or k == walked:
-            out[k] = threshold_for_picks(rows, max(0.0, vertices - stop))
-            return out[: k + 1] + [(0.0, 1.0)] * (len(values) - k - 1)
-    return out
+            break
+    target = max(0.0, vertices - stop)
+    stop_threshold = threshold_reaching(pooled(rows, "histogram"), pooled(rows, "picked_histogram"), target)
+    return values[:k] + [stop_threshold] + [(0.0, 1.0)] * (len(values) - k - 1)
 
 
-def threshold_for_picks(rows, target):
-    """The (threshold, share) whose picks, among those the rows' walk made best first,
-    delete `target`."""
+def level_threshold(rows, counts, target):
+    """The (threshold, share) that deletes `target` of the level's vertices, each bin's
+    candidates thinned by the share of them the levels' own picks took (independence blocks
+    the others)."""
+    picked, considered = sum(r["picked"] for r in rows), sum(r["considered"] for r in rows)
+    taken = picked / considered if considered else 1.0
+    return threshold_reaching(counts, {b: taken * n for b, n in counts.items()}, target)
+
+
+def threshold_reaching(counts, picks, target):
+    """The (threshold, share) whose deletions reach `target`: the bin where the picks of the
+    bins up to it (`picks`, bin: count) do, and the share of that bin's candidates (`counts`)
+    still needed (a flat area's ties share the rest)."""
     if target <= 0:
         return 0.0, 1.0
-    counts, picked = pooled(rows, "histogram"), pooled(rows, "picked_histogram")
-    threshold, seen = 0.0, 0
+    threshold, seen = 0.0, 0.0
     for b in sorted(counts):
         threshold = bin_top(b)
-        if seen + picked.get(b, 0) >= target:
+        if seen + picks.get(b, 0) >= target:
             return threshold, min(1.0, max(0.0, (target - seen) / counts[b]))
-        seen += picked.get(b, 0)
+        seen += picks.get(b, 0)
     return threshold, 1.0
 
 
@@ -114,24 +123,6 @@ def pooled(rows, key):
         for b, n in r.get(key, []):
             counts[b] = counts.get(b, 0) + n
     return counts
-
-
-def level_threshold(rows, counts, target):
-    """The (threshold, share) that deletes `target` of the level's vertices: the bin where
-    the candidates, times the share of them the levels' own picks took (independence blocks
-    the others), reach it, and the share of the bin's candidates still needed (a flat area's
-    ties share the rest)."""
-    if target <= 0:
-        return 0.0, 1.0
-    picked, considered = sum(r["picked"] for r in rows), sum(r["considered"] for r in rows)
-    taken = picked / considered if considered else 1.0  # the share of candidates independence lets through
-    threshold, seen = 0.0, 0.0
-    for b in sorted(counts):
-        threshold = bin_top(b)
-        if seen + taken * counts[b] >= target:
-            return threshold, min(1.0, max(0.0, (target - seen) / counts[b]))
-        seen += taken * counts[b]
-    return threshold, 1.0
 
 
 def as_option(thresholds):

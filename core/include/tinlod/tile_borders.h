@@ -106,8 +106,8 @@ std::vector<std::array<int, 2>> lineVertexCells(const Dem& dem, int side, int bl
 
 // A tile's vertex as a job's union counts it: 1, a half on a line two tiles share, a quarter
 // at a corner four tiles share; so a job's tiles' shares add up to their union's vertices.
-inline double unionShare(const Dem& dem, const TinVertex& v) {
-  const std::array<bool, 4> shared = sharedSides(dem);
+// `shared`: the tile's sharedSides.
+inline double unionShare(const std::array<bool, 4>& shared, const Dem& dem, const TinVertex& v) {
   const bool onColumn = (shared[kFirstCol] && v.col == 0) || (shared[kLastCol] && v.col == dem.width - 1);
   const bool onRow = (shared[kFirstRow] && v.row == 0) || (shared[kLastRow] && v.row == dem.height - 1);
   return (onColumn ? 0.5 : 1.0) * (onRow ? 0.5 : 1.0);
