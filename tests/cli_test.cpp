@@ -138,7 +138,17 @@ TEST(Cli, BuildCheckSaysWhetherTheOptionsAreGoodAndWritesNothing) {
   const CliRun good = tinlod("build " + defaultDem() + " " + out + " -check -tile_size 120 -tile 1,1");
   EXPECT_EQ(good.exitCode, 0) << good.err;
   EXPECT_TRUE(has(good.out, "The options are good for " + defaultDem() + "; nothing was written")) << good.out;
+  EXPECT_TRUE(has(good.out, "Options in effect: (the defaults)\n")) << good.out;  // the tile's own aside
   EXPECT_FALSE(fs::exists(out));
+  // The options in effect: those not at their defaults, by name, numbers as read (tinlod
+  // tiles compares them when a job is run again); quoted where a value holds a space.
+  const CliRun spelled = tinlod("build " + defaultDem() + " " + out +
+                                " -check -seed 5 -delete_pct 25.0 -block 3 -method volume -stop_pct 5 -no_group_outlines"
+                                " -valid_range -12000 9000 -t_srs '+proj=utm +zone=32 +datum=WGS84'");
+  EXPECT_EQ(spelled.exitCode, 0) << spelled.err;
+  EXPECT_TRUE(has(spelled.out, "Options in effect: -delete_pct 25 -no_group_outlines -seed 5 "
+                               "-t_srs '+proj=utm +zone=32 +datum=WGS84'\n"))
+      << spelled.out;
   const CliRun bad = tinlod("build " + defaultDem() + " " + out + " -check -delete_pct 200");
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_TRUE(has(bad.err, "ERROR: delete_pct must be more than 0 and at most 100 (got 200)")) << bad.err;

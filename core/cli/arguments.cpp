@@ -5,16 +5,54 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "tinlod/error.h"
 
 namespace tinlod::cli {
+namespace {
+
+std::string numberText(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+template <typename T, typename F>
+std::string joined(const std::vector<T>& values, F text) {
+  std::string out;
+  for (const T& v : values) out += (out.empty() ? "" : " ") + text(v);
+  return out;
+}
+
+// A value as a shell would need it: quoted when it holds a space or a quote, so that two
+// different sets of values never read alike.
+std::string quoted(const std::string& value) {
+  if (!value.empty() && value.find_first_of(" \t'\"") == std::string::npos) return value;
+  std::string out = "'";
+  for (char c : value) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+void Arguments::note(const std::string& name, const std::string& value, bool isDefault) {
+  if (!isDefault) read_[name] = value;
+}
+
+std::string Arguments::inEffect(const std::set<std::string>& leaveOut) const {
+  std::string out;
+  for (const auto& [name, value] : read_)
+    if (!leaveOut.count(name)) out += (out.empty() ? "" : " ") + name + (value.empty() ? "" : " " + value);
+  return out;
+}
 
 bool Arguments::flag(const std::string& name) {
   auto it = std::find(args_.begin(), args_.end(), name);
   if (it == args_.end()) return false;
   args_.erase(it);
+  note(name, "", false);
   return true;
 }
 
@@ -56,6 +94,7 @@ std::vector<int> Arguments::integers(const std::string& name, std::size_t count,
   if (!take(name, values, count)) return fallback;
   std::vector<int> parsed;
   for (const std::string& v : values) parsed.push_back(parseInteger(name, v));
+  note(name, joined(parsed, [](int v) { return std::to_string(v); }), parsed == fallback);
   return parsed;
 }
 
@@ -66,17 +105,23 @@ std::vector<std::string> Arguments::repeated(const std::string& name) {
     values.push_back(*(it + 1));
     args_.erase(it, it + 2);
   }
+  note(name, joined(values, quoted), values.empty());
   return values;
 }
 
 std::string Arguments::text(const std::string& name, const std::string& fallback) {
   std::string value;
-  return take(name, value) ? value : fallback;
+  if (!take(name, value)) return fallback;
+  note(name, quoted(value), value == fallback);
+  return value;
 }
 
 int Arguments::integer(const std::string& name, int fallback) {
   std::string value;
-  return take(name, value) ? parseInteger(name, value) : fallback;
+  if (!take(name, value)) return fallback;
+  const int parsed = parseInteger(name, value);
+  note(name, std::to_string(parsed), parsed == fallback);
+  return parsed;
 }
 
 double Arguments::parseNumber(const std::string& name, const std::string& value) {
@@ -89,7 +134,10 @@ double Arguments::parseNumber(const std::string& name, const std::string& value)
 
 double Arguments::number(const std::string& name, double fallback) {
   std::string value;
-  return take(name, value) ? parseNumber(name, value) : fallback;
+  if (!take(name, value)) return fallback;
+  const double parsed = parseNumber(name, value);
+  note(name, numberText(parsed), parsed == fallback);
+  return parsed;
 }
 
 std::vector<std::vector<double>> Arguments::repeatedNumbers(const std::string& name, std::size_t count) {
@@ -101,6 +149,7 @@ std::vector<std::vector<double>> Arguments::repeatedNumbers(const std::string& n
     out.push_back(values);
     args_.erase(it, it + 1 + count);
   }
+  note(name, joined(out, [](const std::vector<double>& v) { return joined(v, numberText); }), out.empty());
   return out;
 }
 
@@ -111,6 +160,7 @@ std::uint64_t Arguments::unsignedInteger(const std::string& name, std::uint64_t 
   const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), parsed);
   if (value.empty() || error != std::errc() || end != value.data() + value.size())
     throw Error(name + " expects a whole number from 0 to " + std::to_string(UINT64_MAX) + ", got '" + value + "'");
+  note(name, std::to_string(parsed), parsed == fallback);
   return parsed;
 }
 
@@ -119,6 +169,7 @@ std::vector<double> Arguments::numbers(const std::string& name, std::size_t coun
   if (!take(name, values, count)) return fallback;
   std::vector<double> parsed;
   for (const std::string& v : values) parsed.push_back(parseNumber(name, v));
+  note(name, joined(parsed, numberText), parsed == fallback);
   return parsed;
 }
 

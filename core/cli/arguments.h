@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,10 @@ class Arguments {
   std::vector<std::string> operands(std::size_t count, const std::string& usage);
   // One or more operands.
   std::vector<std::string> someOperands(const std::string& usage);
+  // The options read so far whose values differ from their defaults, as "-name value" by
+  // name (numbers as read, not as typed), `leaveOut` aside; "" when there are none. Two
+  // spellings of one job ("-delete_pct 20.0 -seed 5" and "-seed 5") give the same text.
+  std::string inEffect(const std::set<std::string>& leaveOut) const;
 
  private:
   bool take(const std::string& name, std::vector<std::string>& values, std::size_t count);
@@ -39,7 +45,10 @@ class Arguments {
   void rejectOptions(const std::string& usage) const;
   static int parseInteger(const std::string& name, const std::string& value);
   static double parseNumber(const std::string& name, const std::string& value);
+  // Records a value read unless it is the default.
+  void note(const std::string& name, const std::string& value, bool isDefault);
   std::vector<std::string> args_;
+  std::map<std::string, std::string> read_;  // by name: the value read, when not the default
 };
 
 }  // namespace tinlod::cli

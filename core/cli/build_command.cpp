@@ -108,7 +108,9 @@ Sampling options (as tinlod sample): -b band, -s_srs srs, -t_srs srs, -block k, 
   -check           check the options, the files they name, the DEM's band, size and CRS
                    (with -tile: that the tile is in its grid) and the jitter against its
                    cells, then stop: two cells of the DEM are read and nothing is written
-                   (tinlod tiles checks a job's build options so before any tile runs)
+                   (tinlod tiles checks a job's build options so before any tile runs);
+                   prints the options in effect: those not at their defaults, numbers as
+                   read, by name
   -overwrite       replace existing outputs: tinlod's layers of the GeoPackage (its other
                    layers are kept), the -accuracy raster, the -report; never an input
   -q               quiet: no progress or information, warnings only
@@ -204,7 +206,12 @@ int buildCommand(std::vector<std::string> args) {
   const std::vector<std::string> files = a.operands(2, kUsage);
   if (check) {
     checkBuildJob(files[0], sample, o, accuracy, layers, tile, terminalFeedback(quiet));
-    if (!quiet) std::cout << "The options are good for " << files[0] << "; nothing was written" << std::endl;
+    if (!quiet) {
+      // tinlod tiles records this: a rerun that spells the same job otherwise resumes it.
+      const std::string options = a.inEffect({"-tile", "-tile_size", "-check", "-overwrite", "-q"});
+      std::cout << "The options are good for " << files[0] << "; nothing was written\n"
+                << "Options in effect: " << (options.empty() ? "(the defaults)" : options) << std::endl;
+    }
     return 0;
   }
 

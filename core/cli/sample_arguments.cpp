@@ -3,8 +3,9 @@
 
 namespace tinlod::cli {
 
-std::optional<HeightRange> validRange(Arguments& a) {
-  const std::vector<double> range = a.numbers("-valid_range", 2, {});
+std::optional<HeightRange> validRange(Arguments& a, const std::optional<HeightRange>& fallback) {
+  const std::vector<double> range =
+      a.numbers("-valid_range", 2, fallback ? std::vector<double>{fallback->min, fallback->max} : std::vector<double>{});
   if (range.empty()) return std::nullopt;
   return HeightRange{range[0], range[1]};
 }
@@ -17,7 +18,7 @@ SampleOptions sampleOptions(Arguments& a) {
   options.block = a.integer("-block", options.block);
   options.jitter = a.number("-jitter", options.jitter);
   options.seed = a.unsignedInteger("-seed", options.seed);
-  options.validHeights = validRange(a).value_or(options.validHeights);
+  options.validHeights = validRange(a, options.validHeights).value_or(options.validHeights);
   return options;
 }
 
