@@ -491,7 +491,24 @@ def main(tinlod, tiles):
           ("%d bytes, changed " % stat.st_size) in (rows(catalogue)[2].get("TINLOD_SOURCE_STAMP") or ""), rows(catalogue)[2])
     other = run(base + [catalogue] + options[:-1] + ["6"], env)
     check("(c) a rerun with other build options is refused, suggesting -overwrite",
-          other.returncode == 1 and "-overwrite" in other.stderr, other.stderr)
+          other.returncode == 1 and "-overwrite" in other.stderr and "(in effect: -seed 5)" in other.stderr
+          and "(in effect: -seed 6)" in other.stderr, other.stderr)
+    check("(c) the catalogue records the build options in effect",
+          rows(catalogue)[2].get("TINLOD_BUILD_SETTINGS") == "-seed 5", rows(catalogue)[2])
+    spelled = run(base + [catalogue] + options[:-2] + ["-delete_pct", "20.0", "-seed", "5", "-method", "volume", "-block", "3"], env)
+    check("(c) a rerun spelling the same options another way (defaults given, 20.0, another order) resumes the job",
+          spelled.returncode == 0 and "0 tiles run, 6 skipped" in spelled.stdout, spelled.stdout + spelled.stderr[-1000:])
+    # A catalogue an earlier tinlod-tiles made has no such record: its recorded options are read
+    # as tinlod build reads them, recorded, and compared.
+    dataset = gdal.OpenEx(catalogue, gdal.OF_VECTOR | gdal.OF_UPDATE)
+    metadata = dataset.GetMetadata()
+    metadata.pop("TINLOD_BUILD_SETTINGS")
+    dataset.SetMetadata(metadata)
+    dataset = None
+    earlier = run(base + [catalogue] + options[:-2] + ["-seed", "5", "-delete_pct", "20"], env)
+    check("(c) ... as does one of an earlier catalogue, which gets the record",
+          earlier.returncode == 0 and "0 tiles run, 6 skipped" in earlier.stdout
+          and rows(catalogue)[2].get("TINLOD_BUILD_SETTINGS") == "-seed 5", earlier.stdout + earlier.stderr[-1000:])
 
     # (d) Each level across the tiles: the VRT and merge hold the sum of the tiles' triangles.
     found, metadata = rows(catalogue)[0], rows(catalogue)[2]

@@ -25,6 +25,9 @@ FIELDS = (  # (name, OGR type)
 JOB_KEYS = ("TINLOD_SOURCE", "TINLOD_TILE_SIZE", "TINLOD_BUILD_OPTIONS", "TINLOD_RASTER_SIZE", "TINLOD_SELECTION")
 # The DEM file's size and time of change (source_stamp), which a rerun must find unchanged.
 SOURCE_STAMP = "TINLOD_SOURCE_STAMP"
+# The build options as tinlod build reads them (tinlod build -check's "Options in effect"):
+# compared instead of TINLOD_BUILD_OPTIONS's text where both runs have it.
+BUILD_SETTINGS = "TINLOD_BUILD_SETTINGS"
 
 
 def source_stamp(path):
@@ -84,6 +87,13 @@ class Catalogue:
         options. The DEM by another path to the same file (a link) is the same DEM."""
         for key in JOB_KEYS:
             if key == "TINLOD_SOURCE" and same_file(self.setting(key) or "", settings[key]):
+                continue
+            if key == "TINLOD_BUILD_OPTIONS" and self.setting(BUILD_SETTINGS) and settings.get(BUILD_SETTINGS):
+                if self.setting(BUILD_SETTINGS) != settings[BUILD_SETTINGS]:
+                    raise TilesError("%s was made with the build options %s (in effect: %s), not %s (in effect: %s): "
+                                     "run with the same options to resume it, or add -overwrite to start again"
+                                     % (path, self.setting(key) or "(none)", self.setting(BUILD_SETTINGS),
+                                        settings[key] or "(none)", settings[BUILD_SETTINGS]))
                 continue
             if (self.setting(key) or "") != settings[key]:
                 raise TilesError("%s was made with %s=%s, not %s: run with the same settings to resume it, "
