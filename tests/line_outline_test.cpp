@@ -14,6 +14,7 @@
 
 #include "test_support.h"
 #include "tinlod/build_job.h"
+#include "tinlod/hierarchy_builder.h"
 #include "tinlod/hierarchy_reader.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/synthetic_dem.h"
@@ -165,6 +166,38 @@ TEST(LineOutline, TilesKeepingTheUnionDeleteTheSameLineVerticesAndMoreOfThem) {
   EXPECT_GT(alone, 0u) << "the void beside the line leaves a line cell out of one tile";
   const auto keptAll = lineRowsByLevel(buildTile(0, ""), 0);
   EXPECT_LT(left.back().size() + 5, keptAll.back().size()) << "the list should free line vertices near the voids";
+}
+
+// A survey counts the border rule's picks as the union counts them (a half each: the line is
+// two tiles'), for the driver to leave them room in each level's share: before, every level
+// deleted them on top of it.
+TEST(LineOutline, ASurveyCountsTheBorderRulesPicksAsHalvesOfTheUnion) {
+  std::unordered_set<std::uint64_t> both;  // as the build pass keeps them: the others near the voids may go
+  for (int col : {0, 1}) {
+    const Tile t = readTileTin(col);
+    for (const std::uint64_t key : lineOutlineCells(t.dem, t.tin, kBlock, SampleOptions{}.seed)) both.insert(key);
+  }
+  for (int col : {0, 1}) {
+    SCOPED_TRACE("tile " + std::to_string(col));
+    const Tile t = readTileTin(col);
+    HierarchyOptions o;
+    o.survey = true;
+    TileBorders borders = tileBorders(t.dem, t.tin, {kSize, col, 0}, tileLevelCount(o.deletePct, o.stopPct), kBlock,
+                                      SampleOptions{}.seed, 100.0);
+    pinLineOutlineOnly(borders, t.dem, t.tin, both, "the union's list");
+    const Hierarchy h = buildHierarchy(t.tin, t.dem, {}, o, kQuiet, {}, &borders);
+    ASSERT_GT(h.survey.size(), 3u);
+    const int line = col ? 0 : kSize;
+    double picked = 0;
+    for (const LevelSurvey& l : h.survey) {
+      std::size_t gone = 0;
+      for (VertexId v = 0; v < h.base.vertices.size(); ++v)
+        gone += h.base.vertices[v].col == line && h.vertexLevel[v] == l.level - 1;
+      EXPECT_EQ(l.borderPicked, 0.5 * double(gone)) << "level " << l.level;
+      picked += l.borderPicked;
+    }
+    EXPECT_GT(picked, 5.0);
+  }
 }
 
 TEST(LineOutline, AListWithoutTheTilesOwnCellsIsRefusedNamingOne) {

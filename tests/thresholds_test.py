@@ -35,6 +35,18 @@ check("as the option tinlod build takes", thresholds.as_option([(t, share)]) == 
 check("a larger delete percentage reaches the rough tile's bin, 0.3 of it",
       abs(t - thresholds.bin_top(20)) < 1e-30 and abs(share - 0.3) < 1e-12, (t, share))
 
+# The two tiles share a line of 10 vertices (a half each in the union: 190 vertices, not
+# 200), and the border rule deletes 4 of them (a half each: 2 in each tile's survey). 20 %
+# of the union is 38 deletions, 34 of them the tiles' own: 0.34 of the smooth bin. Counted
+# as before, the tiles' 200 vertices and no room for the line's picks, it was 40 (0.4).
+def shared(row):
+    return dict(row, union_vertices=95, border_picked=2)
+
+
+(t, share), = thresholds.level_thresholds([[shared(smooth[0])], [shared(rough[0])]], 20, 5)
+check("a level's own picks leave room for the border rule's, of the union's vertices",
+      abs(t - thresholds.bin_top(10)) < 1e-30 and abs(share - 0.34) < 1e-12, (t, share))
+
 # The stop, with -delete_pct 50 -stop_pct 30: 200 vertices, the stop 60. Level 1 deletes
 # half, so level 2 finds 100 and deletes 0.4 of what it finds, down to 60; level 3 nothing.
 # The surveys found 80 at level 2 (each tile deleted more of its own): 0.4 of 80 is 32
@@ -78,6 +90,13 @@ exact = thresholds.exact_stop_thresholds(first_values, second, 30, 2)
 check("-exact_stop: an earlier level that reaches the stop deletes only down to it",
       exact[0] == first_values[0] and abs(exact[1][0] - thresholds.bin_top(20)) < 1e-30
       and abs(exact[1][1] - 0.5) < 1e-12 and exact[2:] == [(0.0, 1.0), (0.0, 1.0)], exact)
+
+# The border rule's picks at that level (10 of the union's in each tile) go too: it deletes
+# only 80 of its own, the smooth tile's 60 and 20 of the rough one's 80 (0.25).
+second[0][1]["border_picked"] = second[1][1]["border_picked"] = 10
+exact = thresholds.exact_stop_thresholds(first_values, second, 30, 2)
+check("-exact_stop: the border rule's picks below the walked level count toward the stop",
+      abs(exact[1][0] - thresholds.bin_top(20)) < 1e-30 and abs(exact[1][1] - 0.25) < 1e-12, exact)
 
 # A survey of another binning is refused.
 with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:

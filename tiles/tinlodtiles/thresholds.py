@@ -41,13 +41,26 @@ def read_survey(path):
 def level_thresholds(surveys, delete_pct, stop_pct):
     """The (threshold, share) of levels 1, 2, ... from the tiles' surveys (lists of levels):
     the level deletes the independent candidates below the threshold's bin and at most that
-    share of those in it."""
+    share of those in it. It aims at its share of the union's vertices (a line vertex two
+    tiles hold counted once), less what the border rule deletes."""
     thresholds = []
     for k, fraction in enumerate(level_fractions(surveys, delete_pct, stop_pct)):
         rows = [s[k] for s in surveys if len(s) > k]
-        vertices = sum(r["vertices"] for r in rows)
-        thresholds.append(level_threshold(rows, pooled(rows, "histogram"), fraction * vertices))
+        target = fraction * union_vertices(rows) - border_picked(rows)
+        thresholds.append(level_threshold(rows, pooled(rows, "histogram"), target))
     return thresholds
+
+
+def union_vertices(rows):
+    """The levels' vertices as their union counts them (a vertex two tiles share once); the
+    tiles' own counts where a survey has no union count (an earlier tinlod's)."""
+    return sum(r.get("union_vertices", r["vertices"]) for r in rows)
+
+
+def border_picked(rows):
+    """The border rule's picks as the union counts them. They go beside the tiles' own picks,
+    which the threshold sets: aimed at the whole share, a level deleted them on top of it."""
+    return sum(r.get("border_picked", 0) for r in rows)
 
 
 def level_fractions(surveys, delete_pct, stop_pct):
@@ -56,7 +69,7 @@ def level_fractions(surveys, delete_pct, stop_pct):
     counts drift from the build pass's (each tile deletes a fifth of its own vertices, the
     build pass the raster's least important): aimed at the stop from their count, the last
     level would delete what is left of a small difference."""
-    original = sum(s[0]["vertices"] for s in surveys if s)
+    original = union_vertices([s[0] for s in surveys if s])
     stop = stop_pct / 100.0 * original
     expected = float(original)
     fractions = []
@@ -80,11 +93,12 @@ def exact_stop_thresholds(values, second, stop_pct, walked):
     state there) and every candidate walked at it (level index `walked`): the first level
     whose picks would take the union below the stop deletes only what is above it (its
     picks' bins, best first), and the levels after it nothing."""
-    count = "union_vertices" if all("union_vertices" in s[0] for s in second if s) else "vertices"
-    stop = stop_pct / 100.0 * sum(s[0][count] for s in second if s)  # as the union counts: a shared vertex once
+    stop = stop_pct / 100.0 * union_vertices([s[0] for s in second if s])
     for k in range(walked + 1):
         rows = [s[k] for s in second if len(s) > k]
-        vertices = sum(r[count] for r in rows)
+        # The border rule's picks below the walked level are the build pass's; at it, they
+        # passed an infinite threshold, not the one set here.
+        vertices = union_vertices(rows) - (border_picked(rows) if k < walked else 0)
         if not rows or vertices - sum(r["picked"] for r in rows) <= stop or k == walked:
             break
     target = max(0.0, vertices - stop)

@@ -22,6 +22,7 @@ struct LevelSurvey {
   std::vector<std::uint64_t> histogram;  // candidates by surveyBin of their importance
   std::vector<std::uint64_t> pickedHistogram;  // the tile's own picks, by the same bins
   double unionVertices = 0;  // `vertices` as a job's union counts them (tile_borders.h: unionShare)
+  double borderPicked = 0;   // the border rule's picks, as the union counts them
 };
 
 // Importances in bins of 1/200 of a decade from 1e-12 to 1e15; bin 0 holds 0 and below 1e-12.
@@ -39,7 +40,7 @@ inline double surveyBinBottom(double top) { return top <= 1e-12 ? -INFINITY : to
 
 // The survey as JSON: {"levels": [{"level", "vertices", "picked", "considered", "last",
 // "histogram": [[bin, count], ...], "picked_histogram": [[bin, count], ...],
-// "union_vertices"}, ...],
+// "union_vertices", "border_picked"}, ...],
 // "line_outline": [[row, col], ...]} (bins with a
 // count only; line_outline: the tile's lineOutlineCells, as globalCellKey).
 std::string surveyJson(const std::vector<LevelSurvey>& levels, const std::vector<std::uint64_t>& lineOutline);
