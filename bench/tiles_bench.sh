@@ -7,7 +7,8 @@
 #     level's union is conforming, and its accuracy (pooled RMSE and maximum error against
 #     the DEM, from the tiles' levels tables) against a whole-raster run with the same
 #     options, at the coarsest level and at equal vertex counts; then swiss_alps (voids) and
-#     vancouver (sea) as 16 tiles;
+#     vancouver (sea) as 16 tiles, meghalaya_50m (clipped to a region) as 12 and mandakini_90m
+#     (45 % nodata, tiles of no valid cell) as 20;
 #  2. the peak memory of one tile of 4096 x 4096 cells (-tile_size 4095, tile 0,0 of a synthetic 8193 x 8193 DEM),
 #     to build it and to measure it (tinlod accuracy on that DEM as 4 such tiles, with the raster);
 #  3. tinlod accuracy on a catalogue (a tile at a time) against the same on the whole run's
@@ -43,11 +44,16 @@ accuracy_case() {  # NAME DEM SIZE
   read -r across down < <(tile_grid "$dem" "$size")
   echo "== $name: $((across * down)) tiles of $size cells"
   [[ -f $work/$name.whole.gpkg ]] || /usr/bin/time -f "whole run: %e s, peak %M KB" "$tinlod" build "$dem" "$work/$name.whole.gpkg" -q
-  local start=$SECONDS peak=0 thresholds
-  # The two passes of tinlod tiles' default -selection global, one tile after another.
+  local start=$SECONDS peak=0 thresholds status
+  rm -f "$work/$name".survey_*.json "$work/$name".tile_*.gpkg
+  # The two passes of tinlod tiles' default -selection global, one tile after another. A
+  # tile without valid cells writes nothing (exit 3), as tinlod tiles records it empty.
   for ((c = 0; c < across; c++)); do
     for ((r = 0; r < down; r++)); do
-      "$tinlod" build "$dem" "$work/$name.survey_${c}_${r}.json" -tile_size "$size" -tile "$c,$r" -q -overwrite -survey
+      status=0
+      "$tinlod" build "$dem" "$work/$name.survey_${c}_${r}.json" -tile_size "$size" -tile "$c,$r" -q -overwrite -survey \
+        2> /dev/null || status=$?
+      (( status == 0 || status == 3 )) || { echo "tile $c,$r: the survey failed (exit $status)"; return 1; }
     done
   done
   thresholds=$(cd "$root/tiles" && /usr/bin/python3 -c "
@@ -62,6 +68,7 @@ cell_file.write_cells('$work/$name.line_outline.txt', line_outline.gather(glob.g
   echo "survey pass: $((SECONDS - start)) s, $(wc -l < "$work/$name.line_outline.txt") line cells on the outline"
   for ((c = 0; c < across; c++)); do
     for ((r = 0; r < down; r++)); do
+      [[ -f $work/$name.survey_${c}_${r}.json ]] || continue  # empty
       /usr/bin/time -o "$work/time.txt" -f "%M" "$tinlod" build "$dem" "$work/$name.tile_${c}_${r}.gpkg" \
         -tile_size "$size" -tile "$c,$r" -q -overwrite -level_thresholds "$thresholds" -line_outline "$work/$name.line_outline.txt"
       peak=$(( $(cat "$work/time.txt") > peak ? $(cat "$work/time.txt") : peak ))
@@ -253,9 +260,13 @@ for part in $parts; do
       accuracy_case alps4 "$data/alps_2x2_N46E007_N47E008.tif" 1200
       accuracy_case alps16 "$data/alps_2x2_N46E007_N47E008.tif" 600
       accuracy_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
-      # Beyond the issue's cases: voids (swiss_alps, 7 % nodata) and sea (vancouver).
+      # Beyond the issue's cases: voids (swiss_alps, 7 % nodata), sea (vancouver), a DEM
+      # clipped to a region (meghalaya_50m, 9 % nodata round it; mandakini_90m, 45 %, with
+      # tiles of no valid cell).
       accuracy_case swiss16 "$data/swiss_alps_N46E008.tif" 300
       accuracy_case vancouver16 "$data/vancouver_N49W123.tif" 300
+      accuracy_case meghalaya12 "$data/meghalaya_50m.tif" 450
+      accuracy_case mandakini20 "$data/mandakini_90m.tif" 150
       ;;
     memory) memory_case ;;
     measure)
