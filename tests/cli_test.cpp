@@ -2,6 +2,7 @@
 // The tinlod command line, end to end: the real binary, its exit codes and output.
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
@@ -149,6 +150,23 @@ TEST(Cli, BuildCheckSaysWhetherTheOptionsAreGoodAndWritesNothing) {
   EXPECT_TRUE(has(spelled.out, "Options in effect: -delete_pct 25 -no_group_outlines -seed 5 "
                                "-t_srs '+proj=utm +zone=32 +datum=WGS84'\n"))
       << spelled.out;
+  // A WKT of several lines stays on the line, its breaks escaped: two WKTs that differ after
+  // their first line never read alike.
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32632);
+  char* wkt = nullptr;
+  const char* const multiline[] = {"MULTILINE=YES", nullptr};
+  utm.exportToWkt(&wkt, multiline);
+  const std::string text(wkt);
+  CPLFree(wkt);
+  ASSERT_NE(text.find('\n'), std::string::npos);
+  const CliRun lines = tinlod("build " + defaultDem() + " " + out + " -check -t_srs '" + text + "'");
+  EXPECT_EQ(lines.exitCode, 0) << lines.err;
+  const std::size_t at = lines.out.find("Options in effect: -t_srs $'PROJCS[\"WGS 84 / UTM zone 32N\",\\x0a");
+  ASSERT_NE(at, std::string::npos) << lines.out;
+  const std::string line = lines.out.substr(at, lines.out.find('\n', at) - at);
+  EXPECT_EQ(line.back(), '\'') << line;
+  EXPECT_GT(line.size(), text.size()) << line;
   const CliRun bad = tinlod("build " + defaultDem() + " " + out + " -check -delete_pct 200");
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_TRUE(has(bad.err, "ERROR: delete_pct must be more than 0 and at most 100 (got 200)")) << bad.err;

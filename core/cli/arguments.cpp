@@ -5,8 +5,10 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include "tinlod/error.h"
 
@@ -26,12 +28,25 @@ std::string joined(const std::vector<T>& values, F text) {
   return out;
 }
 
-// A value as a shell would need it: quoted when it holds a space or a quote, so that two
-// different sets of values never read alike.
+bool plain(unsigned char c) { return c && (std::isalnum(c) || std::strchr("_@%+=:,./-", c)); }
+
+// A value as a shell would read it back: bare when it is plain (and no option's name),
+// else quoted, and bytes that are not printable ASCII (a WKT's line breaks) as $'\xHH'; so
+// that two different sets of values never read alike, and the text stays one line.
 std::string quoted(const std::string& value) {
-  if (!value.empty() && value.find_first_of(" \t'\"") == std::string::npos) return value;
-  std::string out = "'";
-  for (char c : value) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  if (!value.empty() && value[0] != '-' && std::all_of(value.begin(), value.end(), [](char c) { return plain(c); }))
+    return value;
+  const bool printable = std::all_of(value.begin(), value.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+  std::string out = printable ? "'" : "$'";
+  for (const char c : value) {
+    if (!printable && (c < 0x20 || c >= 0x7f || c == '\\' || c == '\'')) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
+      out += hex;
+    } else {
+      out += printable && c == '\'' ? std::string("'\\''") : std::string(1, c);
+    }
+  }
   return out + "'";
 }
 
