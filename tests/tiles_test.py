@@ -493,8 +493,9 @@ def main(tinlod, tiles):
     check("(c) a rerun with other build options is refused, suggesting -overwrite",
           other.returncode == 1 and "-overwrite" in other.stderr and "(in effect: -seed 5)" in other.stderr
           and "(in effect: -seed 6)" in other.stderr, other.stderr)
-    check("(c) the catalogue records the build options in effect",
-          rows(catalogue)[2].get("TINLOD_BUILD_SETTINGS") == "-seed 5", rows(catalogue)[2])
+    version = subprocess.run([program, "--version"], capture_output=True, text=True).stdout.strip()
+    check("(c) the catalogue records the build options in effect, and the tinlod that read them",
+          rows(catalogue)[2].get("TINLOD_BUILD_SETTINGS") == version + ": -seed 5", (version, rows(catalogue)[2]))
     spelled = run(base + [catalogue] + options[:-2] + ["-delete_pct", "20.0", "-seed", "5", "-method", "volume", "-block", "3"], env)
     check("(c) a rerun spelling the same options another way (defaults given, 20.0, another order) resumes the job",
           spelled.returncode == 0 and "0 tiles run, 6 skipped" in spelled.stdout, spelled.stdout + spelled.stderr[-1000:])
@@ -508,7 +509,18 @@ def main(tinlod, tiles):
     earlier = run(base + [catalogue] + options[:-2] + ["-seed", "5", "-delete_pct", "20"], env)
     check("(c) ... as does one of an earlier catalogue, which gets the record",
           earlier.returncode == 0 and "0 tiles run, 6 skipped" in earlier.stdout
-          and rows(catalogue)[2].get("TINLOD_BUILD_SETTINGS") == "-seed 5", earlier.stdout + earlier.stderr[-1000:])
+          and rows(catalogue)[2].get("TINLOD_BUILD_SETTINGS") == version + ": -seed 5", earlier.stdout + earlier.stderr[-1000:])
+    # Recorded by another tinlod, whose defaults may differ: the options are compared as given.
+    dataset = gdal.OpenEx(catalogue, gdal.OF_VECTOR | gdal.OF_UPDATE)
+    dataset.SetMetadataItem("TINLOD_BUILD_SETTINGS", "tinlod 0.0.1 (GDAL 3.6.2): -seed 5")
+    dataset = None
+    other_version = run(base + [catalogue] + options[:-2] + ["-seed", "5", "-delete_pct", "20"], env)
+    check("(c) settings another tinlod recorded are not compared: options spelled otherwise are refused",
+          other_version.returncode == 1 and "was made with TINLOD_BUILD_OPTIONS=-seed 5" in other_version.stderr,
+          other_version.stderr[-1000:])
+    again_as_given = run(base + [catalogue] + options, env)
+    check("(c) ... and the options as given resume it", again_as_given.returncode == 0
+          and "0 tiles run, 6 skipped" in again_as_given.stdout, again_as_given.stdout + again_as_given.stderr[-1000:])
 
     # (d) Each level across the tiles: the VRT and merge hold the sum of the tiles' triangles.
     found, metadata = rows(catalogue)[0], rows(catalogue)[2]

@@ -10,6 +10,7 @@ import time
 
 from osgeo import ogr, osr
 
+from .build_check import same_version
 from .errors import TilesError
 
 LAYER = "tiles"
@@ -25,9 +26,13 @@ FIELDS = (  # (name, OGR type)
 JOB_KEYS = ("TINLOD_SOURCE", "TINLOD_TILE_SIZE", "TINLOD_BUILD_OPTIONS", "TINLOD_RASTER_SIZE", "TINLOD_SELECTION")
 # The DEM file's size and time of change (source_stamp), which a rerun must find unchanged.
 SOURCE_STAMP = "TINLOD_SOURCE_STAMP"
-# The build options as tinlod build reads them (tinlod build -check's "Options in effect"):
-# compared instead of TINLOD_BUILD_OPTIONS's text where both runs have it.
+# The build options as tinlod build reads them ("VERSION: OPTIONS", see build_check):
+# compared instead of TINLOD_BUILD_OPTIONS's text where both runs have it from one tinlod.
 BUILD_SETTINGS = "TINLOD_BUILD_SETTINGS"
+
+
+def options_part(settings):
+    return settings.split(": ", 1)[-1]
 
 
 def source_stamp(path):
@@ -82,18 +87,22 @@ class Catalogue:
         self.dataset.SetMetadataItem(key, value)
         self.dataset.FlushCache()
 
-    def check_same_job(self, settings, path):
+    def check_same_job(self, settings, path, recorded_settings):
         """A rerun resumes the catalogue's own job only: the same DEM, unchanged, tile size and
-        options. The DEM by another path to the same file (a link) is the same DEM."""
+        options. The DEM by another path to the same file (a link) is the same DEM; the build
+        options are compared as the same tinlod reads them (`recorded_settings`, see
+        build_check), else as given."""
+        given_settings = settings.get(BUILD_SETTINGS)
         for key in JOB_KEYS:
             if key == "TINLOD_SOURCE" and same_file(self.setting(key) or "", settings[key]):
                 continue
-            if key == "TINLOD_BUILD_OPTIONS" and self.setting(BUILD_SETTINGS) and settings.get(BUILD_SETTINGS):
-                if self.setting(BUILD_SETTINGS) != settings[BUILD_SETTINGS]:
+            if key == "TINLOD_BUILD_OPTIONS" and recorded_settings and given_settings \
+                    and same_version(recorded_settings, given_settings):
+                if recorded_settings != given_settings:
                     raise TilesError("%s was made with the build options %s (in effect: %s), not %s (in effect: %s): "
                                      "run with the same options to resume it, or add -overwrite to start again"
-                                     % (path, self.setting(key) or "(none)", self.setting(BUILD_SETTINGS),
-                                        settings[key] or "(none)", settings[BUILD_SETTINGS]))
+                                     % (path, self.setting(key) or "(none)", options_part(recorded_settings),
+                                        settings[key] or "(none)", options_part(given_settings)))
                 continue
             if (self.setting(key) or "") != settings[key]:
                 raise TilesError("%s was made with %s=%s, not %s: run with the same settings to resume it, "

@@ -12,13 +12,12 @@ import re
 import shlex
 import signal
 import socket
-import subprocess
 import sys
 import threading
 
 from osgeo import gdal
 
-from . import agreement, line_outline, task, thresholds
+from . import agreement, build_check, line_outline, task, thresholds
 from .cell_file import read_cells, write_cells
 from .arguments import build_option
 from .catalogue import BUILD_SETTINGS, SOURCE_STAMP, Catalogue, levels_folder, source_stamp, tiles_folder
@@ -35,7 +34,8 @@ def run(arguments):
     dem = gdal.Open(arguments.dem)
     settings = job_settings(arguments, dem)
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
-    settings[BUILD_SETTINGS] = check_build_options(arguments, tiles)
+    settings[BUILD_SETTINGS] = build_check.check_job(arguments.tinlod, dem_path(arguments.dem), arguments.catalogue,
+                                                     arguments.tile_size, tiles, arguments.build_options)
     if os.path.exists(arguments.catalogue) and not arguments.overwrite:
         Catalogue.open(arguments.catalogue).close()  # refused before anything is written
     if arguments.scheduler:
@@ -75,41 +75,6 @@ def run(arguments):
                     rounds = agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built)
         ran = len(started | built)
         return finish(catalogue, arguments, len(tiles) - ran, outcome, ran, rounds)
-
-
-# How tinlod build -check prints the build options as it reads them, which the catalogue
-# records (BUILD_SETTINGS): a rerun that spells the same job another way (a default given,
-# another order, 20.0 for 20) resumes it.
-IN_EFFECT = "Options in effect: "
-
-
-def check_build_options(arguments, tiles):
-    """tinlod build -check with the job's build options on the first and the last tile (the
-    raster's two ends, where a geographic DEM's cells are widest and narrowest): what every
-    tile would refuse is said once, before the catalogue is made, not by every task and
-    retry. Our options go first, so that a user's option without its value cannot take one.
-    Returns the options in effect, as -check prints them ("" from a tinlod that does not)."""
-    in_effect = ""
-    for tile in dict.fromkeys((tiles[0], tiles[-1])):  # once for a single tile
-        result = build_check(arguments, tile, arguments.build_options)
-        if result.returncode != 0:
-            errors = [line[len("ERROR: "):] for line in result.stderr.splitlines() if line.startswith("ERROR: ")]
-            message = errors[-1] if errors else (result.stderr.strip() or "exit code %d" % result.returncode)
-            raise TilesError("tinlod build refuses the job (tile %d,%d): %s. Nothing was written"
-                             % (tile.col, tile.row, message))
-        in_effect = options_in_effect(result)
-    return in_effect
-
-
-def build_check(arguments, tile, build_options):
-    command = [arguments.tinlod, "build", dem_path(arguments.dem), arguments.catalogue, "-check",
-               "-tile_size", str(arguments.tile_size), "-tile", "%d,%d" % (tile.col, tile.row)]
-    return subprocess.run(command + list(build_options), capture_output=True, text=True)
-
-
-def options_in_effect(result):
-    """The options in effect a -check printed; "" if it did not."""
-    return next((line[len(IN_EFFECT):] for line in result.stdout.splitlines() if line.startswith(IN_EFFECT)), "")
 
 
 def tiles_to_agree(catalogue, tiles, arguments):
@@ -322,14 +287,15 @@ def open_catalogue(arguments, settings, srs, tiles):
     if not os.path.exists(arguments.catalogue):
         return Catalogue.create(arguments.catalogue, settings, srs, tiles)
     catalogue = Catalogue.open(arguments.catalogue)
-    if settings[BUILD_SETTINGS] and not catalogue.setting(BUILD_SETTINGS):  # made by an earlier tinlod-tiles
-        recorded = shlex.split(catalogue.setting("TINLOD_BUILD_OPTIONS") or "")
-        result = build_check(arguments, tiles[0], recorded)
-        if result.returncode == 0 and options_in_effect(result):
-            catalogue.set_setting(BUILD_SETTINGS, options_in_effect(result))
-    catalogue.check_same_job(settings, arguments.catalogue)
-    if settings[SOURCE_STAMP] and not catalogue.setting(SOURCE_STAMP):  # made by an earlier tinlod-tiles
-        catalogue.set_setting(SOURCE_STAMP, settings[SOURCE_STAMP])
+    recorded = catalogue.setting(BUILD_SETTINGS)
+    if settings[BUILD_SETTINGS] and not recorded:  # made by an earlier tinlod-tiles: read its options now
+        recorded = build_check.recorded_settings(arguments.tinlod, dem_path(arguments.dem), arguments.catalogue,
+                                                 arguments.tile_size, tiles[0],
+                                                 shlex.split(catalogue.setting("TINLOD_BUILD_OPTIONS") or ""))
+    catalogue.check_same_job(settings, arguments.catalogue, recorded)
+    for key, value in ((SOURCE_STAMP, settings[SOURCE_STAMP]), (BUILD_SETTINGS, recorded)):
+        if value and not catalogue.setting(key):  # made by an earlier tinlod-tiles, and now checked
+            catalogue.set_setting(key, value)
     return catalogue
 
 

@@ -1,0 +1,59 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""tinlod build -check, run by the driver before anything is written: what every tile would
+refuse is said once, not by every task and retry; and the build options as that tinlod reads
+them (its "options in effect"), which the catalogue records (TINLOD_BUILD_SETTINGS), so that
+a rerun spelling the same job another way (a default given, another order, 20.0 for 20)
+resumes it.
+"""
+import subprocess
+
+from .errors import TilesError
+
+IN_EFFECT = "Options in effect: "
+
+
+def check_job(tinlod, dem, catalogue, tile_size, tiles, build_options):
+    """-check with the job's build options on the first and the last tile (the raster's two
+    ends, where a geographic DEM's cells are widest and narrowest); TilesError with tinlod's
+    message if it refuses them. Returns the settings to record ("" from a tinlod that prints
+    none)."""
+    settings = ""
+    for tile in dict.fromkeys((tiles[0], tiles[-1])):  # once for a single tile
+        result = run_check(tinlod, dem, catalogue, tile_size, tile, build_options)
+        if result.returncode != 0:
+            errors = [line[len("ERROR: "):] for line in result.stderr.split("\n") if line.startswith("ERROR: ")]
+            message = errors[-1] if errors else (result.stderr.strip() or "exit code %d" % result.returncode)
+            raise TilesError("tinlod build refuses the job (tile %d,%d): %s. Nothing was written"
+                             % (tile.col, tile.row, message))
+        settings = settings_of(tinlod, result)
+    return settings
+
+
+def recorded_settings(tinlod, dem, catalogue, tile_size, tile, build_options):
+    """The settings of options an earlier run recorded only as given; "" if -check refuses
+    them now."""
+    result = run_check(tinlod, dem, catalogue, tile_size, tile, build_options)
+    return settings_of(tinlod, result) if result.returncode == 0 else ""
+
+
+def run_check(tinlod, dem, catalogue, tile_size, tile, build_options):
+    # Our options go first, so that a user's option without its value cannot take one.
+    command = [tinlod, "build", dem, catalogue, "-check", "-tile_size", str(tile_size),
+               "-tile", "%d,%d" % (tile.col, tile.row)]
+    return subprocess.run(command + list(build_options), capture_output=True, text=True, errors="surrogateescape")
+
+
+def settings_of(tinlod, result):
+    """"VERSION: OPTIONS": a default means what that tinlod says it means, so settings
+    recorded by another version are not compared (same_version)."""
+    in_effect = next((line[len(IN_EFFECT):] for line in result.stdout.split("\n") if line.startswith(IN_EFFECT)), "")
+    return "%s: %s" % (version(tinlod), in_effect) if in_effect else ""
+
+
+def version(tinlod):
+    result = subprocess.run([tinlod, "--version"], capture_output=True, text=True, errors="surrogateescape")
+    return result.stdout.strip().split("\n")[0] or "tinlod of unknown version"
+
+
+def same_version(a, b):
+    return a.split(": ", 1)[0] == b.split(": ", 1)[0]
