@@ -437,19 +437,23 @@ class Simplifier {
       for (const Candidate& c : half) ++l.histogram[surveyBin(c.first)];
     l.pickedHistogram.assign(kSurveyBins, 0);
     for (std::size_t k = borderPicks; k < picks.size(); ++k) ++l.pickedHistogram[surveyBin(picks[k].importance)];
-    // Only border vertices are shared with another tile: each counts its share less than 1.
-    // The border rule's picks go beside the tile's own: the driver's thresholds leave room
-    // for them, or every level would delete them on top of its share.
+    countAsTheUnion(l, picks, borderPicks);
+    h_.survey.push_back(std::move(l));
+  }
+
+  // The level's vertices and the border rule's picks as a job's union counts them. Only
+  // border vertices are shared with another tile: each counts its share less than 1. The
+  // border picks go beside the tile's own: the driver's thresholds leave room for them, or
+  // every level would delete them on top of its share.
+  void countAsTheUnion(LevelSurvey& l, const std::vector<Pick>& picks, std::size_t borderPicks) const {
     l.unionVertices = double(current_);
     l.borderPicked = double(borderPicks);
-    if (tile_) {
-      const std::array<bool, 4> shared = sharedSides(dem_);
-      for (VertexId v = 0; v < static_cast<VertexId>(h_.vertexLevel.size()); ++v)
-        if (onBorder(v) && h_.vertexLevel[v] == kOpenLevel) l.unionVertices -= 1 - unionShare(shared, dem_, h_.base.vertices[v]);
-      l.borderPicked = 0;
-      for (std::size_t k = 0; k < borderPicks; ++k) l.borderPicked += unionShare(shared, dem_, h_.base.vertices[picks[k].id]);
-    }
-    h_.survey.push_back(std::move(l));
+    if (!tile_) return;
+    const std::array<bool, 4> shared = sharedSides(dem_);
+    for (VertexId v = 0; v < static_cast<VertexId>(h_.vertexLevel.size()); ++v)
+      if (onBorder(v) && h_.vertexLevel[v] == kOpenLevel) l.unionVertices -= 1 - unionShare(shared, dem_, h_.base.vertices[v]);
+    l.borderPicked = 0;
+    for (std::size_t k = 0; k < borderPicks; ++k) l.borderPicked += unionShare(shared, dem_, h_.base.vertices[picks[k].id]);
   }
 
   // With the raster's volume threshold for the level, a line keeps its vertices where the
