@@ -171,6 +171,11 @@ TEST(Cli, BuildCheckSaysWhetherTheOptionsAreGoodAndWritesNothing) {
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_TRUE(has(bad.err, "ERROR: delete_pct must be more than 0 and at most 100 (got 200)")) << bad.err;
   EXPECT_FALSE(fs::exists(out));
+  // Numbers are decimal: strtod would read 0x2 as 2, which tinlod tiles, reading the options
+  // itself, would not (it then took a bounded job for an unbounded one).
+  const CliRun hex = tinlod("build " + defaultDem() + " " + out + " -check -method error -max_error 0x2");
+  EXPECT_EQ(hex.exitCode, 1);
+  EXPECT_TRUE(has(hex.err, "ERROR: -max_error expects a number, got '0x2'")) << hex.err;
   const std::string list = test::tempDir() + "/bad_outline.txt";
   std::ofstream(list) << "12 x\n";
   const CliRun badList = tinlod("build " + defaultDem() + " " + out + " -check -tile_size 120 -tile 0,0 -line_outline " + list);

@@ -140,9 +140,12 @@ int Arguments::integer(const std::string& name, int fallback) {
 }
 
 double Arguments::parseNumber(const std::string& name, const std::string& value) {
+  // Decimal only: strtod also reads hexadecimal ("0x14") and leading spaces, which the
+  // scripts that read tinlod's options (tinlod tiles) would read otherwise or not at all.
+  const bool decimal = value.find_first_not_of("0123456789+-.eE") == std::string::npos;
   char* end = nullptr;
   const double parsed = std::strtod(value.c_str(), &end);
-  if (value.empty() || *end != '\0' || !std::isfinite(parsed))
+  if (value.empty() || !decimal || *end != '\0' || !std::isfinite(parsed))
     throw Error(name + " expects a number, got '" + value + "'");
   return parsed;
 }
