@@ -142,7 +142,7 @@ def parse_run(args):
                          "(dask worker ADDRESS --nworkers n): give one of them")
     arguments = RunArguments(positionals[0], positionals[1], whole_number(options["-tile_size"], "-tile_size", 1),
                              scheduler=options.get("-scheduler"), overwrite="-overwrite" in options,
-                             quiet="-q" in options, build_options=build_options)
+                             quiet="-q" in options, build_options=absolute_files(build_options))
     if "-workers" in options:
         arguments.workers = whole_number(options["-workers"], "-workers", 1)
     if "-retries" in options:
@@ -158,6 +158,21 @@ def parse_run(args):
     check_run(arguments)
     arguments.tinlod = find_tinlod(options.get("-tinlod"))
     return arguments
+
+
+# Build options that name a file, which every task opens wherever it runs.
+FILE_OPTIONS = ("-fixed",)
+
+
+def absolute_files(build_options):
+    """The build options with the files they name made absolute (GDAL's /vsi paths as
+    given): a worker in another folder, or a rerun from one, then opens the same file, and a
+    rerun naming another file by the same relative path is not taken for the same job."""
+    out = list(build_options)
+    for i in range(len(out) - 1):
+        if out[i] in FILE_OPTIONS and out[i + 1] and not out[i + 1].startswith("/vsi"):
+            out[i + 1] = os.path.abspath(out[i + 1])
+    return out
 
 
 def check_run(arguments):
