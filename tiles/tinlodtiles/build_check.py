@@ -17,7 +17,6 @@ def check_job(tinlod, dem, catalogue, tile_size, tiles, build_options):
     ends, where a geographic DEM's cells are widest and narrowest); TilesError with tinlod's
     message if it refuses them. Returns the settings to record ("" from a tinlod that prints
     none)."""
-    settings = ""
     for tile in dict.fromkeys((tiles[0], tiles[-1])):  # once for a single tile
         result = run_check(tinlod, dem, catalogue, tile_size, tile, build_options)
         if result.returncode != 0:
@@ -25,8 +24,7 @@ def check_job(tinlod, dem, catalogue, tile_size, tiles, build_options):
             message = errors[-1] if errors else (result.stderr.strip() or "exit code %d" % result.returncode)
             raise TilesError("tinlod build refuses the job (tile %d,%d): %s. Nothing was written"
                              % (tile.col, tile.row, message))
-        settings = settings_of(tinlod, result)
-    return settings
+    return settings_of(tinlod, result)  # the options read alike on every tile
 
 
 def recorded_settings(tinlod, dem, catalogue, tile_size, tile, build_options):
