@@ -59,4 +59,15 @@ with tempfile.TemporaryDirectory() as folder:
     check("a failed tinlod fails the task, leaving no file and syncing nothing",
           failed and not os.path.exists(final) and not os.path.exists(partial) and not synced, (os.listdir(folder), synced))
 
+# What a failed tinlod said, as the catalogue and the refusals record it.
+wkt_error = "0..\nERROR: target CRS 'PROJCS[\"a\",\nGEOGCS[\"b\"]]' is not a CRS GDAL understands: use e.g. EPSG:32632\n"
+check("an error quoting a value of two lines keeps its lines after the ERROR line (the advice comes there)",
+      task.tinlod_error(wkt_error) == "target CRS 'PROJCS[\"a\",\nGEOGCS[\"b\"]]' is not a CRS GDAL understands: "
+      "use e.g. EPSG:32632", task.tinlod_error(wkt_error))
+check("the usage after a misspelt option is left out",
+      task.tinlod_error("ERROR: unknown option '-bogus'\nUsage: tinlod build DEM OUT.gpkg [-method m]\n")
+      == "unknown option '-bogus'", task.tinlod_error("ERROR: unknown option '-bogus'\nUsage: tinlod build\n"))
+check("the last of two errors is taken", task.tinlod_error("ERROR: first\nERROR: second\n") == "second")
+check("no ERROR line: None", task.tinlod_error("0...10...20\nKilled\n") is None)
+
 sys.exit(exit_code("task"))

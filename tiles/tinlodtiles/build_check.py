@@ -8,6 +8,7 @@ resumes it.
 import subprocess
 
 from .errors import TilesError
+from .task import tinlod_error
 
 IN_EFFECT = "Options in effect: "
 
@@ -20,8 +21,7 @@ def check_job(tinlod, dem, catalogue, tile_size, tiles, build_options):
     for tile in dict.fromkeys((tiles[0], tiles[-1])):  # once for a single tile
         result = run_check(tinlod, dem, catalogue, tile_size, tile, build_options)
         if result.returncode != 0:
-            errors = [line[len("ERROR: "):] for line in result.stderr.split("\n") if line.startswith("ERROR: ")]
-            message = errors[-1] if errors else (result.stderr.strip() or "exit code %d" % result.returncode)
+            message = tinlod_error(result.stderr) or result.stderr.strip() or "exit code %d" % result.returncode
             raise TilesError("tinlod build refuses the job (tile %d,%d): %s. Nothing was written"
                              % (tile.col, tile.row, message))
     return settings_of(tinlod, result)  # the options read alike on every tile

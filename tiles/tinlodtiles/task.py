@@ -14,6 +14,7 @@ import time
 EMPTY_EXIT_CODE = 3  # the core's "the tile holds no valid data: nothing written"
 KILL_HOOK_VARIABLE = "TINLOD_TILES_TEST_KILL"  # "C,R:seconds", for the tests only
 _PR_SET_PDEATHSIG = 1
+ERROR_PREFIX = "ERROR: "  # how tinlod starts a failure's message on stderr
 
 
 class TileFailed(Exception):
@@ -132,18 +133,37 @@ def wait_or_kill(pid, start, kill_after):
 
 
 def last_error_line(log_path, code):
-    """The message to record: tinlod's last ERROR line, else its last line, else the code."""
+    """The message to record: tinlod's last error (its lines after ERROR too), else its
+    last line, else the code."""
     try:
         with open(log_path, errors="replace") as f:
-            lines = [line.strip() for line in f if line.strip()]
+            text = f.read()
     except OSError:
-        lines = []
-    errors = [line for line in lines if line.startswith("ERROR")]
-    if errors:
-        return errors[-1]
+        text = ""
+    error = tinlod_error(text)
+    if error is not None:
+        return ERROR_PREFIX + error
     if code < 0:
         return "tinlod was killed by signal %d" % -code
+    lines = [line.strip() for line in text.split("\n") if line.strip()]
     return lines[-1] if lines else "tinlod exited with code %d" % code
+
+
+def tinlod_error(stderr_text):
+    """tinlod's last error message in what it wrote to stderr, None when there is none.
+    The lines after the ERROR line continue it (a value it quotes, such as a WKT, may span
+    lines, and the advice comes after it), up to the usage tinlod adds after a misspelt
+    option."""
+    lines = stderr_text.split("\n")
+    starts = [i for i, line in enumerate(lines) if line.startswith(ERROR_PREFIX)]
+    if not starts:
+        return None
+    message = [lines[starts[-1]][len(ERROR_PREFIX):]]
+    for line in lines[starts[-1] + 1:]:
+        if line.startswith("Usage:"):
+            break
+        message.append(line)
+    return "\n".join(message).rstrip()
 
 
 def _dying_with_parent():
