@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""tiles/tinlodtiles/arguments.py: the build options tinlod-tiles passes to every task.
+"""tiles/tinlodtiles/arguments.py: the build options tinlod-tiles passes to every task; an
+argument that is not UTF-8 text, which the catalogue's metadata cannot hold, refused.
 
 Usage: tiles_arguments_test.py TILES_SOURCE_DIR"""
 import os
 import sys
 
 sys.path.insert(0, sys.argv[1])
-from tinlodtiles.arguments import absolute_files  # noqa: E402
+from tinlodtiles.arguments import absolute_files, parse_merge, parse_run  # noqa: E402
+from tinlodtiles.errors import TilesError  # noqa: E402
 from script_checks import check, exit_code  # noqa: E402
 
 here = os.getcwd()
@@ -18,5 +20,24 @@ check("a -fixed file named from the current folder is passed as an absolute path
 check("a GDAL virtual path is passed as given",
       absolute_files(["-fixed", "/vsicurl/https://example.com/p.gpkg"]) == ["-fixed", "/vsicurl/https://example.com/p.gpkg"])
 check("-fixed without its value is left for tinlod to refuse", absolute_files(["-fixed"]) == ["-fixed"])
+
+
+def refusal(parse, args):
+    try:
+        parse(args)
+    except TilesError as e:
+        return str(e)
+    return None
+
+
+latin1 = os.fsdecode(b"d\xe9m.tif")  # a name in Latin-1, as Python reads it from the command line
+for parse, args in ((parse_run, [latin1, "c.gpkg", "-tile_size", "300"]),
+                    (parse_run, ["dem.tif", "c.gpkg", "-tile_size", "300", "--", "-fixed", latin1]),
+                    (parse_merge, [latin1, "-level", "0", "out.gpkg"])):
+    message = refusal(parse, args)
+    check("%s: a name that is not UTF-8 is refused, shown with its byte escaped, before anything else"
+          % " ".join(a if a != latin1 else "d\\xe9m.tif" for a in args),
+          message is not None and message.startswith("d\\xe9m.tif is not UTF-8 text") and "rename it" in message,
+          message)
 
 sys.exit(exit_code("tiles arguments"))

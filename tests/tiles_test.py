@@ -54,6 +54,20 @@ def make_dem(tinlod, path):
     dataset = None
 
 
+def make_points(dem, path):
+    """A GeoPackage of one point at the DEM's centre, in its CRS: points for -fixed."""
+    raster = gdal.Open(dem)
+    x0, dx, _, y0, _, dy = raster.GetGeoTransform()
+    source = ogr.GetDriverByName("GPKG").CreateDataSource(path)
+    layer = source.CreateLayer("points", raster.GetSpatialRef(), ogr.wkbPoint)
+    feature = ogr.Feature(layer.GetLayerDefn())
+    feature.SetGeometry(ogr.CreateGeometryFromWkt("POINT (%r %r)" % (x0 + dx * raster.RasterXSize / 2,
+                                                                     y0 + dy * raster.RasterYSize / 2)))
+    layer.CreateFeature(feature)
+    source = raster = None
+    return path
+
+
 def make_mosaic(dem, work):
     """The DEM cut into its left and right halves, put together again by a VRT."""
     halves = []
@@ -399,6 +413,11 @@ def main(tinlod, tiles):
           in wrong.stderr and "Nothing was written" in wrong.stderr and "tiles failed" not in wrong.stderr
           and not os.path.exists(os.path.join(work, "w.gpkg")) and not os.path.exists(os.path.join(work, "w_tiles")),
           wrong.stderr[-2000:])
+    wkt = run(base + [os.path.join(work, "w.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program,
+                      "--", "-t_srs", 'PROJCS["a",\nGEOGCS["b"]]'], env)
+    check("a refusal whose message spans lines (a WKT quoted) keeps tinlod's advice after the line break",
+          wkt.returncode == 1 and "GEOGCS[\"b\"]]' is not a CRS GDAL understands: use e.g." in wkt.stderr
+          and not os.path.exists(os.path.join(work, "w.gpkg")), wkt.stderr[-1000:])
     beyond = run(base + [os.path.join(work, "v.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program,
                          "--", "-levels", "0,99"], env)
     check("-levels beyond the tiles' levels is refused before anything is written (no tile would have level 99)",
@@ -521,6 +540,20 @@ def main(tinlod, tiles):
     again_as_given = run(base + [catalogue] + options, env)
     check("(c) ... and the options as given resume it", again_as_given.returncode == 0
           and "0 tiles run, 6 skipped" in again_as_given.stdout, again_as_given.stdout + again_as_given.stderr[-1000:])
+
+    # A -fixed file edited in place after the job: the finished tiles kept the old points.
+    points = make_points(dem, os.path.join(work, "points.gpkg"))
+    pinned = os.path.join(work, "p.gpkg")
+    with_points = run(base + [pinned] + options + ["-fixed", points], env)
+    check("(c) a job with -fixed points runs, and records the points file's bytes and time of change",
+          with_points.returncode == 0 and "bytes, changed " in (rows(pinned)[2].get("TINLOD_FIXED_STAMP") or ""),
+          with_points.stderr[-1000:])
+    stat = os.stat(points)
+    os.utime(points, ns=(stat.st_atime_ns, stat.st_mtime_ns + 10 ** 9))
+    edited = run(base + [pinned] + options + ["-fixed", points], env)
+    check("(c) ... and a rerun after the points file changed is refused, naming it and -overwrite",
+          edited.returncode == 1 and ("the -fixed file %s has changed since" % points) in edited.stderr
+          and "-overwrite" in edited.stderr, edited.stderr[-1000:])
 
     # (d) Each level across the tiles: the VRT and merge hold the sum of the tiles' triangles.
     found, metadata = rows(catalogue)[0], rows(catalogue)[2]

@@ -129,7 +129,21 @@ def split_options(args, valued, flags):
     return positionals, options
 
 
+def check_text(args):
+    """Every argument must be UTF-8 text: the catalogue records the DEM, the options and the
+    -fixed file as GDAL metadata, which is UTF-8 (a name in another encoding reaches Python
+    as undecodable bytes, which GDAL's bindings cannot take)."""
+    for arg in args:
+        try:
+            arg.encode("utf-8")
+        except UnicodeEncodeError:
+            shown = arg.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
+            raise TilesError("%s is not UTF-8 text: tinlod-tiles records its arguments in the catalogue, which "
+                             "holds UTF-8 text; give it in UTF-8 (a file: rename it, or give a link to it named in UTF-8)" % shown) from None
+
+
 def parse_run(args):
+    check_text(args)
     ours, build_options = (args[: args.index("--")], args[args.index("--") + 1:]) if "--" in args else (args, [])
     positionals, options = split_options(ours, dict.fromkeys(("-tile_size", "-workers", "-scheduler", "-retries",
                                                               "-tinlod", "-selection"), 1), ("-exact_stop", "-overwrite", "-q"))
@@ -250,6 +264,7 @@ def find_tinlod(given):
 
 
 def parse_merge(args):
+    check_text(args)
     positionals, options = split_options(args, {"-level": 1, "-te": 4}, ("-overwrite", "-q"))
     if len(positionals) != 2 or "-level" not in options:
         raise TilesError("usage: tinlod-tiles merge CATALOGUE.gpkg -level K OUT.gpkg [-te xmin ymin xmax ymax]")

@@ -6,10 +6,12 @@ Only the driver writes it, one tile at a time, each change committed on its own:
 stopped anyhow leaves a catalogue that says which tiles are finished.
 """
 import os
+import shlex
 import time
 
 from osgeo import ogr, osr
 
+from .arguments import build_option
 from .build_check import same_version
 from .errors import TilesError
 
@@ -24,8 +26,18 @@ FIELDS = (  # (name, OGR type)
 )
 # The settings a rerun must share with the catalogue's first run.
 JOB_KEYS = ("TINLOD_SOURCE", "TINLOD_TILE_SIZE", "TINLOD_BUILD_OPTIONS", "TINLOD_RASTER_SIZE", "TINLOD_SELECTION")
-# The DEM file's size and time of change (source_stamp), which a rerun must find unchanged.
+# The DEM file's and the -fixed file's size and time of change (file_stamp), which a rerun
+# must find unchanged: the finished tiles were built from them.
 SOURCE_STAMP = "TINLOD_SOURCE_STAMP"
+FIXED_STAMP = "TINLOD_FIXED_STAMP"
+STAMPS = ((SOURCE_STAMP, "the DEM"), (FIXED_STAMP, "the -fixed file"))
+
+
+def stamped_file(settings, key):
+    """The file a stamp is of, as the job's settings name it."""
+    if key == SOURCE_STAMP:
+        return settings["TINLOD_SOURCE"]
+    return build_option(shlex.split(settings["TINLOD_BUILD_OPTIONS"]), "-fixed")
 # The build options as tinlod build reads them ("VERSION: OPTIONS", see build_check):
 # compared instead of TINLOD_BUILD_OPTIONS's text where both runs have it from one tinlod.
 BUILD_SETTINGS = "TINLOD_BUILD_SETTINGS"
@@ -35,9 +47,9 @@ def options_part(settings):
     return settings.split(": ", 1)[-1]
 
 
-def source_stamp(path):
-    """A local DEM file's bytes and time of change; "" for a GDAL virtual path (/vsi...).
-    A VRT's stamp is its own, not its sources'."""
+def file_stamp(path):
+    """A local file's bytes and time of change; "" for a GDAL virtual path (/vsi...). A
+    VRT's stamp is its own, not its sources'; a shapefile's that of its .shp."""
     if path.startswith("/vsi"):
         return ""
     status = os.stat(path)
@@ -67,7 +79,12 @@ class Catalogue:
         partial = path + ".partial.gpkg"
         if os.path.exists(partial):
             os.remove(partial)
-        write_new(partial, settings, srs, tiles)
+        try:
+            write_new(partial, settings, srs, tiles)
+        except BaseException:
+            if os.path.exists(partial):
+                os.remove(partial)
+            raise
         os.replace(partial, path)
         return cls.open(path)
 
@@ -108,11 +125,12 @@ class Catalogue:
                 raise TilesError("%s was made with %s=%s, not %s: run with the same settings to resume it, "
                                  "or add -overwrite to start again"
                                  % (path, key, self.setting(key) or "(none)", settings[key] or "(none)"))
-        recorded = self.setting(SOURCE_STAMP)  # absent in a catalogue of an earlier tinlod-tiles
-        if recorded and settings.get(SOURCE_STAMP) and recorded != settings[SOURCE_STAMP]:
-            raise TilesError("the DEM %s has changed since %s was made (it was %s, it is %s): its finished tiles "
-                             "hold the old heights; add -overwrite to build every tile from the DEM as it is"
-                             % (settings["TINLOD_SOURCE"], path, recorded, settings[SOURCE_STAMP]))
+        for key, what in STAMPS:
+            recorded = self.setting(key)  # absent in a catalogue of an earlier tinlod-tiles
+            if recorded and settings.get(key) and recorded != settings[key]:
+                raise TilesError("%s %s has changed since %s was made (it was %s, it is %s): its finished tiles "
+                                 "were built from it as it was; add -overwrite to build every tile again"
+                                 % (what, stamped_file(settings, key), path, recorded, settings[key]))
 
     def rows(self):
         """Each tile's (col, row) -> its fields, as a dict."""

@@ -20,7 +20,7 @@ from osgeo import gdal
 from . import agreement, build_check, line_outline, task, thresholds
 from .cell_file import read_cells, write_cells
 from .arguments import build_option
-from .catalogue import BUILD_SETTINGS, SOURCE_STAMP, Catalogue, levels_folder, source_stamp, tiles_folder
+from .catalogue import BUILD_SETTINGS, FIXED_STAMP, SOURCE_STAMP, Catalogue, file_stamp, levels_folder, tiles_folder
 from .errors import TilesError
 from .grid import tile_grid
 from .levels import write_level_vrts
@@ -36,6 +36,8 @@ def run(arguments):
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
     settings[BUILD_SETTINGS] = build_check.check_job(arguments.tinlod, dem_path(arguments.dem), arguments.catalogue,
                                                      arguments.tile_size, tiles, arguments.build_options)
+    fixed = build_option(arguments.build_options, "-fixed")  # there: -check opened it
+    settings[FIXED_STAMP] = file_stamp(fixed) if fixed else ""
     if os.path.exists(arguments.catalogue) and not arguments.overwrite:
         Catalogue.open(arguments.catalogue).close()  # refused before anything is written
     if arguments.scheduler:
@@ -117,7 +119,7 @@ def job_settings(arguments, dem):
             "TINLOD_BUILD_OPTIONS": shlex.join(arguments.build_options),
             "TINLOD_RASTER_SIZE": "%d,%d" % (dem.RasterXSize, dem.RasterYSize),
             "TINLOD_SELECTION": "global" if global_selection(arguments) else "tile",
-            SOURCE_STAMP: source_stamp(dem_path(arguments.dem))}
+            SOURCE_STAMP: file_stamp(dem_path(arguments.dem))}
 
 
 def check_reachable(address):
@@ -293,7 +295,8 @@ def open_catalogue(arguments, settings, srs, tiles):
                                                  arguments.tile_size, tiles[0],
                                                  shlex.split(catalogue.setting("TINLOD_BUILD_OPTIONS") or ""))
     catalogue.check_same_job(settings, arguments.catalogue, recorded)
-    for key, value in ((SOURCE_STAMP, settings[SOURCE_STAMP]), (BUILD_SETTINGS, recorded)):
+    for key, value in ((SOURCE_STAMP, settings[SOURCE_STAMP]), (FIXED_STAMP, settings[FIXED_STAMP]),
+                       (BUILD_SETTINGS, recorded)):
         if value and not catalogue.setting(key):  # made by an earlier tinlod-tiles, and now checked
             catalogue.set_setting(key, value)
     return catalogue
