@@ -167,6 +167,11 @@ TEST(Cli, BuildCheckSaysWhetherTheOptionsAreGoodAndWritesNothing) {
   const std::string line = lines.out.substr(at, lines.out.find('\n', at) - at);
   EXPECT_EQ(line.back(), '\'') << line;
   EXPECT_GT(line.size(), text.size()) << line;
+  // A -levels list means its levels, whatever their order and repeats; all of them is the default.
+  const CliRun reordered = tinlod("build " + defaultDem() + " " + out + " -check -levels 'last, 5,0,5'");
+  EXPECT_TRUE(has(reordered.out, "Options in effect: -levels 0,5,last\n")) << reordered.out << reordered.err;
+  const CliRun all = tinlod("build " + defaultDem() + " " + out + " -check -levels All");
+  EXPECT_TRUE(has(all.out, "Options in effect: (the defaults)\n")) << all.out << all.err;
   const CliRun bad = tinlod("build " + defaultDem() + " " + out + " -check -delete_pct 200");
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_TRUE(has(bad.err, "ERROR: delete_pct must be more than 0 and at most 100 (got 200)")) << bad.err;

@@ -56,6 +56,11 @@ void Arguments::note(const std::string& name, const std::string& value, bool isD
   if (!isDefault) read_[name] = value;
 }
 
+void Arguments::restate(const std::string& name, const std::string& value, bool isDefault) {
+  read_.erase(name);
+  note(name, quoted(value), isDefault);
+}
+
 std::string Arguments::inEffect(const std::set<std::string>& leaveOut) const {
   std::string out;
   for (const auto& [name, value] : read_)

@@ -38,6 +38,9 @@ class Arguments {
   // name (numbers as read, not as typed), `leaveOut` aside; "" when there are none. Two
   // spellings of one job ("-delete_pct 20.0 -seed 5" and "-seed 5") give the same text.
   std::string inEffect(const std::set<std::string>& leaveOut) const;
+  // Records an option read as text as the command understood it, where one meaning has
+  // several spellings the text alone cannot tell alike ("-levels last,0" and "0,last").
+  void restate(const std::string& name, const std::string& value, bool isDefault);
 
  private:
   bool take(const std::string& name, std::vector<std::string>& values, std::size_t count);

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -147,6 +148,15 @@ void parseThresholds(const std::string& text, std::vector<double>& thresholds, s
   }
 }
 
+// A -levels list as it is meant: each level once, ascending, "last" at the end.
+std::vector<std::int32_t> ascendingLevels(std::vector<std::int32_t> levels) {
+  std::sort(levels.begin(), levels.end(), [](std::int32_t x, std::int32_t y) {
+    return x == HierarchyLayers::kCoarsest ? false : y == HierarchyLayers::kCoarsest || x < y;
+  });
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  return levels;
+}
+
 void parseTile(const std::string& text, TileSpec& tile) {
   const std::size_t comma = text.find(',');
   try {
@@ -190,6 +200,7 @@ int buildCommand(std::vector<std::string> args) {
   const AccuracyOutputs accuracy = accuracyOutputs(a);
   HierarchyLayers layers;
   layers.levelViews = parseLevelList(a.text("-levels", "all"), "-levels");
+  a.restate("-levels", levelListText(ascendingLevels(layers.levelViews)), layers.levelViews.empty());
   layers.groupOutlines = !a.flag("-no_group_outlines");
   layers.vertexIndex = a.flag("-vertex_index");
   o.survey = a.flag("-survey");
