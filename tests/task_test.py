@@ -67,7 +67,18 @@ check("an error quoting a value of two lines keeps its lines after the ERROR lin
 check("the usage after a misspelt option is left out",
       task.tinlod_error("ERROR: unknown option '-bogus'\nUsage: tinlod build DEM OUT.gpkg [-method m]\n")
       == "unknown option '-bogus'", task.tinlod_error("ERROR: unknown option '-bogus'\nUsage: tinlod build\n"))
+check("a GDAL error or a warning after it is not part of it",
+      task.tinlod_error("ERROR: no room\nERROR 1: sqlite3_exec failed\n") == "no room"
+      and task.tinlod_error("ERROR: no room\nWarning 1: closing\n") == "no room")
 check("the last of two errors is taken", task.tinlod_error("ERROR: first\nERROR: second\n") == "second")
 check("no ERROR line: None", task.tinlod_error("0...10...20\nKilled\n") is None)
+with tempfile.TemporaryDirectory() as folder:
+    log = os.path.join(folder, "tile.log")
+    with open(log, "w") as f:
+        f.write("0...10..\nERROR 1: TIFFReadEncodedTile() failed\n")
+    check("a crash after GDAL's error records GDAL's line; a kill without one, the signal",
+          task.last_error_line(log, -11) == "ERROR 1: TIFFReadEncodedTile() failed"
+          and task.last_error_line(os.path.join(folder, "none.log"), -9) == "tinlod was killed by signal 9",
+          task.last_error_line(log, -11))
 
 sys.exit(exit_code("task"))

@@ -32,12 +32,6 @@ SOURCE_STAMP = "TINLOD_SOURCE_STAMP"
 FIXED_STAMP = "TINLOD_FIXED_STAMP"
 STAMPS = ((SOURCE_STAMP, "the DEM"), (FIXED_STAMP, "the -fixed file"))
 
-
-def stamped_file(settings, key):
-    """The file a stamp is of, as the job's settings name it."""
-    if key == SOURCE_STAMP:
-        return settings["TINLOD_SOURCE"]
-    return build_option(shlex.split(settings["TINLOD_BUILD_OPTIONS"]), "-fixed")
 # The build options as tinlod build reads them ("VERSION: OPTIONS", see build_check):
 # compared instead of TINLOD_BUILD_OPTIONS's text where both runs have it from one tinlod.
 BUILD_SETTINGS = "TINLOD_BUILD_SETTINGS"
@@ -55,6 +49,13 @@ def file_stamp(path):
     status = os.stat(path)
     return "%d bytes, changed %s UTC" % (status.st_size, time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(status.st_mtime_ns // 10 ** 9))
                                          + ".%09d" % (status.st_mtime_ns % 1000000000))
+
+
+def stamped_file(settings, key):
+    """The file a stamp is of, as the job's settings name it."""
+    if key == SOURCE_STAMP:
+        return settings["TINLOD_SOURCE"]
+    return build_option(shlex.split(settings["TINLOD_BUILD_OPTIONS"]), "-fixed")
 
 
 def same_file(recorded, given):

@@ -133,8 +133,8 @@ def wait_or_kill(pid, start, kill_after):
 
 
 def last_error_line(log_path, code):
-    """The message to record: tinlod's last error (its lines after ERROR too), else its
-    last line, else the code."""
+    """The message to record: tinlod's last error (its lines after ERROR too), else the last
+    other ERROR line, else its last line, else the code."""
     try:
         with open(log_path, errors="replace") as f:
             text = f.read()
@@ -143,9 +143,12 @@ def last_error_line(log_path, code):
     error = tinlod_error(text)
     if error is not None:
         return ERROR_PREFIX + error
+    lines = [line.strip() for line in text.split("\n") if line.strip()]
+    others = [line for line in lines if line.startswith("ERROR")]  # GDAL's, before a crash
+    if others:
+        return others[-1]
     if code < 0:
         return "tinlod was killed by signal %d" % -code
-    lines = [line.strip() for line in text.split("\n") if line.strip()]
     return lines[-1] if lines else "tinlod exited with code %d" % code
 
 
@@ -153,14 +156,14 @@ def tinlod_error(stderr_text):
     """tinlod's last error message in what it wrote to stderr, None when there is none.
     The lines after the ERROR line continue it (a value it quotes, such as a WKT, may span
     lines, and the advice comes after it), up to the usage tinlod adds after a misspelt
-    option."""
+    option, or a message of its own (GDAL's "ERROR 1: ...", a warning)."""
     lines = stderr_text.split("\n")
     starts = [i for i, line in enumerate(lines) if line.startswith(ERROR_PREFIX)]
     if not starts:
         return None
     message = [lines[starts[-1]][len(ERROR_PREFIX):]]
     for line in lines[starts[-1] + 1:]:
-        if line.startswith("Usage:"):
+        if line.startswith(("Usage:", "ERROR", "WARNING", "Warning")):
             break
         message.append(line)
     return "\n".join(message).rstrip()
