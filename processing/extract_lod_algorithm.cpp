@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "extract_lod_algorithm.h"
 
+#include <qgscoordinatereferencesystem.h>
 #include <qgsprocessingoutputs.h>
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
@@ -84,11 +85,12 @@ bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsPro
   options_ = LodJobOptions();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (parameterGiven(parameters, QStringLiteral("CENTER"))) {
-    // In the hierarchy's CRS, whatever CRS the point was picked in.
-    const QgsVectorLayer triangles(QString::fromStdString(hierarchy_) + QStringLiteral("|layername=triangles"), QStringLiteral("t"),
-                                   QStringLiteral("ogr"));
-    const QgsPointXY p = parameterAsPoint(parameters, QStringLiteral("CENTER"), context, triangles.crs());
+    // As picked, in its own CRS (the canvas's, or [EPSG:...] given): the core takes it to
+    // the hierarchy's, a catalogue's included.
+    const QgsPointXY p = parameterAsPoint(parameters, QStringLiteral("CENTER"), context);
     options_.lod.centres.push_back({p.x(), p.y()});
+    const QgsCoordinateReferenceSystem crs = parameterAsPointCrs(parameters, QStringLiteral("CENTER"), context);
+    if (crs.isValid()) options_.centresSrs = crs.toWkt(QgsCoordinateReferenceSystem::WKT_PREFERRED_GDAL).toStdString();
   }
   auto fileOf = [&](const QString& name, const QString& kind) {
     return sourceFile(parameterDefinition(name), parameters, context, feedback, kind);

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include "test_support.h"
@@ -369,6 +370,21 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   const CliRun fromFile = tinlod("lod -centers " + points + " -dropoff 200 " + dir + "/h.gpkg " + dir + "/file.gpkg");
   ASSERT_EQ(fromFile.exitCode, 0) << fromFile.err;
   EXPECT_EQ(fromFile.out.substr(0, fromFile.out.find(" in ")), near.out.substr(0, near.out.find(" in ")));
+  // The same centre as longitude and latitude (-center_srs), as a user of a lon/lat map has it.
+  OGRSpatialReference utm, wgs84;
+  utm.importFromEPSG(32632);
+  wgs84.importFromEPSG(4326);
+  utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> toWgs84(OGRCreateCoordinateTransformation(&utm, &wgs84));
+  double lon = 404500, lat = 5203750;
+  ASSERT_TRUE(toWgs84 && toWgs84->Transform(1, &lon, &lat));
+  char lonLat[64];
+  std::snprintf(lonLat, sizeof lonLat, "%.10f %.10f", lon, lat);
+  const CliRun geographic = tinlod("lod -center " + std::string(lonLat) + " -center_srs EPSG:4326 -dropoff 200 " + dir + "/h.gpkg " +
+                                   dir + "/lonlat.gpkg");
+  ASSERT_EQ(geographic.exitCode, 0) << geographic.err;
+  EXPECT_EQ(geographic.out.substr(0, geographic.out.find(" in ")), near.out.substr(0, near.out.find(" in ")));
   // Full detail inside a 1 km disc, coarse outside: over 500 level-0 triangles in it.
   const std::string disc = geojson(dir + "/r.geojson", R"({"type": "Polygon", "coordinates": [[[401000, 5203000], [403000, 5203000], [403000, 5205000], [401000, 5205000], [401000, 5203000]]]})");
   const CliRun region = tinlod("lod -region " + disc + " " + dir + "/h.gpkg " + dir + "/region.gpkg");
@@ -382,6 +398,9 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
            {"lod -dropoff 100 " + dir + "/h.gpkg " + dir + "/bad.gpkg", "needs a centre"},
            {"lod -region " + dir + "/none.gpkg " + dir + "/h.gpkg " + dir + "/bad.gpkg", "-region: '"},
            {"lod -center 1 -dropoff 5 " + dir + "/h.gpkg " + dir + "/bad.gpkg", "-center expects a number"},
+           {"lod -center 1 2 -center_srs EPSG:99999 -dropoff 5 " + dir + "/h.gpkg " + dir + "/bad.gpkg",
+            "-center_srs: 'EPSG:99999' is not a CRS GDAL understands"},
+           {"lod -center_srs EPSG:4326 -dropoff 5 " + dir + "/h.gpkg " + dir + "/bad.gpkg", "-center_srs is the CRS of -center"},
            {"lod -max_error 1 " + defaultDem() + " " + dir + "/bad.gpkg", "not"}}) {
     const CliRun bad = tinlod(args);
     EXPECT_EQ(bad.exitCode, 1) << args;

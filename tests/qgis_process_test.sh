@@ -161,6 +161,33 @@ assert int(outputs["TRIANGLES"]) == ds.GetLayerByName("triangles").GetFeatureCou
 assert len(places) == len(set(places)), "a vertex of a shared line twice"
 print("  %s triangles over 4 tiles" % outputs["TRIANGLES"])
 PY
+# A centre of detail picked in another CRS (the canvas's) is taken to the tiles' CRS.
+read -r utm_centre lonlat_centre < <(/usr/bin/python3 - "$work/small.tif" <<'PY'
+import sys
+from osgeo import gdal, osr
+dem = gdal.Open(sys.argv[1])
+x0, dx, _, y0, _, dy = dem.GetGeoTransform()
+x, y = x0 + dx * dem.RasterXSize * 0.3, y0 + dy * dem.RasterYSize * 0.6
+wgs84 = osr.SpatialReference()
+wgs84.ImportFromEPSG(4326)
+wgs84.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+to_wgs84 = osr.CoordinateTransformation(dem.GetSpatialRef(), wgs84)
+lon, lat, _ = to_wgs84.TransformPoint(x, y)
+print("%.6f,%.6f %.9f,%.9f" % (x, y, lon, lat))
+PY
+)
+"$qp" --json run tinlod:extractlod --HIERARCHY="$work/cat.gpkg" "--CENTER=$utm_centre [EPSG:32632]" --DROPOFF=20 --OUTPUT="$work/cat_utm.gpkg" > "$work/cat_utm.json" 2> "$work/cat_utm.err" || true
+"$qp" --json run tinlod:extractlod --HIERARCHY="$work/cat.gpkg" "--CENTER=$lonlat_centre [EPSG:4326]" --DROPOFF=20 --OUTPUT="$work/cat_ll.gpkg" > "$work/cat_ll.json" 2> "$work/cat_ll.err" || true
+"$tinlod_cli" lod "$work/cat.gpkg" "$work/cat_coarsest.gpkg" -center 0 0 -dropoff 0 -q
+check "qgis_process --json run tinlod:extractlod on a catalogue: a CENTER in EPSG:4326 gives the TIN of the same centre in the tiles' CRS" /usr/bin/python3 - "$work/cat_utm.json" "$work/cat_ll.json" "$work/cat_coarsest.gpkg" <<'PY'
+import json, sys
+from osgeo import ogr
+utm, lonlat = (int(json.load(open(p))["results"]["TRIANGLES"]) for p in sys.argv[1:3])
+ds = ogr.Open(sys.argv[3])
+coarsest = ds.GetLayerByName("triangles").GetFeatureCount()
+assert utm == lonlat > coarsest, (utm, lonlat, coarsest)  # finer near the centre either way
+print("  %d triangles either way (the coarsest level: %d)" % (utm, coarsest))
+PY
 "$qp" --json run tinlod:locate --INPUT="$work/cat_lod.gpkg|layername=vertices" --HIERARCHY="$work/cat.gpkg" --LEVEL=0 --OUTPUT="$work/cat_loc.gpkg" > "$work/cat_loc.json" 2> "$work/cat_loc.err" || true
 check "qgis_process --json run tinlod:locate takes a catalogue: each vertex its own height on level 0" /usr/bin/python3 - "$work/cat_loc.gpkg" <<'PY'
 import sys

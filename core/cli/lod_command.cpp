@@ -5,13 +5,14 @@
 #include "arguments.h"
 #include "commands.h"
 #include "terminal_feedback.h"
+#include "tinlod/error.h"
 #include "tinlod/lod_job.h"
 
 namespace tinlod::cli {
 namespace {
 
 const char* const kUsage =
-    "tinlod lod HIER.gpkg OUT.gpkg [-center X Y]... [-centers POINTS] [-dropoff D] [-max_error E] [-error_growth G] "
+    "tinlod lod HIER.gpkg OUT.gpkg [-center X Y]... [-center_srs srs] [-centers POINTS] [-dropoff D] [-max_error E] [-error_growth G] "
     "[-region POLYGONS] [-vertex_index] [-overwrite] [-q]";
 
 const char* const kHelp = R"(Extracts a TIN of varying level of detail from a hierarchy (tinlod build): fine near
@@ -38,6 +39,8 @@ Tests (a deleted vertex is restored when any given test accepts it):
 
 Centres of detail (in the hierarchy's CRS; other CRSs of a file are transformed):
   -center X Y        a centre; repeat it for several
+  -center_srs srs    the CRS of every -center (EPSG:4326: longitude latitude; any GDAL
+                     definition), transformed to the hierarchy's (default: the hierarchy's)
   -centers POINTS    every point of this vector file is a centre (each point of a
                      multipoint too; lines and polygons are refused)
 
@@ -61,6 +64,8 @@ int lodCommand(std::vector<std::string> args) {
   }
   LodJobOptions o;
   for (const std::vector<double>& c : a.repeatedNumbers("-center", 2)) o.lod.centres.push_back({c[0], c[1]});
+  o.centresSrs = a.text("-center_srs", "");
+  if (!o.centresSrs.empty() && o.lod.centres.empty()) throw Error("-center_srs is the CRS of -center: give -center X Y too");
   o.centresPath = a.text("-centers", "");
   o.regionPath = a.text("-region", "");
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -4,6 +4,30 @@
 #include "tinlod/error.h"
 
 namespace tinlod {
+namespace {
+
+std::unique_ptr<OGRCoordinateTransformation> transformBetween(const OGRSpatialReference& src, const std::string& targetWkt,
+                                                              const std::string& what, const std::string& fix,
+                                                              const ProgressRange& progress) {
+  OGRSpatialReference target;
+  if (targetWkt.empty()) {
+    progress.warn(what + ": the TIN has no CRS: the coordinates are used as they are");
+    return nullptr;
+  }
+  if (target.importFromWkt(targetWkt.c_str()) != OGRERR_NONE) throw Error(what + ": the TIN's CRS cannot be read");
+  OGRSpatialReference source(src);
+  // x = easting or longitude, as the TIN's coordinates are stored.
+  source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (source.IsSame(&target)) return nullptr;
+  std::unique_ptr<OGRCoordinateTransformation> transform(OGRCreateCoordinateTransformation(&source, &target));
+  if (!transform)
+    throw Error(what + ": no transformation from " + (source.GetName() ? source.GetName() : std::string("its CRS")) + " to " +
+                (target.GetName() ? target.GetName() : std::string("the TIN's CRS")) + ": " + fix);
+  return transform;
+}
+
+}  // namespace
 
 std::unique_ptr<OGRCoordinateTransformation> transformToTin(OGRLayer& layer, const std::string& targetWkt,
                                                             const std::string& what, const ProgressRange& progress) {
@@ -12,22 +36,21 @@ std::unique_ptr<OGRCoordinateTransformation> transformToTin(OGRLayer& layer, con
     progress.warn(what + ": the layer has no CRS: taken to be in the TIN's CRS");
     return nullptr;
   }
-  OGRSpatialReference target;
-  if (targetWkt.empty()) {
-    progress.warn(what + ": the TIN has no CRS: the layer's coordinates are used as they are");
-    return nullptr;
-  }
-  if (target.importFromWkt(targetWkt.c_str()) != OGRERR_NONE) throw Error(what + ": the TIN's CRS cannot be read");
-  OGRSpatialReference source(*src);
-  // x = easting or longitude, as the TIN's coordinates are stored.
-  source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  if (source.IsSame(&target)) return nullptr;
-  std::unique_ptr<OGRCoordinateTransformation> transform(OGRCreateCoordinateTransformation(&source, &target));
-  if (!transform)
-    throw Error(what + ": no transformation from " + (source.GetName() ? source.GetName() : std::string("its CRS")) + " to " +
-                (target.GetName() ? target.GetName() : std::string("the TIN's CRS")) + ": reproject the layer to the TIN's CRS first");
-  return transform;
+  return transformBetween(*src, targetWkt, what, "reproject the layer to the TIN's CRS first", progress);
+}
+
+void checkSrsText(const std::string& srs, const std::string& what) {
+  OGRSpatialReference source;
+  if (source.SetFromUserInput(srs.c_str()) != OGRERR_NONE)
+    throw Error(what + ": '" + srs + "' is not a CRS GDAL understands: use e.g. EPSG:4326");
+}
+
+std::unique_ptr<OGRCoordinateTransformation> transformToTin(const std::string& srs, const std::string& targetWkt,
+                                                            const std::string& what, const ProgressRange& progress) {
+  checkSrsText(srs, what);
+  OGRSpatialReference source;
+  source.SetFromUserInput(srs.c_str());
+  return transformBetween(source, targetWkt, what, "give the coordinates in the TIN's CRS", progress);
 }
 
 }  // namespace tinlod

@@ -12,6 +12,7 @@
 #include "catalogue_lod.h"
 #include "extracted_lod.h"
 #include "layer_source.h"
+#include "layer_transform.h"
 #include "polygon_region.h"
 #include "text_and_paths.h"
 #include "tile_catalogue.h"
@@ -27,6 +28,7 @@ namespace {
 // The options as far as they can be checked before reading the hierarchy.
 void checkOptions(const LodJobOptions& o) {
   LodOptions lod = o.lod;
+  if (!o.centresSrs.empty()) checkSrsText(o.centresSrs, "-center_srs");
   if (!o.centresPath.empty()) {
     checkPointsExist(o.centresPath, "-centers");
     lod.centres.push_back({0, 0});  // stands for the file's points
@@ -47,6 +49,7 @@ std::map<std::string, std::string> jobMetadata(const std::string& source, const 
     centres += (centres.empty() ? "" : "; ") + std::string(text);
   }
   if (!centres.empty()) m["TINLOD_CENTERS"] = centres;
+  if (!centres.empty() && !o.centresSrs.empty()) m["TINLOD_CENTERS_SRS"] = o.centresSrs;
   if (!o.centresPath.empty()) m["TINLOD_CENTERS_FILE"] = o.centresPath;
   if (!o.regionPath.empty()) m["TINLOD_REGION"] = o.regionPath;
   if (!std::isnan(o.lod.dropoff)) m["TINLOD_DROPOFF"] = formatNumber(o.lod.dropoff);
@@ -59,6 +62,13 @@ std::map<std::string, std::string> jobMetadata(const std::string& source, const 
 LodOptions resolvedOptions(const LodJobOptions& options, const std::string& crsWkt,
                            std::unique_ptr<PolygonRegion>& region, const ProgressRange& progress) {
   LodOptions lod = options.lod;
+  if (!options.centresSrs.empty()) {
+    const auto transform = transformToTin(options.centresSrs, crsWkt, "-center_srs", progress);
+    for (auto& c : lod.centres)
+      if (transform && !transform->Transform(1, &c[0], &c[1]))
+        throw Error("-center " + formatNumber(c[0]) + " " + formatNumber(c[1]) + " cannot be transformed from -center_srs to "
+                    "the hierarchy's CRS: is it in that CRS's area?");
+  }
   if (!options.centresPath.empty())
     for (const auto& p : readPoints(options.centresPath, crsWkt, progress, "-centers")) lod.centres.push_back(p);
   if (!options.regionPath.empty()) {

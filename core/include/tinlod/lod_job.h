@@ -13,6 +13,9 @@ namespace tinlod {
 // `tinlod lod`: the tests of LodOptions, with centres and a region read from files.
 struct LodJobOptions {
   LodOptions lod;
+  // The CRS lod.centres are given in (any GDAL definition: "EPSG:4326", WKT); empty: the
+  // hierarchy's own. They are transformed to the hierarchy's CRS (a catalogue's tiles').
+  std::string centresSrs;
   std::string centresPath;  // a point layer: every point a centre of detail (added to lod.centres)
   std::string regionPath;   // a polygon layer: every vertex inside it restored
 };
