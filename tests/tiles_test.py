@@ -11,6 +11,7 @@ before tiles) is stood in for by STANDIN, which cuts the tile's window itself.""
 import json
 import os
 import re
+import shutil
 import signal
 import socket
 import struct
@@ -305,6 +306,37 @@ def ctrl_c(dem, tiles, work, env):
     pending = [r["status"] for r in rows(catalogue)[0].values()]
     check("(i) the tiles stay pending (the empty one found so) for a rerun",
           pending.count("pending") >= 5 and "done" not in pending, pending)
+    check("(i) the message counts the tiles the catalogue has pending",
+          ("%d tiles left pending in" % pending.count("pending")) in err, (pending, err[-500:]))
+
+
+def ctrl_c_in_survey(tinlod, dem, tiles, work, env):
+    """(i) Ctrl-C in the survey pass, when every survey but one has ended: every tile is
+    still to build, and the message says so (it once counted the one survey left)."""
+    slow = os.path.join(work, "slow_survey_tinlod")
+    with open(slow, "w") as f:
+        f.write('#!/bin/sh\ncase " $* " in *" -tile 1,0 "*" -survey "*) exec sleep 120;; esac\nexec "%s" "$@"\n' % tinlod)
+    os.chmod(slow, 0o755)
+    catalogue = os.path.join(work, "s.gpkg")
+    folder = os.path.join(work, "s_tiles")
+    driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-tinlod", slow],
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and driver.poll() is None and \
+            len([n for n in (os.listdir(folder) if os.path.isdir(folder) else []) if n.endswith(".json")]) < 4:
+        time.sleep(0.1)
+    time.sleep(0.5)
+    driver.send_signal(signal.SIGINT)
+    try:
+        _, err = driver.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        driver.kill()
+        _, err = driver.communicate()
+    statuses = [r["status"] for r in rows(catalogue)[0].values()]
+    left = statuses.count("pending")
+    check("(i) Ctrl-C in the survey pass counts every tile still to build (%d), not the surveys left" % left,
+          driver.returncode == 130 and left >= 5 and ("%d tiles left pending in" % left) in err,
+          (driver.returncode, statuses, err[-500:]))
 
 
 def union_counts(files):
@@ -594,6 +626,19 @@ def main(tinlod, tiles):
     beyond = run([tiles, "merge", catalogue, "-level", str(levels), os.path.join(work, "m.gpkg")])
     check("(d) merge refuses a level the tiles do not have", beyond.returncode == 1 and "-level" in beyond.stderr,
           beyond.stderr)
+    # A run stopped before its end (Ctrl-C) has recorded no TINLOD_LEVELS, and some tiles are
+    # still pending: merge reads the finished ones, and says how many are not.
+    stopped = os.path.join(work, "stopped.gpkg")
+    shutil.copy(catalogue, stopped)
+    dataset = gdal.OpenEx(stopped, gdal.OF_VECTOR | gdal.OF_UPDATE)
+    dataset.SetMetadata({k: v for k, v in dataset.GetMetadata().items() if k != "TINLOD_LEVELS"})
+    dataset.ExecuteSQL("UPDATE tiles SET status = 'pending', file = NULL WHERE tile_col = 0 AND tile_row = 0")
+    dataset = None
+    partly = run([tiles, "merge", stopped, "-level", "1", os.path.join(work, "partly.gpkg")])
+    check("(d) merge of a catalogue stopped before its end: the finished tiles' level, and a warning of the others",
+          partly.returncode == 0 and "1 of the catalogue's 6 tiles are not finished (1 pending)" in partly.stderr
+          and level_count(os.path.join(work, "partly.gpkg"), "level_1")
+          == sum(level_count(f, "level_1") for f in files if not f.endswith("tile_0_0.gpkg")), partly.stderr)
 
     # (f) -selection global (the default) recorded one threshold per level and left no
     # survey behind; -selection tile makes one pass without them.
@@ -681,6 +726,7 @@ def main(tinlod, tiles):
     lod_and_accuracy(tinlod, catalogue, dem, work)
     border_agreement(base, options, work, env)
     ctrl_c(dem, tiles, work, env)
+    ctrl_c_in_survey(tinlod, dem, tiles, work, env)
 
     if not failures:
         subprocess.run(["rm", "-rf", work])

@@ -38,8 +38,9 @@ def run(arguments):
     try:
         return run_job(arguments)
     except TilesStopped as e:
-        print("ERROR: stopped before the end; %s tiles left pending in %s: run again to finish them"
-              % (e, arguments.catalogue), file=sys.stderr)
+        count = int(str(e))
+        print("ERROR: stopped before the end; %d tile%s left pending in %s: run again to finish them"
+              % (count, "" if count == 1 else "s", arguments.catalogue), file=sys.stderr)
         return STOPPED_EXIT_CODE
 
 

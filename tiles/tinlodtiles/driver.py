@@ -371,7 +371,8 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
             progress.tile(tile.col, tile.row, status)
     except KeyboardInterrupt:
         client.cancel(list(futures))
-        raise TilesStopped(len(futures)) from None
+        # The catalogue's count: a stop in a survey pass leaves every unbuilt tile pending.
+        raise TilesStopped(sum(1 for r in catalogue.rows().values() if r["status"] not in ("done", "empty"))) from None
     except BaseException:  # not retried while the run stops
         client.cancel(list(futures))
         raise

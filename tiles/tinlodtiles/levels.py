@@ -3,6 +3,7 @@
 written beside the catalogue, and the same union merged into one GeoPackage on demand."""
 import os
 import re
+import sys
 from xml.sax.saxutils import escape, quoteattr
 
 from osgeo import gdal, ogr
@@ -65,11 +66,31 @@ def write_level_vrts(catalogue, catalogue_path, levels):
     return paths
 
 
+def unfinished_warning(rows):
+    """What a catalogue's unfinished tiles mean for a level read from it ("" when none), as
+    tinlod's commands say it."""
+    unfinished = {}
+    for r in rows:
+        if r["status"] not in ("done", "empty"):
+            unfinished[r["status"]] = unfinished.get(r["status"], 0) + 1
+    if not unfinished:
+        return ""
+    return ("%d of the catalogue's %d tiles are not finished (%s): only the finished tiles are read; run tinlod-tiles "
+            "again to finish them" % (sum(unfinished.values()), len(rows),
+                                      ", ".join("%d %s" % (n, s) for s, n in sorted(unfinished.items()))))
+
+
 def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     """The tiles' level `level` (-1: the coarsest; of the tiles meeting `extent`, if given)
     merged into one layer `level_K` of a new GeoPackage; returns K and its triangle count."""
     catalogue = Catalogue.open(catalogue_path)
-    levels = int(catalogue.setting("TINLOD_LEVELS") or 0)
+    rows = catalogue.rows().values()
+    # A run stopped before its end has not recorded TINLOD_LEVELS: its finished tiles say.
+    done = [r["levels"] for r in rows if r["status"] == "done" and r["levels"]]
+    levels = int(catalogue.setting("TINLOD_LEVELS") or (min(done) if done else 0))
+    warning = unfinished_warning(rows)
+    if warning:
+        print("WARNING: " + warning, file=sys.stderr)
     if level == -1 and levels:  # the coarsest, as tinlod's -level -1
         level = levels - 1
     if not 0 <= level < levels:
