@@ -257,6 +257,22 @@ def border_agreement(base, options, work, env):
           union.returncode == 0 and levels >= 10 and "conforming=no" not in union.stdout, union.stdout[-2000:])
     rerun = run(base + [catalogue] + bounded, env)
     check("(h) a rerun builds nothing", rerun.returncode == 0 and "0 tiles run" in rerun.stdout, rerun.stdout)
+    # A run stopped before the rounds ended leaves a tile that refused line vertices its
+    # neighbour deleted: the tiles do not meet there, and readers say so.
+    tinlod = options[options.index("-tinlod") + 1]
+    refusing = os.path.join(folder, "tile_1_0.gpkg")
+    saved = open(refusing, "rb").read()
+    dataset = gdal.OpenEx(refusing, gdal.OF_VECTOR | gdal.OF_UPDATE)
+    dataset.SetMetadataItem("TINLOD_BORDER_REFUSED", "5 %d" % TILE_SIZE)
+    dataset = None
+    lod = run([tinlod, "lod", catalogue, os.path.join(work, "e_lod.gpkg"), "-max_error", "5"])
+    merged = run([base[0], "merge", catalogue, "-level", "0", os.path.join(work, "e_merged.gpkg")])
+    with open(refusing, "wb") as f:
+        f.write(saved)
+    check("(h) a catalogue whose tiles have not agreed their lines yet is refused by tinlod lod and merge, "
+          "saying to run tinlod tiles again",
+          all(r.returncode == 1 and "before its tiles agreed their shared lines" in r.stderr for r in (lod, merged)),
+          (lod.stderr[-500:], merged.stderr[-500:]))
     # A driver stopped between two rounds left a keep file the tiles were not built with.
     cell = next((r, TILE_SIZE) for r in range(1, TILE_SIZE) if (r, TILE_SIZE) not in kept)
     with open(os.path.join(folder, "border_keep.txt"), "a") as f:

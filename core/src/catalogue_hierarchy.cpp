@@ -157,6 +157,13 @@ StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange
   if (holds != stored.info.metadata.end() && holds->second != tile.name)
     throw Error("tile " + tile.name + " ('" + tile.file + "') holds tile " + holds->second +
                 ": remove the file and run tinlod tiles again to build it");
+  // Under -max_error a tile that refused line vertices is built again with its neighbours
+  // until none does: a run stopped before then leaves tiles that do not meet on their lines.
+  const auto refused = stored.info.metadata.find("border_refused");
+  if (refused != stored.info.metadata.end() && !refused->second.empty())
+    throw Error("tile " + tile.name + " ('" + tile.file + "') refuses line vertices its neighbours may have deleted: the "
+                "catalogue's -max_error run stopped before its tiles agreed their shared lines, so they do not meet "
+                "there yet; run tinlod tiles on it again to finish them");
   return stored;
 }
 

@@ -46,6 +46,14 @@ def level_views(path):
     return {int(name[len("level_"):]) for name in names if re.fullmatch(r"level_\d+", name)}
 
 
+def refuses_line_vertices(path):
+    """Whether a tile built under -max_error refused line vertices (TINLOD_BORDER_REFUSED),
+    which the tiles beside it must keep too: until they are built again, the two do not
+    meet on that line."""
+    dataset = gdal.OpenEx(path, gdal.OF_VECTOR)
+    return bool(dataset is not None and dataset.GetMetadataItem("TINLOD_BORDER_REFUSED"))
+
+
 def write_level_vrts(catalogue, catalogue_path, levels):
     """`<stem>_levels/level_K.vrt` for K in 0..levels-1 that the tiles have a view of; returns
     their paths."""
@@ -101,6 +109,11 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     catalogue.close()
     if not files:
         raise TilesError("-te: no finished tile meets %s" % " ".join("%g" % v for v in extent))
+    refusing = [path for path in files if refuses_line_vertices(path)]
+    if refusing:
+        raise TilesError("%s refuses line vertices its neighbours may have deleted: the catalogue's -max_error run "
+                         "stopped before its tiles agreed their shared lines, so they do not meet there yet; run "
+                         "tinlod-tiles on it again to finish them" % refusing[0])
     viewed = level_views(files[0])
     if level not in viewed:
         raise TilesError("-level %d: the tiles were built with -levels, and have a layer only for level %s"
