@@ -443,8 +443,9 @@ TEST(CatalogueHierarchy, AccuracyTileByTileOnRealDemsIsThatOfTheTilesReadAsOne) 
   const std::string data = test::dataDir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";
   // A geographic DEM (its TIN in UTM, where a window's edges bend) and one stored bottom-up;
-  // both with a last column or row of tiles narrower than the reach of the B-spline.
-  for (const std::string name : {"fort_worth_3s.tif", "bavaria_dgm5_bottomup.tif"}) {
+  // both with a last column or row of tiles narrower than the reach of the B-spline. And
+  // one with sea (nodata) along tile lines, where a line vertex may be in one tile only.
+  for (const std::string name : {"fort_worth_3s.tif", "bavaria_dgm5_bottomup.tif", "vancouver_N49W123.tif"}) {
     const std::string file = data + "/" + name;
     const BuiltTiles built = buildCatalogue(file, kTileSize, test::tempDir());
     AccuracyOutputs outputs;

@@ -392,20 +392,37 @@ void TileMeasure::measureLevels(std::vector<LevelSums>& sums, std::int32_t raste
     measure(L, sums[L], L == rasterLevel ? canvas : nullptr, progress.sub(L / levels, (L + 1) / levels));
 }
 
+// Adds vertices by highest level to each level's count (a vertex is in every level up to its highest).
+void addVertices(const std::vector<std::size_t>& topLevel, std::vector<LevelSums>& sums) {
+  std::size_t above = 0;  // vertices whose highest level is L or more
+  for (std::size_t L = sums.size(); L-- > 0;) sums[L].stats.vertices += above += topLevel[L];
+}
+
 // The level statistics the build recorded, pooled as readCatalogueHierarchy pools them,
-// and the vertices the tile answers for (a vertex on a shared line is counted once).
-// `cells`: those the tile answers for (ownedCells).
-void poolLevels(const CatalogueTile& tile, const Hierarchy& h, const std::vector<CellRect>& cells,
-                std::vector<LevelSums>& sums) {
+// and the tile's vertices by their highest level: those inside it counted here, those on
+// its edges gathered in `edges` by cell of the raster, so that a vertex on a shared line
+// counts once, whichever tiles hold it (beside nodata, only one may).
+void poolLevels(const CatalogueTile& tile, const Hierarchy& h, std::vector<LevelSums>& sums,
+                std::unordered_map<std::uint64_t, std::int32_t>& edges) {
   for (std::size_t L = 0; L < sums.size(); ++L) poolLevelStats(sums[L].stats, h.levels[L]);
   std::vector<std::size_t> topLevel(sums.size(), 0);
   for (std::size_t v = 0; v < h.base.vertices.size(); ++v) {
-    const int col = h.base.vertices[v].col + tile.xoff, row = h.base.vertices[v].row + tile.yoff;
-    for (const CellRect& c : cells)
-      if (c.contains(col, row)) ++topLevel[h.vertexLevel[v]];
+    const TinVertex& p = h.base.vertices[v];
+    if (p.col == 0 || p.row == 0 || p.col == tile.xsize - 1 || p.row == tile.ysize - 1) {
+      const std::uint64_t cell = (std::uint64_t(std::uint32_t(p.row + tile.yoff)) << 32) | std::uint32_t(p.col + tile.xoff);
+      std::int32_t& level = edges.try_emplace(cell, h.vertexLevel[v]).first->second;
+      level = std::max(level, h.vertexLevel[v]);
+    } else {
+      ++topLevel[h.vertexLevel[v]];
+    }
   }
-  std::size_t above = 0;  // vertices whose highest level is L or more
-  for (std::size_t L = sums.size(); L-- > 0;) sums[L].stats.vertices += above += topLevel[L];
+  addVertices(topLevel, sums);
+}
+
+void addEdgeVertices(const std::unordered_map<std::uint64_t, std::int32_t>& edges, std::vector<LevelSums>& sums) {
+  std::vector<std::size_t> topLevel(sums.size(), 0);
+  for (const auto& [cell, level] : edges) ++topLevel[std::size_t(level)];
+  addVertices(topLevel, sums);
 }
 
 LevelAccuracy rowOf(const LevelSums& s, const Hierarchy& job, const std::string& dem, std::int32_t level) {
@@ -483,6 +500,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
   std::unique_ptr<AccuracyRasterCanvas> canvas;
   std::int32_t rasterLevel = 0;
   std::size_t droppedHeights = 0;
+  std::unordered_map<std::uint64_t, std::int32_t> edges;  // the tiles' edge vertices, by cell: their highest level
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const CatalogueTile& tile = tiles[i];
     const ProgressRange part = partOf(i);
@@ -509,7 +527,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
       checkSameJob(tile, h, job);
     }
     const std::vector<CellRect> cells = ownedCells(tiles, i);
-    poolLevels(tile, h, cells, sums);
+    poolLevels(tile, h, sums, edges);
     const std::vector<TestRect> owned = ownedPoints(cells, g->grid.step);
     if (owned.empty()) continue;
     const TileMeasure measure(*g, tiles, i, h.coarsest(), std::move(h.base.vertices), std::move(h.triangles), owned,
@@ -518,6 +536,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
     droppedHeights += measure.droppedHeights();
     measure.measureLevels(sums, rasterLevel, canvas.get(), part.sub(0.3, 1));
   }
+  addEdgeVertices(edges, sums);
   droppedHeights += measureMissingTiles(*g, tiles, missing, job.coarsest(), rasterLevel, sums, canvas.get(),
                                         [&](std::size_t m) { return partOf(tiles.size() + m); });
   if (droppedHeights > 0)
