@@ -239,6 +239,26 @@ std::multiset<std::array<Place, 3>> trianglesByPlace(const Tin& tin) {
 
 // Tile by tile against the tiles read as one hierarchy: the same triangles, the same
 // vertices (rows, columns and heights) in the same order.
+// A vertex on a line two tiles share is flagged `outline` when an edge of it has a
+// triangle on one side only (the union's outline), not because it is on each tile's.
+void expectSharedLineOutlineIsTheUnions(const Tin& tin, const std::string& what) {
+  std::set<std::pair<VertexId, VertexId>> edges;
+  for (const Triangle& t : tin.triangles)
+    for (int k = 0; k < 3; ++k) edges.insert({t[k], t[(k + 1) % 3]});
+  std::vector<bool> boundary(tin.vertices.size(), false);
+  for (const auto& [a, b] : edges)
+    if (!edges.count({b, a})) boundary[a] = boundary[b] = true;
+  std::size_t shared = 0, wrong = 0;
+  for (std::size_t v = 0; v < tin.vertices.size(); ++v) {
+    const TinVertex& p = tin.vertices[v];
+    if ((p.row % kTileSize != 0 || p.row == 0) && (p.col % kTileSize != 0 || p.col == 0)) continue;
+    ++shared;
+    wrong += p.outline != boundary[v];
+  }
+  EXPECT_GT(shared, 0u) << what;
+  EXPECT_EQ(wrong, 0u) << what << ": of " << shared << " vertices on shared lines";
+}
+
 void expectTheLodOfTheTilesReadAsOne(const std::string& catalogue, const Hierarchy& asOne, const LodOptions& o,
                                      const std::string& what, int* passes = nullptr) {
   const ExtractedLod tiles = extractCatalogueLod(catalogue, [&](const std::string&) { return o; }, kRange);
@@ -251,6 +271,7 @@ void expectTheLodOfTheTilesReadAsOne(const std::string& catalogue, const Hierarc
   }
   EXPECT_EQ(tiles.firstLevel.size(), whole.triangles.size()) << what;
   expectOneSurfaceLikeLevelZero(tiles.tin, what, asOne);
+  expectSharedLineOutlineIsTheUnions(tiles.tin, what);
   if (passes) *passes = tiles.passes;
 }
 

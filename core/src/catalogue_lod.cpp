@@ -81,6 +81,8 @@ bool extractTile(const CatalogueTile& tile, const Hierarchy& h, const LodOptions
   return added;
 }
 
+void markSharedOutline(const std::unordered_map<Place, VertexId, PlaceHash>& shared, Tin& tin);
+
 // The tiles' parts as one TIN: a vertex of a shared line once (only those are looked up).
 void assemble(const std::vector<CatalogueTile>& tiles, const std::vector<TileLod>& parts, ExtractedLod& out) {
   std::unordered_map<Place, VertexId, PlaceHash> ids;
@@ -103,6 +105,26 @@ void assemble(const std::vector<CatalogueTile>& tiles, const std::vector<TileLod
     for (const Triangle& t : part.tin.triangles) out.tin.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
     out.firstLevel.insert(out.firstLevel.end(), part.firstLevel.begin(), part.firstLevel.end());
     out.lastLevel.insert(out.lastLevel.end(), part.lastLevel.begin(), part.lastLevel.end());
+  }
+  markSharedOutline(ids, out.tin);
+}
+
+// A vertex of a shared line is on each tile's own outline; in the union, only where an
+// edge of it has a triangle on one side alone (nodata beyond, or the raster's edge).
+void markSharedOutline(const std::unordered_map<Place, VertexId, PlaceHash>& shared, Tin& tin) {
+  std::vector<std::uint8_t> isShared(tin.vertices.size(), 0);
+  for (const auto& [place, v] : shared) isShared[v] = 1, tin.vertices[v].outline = false;
+  const auto key = [](VertexId a, VertexId b) { return (std::uint64_t(a) << 32) | b; };
+  std::unordered_set<std::uint64_t> edges;  // directed, of triangles with a shared corner
+  for (const Triangle& t : tin.triangles)
+    for (int k = 0; k < 3; ++k)
+      if (isShared[t[k]] || isShared[t[(k + 1) % 3]]) edges.insert(key(t[k], t[(k + 1) % 3]));
+  for (const std::uint64_t e : edges) {
+    const VertexId a = VertexId(e >> 32), b = VertexId(e & 0xffffffffu);
+    if (!edges.count(key(b, a))) {
+      if (isShared[a]) tin.vertices[a].outline = true;
+      if (isShared[b]) tin.vertices[b].outline = true;
+    }
   }
 }
 
