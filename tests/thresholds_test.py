@@ -11,6 +11,7 @@ import tempfile
 
 sys.path.insert(0, sys.argv[1])
 from tinlodtiles import thresholds  # noqa: E402
+from tinlodtiles.surveyed_tile import SurveyedTile  # noqa: E402
 from script_checks import check, exit_code  # noqa: E402
 
 
@@ -47,25 +48,52 @@ def shared(row):
 check("a level's own picks leave room for the border rule's, of the union's vertices",
       abs(t - thresholds.bin_top(10)) < 1e-30 and abs(share - 0.34) < 1e-12, (t, share))
 
+# Each tile is followed through the levels at the count the thresholds leave it, its state
+# read from its survey at that count, whatever level the survey reached it at. With
+# -delete_pct 25: level 1 deletes 50 of the 200 vertices, all from the smooth tile's bin 10
+# (half of its 100 candidates: the other half blocked). The smooth tile has 50 left, which
+# its survey reached at its level 3 (bin 12, 25 picks); the rough one keeps its 100, its
+# survey's level 1 (bin 20, 50 picks). Level 2 deletes 37.5 of 150: the smooth tile's 25,
+# and 12.5 of the rough tile's 100 candidates in bin 20. Read at level 2 of each survey
+# (75 vertices each, bins 11 and 21) it was half of the smooth tile's bin 11.
+def row(vertices, b):
+    return level(vertices, vertices // 2, vertices, {b: vertices})
+
+
+smooth_tile = [row(100, 10), row(75, 11), row(50, 12)]
+rough_tile = [row(100, 20), row(75, 21), row(50, 22)]
+levels = thresholds.level_thresholds([smooth_tile, rough_tile], 25, 5)
+check("level 1 takes half of the smooth tile's bin", levels[0] == (thresholds.bin_top(10), 0.5), levels)
+check("level 2 reads each tile's survey at the count level 1 left it: the rough tile's first level",
+      levels[1][0] == thresholds.bin_top(20) and abs(levels[1][1] - 0.125) < 1e-12, levels)
+
 # The stop, with -delete_pct 50 -stop_pct 30: 200 vertices, the stop 60. Level 1 deletes
-# half, so level 2 finds 100 and deletes 0.4 of what it finds, down to 60; level 3 nothing.
-# The surveys found 80 at level 2 (each tile deleted more of its own): 0.4 of 80 is 32
-# (20 from the smooth bin, 12 of the rough one's 40, a share 0.3), not the 20 above the
-# stop their own count would leave, which the build pass, finding about 100, would miss
-# by 20.
-def first(b):
-    return level(100, 50, 100, {b: 100})
-
-
-def later(b):
-    return level(40, 10, 20, {b: 40})
-
-
-tiles = [[first(5), later(10), later(10)], [first(5), later(20), later(20)]]
+# 100 (50 a tile, half of each bin 5), level 2 finds the 100 left and deletes 0.4 of them,
+# 40: 0.4 of the 100 candidates of bin 10, 20 of each tile's 25 picks. Level 3 nothing.
+tiles = [[row(100, 5), row(50, 10), row(30, 20)], [row(100, 5), row(50, 10), row(30, 20)]]
 levels = thresholds.level_thresholds(tiles, 50, 30)
-check("the last level deletes the share that takes the expected count to the stop",
-      abs(levels[1][0] - thresholds.bin_top(20)) < 1e-30 and abs(levels[1][1] - 0.3) < 1e-12, levels)
+check("the last level deletes the share that takes the followed count to the stop",
+      levels[1][0] == thresholds.bin_top(10) and abs(levels[1][1] - 0.4) < 1e-12, levels)
 check("a level after the stop deletes nothing", levels[2] == (0.0, 1.0), levels)
+check("... and it is the stop level -exact_stop walks", thresholds.stop_level(tiles, 50, 30) == 1)
+
+# A bin the survey walked gives its own picks (picked_histogram): 30 of bin 3's 40 (the
+# first candidates are seldom blocked), where the level's share of what it went through
+# (0.5) gives bin 4's.
+walked = dict(level(100, 40, 80, {3: 40, 4: 40, 5: 20}), picked_histogram=[[3, 30], [4, 10]])
+counts, picks = SurveyedTile([walked], 20).state()
+check("a walked bin's picks are the survey's, beyond the walk the level's share",
+      counts == {3: 40, 4: 40, 5: 20} and picks == {3: 30, 4: 20, 5: 10}, (counts, picks))
+
+# Below its survey's last count a tile reads its last level with the importances raised as
+# they rose over its last two full levels: 4 times the importance for half the vertices,
+# so at half the last count again 120 bins up (a factor 3.98), the candidates halved.
+rising = [dict(row(100, 10), last=1e6), dict(row(50, 40), last=4e6)]
+tile = SurveyedTile(rising, 50)
+tile.vertices = 25
+counts, picks = tile.state()
+check("below the survey's last count: its last level, importances raised",
+      tile.rise() == 120 and counts == {160: 25.0} and picks == {160: 12.5}, (tile.rise(), counts, picks))
 
 # -exact_stop: a second round of surveys, made with the first round's thresholds (the build
 # pass's state) and every candidate walked at the stop level (index 2), counts the union's
@@ -83,6 +111,13 @@ exact = thresholds.exact_stop_thresholds(first_values, second, 30, 2)
 check("-exact_stop: the walked level deletes what is above the stop, best first, and the next nothing",
       exact[:2] == first_values[:2] and abs(exact[2][0] - thresholds.bin_top(20)) < 1e-30
       and abs(exact[2][1] - 8 / 30) < 1e-12 and exact[3] == (0.0, 1.0), exact)
+# The border rule's picks at the walked level (4 of the union's in each tile, at most: there
+# they passed no threshold) go beside its own: 12 of them, the smooth tile's 12 picks.
+with_border = [[dict(r) for r in s] for s in second]
+with_border[0][2]["border_picked"] = with_border[1][2]["border_picked"] = 4
+exact = thresholds.exact_stop_thresholds(first_values, with_border, 30, 2)
+check("-exact_stop: the walked level leaves room for the border rule's picks there",
+      exact[2][0] == thresholds.bin_top(10) and abs(exact[2][1] - 0.4) < 1e-12, exact)
 # When the first round's picks at index 1 (60 a tile) would already go below the stop, that
 # level deletes only the 100 above it: the smooth tile's 60 and 40 of the rough one's 80.
 second[0][1], second[1][1] = walked(80, 60, {10: 80}, {10: 60}), walked(80, 60, {20: 80}, {20: 60})

@@ -6,22 +6,20 @@ run over the whole raster would delete, rough tiles lose vertices it would keep.
 (`tinlod build -survey`) say how many candidates of each importance every tile had at each
 level and how many of those it could take (independence blocks the others); the threshold
 of a level is the importance below which the tiles' candidates, so thinned, make the delete
-percentage of all the raster's vertices, as a whole run's best-first selection would. In
-the threshold's own bin (a flat area's ties), a share of its candidates may go.
+percentage of all the raster's vertices, as a whole run's best-first selection would. Each
+tile is followed through the levels at the count the thresholds leave it, its state read
+from its survey at that count (SurveyedTile). In the threshold's own bin (a flat area's
+ties), a share of its candidates may go.
 """
 import json
 
-BINS_PER_DECADE = 200
-LOWEST = 1e-12
+from .importance_bins import BINS_PER_DECADE, LOWEST, bin_top  # noqa: F401 (bin_top: the thresholds' bins)
+from .surveyed_tile import SurveyedTile, picks_below
+
 # The catalogue's record that a threshold's share (t:s) is the share of its bin's candidates
 # deleted (tinlod build since 2026-11-28), not of those the pick went through.
 SHARES_SETTING = "TINLOD_THRESHOLD_SHARES"
 SHARES_DELETED = "deleted"
-
-
-def bin_top(b):
-    """The smallest importance above every importance in bin b."""
-    return LOWEST if b == 0 else 10.0 ** (b / BINS_PER_DECADE - 12)
 
 
 def load_survey(path):
@@ -41,14 +39,47 @@ def read_survey(path):
 def level_thresholds(surveys, delete_pct, stop_pct):
     """The (threshold, share) of levels 1, 2, ... from the tiles' surveys (lists of levels):
     the level deletes the independent candidates below the threshold's bin and at most that
-    share of those in it. It aims at its share of the union's vertices (a line vertex two
-    tiles hold counted once), less what the border rule deletes."""
-    thresholds = []
-    for k, fraction in enumerate(level_fractions(surveys, delete_pct, stop_pct)):
-        rows = [s[k] for s in surveys if len(s) > k]
-        target = fraction * union_vertices(rows) - border_picked(rows)
-        thresholds.append(level_threshold(rows, pooled(rows, "histogram"), target))
-    return thresholds
+    share of those in it."""
+    return [threshold for threshold, _ in followed_levels(surveys, delete_pct, stop_pct)]
+
+
+def stop_level(surveys, delete_pct, stop_pct):
+    """The level that reaches the stop (the first to delete less than the delete
+    percentage), or None."""
+    fractions = [fraction for _, fraction in followed_levels(surveys, delete_pct, stop_pct)]
+    return next((k for k, f in enumerate(fractions) if f < delete_pct / 100.0), None)
+
+
+def followed_levels(surveys, delete_pct, stop_pct):
+    """Each level's (threshold, share) and the share of the union's vertices it aims at:
+    the delete percentage, and at the stop level what takes the count down to the stop.
+    The tiles are followed through the levels: each level aims at its share of the union's
+    vertices (a line vertex two tiles hold counted once) as the thresholds before it leave
+    them, less what the border rule deletes, and takes from each tile what its state there
+    gives under the threshold."""
+    tiles = [SurveyedTile(s, delete_pct) for s in surveys if s]
+    stop = stop_pct / 100.0 * sum(t.union for t in tiles)
+    out = []
+    for k in range(max((len(s) for s in surveys), default=0)):
+        union = sum(t.union for t in tiles)
+        fraction = max(0.0, min(delete_pct / 100.0, 1 - stop / union)) if union > 0 else 0.0
+        rows = [t.levels[k] if len(t.levels) > k else None for t in tiles]
+        states = [t.state() for t in tiles]
+        target = fraction * union - border_picked([r for r in rows if r])
+        threshold = threshold_reaching(added(c for c, _ in states), added(p for _, p in states), target)
+        for t, (counts, picks), row in zip(tiles, states, rows):
+            t.delete(picks_below(counts, picks, *threshold), row)
+        out.append((threshold, fraction))
+    return out
+
+
+def added(histograms):
+    """Histograms (bin: count) added up."""
+    total = {}
+    for h in histograms:
+        for b, n in h.items():
+            total[b] = total.get(b, 0.0) + n
+    return total
 
 
 def union_vertices(rows):
@@ -63,30 +94,6 @@ def border_picked(rows):
     return sum(r.get("border_picked", 0) for r in rows)
 
 
-def level_fractions(surveys, delete_pct, stop_pct):
-    """The share of its vertices each level deletes: the delete percentage, and at the stop
-    level what takes the count the levels before leave down to the stop. The surveys' own
-    counts drift from the build pass's (each tile deletes a fifth of its own vertices, the
-    build pass the raster's least important): aimed at the stop from their count, the last
-    level would delete what is left of a small difference."""
-    original = union_vertices([s[0] for s in surveys if s])
-    stop = stop_pct / 100.0 * original
-    expected = float(original)
-    fractions = []
-    for _ in range(max(len(s) for s in surveys)):
-        fraction = max(0.0, min(delete_pct / 100.0, 1 - stop / expected)) if expected > 0 else 0.0
-        expected *= 1 - fraction
-        fractions.append(fraction)
-    return fractions
-
-
-def stop_level(surveys, delete_pct, stop_pct):
-    """The level that reaches the stop (the first to delete less than the delete
-    percentage), or None."""
-    fractions = level_fractions(surveys, delete_pct, stop_pct)
-    return next((k for k, f in enumerate(fractions) if f < delete_pct / 100.0), None)
-
-
 def exact_stop_thresholds(values, second, stop_pct, walked):
     """-exact_stop: `values` with the level that reaches the stop set from a second round of
     surveys, made with `values` below the stop level they aim at (the build pass's very
@@ -97,22 +104,14 @@ def exact_stop_thresholds(values, second, stop_pct, walked):
     for k in range(walked + 1):
         rows = [s[k] for s in second if len(s) > k]
         # The border rule's picks below the walked level are the build pass's; at it, they
-        # passed an infinite threshold, not the one set here.
-        vertices = union_vertices(rows) - (border_picked(rows) if k < walked else 0)
+        # passed an infinite threshold, not the one set here: at most those go beside the
+        # level's own, which then end at the stop or a little above it.
+        vertices = union_vertices(rows) - border_picked(rows)
         if not rows or vertices - sum(r["picked"] for r in rows) <= stop or k == walked:
             break
     target = max(0.0, vertices - stop)
     stop_threshold = threshold_reaching(pooled(rows, "histogram"), pooled(rows, "picked_histogram"), target)
     return values[:k] + [stop_threshold] + [(0.0, 1.0)] * (len(values) - k - 1)
-
-
-def level_threshold(rows, counts, target):
-    """The (threshold, share) that deletes `target` of the level's vertices, each bin's
-    candidates thinned by the share of them the levels' own picks took (independence blocks
-    the others)."""
-    picked, considered = sum(r["picked"] for r in rows), sum(r["considered"] for r in rows)
-    taken = picked / considered if considered else 1.0
-    return threshold_reaching(counts, {b: taken * n for b, n in counts.items()}, target)
 
 
 def threshold_reaching(counts, picks, target):
