@@ -650,6 +650,15 @@ def main(tinlod, tiles):
     dataset.SetMetadata({k: v for k, v in dataset.GetMetadata().items() if k != "TINLOD_LEVELS"})
     dataset.ExecuteSQL("UPDATE tiles SET status = 'pending', file = NULL WHERE tile_col = 0 AND tile_row = 0")
     dataset = None
+    # The catalogue moved without its tiles folder: the readers say where the folder must be.
+    os.makedirs(os.path.join(work, "moved"))
+    moved = os.path.join(work, "moved", "a.gpkg")
+    shutil.copy(catalogue, moved)
+    lost = [run([tiles, "merge", moved, "-level", "1", os.path.join(work, "lost.gpkg")]),
+            run([options[options.index("-tinlod") + 1], "lod", moved, os.path.join(work, "lost_lod.gpkg"), "-max_error", "5"])]
+    check("(d) a catalogue moved without its tiles folder: merge and tinlod lod say the folder must stay beside it",
+          all(r.returncode == 1 and "tiles folder must stay beside it" in r.stderr for r in lost),
+          [r.stderr[-400:] for r in lost])
     partly = run([tiles, "merge", stopped, "-level", "1", os.path.join(work, "partly.gpkg")])
     check("(d) merge of a catalogue stopped before its end: the finished tiles' level, and a warning of the others",
           partly.returncode == 0 and "1 of the catalogue's 6 tiles are not finished (1 pending)" in partly.stderr

@@ -37,8 +37,16 @@ def union_vrt(level, files, vrt_folder=None):
             '  </OGRVRTUnionLayer>\n</OGRVRTDataSource>\n' % (level, "\n".join(layers)))
 
 
+def check_exists(path):
+    if not os.path.exists(path):
+        raise TilesError("the tile file %s does not exist: the catalogue names its tiles' files relative to itself, so "
+                         "its tiles folder must stay beside it; move the folder back, or run tinlod-tiles on the "
+                         "catalogue again to build the tile" % path)
+
+
 def level_views(path):
     """The levels whose `level_K` view a tile has: all, or those its build's -levels asked for."""
+    check_exists(path)
     dataset = ogr.Open(path)
     if dataset is None:
         raise TilesError("%s is not a GeoPackage GDAL can open" % path)
@@ -109,6 +117,8 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     catalogue.close()
     if not files:
         raise TilesError("-te: no finished tile meets %s" % " ".join("%g" % v for v in extent))
+    for path in files:
+        check_exists(path)
     refusing = [path for path in files if refuses_line_vertices(path)]
     if refusing:
         raise TilesError("%s refuses line vertices its neighbours may have deleted: the catalogue's -max_error run "
