@@ -111,6 +111,11 @@ exact = thresholds.exact_stop_thresholds(first_values, second, 30, 2)
 check("-exact_stop: the walked level deletes what is above the stop, best first, and the next nothing",
       exact[:2] == first_values[:2] and abs(exact[2][0] - thresholds.bin_top(20)) < 1e-30
       and abs(exact[2][1] - 8 / 30) < 1e-12 and exact[3] == (0.0, 1.0), exact)
+# Never more than the delete percentage of the level's vertices, as a whole run's levels:
+# with -delete_pct 20, 16 of the 80 (the smooth tile's 12, 4 of the rough tile's 30).
+exact = thresholds.exact_stop_thresholds(first_values, second, 30, 2, 20)
+check("-exact_stop: the walked level deletes at most the delete percentage of its vertices",
+      exact[2][0] == thresholds.bin_top(20) and abs(exact[2][1] - 4 / 30) < 1e-12, exact)
 # The border rule's picks at the walked level (4 of the union's in each tile, at most: there
 # they passed no threshold) go beside its own: 12 of them, the smooth tile's 12 picks.
 with_border = [[dict(r) for r in s] for s in second]

@@ -39,7 +39,7 @@ Tiles:
   -exact_stop      with -selection global: a second survey pass, the tiles deleting as the
                    build pass will, sets the last level so that the coarsest level ends at
                    the stop percentage of the vertices (a quarter more time; without it the
-                   coarsest level ends a few per cent off, 14 % above on a flat sea)
+                   coarsest level ends a few per cent above it)
   -- options       everything after -- goes to each tile's tinlod build, but for what belongs
                    to the run: the tile options -tile and -tile_size, the outputs -accuracy
                    and -report, and -overwrite and -q. With -method error -max_error E the

@@ -211,8 +211,8 @@ def exact_stop(catalogue, surveyed, arguments, workers, values, first, percents)
     from a second survey pass, which makes the levels below the stop level they aim at with
     them (the build pass's very state) and walks every candidate at it."""
     level = thresholds.stop_level(first, *percents)
-    if level is None:
-        return values
+    if level is None:  # no level is expected to reach the stop: the last comes nearest
+        level = len(values) - 1
     folder = tiles_folder(arguments.catalogue)
     missing = [t for t in surveyed if not os.path.isfile(survey_path(folder, t, SECOND_SURVEY))]
     if missing:
@@ -225,7 +225,7 @@ def exact_stop(catalogue, surveyed, arguments, workers, values, first, percents)
             raise TilesError("%d tiles failed in the second survey pass; %s"
                              % (outcome["failed"], failure_summary(catalogue.rows().values())))
     second = [thresholds.load_survey(survey_path(folder, t, SECOND_SURVEY))["levels"] for t in surveyed]
-    return thresholds.exact_stop_thresholds(values, second, percents[1], level)
+    return thresholds.exact_stop_thresholds(values, second, percents[1], level, percents[0])
 
 
 def survey_path(folder, tile, kind="survey"):

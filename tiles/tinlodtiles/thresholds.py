@@ -94,12 +94,13 @@ def border_picked(rows):
     return sum(r.get("border_picked", 0) for r in rows)
 
 
-def exact_stop_thresholds(values, second, stop_pct, walked):
+def exact_stop_thresholds(values, second, stop_pct, walked, delete_pct=100.0):
     """-exact_stop: `values` with the level that reaches the stop set from a second round of
     surveys, made with `values` below the stop level they aim at (the build pass's very
     state there) and every candidate walked at it (level index `walked`): the first level
     whose picks would take the union below the stop deletes only what is above it (its
-    picks' bins, best first), and the levels after it nothing."""
+    picks' bins, best first; at most the delete percentage of its vertices, as a whole
+    run's levels), and the levels after it nothing."""
     stop = stop_pct / 100.0 * union_vertices([s[0] for s in second if s])
     for k in range(walked + 1):
         rows = [s[k] for s in second if len(s) > k]
@@ -109,7 +110,7 @@ def exact_stop_thresholds(values, second, stop_pct, walked):
         vertices = union_vertices(rows) - border_picked(rows)
         if not rows or vertices - sum(r["picked"] for r in rows) <= stop or k == walked:
             break
-    target = max(0.0, vertices - stop)
+    target = max(0.0, min(vertices - stop, delete_pct / 100.0 * vertices))
     stop_threshold = threshold_reaching(pooled(rows, "histogram"), pooled(rows, "picked_histogram"), target)
     return values[:k] + [stop_threshold] + [(0.0, 1.0)] * (len(values) - k - 1)
 
