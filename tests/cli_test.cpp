@@ -385,6 +385,12 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
                                    dir + "/lonlat.gpkg");
   ASSERT_EQ(geographic.exitCode, 0) << geographic.err;
   EXPECT_EQ(geographic.out.substr(0, geographic.out.find(" in ")), near.out.substr(0, near.out.find(" in ")));
+  // The same numbers without -center_srs lie far outside the TIN: said, not silently coarse.
+  const CliRun lost = tinlod("lod -center " + std::string(lonLat) + " -dropoff 200 " + dir + "/h.gpkg " + dir + "/lost.gpkg");
+  ASSERT_EQ(lost.exitCode, 0) << lost.err;
+  EXPECT_TRUE(has(lost.err, "1 of the 1 centres of detail lie outside the TIN")) << lost.err;
+  EXPECT_TRUE(has(lost.err, "give -center_srs for another")) << lost.err;
+  EXPECT_FALSE(has(near.err, "outside the TIN")) << near.err;
   // Full detail inside a 1 km disc, coarse outside: over 500 level-0 triangles in it.
   const std::string disc = geojson(dir + "/r.geojson", R"({"type": "Polygon", "coordinates": [[[401000, 5203000], [403000, 5203000], [403000, 5205000], [401000, 5205000], [401000, 5203000]]]})");
   const CliRun region = tinlod("lod -region " + disc + " " + dir + "/h.gpkg " + dir + "/region.gpkg");

@@ -2,6 +2,8 @@
 #include "dataset_files.h"
 #include "tinlod/lod_job.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -60,7 +62,8 @@ std::map<std::string, std::string> jobMetadata(const std::string& source, const 
 
 // The tests with the centres and region read from their files, in the hierarchy's CRS.
 LodOptions resolvedOptions(const LodJobOptions& options, const std::string& crsWkt,
-                           std::unique_ptr<PolygonRegion>& region, const ProgressRange& progress) {
+                           std::unique_ptr<PolygonRegion>& region, std::vector<std::array<double, 2>>& centres,
+                           const ProgressRange& progress) {
   LodOptions lod = options.lod;
   if (!options.centresSrs.empty()) {
     const auto transform = transformToTin(options.centresSrs, crsWkt, "-center_srs", progress);
@@ -76,23 +79,38 @@ LodOptions resolvedOptions(const LodJobOptions& options, const std::string& crsW
     PolygonRegion* meets = region.get();
     lod.meetsRegion = [meets](const std::array<std::array<double, 2>, 3>& t) { return meets->meets(t); };
   }
+  centres = lod.centres;
   return lod;
 }
 
 // One hierarchy GeoPackage, read whole.
 ExtractedLod extractFileLod(const std::string& path, const LodJobOptions& options, std::unique_ptr<PolygonRegion>& region,
-                            const ProgressRange& progress) {
+                            std::vector<std::array<double, 2>>& centres, const ProgressRange& progress) {
   const StoredHierarchy stored = readHierarchy(path, progress.sub(0, 0.8));
   if (stored.info.kind != "hierarchy")
     throw Error("'" + path + "' is a single TIN (" + stored.info.kind + "), not a hierarchy: make one with tinlod build");
   const Hierarchy& h = stored.hierarchy;
-  const LodOptions lod = resolvedOptions(options, h.base.crsWkt, region, progress);
+  const LodOptions lod = resolvedOptions(options, h.base.crsWkt, region, centres, progress);
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::uint32_t> triangles = extractLod(h, lod, progress.sub(0.8, 1));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ExtractedLod out = extractedLod(h, triangles);
   out.seconds = seconds;
   return out;
+}
+
+// A centre far from the data (a longitude and latitude given for a projected TIN, say)
+// restores nothing near it: the TIN comes out at its coarsest, which deserves a word.
+void warnOfCentresOutside(const std::vector<std::array<double, 2>>& centres, const Tin& tin, const ProgressRange& progress) {
+  if (centres.empty() || tin.vertices.empty()) return;
+  double x0 = tin.vertices[0].x, x1 = x0, y0 = tin.vertices[0].y, y1 = y0;
+  for (const TinVertex& v : tin.vertices) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
+  std::size_t outside = 0;
+  for (const auto& c : centres) outside += c[0] < x0 || c[0] > x1 || c[1] < y0 || c[1] > y1;
+  if (outside == 0) return;
+  progress.warn(std::to_string(outside) + " of the " + std::to_string(centres.size()) + " centres of detail lie outside the TIN (x " +
+                formatNumber(x0) + " to " + formatNumber(x1) + ", y " + formatNumber(y0) + " to " + formatNumber(y1) + " in " +
+                tin.crsName + "): -center is in the hierarchy's CRS; give -center_srs for another (EPSG:4326 for lon/lat)");
 }
 
 }  // namespace
@@ -109,13 +127,15 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   std::unique_ptr<PolygonRegion> region;
+  std::vector<std::array<double, 2>> centres;  // in the hierarchy's CRS, once read
   // A catalogue a tile at a time: the memory of one tile and of the output.
   const ExtractedLod lod =
       isCatalogue(hierarchyPath)
           ? extractCatalogueLod(hierarchyPath,
-                                [&](const std::string& crs) { return resolvedOptions(options, crs, region, all); },
+                                [&](const std::string& crs) { return resolvedOptions(options, crs, region, centres, all); },
                                 all.sub(0, 0.6))
-          : extractFileLod(hierarchyPath, options, region, all.sub(0, 0.6));
+          : extractFileLod(hierarchyPath, options, region, centres, all.sub(0, 0.6));
+  warnOfCentresOutside(centres, lod.tin, all);
   LodSummary s;
   s.seconds = lod.seconds;
   s.trianglesPerLevel.assign(static_cast<std::size_t>(lod.coarsest) + 1, 0);
