@@ -79,8 +79,15 @@ LevelStats singleLevel(GDALDataset& ds, const HierarchyInfo& info) {
   };
   LevelStats l;
   l.vertices = rows("vertices"), l.triangles = rows("triangles");
-  // Greedy insertion records its maximum error over the candidates, as a build records each level's.
+  // A single TIN is not measured against the DEM when written (tinlod accuracy does that):
+  // unknown, not zero. Greedy insertion records its maximum error over the candidates.
+  l.maxError = l.rmse = std::nan("");
   if (const auto e = info.metadata.find("max_error"); e != info.metadata.end()) l.maxError = std::strtod(e->second.c_str(), nullptr);
+  OGRLayer* vertices = ds.GetLayerByName("vertices");
+  if (vertices && vertices->GetLayerDefn()->GetFieldIndex("outline") >= 0 && vertices->SetAttributeFilter("outline = 1") == OGRERR_NONE) {
+    l.outlineVertices = static_cast<std::size_t>(std::max<GIntBig>(0, vertices->GetFeatureCount()));
+    vertices->SetAttributeFilter(nullptr);
+  }
   return l;
 }
 
@@ -178,7 +185,12 @@ std::string toJson(const HierarchyInfo& info) {
       out << l.maxError;
     else
       out << "null";  // JSON has no infinity
-    out << ", \"rmse\": " << l.rmse << ", \"cells\": " << l.cells << ", \"cells_given_up\": "
+    out << ", \"rmse\": ";
+    if (std::isfinite(l.rmse))
+      out << l.rmse;
+    else
+      out << "null";  // not measured (a single TIN)
+    out << ", \"cells\": " << l.cells << ", \"cells_given_up\": "
         << info.levels.front().cells - l.cells << ", \"outline_vertices\": ";
     if (info.kind == "catalogue")
       out << "null";  // the tiles' outlines run along their shared lines
@@ -207,13 +219,16 @@ std::string toText(const HierarchyInfo& info) {
       << "deleted" << std::setw(10) << "select s" << std::setw(10) << "delete s" << std::setw(12) << "max error m" << std::setw(9) << "RMSE m"
       << std::setw(10) << "outline" << std::setw(15) << "net cells lost" << "\n";
   // Each number one character narrower than its column: a space always separates them.
+  // A single TIN (sample, insert, lod) has no deletions, times or cells of its own.
+  const bool single = !catalogue && info.kind != "hierarchy";
+  const auto known = [](double v, int decimals, int width) { return std::isfinite(v) ? columnNumber(v, decimals, width) : "-"; };
   for (const LevelStats& l : info.levels) {
     const std::string outline = catalogue ? "-" : std::to_string(l.outlineVertices);
     out << std::setw(6) << l.level << std::setw(11) << l.vertices << std::setw(11) << l.triangles << std::setw(10)
-        << l.deleted << std::setw(10) << columnNumber(l.selectSeconds, 3, 9) << std::setw(10)
-        << columnNumber(l.deleteSeconds, 3, 9) << std::setw(12) << columnNumber(l.maxError, 2, 11) << std::setw(9)
-        << columnNumber(l.rmse, 2, 8) << std::setw(10) << outline << std::setw(15) << info.levels.front().cells - l.cells
-        << "\n";
+        << (single ? "-" : std::to_string(l.deleted)) << std::setw(10) << (single ? "-" : columnNumber(l.selectSeconds, 3, 9))
+        << std::setw(10) << (single ? "-" : columnNumber(l.deleteSeconds, 3, 9)) << std::setw(12) << known(l.maxError, 2, 11)
+        << std::setw(9) << known(l.rmse, 2, 8) << std::setw(10) << outline << std::setw(15)
+        << (single ? "-" : std::to_string(info.levels.front().cells - l.cells)) << "\n";
   }
   return out.str();
 }
