@@ -399,6 +399,10 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   ASSERT_NE(at, std::string::npos) << region.out;
   EXPECT_GT(std::stoi(region.out.substr(at + 23)), 1000) << region.out;
   EXPECT_TRUE(has(tinlod("info " + dir + "/region.gpkg").out, "kind = lod"));
+  // A single TIN's errors against the DEM are not recorded: unknown, not zero.
+  const CliRun lodInfo = tinlod("info -json " + dir + "/region.gpkg");
+  EXPECT_TRUE(has(lodInfo.out, "\"max_error\": null") && has(lodInfo.out, "\"rmse\": null")) << lodInfo.out;
+  EXPECT_FALSE(has(lodInfo.out, "\"outline_vertices\": 0}")) << lodInfo.out;
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
            {"lod " + dir + "/h.gpkg " + dir + "/bad.gpkg", "give a test"},
            {"lod -dropoff 100 " + dir + "/h.gpkg " + dir + "/bad.gpkg", "needs a centre"},
