@@ -5,6 +5,7 @@
 #include <qgsproviderregistry.h>
 #include <qgsvectorlayer.h>
 
+#include <QDir>
 #include <QFileInfo>
 
 namespace tinlod::qgis {
@@ -21,7 +22,15 @@ std::string hierarchyFile(const QgsProcessingParameterDefinition* definition, co
   if (!layer) throw QgsProcessingException(QStringLiteral("HIERARCHY: ") + wanted);
   const QVariantMap parts = QgsProviderRegistry::instance()->decodeUri(layer->providerType(), layer->source());
   const QString path = parts.value(QStringLiteral("path")).toString();
-  if (layer->providerType() != QLatin1String("ogr") || QFileInfo(path).suffix().compare(QLatin1String("gpkg"), Qt::CaseInsensitive) != 0)
+  const QFileInfo file(path);
+  // A level of a tinlod tiles catalogue (<stem>_levels/level_K.vrt): the catalogue is the input.
+  if (file.suffix().compare(QLatin1String("vrt"), Qt::CaseInsensitive) == 0 && file.dir().dirName().endsWith(QLatin1String("_levels"))) {
+    const QString stem = file.dir().dirName().chopped(int(qstrlen("_levels")));
+    throw QgsProcessingException(QStringLiteral("HIERARCHY: '%1' is one level of a tinlod tiles catalogue: choose the catalogue "
+                                                "itself, %2")
+                                     .arg(layer->name(), QDir::cleanPath(file.dir().absoluteFilePath(QStringLiteral("../%1.gpkg").arg(stem)))));
+  }
+  if (layer->providerType() != QLatin1String("ogr") || file.suffix().compare(QLatin1String("gpkg"), Qt::CaseInsensitive) != 0)
     throw QgsProcessingException(QStringLiteral("HIERARCHY: '%1' is not stored in a GeoPackage: %2").arg(layer->name(), wanted));
   return path.toStdString();
 }

@@ -778,6 +778,17 @@ TEST(Processing, HierarchyIsAFileOrALoadedLayerOfIt) {
   const Result bad = locate(scratch->id(), QString::fromStdString(dir + "/bad_layer.gpkg"));
   EXPECT_FALSE(bad.ok);
   EXPECT_TRUE(bad.error.contains("HIERARCHY: 'scratch' is not stored in a GeoPackage")) << bad.error.toStdString();
+  // A level file of a tinlod tiles catalogue (<stem>_levels/level_K.vrt): the catalogue is named.
+  std::filesystem::create_directories(dir + "/job_levels");
+  std::ofstream(dir + "/job_levels/level_2.vrt")
+      << "<OGRVRTDataSource><OGRVRTLayer name=\"level_2\"><SrcDataSource>" << hier.toStdString()
+      << "</SrcDataSource><SrcLayer>level_2</SrcLayer></OGRVRTLayer></OGRVRTDataSource>";
+  const Result ofCatalogue = locate(QString::fromStdString(dir + "/job_levels/level_2.vrt"),
+                                    QString::fromStdString(dir + "/by_vrt.gpkg"));
+  EXPECT_FALSE(ofCatalogue.ok);
+  EXPECT_TRUE(ofCatalogue.error.contains("is one level of a tinlod tiles catalogue: choose the catalogue itself, " +
+                                         QString::fromStdString(dir) + "/job.gpkg"))
+      << ofCatalogue.error.toStdString();
 }
 
 TEST(Processing, LocateAddsElevationsAsTheCoreDoes) {

@@ -6,6 +6,7 @@ argument that is not UTF-8 text, which the catalogue's metadata cannot hold, ref
 Usage: tiles_arguments_test.py TILES_SOURCE_DIR"""
 import os
 import sys
+import tempfile
 
 sys.path.insert(0, sys.argv[1])
 from tinlodtiles.arguments import absolute_files, parse_merge, parse_run  # noqa: E402
@@ -39,5 +40,13 @@ for parse, args in ((parse_run, [latin1, "c.gpkg", "-tile_size", "300"]),
           % " ".join(a if a != latin1 else "d\\xe9m.tif" for a in args),
           message is not None and message.startswith("d\\xe9m.tif is not UTF-8 text") and "rename it" in message,
           message)
+
+with tempfile.TemporaryDirectory() as folder:
+    catalogue = os.path.join(folder, "c.gpkg")
+    open(catalogue, "w").close()
+    for level in ("-2", "x", "1.5"):
+        message = refusal(parse_merge, [catalogue, "-level", level, os.path.join(folder, "out.gpkg")])
+        check("merge -level %s is refused, naming -1 for the coarsest" % level,
+              message == "-level %s: give a level number, 0 or more, or -1 for the coarsest" % level, message)
 
 sys.exit(exit_code("tiles arguments"))

@@ -274,7 +274,9 @@ def parse_merge(args):
     check_output(out, "OUT")
     if os.path.abspath(out) == os.path.abspath(catalogue):
         raise TilesError("OUT %s is the catalogue itself: name another file" % out)
-    level = -1 if options["-level"] == "-1" else whole_number(options["-level"], "-level", 0)
+    if options["-level"] != "-1" and not re.fullmatch(r"[0-9]+", options["-level"]):
+        raise TilesError("-level %s: give a level number, 0 or more, or -1 for the coarsest" % options["-level"])
+    level = int(options["-level"])
     return MergeArguments(catalogue, level, out,
                           extent(options["-te"]) if "-te" in options else None,
                           "-overwrite" in options, "-q" in options)
