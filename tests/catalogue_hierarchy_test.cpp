@@ -721,8 +721,10 @@ TEST(CatalogueHierarchy, InfoNamesAFinishedTileItCannotRead) {
   const std::string catalogue =
       alteredCatalogue("info_missing.gpkg", "UPDATE tiles SET file = 'gone.gpkg' WHERE tile_col = 0 AND tile_row = 1");
   const std::string message = test::errorOf([&] { readHierarchyInfo(catalogue); });
-  EXPECT_NE(message.find("tile 0,1 of the catalogue ("), std::string::npos) << message;
-  EXPECT_NE(message.find("gone.gpkg' does not exist"), std::string::npos) << message;
+  EXPECT_NE(message.find("tile 0,1's file '"), std::string::npos) << message;
+  EXPECT_NE(message.find("gone.gpkg' does not exist: the catalogue names its tiles' files relative to itself"),
+            std::string::npos)
+      << message;
   // A reader of one hierarchy given the catalogue says what it is.
   const std::string asFile = test::errorOf([&] { readHierarchy(builtTiles().catalogue, kRange); });
   EXPECT_NE(asFile.find("is a tinlod-tiles catalogue, not the hierarchy of one tile"), std::string::npos) << asFile;

@@ -655,8 +655,9 @@ def main(tinlod, tiles):
     moved = os.path.join(work, "moved", "a.gpkg")
     shutil.copy(catalogue, moved)
     lost = [run([tiles, "merge", moved, "-level", "1", os.path.join(work, "lost.gpkg")]),
-            run([options[options.index("-tinlod") + 1], "lod", moved, os.path.join(work, "lost_lod.gpkg"), "-max_error", "5"])]
-    check("(d) a catalogue moved without its tiles folder: merge and tinlod lod say the folder must stay beside it",
+            run([options[options.index("-tinlod") + 1], "lod", moved, os.path.join(work, "lost_lod.gpkg"), "-max_error", "5"]),
+            run([options[options.index("-tinlod") + 1], "info", moved])]
+    check("(d) a catalogue moved without its tiles folder: merge, tinlod lod and info say the folder must stay beside it",
           all(r.returncode == 1 and "tiles folder must stay beside it" in r.stderr for r in lost),
           [r.stderr[-400:] for r in lost])
     partly = run([tiles, "merge", stopped, "-level", "1", os.path.join(work, "partly.gpkg")])
