@@ -116,6 +116,12 @@ check("-exact_stop: the walked level deletes what is above the stop, best first,
 exact = thresholds.exact_stop_thresholds(first_values, second, 30, 2, 20)
 check("-exact_stop: the walked level deletes at most the delete percentage of its vertices",
       exact[2][0] == thresholds.bin_top(20) and abs(exact[2][1] - 4 / 30) < 1e-12, exact)
+# With the border rule's 8 picks there, they count toward the 16: 8 of the level's own.
+capped_border = [[dict(r) for r in s] for s in second]
+capped_border[0][2]["border_picked"] = capped_border[1][2]["border_picked"] = 4
+exact = thresholds.exact_stop_thresholds(first_values, capped_border, 30, 2, 20)
+check("-exact_stop: the border rule's picks count toward the delete percentage",
+      exact[2][0] == thresholds.bin_top(10) and abs(exact[2][1] - 8 / 30) < 1e-12, exact)
 # The border rule's picks at the walked level (4 of the union's in each tile, at most: there
 # they passed no threshold) go beside its own: 12 of them, the smooth tile's 12 picks.
 with_border = [[dict(r) for r in s] for s in second]
@@ -137,6 +143,30 @@ second[0][1]["border_picked"] = second[1][1]["border_picked"] = 10
 exact = thresholds.exact_stop_thresholds(first_values, second, 30, 2)
 check("-exact_stop: the border rule's picks below the walked level count toward the stop",
       abs(exact[1][0] - thresholds.bin_top(20)) < 1e-30 and abs(exact[1][1] - 0.25) < 1e-12, exact)
+
+# A bin two tiles hold, whose picks differ (tile A can take 5 of its 100, B 90 of its 100):
+# each tile deletes at most its own picks, so the share that deletes 50 is 0.45 (A's 5, B's
+# 45), not the pooled 0.25 (A's 5 and B's 25: 30).
+check("a bin's share counts each tile's picks as its cap", abs(thresholds.share_reaching([(100, 5), (100, 90)], 50) - 0.45) < 1e-12,
+      thresholds.share_reaching([(100, 5), (100, 90)], 50))
+check("... 0.9 when every pick is needed (B's 90 are 0.9 of its candidates)",
+      abs(thresholds.share_reaching([(100, 5), (100, 90)], 95) - 0.9) < 1e-12)
+
+
+def survey_row(vertices, picked, considered, histogram, last, walked=None):
+    return dict(level(vertices, picked, considered, histogram), last=last,
+                **({"picked_histogram": [[b, n] for b, n in walked.items()]} if walked else {}))
+
+
+# A small tile whose survey's line deletions outrun its count (it reaches no vertex left)
+# is followed to 0 without failing.
+small = [survey_row(100, 20, 40, {1: 20, 2: 20, 3: 20, 4: 20}, 1e-9, {1: 10, 2: 10}),
+         survey_row(50, 10, 20, {2: 10, 3: 10, 4: 10, 5: 10}, 2e-9, {2: 5, 3: 5}),
+         survey_row(25, 5, 10, {3: 5, 4: 5, 5: 5}, 4e-9), survey_row(15, 3, 6, {6: 6}, 8e-9)]
+large = [survey_row(1000, 200, 400, {400: 400}, 1e-6), survey_row(800, 160, 320, {410: 320}, 2e-6),
+         survey_row(640, 128, 256, {420: 256}, 4e-6), survey_row(512, 100, 200, {430: 200}, 8e-6)]
+check("a tile followed down to no vertex does not stop the thresholds",
+      len(thresholds.level_thresholds([small, large], 20, 5)) == 4)
 
 # A survey of another binning is refused.
 with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:

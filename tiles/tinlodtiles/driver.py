@@ -210,6 +210,8 @@ def exact_stop(catalogue, surveyed, arguments, workers, values, first, percents)
     """-exact_stop: the first round's thresholds with the level that reaches the stop set
     from a second survey pass, which makes the levels below the stop level they aim at with
     them (the build pass's very state) and walks every candidate at it."""
+    if not values:  # no tile with data was surveyed
+        return values
     level = thresholds.stop_level(first, *percents)
     if level is None:  # no level is expected to reach the stop: the last comes nearest
         level = len(values) - 1
@@ -372,7 +374,7 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
     except KeyboardInterrupt:
         client.cancel(list(futures))
         # The catalogue's count: a stop in a survey pass leaves every unbuilt tile pending.
-        raise TilesStopped(sum(1 for r in catalogue.rows().values() if r["status"] not in ("done", "empty"))) from None
+        raise TilesStopped(sum(1 for r in catalogue.rows().values() if r["status"] == "pending")) from None
     except BaseException:  # not retried while the run stops
         client.cancel(list(futures))
         raise

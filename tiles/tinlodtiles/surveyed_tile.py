@@ -45,7 +45,9 @@ class SurveyedTile:
             vertices += weight * row["vertices"]
         scale = self.vertices / vertices if vertices else 0.0
         shift = self.rise()
-        return ({b + shift: n * scale for b, n in counts.items()}, {b + shift: n * scale for b, n in picks.items()})
+        # Bin 0 holds the ties of no importance (a flat sea's), which stay so.
+        return ({b + shift if b else 0: n * scale for b, n in counts.items()},
+                {b + shift if b else 0: n * scale for b, n in picks.items()})
 
     def around(self):
         """The survey's levels around the current count, with their weights."""
@@ -65,13 +67,13 @@ class SurveyedTile:
         the importance of its last picks rose with fewer vertices over its last two full
         levels (a power law)."""
         last = self.levels[-1]["vertices"]
-        if self.vertices >= last or len(self.full) < 2:
+        if self.vertices >= last or self.vertices <= 0 or len(self.full) < 2:
             return 0
         a, b = self.full[-2], self.full[-1]
         if not (a["last"] > 0 and b["last"] > 0 and a["vertices"] > b["vertices"]):
             return 0
         slope = math.log(b["last"] / a["last"]) / math.log(b["vertices"] / a["vertices"])
-        return int(round(BINS_PER_DECADE * slope * math.log10(self.vertices / last)))
+        return max(0, int(round(BINS_PER_DECADE * slope * math.log10(self.vertices / last))))
 
     def delete(self, picked, row):
         """The level's deletions: `picked` of its own, and the border rule's as its survey's

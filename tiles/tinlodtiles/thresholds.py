@@ -66,7 +66,7 @@ def followed_levels(surveys, delete_pct, stop_pct):
         rows = [t.levels[k] if len(t.levels) > k else None for t in tiles]
         states = [t.state() for t in tiles]
         target = fraction * union - border_picked([r for r in rows if r])
-        threshold = threshold_reaching(added(c for c, _ in states), added(p for _, p in states), target)
+        threshold = threshold_reaching(added(c for c, _ in states), added(p for _, p in states), target, states)
         for t, (counts, picks), row in zip(tiles, states, rows):
             t.delete(picks_below(counts, picks, *threshold), row)
         out.append((threshold, fraction))
@@ -110,24 +110,49 @@ def exact_stop_thresholds(values, second, stop_pct, walked, delete_pct=100.0):
         vertices = union_vertices(rows) - border_picked(rows)
         if not rows or vertices - sum(r["picked"] for r in rows) <= stop or k == walked:
             break
-    target = max(0.0, min(vertices - stop, delete_pct / 100.0 * vertices))
-    stop_threshold = threshold_reaching(pooled(rows, "histogram"), pooled(rows, "picked_histogram"), target)
+    # The border rule's picks count toward the delete percentage, as in a level of followed_levels.
+    target = max(0.0, min(vertices - stop, delete_pct / 100.0 * union_vertices(rows) - border_picked(rows)))
+    per_tile = [(dict((b, n) for b, n in r.get("histogram", [])), dict((b, n) for b, n in r.get("picked_histogram", [])))
+                for r in rows]
+    stop_threshold = threshold_reaching(pooled(rows, "histogram"), pooled(rows, "picked_histogram"), target, per_tile)
     return values[:k] + [stop_threshold] + [(0.0, 1.0)] * (len(values) - k - 1)
 
 
-def threshold_reaching(counts, picks, target):
+def threshold_reaching(counts, picks, target, tiles=None):
     """The (threshold, share) whose deletions reach `target`: the bin where the picks of the
     bins up to it (`picks`, bin: count) do, and the share of that bin's candidates (`counts`)
-    still needed (a flat area's ties share the rest)."""
+    still needed (a flat area's ties share the rest). Each tile deletes at most its own
+    picks of the bin, so with `tiles` (each tile's (counts, picks)) the share is the one
+    whose deletions, so capped tile by tile, add up to what is needed."""
     if target <= 0:
         return 0.0, 1.0
     threshold, seen = 0.0, 0.0
     for b in sorted(counts):
         threshold = bin_top(b)
         if seen + picks.get(b, 0) >= target:
-            return threshold, min(1.0, max(0.0, (target - seen) / counts[b]))
+            needed = target - seen
+            if tiles is None:
+                return threshold, min(1.0, max(0.0, needed / counts[b]))
+            return threshold, share_reaching([(c.get(b, 0.0), p.get(b, 0.0)) for c, p in tiles], needed)
         seen += picks.get(b, 0)
     return threshold, 1.0
+
+
+def share_reaching(bins, needed):
+    """The share s of a bin's candidates with sum over tiles of min(picks, s x candidates)
+    = needed (bins: each tile's (candidates, picks) in it): the tiles whose picks run out
+    first stop adding."""
+    bins = sorted((p / n, n, p) for n, p in bins if n > 0 and p > 0)
+    capped, open_candidates = 0.0, sum(n for _, n, _ in bins)
+    for ratio, n, p in bins:
+        # Below this ratio every tile still open deletes s x its candidates.
+        if capped + ratio * open_candidates >= needed:
+            break
+        capped += p
+        open_candidates -= n
+    if open_candidates <= 0:
+        return 1.0
+    return min(1.0, max(0.0, (needed - capped) / open_candidates))
 
 
 def pooled(rows, key):
