@@ -41,6 +41,16 @@ for parse, args in ((parse_run, [latin1, "c.gpkg", "-tile_size", "300"]),
           message is not None and message.startswith("d\\xe9m.tif is not UTF-8 text") and "rename it" in message,
           message)
 
+# Run from a folder whose name is not UTF-8: the relative names are recorded as absolute paths.
+with tempfile.TemporaryDirectory() as folder:
+    latin1_folder = os.path.join(folder, latin1[:-len(".tif")])
+    os.mkdir(latin1_folder)
+    os.chdir(latin1_folder)
+    message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", "300"])
+    os.chdir(here)
+check("a relative name in a folder whose name is not UTF-8 is refused too",
+      message is not None and "d\\xe9m/dem.tif is not UTF-8 text" in message, message)
+
 with tempfile.TemporaryDirectory() as folder:
     catalogue = os.path.join(folder, "c.gpkg")
     open(catalogue, "w").close()

@@ -169,6 +169,8 @@ def parse_run(args):
     if arguments.exact_stop and (arguments.selection != "global" or "-threshold" in build_options):
         raise TilesError("-exact_stop sets the last level from a second survey pass of -selection global: "
                          "it does nothing with -selection tile or -- -threshold; leave it out")
+    # Recorded as absolute paths: a relative name from a folder whose name is not UTF-8 is not either.
+    check_text([p if p.startswith("/vsi") else os.path.abspath(p) for p in positionals] + arguments.build_options)
     check_run(arguments)
     arguments.tinlod = find_tinlod(options.get("-tinlod"))
     return arguments

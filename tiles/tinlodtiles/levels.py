@@ -38,7 +38,7 @@ def union_vrt(level, files, vrt_folder=None):
 
 
 def check_exists(path):
-    if not os.path.exists(path):
+    if not path.startswith("/vsi") and not os.path.exists(path):
         raise TilesError("the tile file %s does not exist: the catalogue names its tiles' files relative to itself, so "
                          "its tiles folder must stay beside it; move the folder back, or run tinlod-tiles on the "
                          "catalogue again to build the tile" % path)
