@@ -391,6 +391,9 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   EXPECT_TRUE(has(lost.err, "1 of the 1 centres of detail lie outside the TIN")) << lost.err;
   EXPECT_TRUE(has(lost.err, "give -center_srs for another")) << lost.err;
   EXPECT_FALSE(has(near.err, "outside the TIN")) << near.err;
+  // Given in a CRS that does not hold them (UTM numbers as lon/lat): the advice is to check it.
+  const CliRun wrongSrs = tinlod("lod -center 0.5 0.5 -center_srs EPSG:4326 -dropoff 200 " + dir + "/h.gpkg " + dir + "/wrong.gpkg");
+  EXPECT_TRUE(has(wrongSrs.err, "are they in the CRS they say (-center_srs)")) << wrongSrs.err;
   // Full detail inside a 1 km disc, coarse outside: over 500 level-0 triangles in it.
   const std::string disc = geojson(dir + "/r.geojson", R"({"type": "Polygon", "coordinates": [[[401000, 5203000], [403000, 5203000], [403000, 5205000], [401000, 5205000], [401000, 5203000]]]})");
   const CliRun region = tinlod("lod -region " + disc + " " + dir + "/h.gpkg " + dir + "/region.gpkg");
@@ -402,6 +405,8 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   // A single TIN's errors against the DEM are not recorded: unknown, not zero.
   const CliRun lodInfo = tinlod("info -json " + dir + "/region.gpkg");
   EXPECT_TRUE(has(lodInfo.out, "\"max_error\": null") && has(lodInfo.out, "\"rmse\": null")) << lodInfo.out;
+  EXPECT_TRUE(has(lodInfo.out, "\"deleted\": null, \"select_seconds\": null") && has(lodInfo.out, "\"cells\": null"))
+      << lodInfo.out;
   EXPECT_FALSE(has(lodInfo.out, "\"outline_vertices\": 0}")) << lodInfo.out;
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
            {"lod " + dir + "/h.gpkg " + dir + "/bad.gpkg", "give a test"},

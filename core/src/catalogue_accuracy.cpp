@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "accuracy_raster_canvas.h"
 #include "catalogue_hierarchy.h"
@@ -398,30 +400,84 @@ void addVertices(const std::vector<std::size_t>& topLevel, std::vector<LevelSums
   for (std::size_t L = sums.size(); L-- > 0;) sums[L].stats.vertices += above += topLevel[L];
 }
 
+// The cells on the tiles' edges, gathered across tiles: a vertex on a line two (or, at a
+// corner, four) tiles share counts once, whichever of them hold it (beside nodata, only
+// one may). A cell is counted, and forgotten, once every finished tile that holds it has
+// been read: the map holds the edges of the tiles read but not yet met by their
+// neighbours, not every edge of the catalogue.
+class EdgeVertices {
+ public:
+  explicit EdgeVertices(const std::vector<CatalogueTile>& finished) {
+    for (const CatalogueTile& t : finished) {
+      starts_.insert(key(t.yoff, t.xoff));
+      cols_.emplace(t.xoff, t.xsize), rows_.emplace(t.yoff, t.ysize);
+    }
+  }
+
+  // A tile's vertex on its edge, by cell of the raster, with its highest level: counted in
+  // topLevel once the last of the cell's tiles has given it.
+  void add(int row, int col, std::int32_t level, std::vector<std::size_t>& topLevel) {
+    const std::uint64_t cell = key(row, col);
+    Seen& seen = cells_[cell];
+    seen.level = std::max(seen.level, level), ++seen.tiles;
+    if (seen.tiles >= holders(row, col)) ++topLevel[std::size_t(seen.level)], cells_.erase(cell);
+  }
+
+  // The cells some holder of which had no vertex there (nodata on its side).
+  void finish(std::vector<std::size_t>& topLevel) {
+    for (const auto& [cell, seen] : cells_) ++topLevel[std::size_t(seen.level)];
+    cells_.clear();
+  }
+
+ private:
+  struct Seen {
+    std::int32_t level = 0;
+    int tiles = 0;
+  };
+  static std::uint64_t key(int row, int col) { return (std::uint64_t(std::uint32_t(row)) << 32) | std::uint32_t(col); }
+
+  // The finished tiles whose window holds the cell.
+  int holders(int row, int col) const {
+    int n = 0;
+    for (int xoff : starts(cols_, col))
+      for (int yoff : starts(rows_, row)) n += starts_.count(key(yoff, xoff)) > 0;
+    return n;
+  }
+
+  // The starts of the windows (start: size) that hold a position: at most two.
+  static std::vector<int> starts(const std::map<int, int>& windows, int at) {
+    std::vector<int> out;
+    auto it = windows.upper_bound(at);
+    for (int k = 0; k < 2 && it != windows.begin(); ++k) {
+      --it;
+      if (at < it->first + it->second) out.push_back(it->first);
+    }
+    return out;
+  }
+
+  std::unordered_set<std::uint64_t> starts_;  // (yoff, xoff) of the finished tiles
+  std::map<int, int> cols_, rows_;            // the windows' starts and sizes across and down
+  std::unordered_map<std::uint64_t, Seen> cells_;
+};
+
 // The level statistics the build recorded, pooled as readCatalogueHierarchy pools them,
-// and the tile's vertices by their highest level: those inside it counted here, those on
-// its edges gathered in `edges` by cell of the raster, so that a vertex on a shared line
-// counts once, whichever tiles hold it (beside nodata, only one may).
-void poolLevels(const CatalogueTile& tile, const Hierarchy& h, std::vector<LevelSums>& sums,
-                std::unordered_map<std::uint64_t, std::int32_t>& edges) {
+// and the tile's vertices by their highest level, those on its edges through `edges`.
+void poolLevels(const CatalogueTile& tile, const Hierarchy& h, std::vector<LevelSums>& sums, EdgeVertices& edges) {
   for (std::size_t L = 0; L < sums.size(); ++L) poolLevelStats(sums[L].stats, h.levels[L]);
   std::vector<std::size_t> topLevel(sums.size(), 0);
   for (std::size_t v = 0; v < h.base.vertices.size(); ++v) {
     const TinVertex& p = h.base.vertices[v];
-    if (p.col == 0 || p.row == 0 || p.col == tile.xsize - 1 || p.row == tile.ysize - 1) {
-      const std::uint64_t cell = (std::uint64_t(std::uint32_t(p.row + tile.yoff)) << 32) | std::uint32_t(p.col + tile.xoff);
-      std::int32_t& level = edges.try_emplace(cell, h.vertexLevel[v]).first->second;
-      level = std::max(level, h.vertexLevel[v]);
-    } else {
+    if (p.col == 0 || p.row == 0 || p.col == tile.xsize - 1 || p.row == tile.ysize - 1)
+      edges.add(p.row + tile.yoff, p.col + tile.xoff, h.vertexLevel[v], topLevel);
+    else
       ++topLevel[h.vertexLevel[v]];
-    }
   }
   addVertices(topLevel, sums);
 }
 
-void addEdgeVertices(const std::unordered_map<std::uint64_t, std::int32_t>& edges, std::vector<LevelSums>& sums) {
+void addEdgeVertices(EdgeVertices& edges, std::vector<LevelSums>& sums) {
   std::vector<std::size_t> topLevel(sums.size(), 0);
-  for (const auto& [cell, level] : edges) ++topLevel[std::size_t(level)];
+  edges.finish(topLevel);
   addVertices(topLevel, sums);
 }
 
@@ -500,7 +556,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
   std::unique_ptr<AccuracyRasterCanvas> canvas;
   std::int32_t rasterLevel = 0;
   std::size_t droppedHeights = 0;
-  std::unordered_map<std::uint64_t, std::int32_t> edges;  // the tiles' edge vertices, by cell: their highest level
+  EdgeVertices edges(tiles);
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const CatalogueTile& tile = tiles[i];
     const ProgressRange part = partOf(i);

@@ -11,7 +11,7 @@ namespace tinlod {
 namespace {
 
 HierarchyInfo finishedTileInfo(const TileStatus& tile) {
-  if (!std::filesystem::exists(tile.file))
+  if (tile.file.rfind("/vsi", 0) != 0 && !std::filesystem::exists(tile.file))
     throw Error("tile " + tile.name + "'s file '" + tile.file + "' does not exist: the catalogue names its tiles' files "
                 "relative to itself, so its tiles folder must stay beside it; move the folder back, or run tinlod tiles "
                 "on the catalogue again to build the tile");

@@ -177,9 +177,14 @@ std::string toJson(const HierarchyInfo& info) {
   out << "],\n  \"levels\": [";
   for (std::size_t i = 0; i < info.levels.size(); ++i) {
     const LevelStats& l = info.levels[i];
+    // A single TIN (sample, insert, lod) records no deletions, times or cells: null.
+    const bool single = info.kind != "hierarchy" && info.kind != "catalogue";
+    const auto count = [single](auto v) { return single ? std::string("null") : std::to_string(v); };
+    std::ostringstream seconds;
+    seconds << std::setprecision(10) << ", \"select_seconds\": " << l.selectSeconds << ", \"delete_seconds\": " << l.deleteSeconds;
     out << (i ? ",\n" : "\n") << "    {\"level\": " << l.level << ", \"vertices\": " << l.vertices
-        << ", \"triangles\": " << l.triangles << ", \"deleted\": " << l.deleted
-        << ", \"select_seconds\": " << l.selectSeconds << ", \"delete_seconds\": " << l.deleteSeconds
+        << ", \"triangles\": " << l.triangles << ", \"deleted\": " << count(l.deleted)
+        << (single ? std::string(", \"select_seconds\": null, \"delete_seconds\": null") : seconds.str())
         << ", \"max_error\": ";
     if (std::isfinite(l.maxError))
       out << l.maxError;
@@ -190,8 +195,8 @@ std::string toJson(const HierarchyInfo& info) {
       out << l.rmse;
     else
       out << "null";  // not measured (a single TIN)
-    out << ", \"cells\": " << l.cells << ", \"cells_given_up\": "
-        << info.levels.front().cells - l.cells << ", \"outline_vertices\": ";
+    out << ", \"cells\": " << count(l.cells) << ", \"cells_given_up\": "
+        << count(info.levels.front().cells - l.cells) << ", \"outline_vertices\": ";
     if (info.kind == "catalogue")
       out << "null";  // the tiles' outlines run along their shared lines
     else

@@ -99,9 +99,18 @@ ExtractedLod extractFileLod(const std::string& path, const LodJobOptions& option
   return out;
 }
 
+// What to check when centres lie outside the TIN, by where they came from.
+std::string centresAdvice(const LodJobOptions& options) {
+  if (!options.lod.centres.empty() && options.centresSrs.empty())
+    return "-center is in the hierarchy's CRS; give -center_srs for another (EPSG:4326 for lon/lat)";
+  return "are they in the CRS they say (" + std::string(options.lod.centres.empty() ? "-centers' layer" : "-center_srs") +
+         ") and on this TIN's data?";
+}
+
 // A centre far from the data (a longitude and latitude given for a projected TIN, say)
 // restores nothing near it: the TIN comes out at its coarsest, which deserves a word.
-void warnOfCentresOutside(const std::vector<std::array<double, 2>>& centres, const Tin& tin, const ProgressRange& progress) {
+void warnOfCentresOutside(const std::vector<std::array<double, 2>>& centres, const Tin& tin, const LodJobOptions& options,
+                          const ProgressRange& progress) {
   if (centres.empty() || tin.vertices.empty()) return;
   double x0 = tin.vertices[0].x, x1 = x0, y0 = tin.vertices[0].y, y1 = y0;
   for (const TinVertex& v : tin.vertices) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
@@ -110,7 +119,7 @@ void warnOfCentresOutside(const std::vector<std::array<double, 2>>& centres, con
   if (outside == 0) return;
   progress.warn(std::to_string(outside) + " of the " + std::to_string(centres.size()) + " centres of detail lie outside the TIN (x " +
                 formatNumber(x0) + " to " + formatNumber(x1) + ", y " + formatNumber(y0) + " to " + formatNumber(y1) + " in " +
-                tin.crsName + "): -center is in the hierarchy's CRS; give -center_srs for another (EPSG:4326 for lon/lat)");
+                tin.crsName + "): " + centresAdvice(options));
 }
 
 }  // namespace
@@ -135,7 +144,7 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
                                 [&](const std::string& crs) { return resolvedOptions(options, crs, region, centres, all); },
                                 all.sub(0, 0.6))
           : extractFileLod(hierarchyPath, options, region, centres, all.sub(0, 0.6));
-  warnOfCentresOutside(centres, lod.tin, all);
+  warnOfCentresOutside(centres, lod.tin, options, all);
   LodSummary s;
   s.seconds = lod.seconds;
   s.trianglesPerLevel.assign(static_cast<std::size_t>(lod.coarsest) + 1, 0);
