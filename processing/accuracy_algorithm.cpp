@@ -65,7 +65,8 @@ bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProce
 QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessingContext& context,
                                                QgsProcessingFeedback* feedback) {
   const AccuracyReport report = translateErrors(
-      [&] { return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback), validHeights_); });
+      [&] { return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback), validHeights_); },
+      {{QStringLiteral("-level"), QStringLiteral("LEVEL")}});
   const int level = accuracy_.rasterLevel < 0 ? static_cast<int>(report.rows.size()) - 1 : accuracy_.rasterLevel;
   const LevelAccuracy& row = report.rows[static_cast<std::size_t>(level)];
   for (const LevelAccuracy& r : report.rows) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "processing_feedback.h"
 
+#include <QRegularExpression>
+
 #include <qgsapplication.h>
 
 #include <memory>
@@ -37,6 +39,14 @@ Feedback processingFeedback(QgsProcessingFeedback* feedback) {
   };
   out.warning = [feedback](const std::string& m) { feedback->pushWarning(QString::fromStdString(m)); };
   out.info = [feedback](const std::string& m) { feedback->pushInfo(QString::fromStdString(m)); };
+  return out;
+}
+
+QString withParameterNames(const QString& message, const QList<QPair<QString, QString>>& names) {
+  QString out = message;
+  for (const auto& [option, parameter] : names)
+    out.replace(QRegularExpression(QStringLiteral("(^|[\\s'(])") + QRegularExpression::escape(option) + QStringLiteral("\\b")),
+                QStringLiteral("\\1") + parameter);
   return out;
 }
 

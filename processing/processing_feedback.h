@@ -4,6 +4,10 @@
 #include <qgsexception.h>
 #include <qgsprocessingfeedback.h>
 
+#include <QList>
+#include <QPair>
+#include <QString>
+
 #include <exception>
 
 #include "tinlod/feedback.h"
@@ -22,6 +26,20 @@ auto translateErrors(Work&& work) -> decltype(work()) {
     return work();
   } catch (const std::exception& e) {
     throw QgsProcessingException(QString::fromStdString(e.what()));
+  }
+}
+
+// The core's message with its command-line option names as the algorithm's parameters
+// ("-level 99 does not exist" from LEVEL is "LEVEL 99 does not exist").
+QString withParameterNames(const QString& message, const QList<QPair<QString, QString>>& names);
+
+// translateErrors, the options the message names given as the algorithm's parameters.
+template <typename Work>
+auto translateErrors(Work&& work, const QList<QPair<QString, QString>>& names) -> decltype(work()) {
+  try {
+    return work();
+  } catch (const std::exception& e) {
+    throw QgsProcessingException(withParameterNames(QString::fromStdString(e.what()), names));
   }
 }
 
