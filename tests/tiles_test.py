@@ -326,6 +326,35 @@ def ctrl_c(dem, tiles, work, env):
           ("%d tiles left pending in" % pending.count("pending")) in err, (pending, err[-500:]))
 
 
+def ctrl_c_with_tiles_done(tinlod, dem, tiles, work, env):
+    """(i) Ctrl-C once some tiles are done: their levels are there as one layer each
+    (<stem>_levels/level_K.vrt) for QGIS and ogrinfo, as after a run that ends."""
+    slow = os.path.join(work, "slow_build_tinlod")
+    with open(slow, "w") as f:
+        f.write('#!/bin/sh\ncase " $* " in *" -check "*) ;; *" -tile 1,0 "*) exec sleep 120;; esac\nexec "%s" "$@"\n' % tinlod)
+    os.chmod(slow, 0o755)
+    catalogue = os.path.join(work, "k.gpkg")
+    folder = os.path.join(work, "k_tiles")
+    driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-selection", "tile",
+                               "-tinlod", slow], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and driver.poll() is None and len(
+            [n for n in (os.listdir(folder) if os.path.isdir(folder) else []) if re.fullmatch(r"tile_\d+_\d+\.gpkg", n)]) < 4:
+        time.sleep(0.1)
+    time.sleep(1)  # the catalogue records the last of them
+    driver.send_signal(signal.SIGINT)
+    try:
+        _, err = driver.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        driver.kill()
+        _, err = driver.communicate()
+    done = [k for k, r in rows(catalogue)[0].items() if r["status"] == "done"]
+    vrt = os.path.join(work, "k_levels", "level_0.vrt")
+    layers = open(vrt).read().count("<OGRVRTLayer") if os.path.isfile(vrt) else -1
+    check("(i) Ctrl-C with %d tiles done leaves their level layers (level_0.vrt over %d tiles)" % (len(done), layers),
+          driver.returncode == 130 and done and layers == len(done), (driver.returncode, done, layers, err[-500:]))
+
+
 def ctrl_c_in_survey(tinlod, dem, tiles, work, env):
     """(i) Ctrl-C in the survey pass, when every survey but one has ended: every tile is
     still to build, and the message says so (it once counted the one survey left)."""
@@ -753,6 +782,7 @@ def main(tinlod, tiles):
     border_agreement(base, options, work, env)
     ctrl_c(dem, tiles, work, env)
     ctrl_c_in_survey(tinlod, dem, tiles, work, env)
+    ctrl_c_with_tiles_done(tinlod, dem, tiles, work, env)
 
     if not failures:
         subprocess.run(["rm", "-rf", work])

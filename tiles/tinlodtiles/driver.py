@@ -59,24 +59,42 @@ def run(arguments):
         if agreeing:  # a run stopped between two rounds of agreement left tiles to build again
             listed = set(pending)
             pending += [t for t in tiles_to_agree(catalogue, tiles, arguments)[0] if t not in listed]
-        outcome, built, rounds = {}, set(pending), 1
         started = set(pending)  # surveyed or built by this run (a survey may find a tile empty)
-        if pending:
-            with Workers(arguments) as workers:  # one cluster for every pass
-                extra = []
-                if global_selection(arguments):
-                    extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments, workers)]
-                    extra += line_outline.build_option(catalogue, folder)
-                    rows = catalogue.rows()  # the surveys found some tiles empty: those are not built
-                    pending = [t for t in pending if rows[(t.col, t.row)]["status"] != "empty"]
-                    built = set(pending)
-                if agreeing:
-                    extra += ["-border_keep", os.path.abspath(agreement.keep_path(folder))]
-                outcome = run_tiles(catalogue, pending, arguments, workers, extra) if pending else {}
-                if agreeing:
-                    rounds = agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built)
+        try:
+            outcome, built, rounds = build(catalogue, tiles, arguments, folder, pending, agreeing)
+        except TilesStopped:
+            if not agreeing:  # tiles built under a bound may not meet yet: no layer across them
+                write_level_vrts(catalogue, arguments.catalogue, fewest_levels(catalogue))
+            raise
         ran = len(started | built)
         return finish(catalogue, arguments, len(tiles) - ran, outcome, ran, rounds)
+
+
+def fewest_levels(catalogue):
+    """The levels every done tile has."""
+    return min((r["levels"] for r in catalogue.rows().values() if r["status"] == "done" and r["levels"]), default=0)
+
+
+def build(catalogue, tiles, arguments, folder, pending, agreeing):
+    """The passes over the pending tiles; (outcome by status, the tiles built, rounds of
+    border agreement)."""
+    outcome, built, rounds = {}, set(pending), 1
+    if not pending:
+        return outcome, built, rounds
+    with Workers(arguments) as workers:  # one cluster for every pass
+        extra = []
+        if global_selection(arguments):
+            extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments, workers)]
+            extra += line_outline.build_option(catalogue, folder)
+            rows = catalogue.rows()  # the surveys found some tiles empty: those are not built
+            pending = [t for t in pending if rows[(t.col, t.row)]["status"] != "empty"]
+            built = set(pending)
+        if agreeing:
+            extra += ["-border_keep", os.path.abspath(agreement.keep_path(folder))]
+        outcome = run_tiles(catalogue, pending, arguments, workers, extra) if pending else {}
+        if agreeing:
+            rounds = agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built)
+    return outcome, built, rounds
 
 
 def tiles_to_agree(catalogue, tiles, arguments):
