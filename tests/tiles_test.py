@@ -326,62 +326,58 @@ def ctrl_c(dem, tiles, work, env):
           ("%d tiles left pending in" % pending.count("pending")) in err, (pending, err[-500:]))
 
 
-def ctrl_c_with_tiles_done(tinlod, dem, tiles, work, env):
-    """(i) Ctrl-C once some tiles are done: their levels are there as one layer each
-    (<stem>_levels/level_K.vrt) for QGIS and ogrinfo, as after a run that ends."""
-    slow = os.path.join(work, "slow_build_tinlod")
-    with open(slow, "w") as f:
-        f.write('#!/bin/sh\ncase " $* " in *" -check "*) ;; *" -tile 1,0 "*) exec sleep 120;; esac\nexec "%s" "$@"\n' % tinlod)
-    os.chmod(slow, 0o755)
-    catalogue = os.path.join(work, "k.gpkg")
-    folder = os.path.join(work, "k_tiles")
-    driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-selection", "tile",
-                               "-tinlod", slow], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+def slow_tinlod(tinlod, work, name, case):
+    """A tinlod that sleeps in the runs matching a shell `case` pattern of its arguments."""
+    path = os.path.join(work, name)
+    with open(path, "w") as f:
+        f.write('#!/bin/sh\ncase " $* " in %s esac\nexec "%s" "$@"\n' % (case, tinlod))
+    os.chmod(path, 0o755)
+    return path
+
+
+def interrupted_run(args, env, folder, files, wanted, settle):
+    """Runs tinlod-tiles until `wanted` files of the tiles folder match `files`, waits
+    `settle` seconds, then sends Ctrl-C (SIGINT); returns its exit code and stderr."""
+    driver = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline and driver.poll() is None and len(
-            [n for n in (os.listdir(folder) if os.path.isdir(folder) else []) if re.fullmatch(r"tile_\d+_\d+\.gpkg", n)]) < 4:
+            [n for n in (os.listdir(folder) if os.path.isdir(folder) else []) if re.fullmatch(files, n)]) < wanted:
         time.sleep(0.1)
-    time.sleep(1)  # the catalogue records the last of them
+    time.sleep(settle)
     driver.send_signal(signal.SIGINT)
     try:
         _, err = driver.communicate(timeout=30)
     except subprocess.TimeoutExpired:
         driver.kill()
         _, err = driver.communicate()
+    return driver.returncode, err
+
+
+def ctrl_c_with_tiles_done(tinlod, dem, tiles, work, env):
+    """(i) Ctrl-C once some tiles are done: their levels are there as one layer each
+    (<stem>_levels/level_K.vrt) for QGIS and ogrinfo, as after a run that ends."""
+    slow = slow_tinlod(tinlod, work, "slow_build_tinlod", '*" -check "*) ;; *" -tile 1,0 "*) exec sleep 120;;')
+    catalogue = os.path.join(work, "k.gpkg")
+    code, err = interrupted_run([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-selection", "tile",
+                                 "-tinlod", slow], env, os.path.join(work, "k_tiles"), r"tile_\d+_\d+\.gpkg", 4, 1)
     done = [k for k, r in rows(catalogue)[0].items() if r["status"] == "done"]
     vrt = os.path.join(work, "k_levels", "level_0.vrt")
     layers = open(vrt).read().count("<OGRVRTLayer") if os.path.isfile(vrt) else -1
     check("(i) Ctrl-C with %d tiles done leaves their level layers (level_0.vrt over %d tiles)" % (len(done), layers),
-          driver.returncode == 130 and done and layers == len(done), (driver.returncode, done, layers, err[-500:]))
+          code == 130 and done and layers == len(done), (code, done, layers, err[-500:]))
 
 
 def ctrl_c_in_survey(tinlod, dem, tiles, work, env):
     """(i) Ctrl-C in the survey pass, when every survey but one has ended: every tile is
     still to build, and the message says so (it once counted the one survey left)."""
-    slow = os.path.join(work, "slow_survey_tinlod")
-    with open(slow, "w") as f:
-        f.write('#!/bin/sh\ncase " $* " in *" -tile 1,0 "*" -survey "*) exec sleep 120;; esac\nexec "%s" "$@"\n' % tinlod)
-    os.chmod(slow, 0o755)
+    slow = slow_tinlod(tinlod, work, "slow_survey_tinlod", '*" -tile 1,0 "*" -survey "*) exec sleep 120;;')
     catalogue = os.path.join(work, "s.gpkg")
-    folder = os.path.join(work, "s_tiles")
-    driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-tinlod", slow],
-                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline and driver.poll() is None and \
-            len([n for n in (os.listdir(folder) if os.path.isdir(folder) else []) if n.endswith(".json")]) < 4:
-        time.sleep(0.1)
-    time.sleep(0.5)
-    driver.send_signal(signal.SIGINT)
-    try:
-        _, err = driver.communicate(timeout=30)
-    except subprocess.TimeoutExpired:
-        driver.kill()
-        _, err = driver.communicate()
+    code, err = interrupted_run([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-tinlod", slow],
+                                env, os.path.join(work, "s_tiles"), r".*\.json", 4, 0.5)
     statuses = [r["status"] for r in rows(catalogue)[0].values()]
     left = statuses.count("pending")
     check("(i) Ctrl-C in the survey pass counts every tile still to build (%d), not the surveys left" % left,
-          driver.returncode == 130 and left >= 5 and ("%d tiles left pending in" % left) in err,
-          (driver.returncode, statuses, err[-500:]))
+          code == 130 and left >= 5 and ("%d tiles left pending in" % left) in err, (code, statuses, err[-500:]))
 
 
 def union_counts(files):
