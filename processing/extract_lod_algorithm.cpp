@@ -4,7 +4,6 @@
 #include <qgscoordinatereferencesystem.h>
 #include <qgsprocessingoutputs.h>
 #include <qgsprocessingparameters.h>
-#include <qgsvectorlayer.h>
 
 #include <cmath>
 #include <limits>

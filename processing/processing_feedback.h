@@ -18,24 +18,15 @@ namespace tinlod::qgis {
 // information, and cancellation from the dialog's Cancel button.
 Feedback processingFeedback(QgsProcessingFeedback* feedback);
 
-// Runs core work, turning tinlod::Error (and any std::exception) into the
-// QgsProcessingException that QGIS shows the user.
-template <typename Work>
-auto translateErrors(Work&& work) -> decltype(work()) {
-  try {
-    return work();
-  } catch (const std::exception& e) {
-    throw QgsProcessingException(QString::fromStdString(e.what()));
-  }
-}
-
 // The core's message with its command-line option names as the algorithm's parameters
 // ("-level 99 does not exist" from LEVEL is "LEVEL 99 does not exist").
 QString withParameterNames(const QString& message, const QList<QPair<QString, QString>>& names);
 
-// translateErrors, the options the message names given as the algorithm's parameters.
+// Runs core work, turning tinlod::Error (and any std::exception) into the
+// QgsProcessingException that QGIS shows the user, the options the message names given as
+// the algorithm's parameters (`names`: option, parameter).
 template <typename Work>
-auto translateErrors(Work&& work, const QList<QPair<QString, QString>>& names) -> decltype(work()) {
+auto translateErrors(Work&& work, const QList<QPair<QString, QString>>& names = {}) -> decltype(work()) {
   try {
     return work();
   } catch (const std::exception& e) {

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "catalogue_hierarchy.h"
 
-#include <filesystem>
-
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -151,10 +149,7 @@ std::vector<LevelStats> PooledLevels::finish() {
 }
 
 StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress) {
-  if (tile.file.rfind("/vsi", 0) != 0 && !std::filesystem::exists(tile.file))
-    throw Error("tile " + tile.name + "'s file '" + tile.file + "' does not exist: the catalogue names its tiles' files "
-                "relative to itself, so its tiles folder must stay beside it; move the folder back, or run tinlod tiles "
-                "on the catalogue again to build the tile");
+  requireTileFile(tile.name, tile.file);
   StoredHierarchy stored = readHierarchy(tile.file, progress);
   if (stored.info.kind != "hierarchy")
     throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "catalogue_info.h"
 
-#include <filesystem>
-
 #include "catalogue_hierarchy.h"
 #include "tile_catalogue.h"
 #include "tinlod/error.h"
@@ -11,10 +9,7 @@ namespace tinlod {
 namespace {
 
 HierarchyInfo finishedTileInfo(const TileStatus& tile) {
-  if (tile.file.rfind("/vsi", 0) != 0 && !std::filesystem::exists(tile.file))
-    throw Error("tile " + tile.name + "'s file '" + tile.file + "' does not exist: the catalogue names its tiles' files "
-                "relative to itself, so its tiles folder must stay beside it; move the folder back, or run tinlod tiles "
-                "on the catalogue again to build the tile");
+  requireTileFile(tile.name, tile.file);
   try {
     HierarchyInfo info = readHierarchyInfo(tile.file);
     if (info.kind != "hierarchy") throw Error("it is a single TIN (" + info.kind + "), not a hierarchy");

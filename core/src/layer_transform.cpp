@@ -27,6 +27,13 @@ std::unique_ptr<OGRCoordinateTransformation> transformBetween(const OGRSpatialRe
   return transform;
 }
 
+OGRSpatialReference srsFromText(const std::string& srs, const std::string& what) {
+  OGRSpatialReference out;
+  if (out.SetFromUserInput(srs.c_str()) != OGRERR_NONE)
+    throw Error(what + ": '" + srs + "' is not a CRS GDAL understands: use e.g. EPSG:4326");
+  return out;
+}
+
 }  // namespace
 
 std::unique_ptr<OGRCoordinateTransformation> transformToTin(OGRLayer& layer, const std::string& targetWkt,
@@ -39,18 +46,11 @@ std::unique_ptr<OGRCoordinateTransformation> transformToTin(OGRLayer& layer, con
   return transformBetween(*src, targetWkt, what, "reproject the layer to the TIN's CRS first", progress);
 }
 
-void checkSrsText(const std::string& srs, const std::string& what) {
-  OGRSpatialReference source;
-  if (source.SetFromUserInput(srs.c_str()) != OGRERR_NONE)
-    throw Error(what + ": '" + srs + "' is not a CRS GDAL understands: use e.g. EPSG:4326");
-}
+void checkSrsText(const std::string& srs, const std::string& what) { srsFromText(srs, what); }
 
 std::unique_ptr<OGRCoordinateTransformation> transformToTin(const std::string& srs, const std::string& targetWkt,
                                                             const std::string& what, const ProgressRange& progress) {
-  checkSrsText(srs, what);
-  OGRSpatialReference source;
-  source.SetFromUserInput(srs.c_str());
-  return transformBetween(source, targetWkt, what, "give the coordinates in the TIN's CRS", progress);
+  return transformBetween(srsFromText(srs, what), targetWkt, what, "give the coordinates in the TIN's CRS", progress);
 }
 
 }  // namespace tinlod

@@ -129,6 +129,13 @@ std::string statusCounts(const std::map<std::string, std::size_t>& counts) {
   return text;
 }
 
+void requireTileFile(const std::string& name, const std::string& file) {
+  if (file.rfind("/vsi", 0) != 0 && !std::filesystem::exists(file))
+    throw Error("tile " + name + "'s file '" + file + "' does not exist: the catalogue names its tiles' files "
+                "relative to itself, so its tiles folder must stay beside it; move the folder back, or run tinlod tiles "
+                "on the catalogue again to build the tile");
+}
+
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles) {
   for (const CatalogueTile& tile : tiles)
     if (tile.xsize < 2 || tile.ysize < 2)

@@ -57,4 +57,8 @@ std::string statusCounts(const std::map<std::string, std::size_t>& counts);
 // that work a tile at a time need.
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles);
 
+// Throws Error unless a finished tile's file is there (a GDAL /vsi path is not looked for):
+// the catalogue names it relative to itself, so its tiles folder must stay beside it.
+void requireTileFile(const std::string& name, const std::string& file);
+
 }  // namespace tinlod
