@@ -23,7 +23,7 @@ from .arguments import build_option
 from .catalogue import BUILD_SETTINGS, FIXED_STAMP, SOURCE_STAMP, Catalogue, file_stamp, levels_folder, tiles_folder
 from .errors import TilesError
 from .grid import tile_grid
-from .levels import write_level_vrts
+from .levels import fewest_levels, write_level_vrts
 from .progress import Progress
 from .tile_file import read_tile_summary
 from .tin_crs import predicted_tin_srs
@@ -64,15 +64,10 @@ def run(arguments):
             outcome, built, rounds = build(catalogue, tiles, arguments, folder, pending, agreeing)
         except TilesStopped:
             if not agreeing:  # tiles built under a bound may not meet yet: no layer across them
-                write_level_vrts(catalogue, arguments.catalogue, fewest_levels(catalogue))
+                write_level_vrts(catalogue, arguments.catalogue, fewest_levels(catalogue.rows().values()))
             raise
         ran = len(started | built)
         return finish(catalogue, arguments, len(tiles) - ran, outcome, ran, rounds)
-
-
-def fewest_levels(catalogue):
-    """The levels every done tile has."""
-    return min((r["levels"] for r in catalogue.rows().values() if r["status"] == "done" and r["levels"]), default=0)
 
 
 def build(catalogue, tiles, arguments, folder, pending, agreeing):

@@ -82,6 +82,11 @@ def write_level_vrts(catalogue, catalogue_path, levels):
     return paths
 
 
+def fewest_levels(rows):
+    """The levels every done tile of the catalogue's rows has."""
+    return min((r["levels"] for r in rows if r["status"] == "done" and r["levels"]), default=0)
+
+
 def unfinished_warning(rows):
     """What a catalogue's unfinished tiles mean for a level read from it ("" when none), as
     tinlod's commands say it."""
@@ -102,8 +107,7 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     catalogue = Catalogue.open(catalogue_path)
     rows = catalogue.rows().values()
     # A run stopped before its end has not recorded TINLOD_LEVELS: its finished tiles say.
-    done = [r["levels"] for r in rows if r["status"] == "done" and r["levels"]]
-    levels = int(catalogue.setting("TINLOD_LEVELS") or (min(done) if done else 0))
+    levels = int(catalogue.setting("TINLOD_LEVELS") or fewest_levels(rows))
     warning = unfinished_warning(rows)
     if warning:
         print("WARNING: " + warning, file=sys.stderr)

@@ -112,9 +112,8 @@ def exact_stop_thresholds(values, second, stop_pct, walked, delete_pct=100.0):
             break
     # The border rule's picks count toward the delete percentage, as in a level of followed_levels.
     target = max(0.0, min(vertices - stop, delete_pct / 100.0 * union_vertices(rows) - border_picked(rows)))
-    per_tile = [(dict((b, n) for b, n in r.get("histogram", [])), dict((b, n) for b, n in r.get("picked_histogram", [])))
-                for r in rows]
-    stop_threshold = threshold_reaching(pooled(rows, "histogram"), pooled(rows, "picked_histogram"), target, per_tile)
+    per_tile = [(dict(r.get("histogram", [])), dict(r.get("picked_histogram", []))) for r in rows]
+    stop_threshold = threshold_reaching(added(c for c, _ in per_tile), added(p for _, p in per_tile), target, per_tile)
     return values[:k] + [stop_threshold] + [(0.0, 1.0)] * (len(values) - k - 1)
 
 
@@ -153,15 +152,6 @@ def share_reaching(bins, needed):
     if open_candidates <= 0:
         return 1.0
     return min(1.0, max(0.0, (needed - capped) / open_candidates))
-
-
-def pooled(rows, key):
-    """The rows' histograms (key) added up, bin: count."""
-    counts = {}
-    for r in rows:
-        for b, n in r.get(key, []):
-            counts[b] = counts.get(b, 0) + n
-    return counts
 
 
 def as_option(thresholds):
