@@ -387,6 +387,38 @@ TEST(Hierarchy, SurveyMakesTheSameLevelsKeepingOnlyTheirCounts) {
   }
 }
 
+// A survey's level walks on past its picks through every candidate: its walk's picks by
+// bin are what a threshold set anywhere takes in that state. A build with level 1's
+// threshold at a bin beyond the delete percentage's picks deletes exactly the walk's picks
+// up to it, more than a fifth of the vertices.
+TEST(Hierarchy, SurveyWalkIsWhatAThresholdTakes) {
+  const Dem dem = test::smallSyntheticDem();
+  const Tin tin = sampleTin(dem, {}, kQuiet);
+  HierarchyOptions o;
+  o.survey = true;
+  const Hierarchy surveyed = buildHierarchy(tin, dem, {}, o, kQuiet);
+  ASSERT_FALSE(surveyed.survey.empty());
+  const LevelSurvey& l = surveyed.survey.front();
+  ASSERT_EQ(l.walkHistogram.size(), l.histogram.size());
+  const int lastPicked = surveyBin(l.last);
+  std::uint64_t walked = 0;
+  int beyond = 0;  // the first bin where the walk has taken a quarter more than the picks
+  for (int b = 0; b < kSurveyBins && !beyond; ++b) {
+    if (b < lastPicked) EXPECT_EQ(l.walkHistogram[b], l.pickedHistogram[b]) << "bin " << b;
+    EXPECT_LE(l.walkHistogram[b], l.histogram[b]) << "bin " << b;
+    walked += l.walkHistogram[b];
+    if (4 * walked >= 5 * l.picked) beyond = b;
+  }
+  ASSERT_GT(beyond, lastPicked);
+  HierarchyOptions t;
+  t.maxLevels = 1;
+  t.levelThresholds = {surveyBinTop(beyond)};
+  const Hierarchy built = buildHierarchy(tin, dem, {}, t, kQuiet);
+  ASSERT_EQ(built.levels.size(), 2u);
+  EXPECT_EQ(built.levels[1].deleted, walked);
+  EXPECT_GT(5 * walked, l.vertices);
+}
+
 // With one threshold per level (a tile's second pass), the share of the threshold's bin is
 // the share of its candidates that go: on a flat half, where every importance is 0 and
 // independence blocks some candidates, exactly that share of them is deleted, not that

@@ -77,13 +77,20 @@ check("the last level deletes the share that takes the followed count to the sto
 check("a level after the stop deletes nothing", levels[2] == (0.0, 1.0), levels)
 check("... and it is the stop level -exact_stop walks", thresholds.stop_level(tiles, 50, 30) == 1)
 
-# A bin the survey walked gives its own picks (picked_histogram): 30 of bin 3's 40 (the
-# first candidates are seldom blocked), where the level's share of what it went through
-# (0.5) gives bin 4's.
+# A survey of an earlier tinlod (no walk_histogram): a bin its pick walked gives its own
+# picks (picked_histogram), 30 of bin 3's 40 (the first candidates are seldom blocked);
+# beyond, the level's share of what its pick went through (0.5).
 walked = dict(level(100, 40, 80, {3: 40, 4: 40, 5: 20}), picked_histogram=[[3, 30], [4, 10]])
 counts, picks = SurveyedTile([walked], 20).state()
 check("a walked bin's picks are the survey's, beyond the walk the level's share",
       counts == {3: 40, 4: 40, 5: 20} and picks == {3: 30, 4: 20, 5: 10}, (counts, picks))
+
+# A survey that walked on through every candidate (walk_histogram) gives its walk's picks in
+# every bin: bin 4's 12 and bin 5's 3, where the share gave 20 and 10.
+walked_on = dict(walked, walk_histogram=[[3, 30], [4, 12], [5, 3]])
+counts, picks = SurveyedTile([walked_on], 20).state()
+check("a survey's walk through every candidate gives its picks in every bin",
+      counts == {3: 40, 4: 40, 5: 20} and picks == {3: 30, 4: 12, 5: 3}, (counts, picks))
 
 # Below its survey's last count a tile reads its last level with the importances raised as
 # they rose over its last two full levels: 4 times the importance for half the vertices,

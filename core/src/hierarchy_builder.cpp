@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "border_lines.h"
 #include "cell_errors.h"
@@ -431,12 +432,13 @@ class Simplifier {
     l.vertices = current_;
     l.picked = picks.size() - borderPicks;
     l.last = l.picked ? picks.back().importance : 0;
-    l.considered = considered_;
+    l.considered = stoppedAt_.first + stoppedAt_.second;
     l.histogram.assign(kSurveyBins, 0);
     for (const std::vector<Candidate>& half : candidates_)
       for (const Candidate& c : half) ++l.histogram[surveyBin(c.first)];
     l.pickedHistogram.assign(kSurveyBins, 0);
     for (std::size_t k = borderPicks; k < picks.size(); ++k) ++l.pickedHistogram[surveyBin(picks[k].importance)];
+    if (options_.levelThresholds.empty()) l.walkHistogram = walkOn(level, l.pickedHistogram);
     countAsTheUnion(l, picks, borderPicks);
     h_.survey.push_back(std::move(l));
   }
@@ -547,24 +549,51 @@ class Simplifier {
     while (picks.size() < limit && (i < a.size() || j < b.size())) {
       if (i + kAhead < a.size()) __builtin_prefetch(&stamp_[a[i + kAhead].second]), rings_.prefetch(a[i + kAhead].second);
       if (j + kAhead < b.size()) __builtin_prefetch(&stamp_[b[j + kAhead].second]), rings_.prefetch(b[j + kAhead].second);
-      const bool first = j == b.size() || (i < a.size() && orderedBits(a[i].first) <= orderedBits(b[j].first));
+      const bool first = firstIsNext(i, j);
       const bool tie = (first ? a[i] : b[j]).first >= tieQuota_.bottom;
       if (tie && tiesPicked == tieQuota_.picks) break;
       const auto [imp, v] = first ? a[i++] : b[j++];
-      if (stamp_[v] == level) continue;
-      stamp_[v] = level;
-      if (rings_.kept(v)) {
-        const VertexId* ring = rings_.ring(v);
-        for (int k = 0; k < rings_.degree(v); ++k) stamp_[ring[k]] = level;
-      } else {
-        mesh_.eachAround(v, [&](std::int32_t slot, int k) {
-          stamp_[mesh_.corner(slot, (k + 1) % 3)] = stamp_[mesh_.corner(slot, (k + 2) % 3)] = level;
-        });
-      }
+      if (!claim(v, level)) continue;
       picks.push_back({imp, v, static_cast<std::uint32_t>(rings_.degree(v)), mesh_.open(v)});
       tiesPicked += tie;
     }
-    considered_ = i + j;
+    stoppedAt_ = {i, j};
+  }
+
+  // Whether the merged candidates' next is the first half's (ties go to it: smaller ids).
+  bool firstIsNext(std::size_t i, std::size_t j) const {
+    const std::vector<Candidate>&a = candidates_[0], &b = candidates_[1];
+    return j == b.size() || (i < a.size() && orderedBits(a[i].first) <= orderedBits(b[j].first));
+  }
+
+  // Takes v for the level unless a neighbour's pick blocked it; then blocks its neighbours.
+  bool claim(VertexId v, std::int32_t level) {
+    if (stamp_[v] == level) return false;
+    stamp_[v] = level;
+    if (rings_.kept(v)) {
+      const VertexId* ring = rings_.ring(v);
+      for (int k = 0; k < rings_.degree(v); ++k) stamp_[ring[k]] = level;
+    } else {
+      mesh_.eachAround(v, [&](std::int32_t slot, int k) {
+        stamp_[mesh_.corner(slot, (k + 1) % 3)] = stamp_[mesh_.corner(slot, (k + 2) % 3)] = level;
+      });
+    }
+    return true;
+  }
+
+  // A survey's level without a threshold goes on past its picks through every candidate,
+  // picking (not deleting) as a threshold above them all would: how many of each bin the
+  // build pass's threshold for the raster can take in this state, wherever it falls. Past
+  // the delete percentage a pick's share is no guide: the later candidates' neighbours are
+  // blocked more often.
+  std::vector<std::uint64_t> walkOn(std::int32_t level, std::vector<std::uint64_t> histogram) {
+    const std::vector<Candidate>&a = candidates_[0], &b = candidates_[1];
+    auto [i, j] = stoppedAt_;
+    while (i < a.size() || j < b.size()) {
+      const auto [imp, v] = firstIsNext(i, j) ? a[i++] : b[j++];
+      if (claim(v, level)) ++histogram[surveyBin(imp)];
+    }
+    return histogram;
   }
 
   // Where the hierarchy's arrays would end if `picks` vertices were deleted with the
@@ -782,7 +811,7 @@ class Simplifier {
   double lastFraction_ = 0.1;
   double levelThreshold_ = 0;  // with levelThresholds: the level's
   TieQuota tieQuota_;          //   and how many of its bin's candidates may go
-  std::size_t considered_ = 0;  // candidates the last pick went through
+  std::pair<std::size_t, std::size_t> stoppedAt_;  // where the last pick stopped in each half's candidates
 };
 
 }  // namespace

@@ -28,7 +28,13 @@ std::string surveyJson(const std::vector<LevelSurvey>& levels, const std::vector
     bins(out, l.histogram);
     out << "], \"picked_histogram\": [";
     bins(out, l.pickedHistogram);
-    out << "], \"union_vertices\": " << l.unionVertices << ", \"border_picked\": " << l.borderPicked << "}";
+    out << "]";
+    if (!l.walkHistogram.empty()) {
+      out << ", \"walk_histogram\": [";
+      bins(out, l.walkHistogram);
+      out << "]";
+    }
+    out << ", \"union_vertices\": " << l.unionVertices << ", \"border_picked\": " << l.borderPicked << "}";
   }
   out << "\n], \"line_outline\": [";
   for (std::size_t i = 0; i < lineOutline.size(); ++i)

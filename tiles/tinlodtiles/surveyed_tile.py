@@ -29,25 +29,34 @@ class SurveyedTile:
 
     def state(self):
         """(candidates, picks): bin -> count at the tile's current vertex count, from its
-        survey's two levels around that count (log-interpolated, scaled to the count). A
-        bin the survey walked gives its own picks; beyond, the nearest full level's share
-        of what its pick went through. Below the survey's last count, its last level's
-        candidates, raised as its levels' importances rise with fewer vertices."""
+        survey's two levels around that count (log-interpolated, scaled to the count): the
+        picks of its walk through every candidate. Below the survey's last count, its last
+        level's, raised as its levels' importances rise with fewer vertices."""
         counts, picks, vertices = {}, {}, 0.0
         for row, weight in self.around():
-            full = min(self.full, key=lambda r: abs(math.log(max(r["vertices"], 1) / max(row["vertices"], 1))))
-            taken = full["picked"] / full["considered"] if full["considered"] else 1.0
-            walked = dict((b, n) for b, n in row.get("picked_histogram", []))
-            top = max(walked) if walked else -1
+            walked = self.walked(row)
             for b, n in row.get("histogram", []):
                 counts[b] = counts.get(b, 0.0) + weight * n
-                picks[b] = picks.get(b, 0.0) + weight * (walked.get(b, 0) if b < top else taken * n)
+                picks[b] = picks.get(b, 0.0) + weight * walked(b, n)
             vertices += weight * row["vertices"]
         scale = self.vertices / vertices if vertices else 0.0
         shift = self.rise()
         # Bin 0 holds the ties of no importance (a flat sea's), which stay so.
         return ({b + shift if b else 0: n * scale for b, n in counts.items()},
                 {b + shift if b else 0: n * scale for b, n in picks.items()})
+
+    def walked(self, row):
+        """The level's picks of a bin of n candidates: its walk's through every candidate.
+        A survey of an earlier tinlod walked only up to the delete percentage: beyond its
+        picks' bins, the nearest full level's share of what its pick went through."""
+        if "walk_histogram" in row:
+            walk = dict(row["walk_histogram"])
+            return lambda b, n: walk.get(b, 0)
+        full = min(self.full, key=lambda r: abs(math.log(max(r["vertices"], 1) / max(row["vertices"], 1))))
+        taken = full["picked"] / full["considered"] if full["considered"] else 1.0
+        own = dict(row.get("picked_histogram", []))
+        top = max(own) if own else -1
+        return lambda b, n: own.get(b, 0) if b < top else taken * n
 
     def around(self):
         """The survey's levels around the current count, with their weights."""

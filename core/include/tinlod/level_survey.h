@@ -21,6 +21,9 @@ struct LevelSurvey {
   double last = 0;           // the importance of the last pick
   std::vector<std::uint64_t> histogram;  // candidates by surveyBin of their importance
   std::vector<std::uint64_t> pickedHistogram;  // the tile's own picks, by the same bins
+  // A level without a threshold: the picks of a walk through every candidate, the delete
+  // percentage's and on past them (none deleted), by the same bins.
+  std::vector<std::uint64_t> walkHistogram;
   double unionVertices = 0;  // `vertices` as a job's union counts them (tile_borders.h: unionShare)
   double borderPicked = 0;   // the border rule's picks, as the union counts them
 };
@@ -40,7 +43,8 @@ inline double surveyBinBottom(double top) { return top <= 1e-12 ? -INFINITY : to
 
 // The survey as JSON: {"levels": [{"level", "vertices", "picked", "considered", "last",
 // "histogram": [[bin, count], ...], "picked_histogram": [[bin, count], ...],
-// "union_vertices", "border_picked"}, ...],
+// "walk_histogram": [[bin, count], ...] (a level without a threshold), "union_vertices",
+// "border_picked"}, ...],
 // "line_outline": [[row, col], ...]} (bins with a
 // count only; line_outline: the tile's lineOutlineCells, as globalCellKey).
 std::string surveyJson(const std::vector<LevelSurvey>& levels, const std::vector<std::uint64_t>& lineOutline);
