@@ -720,11 +720,22 @@ TEST(CatalogueHierarchy, InfoOfACatalogueHasTheTrianglesAndLargestErrorsOfItsTil
 TEST(CatalogueHierarchy, InfoNamesAFinishedTileItCannotRead) {
   const std::string catalogue =
       alteredCatalogue("info_missing.gpkg", "UPDATE tiles SET file = 'gone.gpkg' WHERE tile_col = 0 AND tile_row = 1");
-  const std::string message = test::errorOf([&] { readHierarchyInfo(catalogue); });
-  EXPECT_NE(message.find("tile 0,1's file '"), std::string::npos) << message;
+  // The other 8 tiles are described; the lost one is named with the fix.
+  const HierarchyInfo info = readHierarchyInfo(catalogue);
+  ASSERT_EQ(info.unreadableTiles.size(), 1u);
+  const std::string& message = info.unreadableTiles.front();
+  EXPECT_EQ(message.rfind("tile 0,1's file '", 0), 0u) << message;
   EXPECT_NE(message.find("gone.gpkg' does not exist: the catalogue names its tiles' files relative to itself"),
             std::string::npos)
       << message;
+  const HierarchyInfo whole = readHierarchyInfo(builtTiles().catalogue);
+  EXPECT_TRUE(whole.unreadableTiles.empty());
+  ASSERT_EQ(info.levels.size(), whole.levels.size());
+  EXPECT_EQ(info.tileStatuses, whole.tileStatuses);
+  EXPECT_LT(info.levels[0].triangles, whole.levels[0].triangles);
+  EXPECT_GT(info.levels[0].triangles, whole.levels[0].triangles * 7 / 9);
+  EXPECT_NE(toText(info).find("  unreadable: tile 0,1's file"), std::string::npos) << toText(info);
+  EXPECT_NE(toJson(info).find("\"unreadable_tiles\": [\"tile 0,1's file"), std::string::npos) << toJson(info);
   // A reader of one hierarchy given the catalogue says what it is.
   const std::string asFile = test::errorOf([&] { readHierarchy(builtTiles().catalogue, kRange); });
   EXPECT_NE(asFile.find("is a tinlod-tiles catalogue, not the hierarchy of one tile"), std::string::npos) << asFile;

@@ -688,6 +688,11 @@ def main(tinlod, tiles):
     check("(d) a catalogue moved without its tiles folder: merge, tinlod lod and info say the folder must stay beside it",
           all(r.returncode == 1 and "tiles folder must stay beside it" in r.stderr for r in lost),
           [r.stderr[-400:] for r in lost])
+    finished = len(files)
+    check("(d) ... info still describes the catalogue, each finished tile named unreadable",
+          "tiles (" in lost[2].stdout and lost[2].stdout.count("  unreadable: tile ") == finished
+          and ("%d of the catalogue's finished tiles cannot be read" % finished) in lost[2].stderr,
+          lost[2].stdout[-600:] + lost[2].stderr[-300:])
     partly = run([tiles, "merge", stopped, "-level", "1", os.path.join(work, "partly.gpkg")])
     check("(d) merge of a catalogue stopped before its end: the finished tiles' level, and a warning of the others",
           partly.returncode == 0 and "1 of the catalogue's 6 tiles are not finished (1 pending)" in partly.stderr

@@ -13,7 +13,8 @@ int infoCommand(std::vector<std::string> args) {
     std::cout << "Describes a GeoPackage written by tinlod build, sample, insert or lod: parameters, CRS,\n"
                  "size, and per level the vertices, triangles, deleted vertices, times and maximum\n"
                  "vertical error. Given a tinlod tiles catalogue, also its tiles by status (the failed\n"
-                 "ones with their errors) and its finished tiles' levels added up.\n\n"
+                 "ones with their errors) and its finished tiles' levels added up; a finished tile it\n"
+                 "cannot read is named, the rest described, and the exit code is 1.\n\n"
                  "Usage: tinlod info FILE.gpkg [-json]\n";
     return 0;
   }
@@ -21,6 +22,13 @@ int infoCommand(std::vector<std::string> args) {
   const std::vector<std::string> files = a.operands(1, "tinlod info FILE.gpkg [-json]");
   const HierarchyInfo info = readHierarchyInfo(files[0]);
   std::cout << (json ? toJson(info) : toText(info));
+  // Described all the same, but a script must not take the levels for the whole catalogue's.
+  if (!info.unreadableTiles.empty()) {
+    std::cout.flush();
+    std::cerr << "ERROR: " << info.unreadableTiles.size() << " of the catalogue's finished tiles cannot be read (the "
+              << "levels above leave them out): " << info.unreadableTiles.front() << std::endl;
+    return 1;
+  }
   return 0;
 }
 

@@ -43,7 +43,14 @@ void addCatalogueContents(HierarchyInfo& info) {
     if (tile.status == "failed")
       info.failedTiles.push_back(tile.name + ": " + (tile.error.empty() ? "no message" : tile.error));
     if (tile.status != "done" || tile.file.empty()) continue;
-    const HierarchyInfo tileInfo = finishedTileInfo(tile);
+    // One tile lost or damaged: the rest is still described, and the tile named.
+    HierarchyInfo tileInfo;
+    try {
+      tileInfo = finishedTileInfo(tile);
+    } catch (const Error& e) {
+      info.unreadableTiles.push_back(e.what());  // it names the tile
+      continue;
+    }
     addTileLevels(tile, tileInfo.levels, pooled);
     info.tileBytes += tileInfo.bytes;
   }

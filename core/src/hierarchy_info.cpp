@@ -170,6 +170,8 @@ std::string toJson(const HierarchyInfo& info) {
     }
     out << "},\n  \"failed_tiles\": [";
     for (std::size_t i = 0; i < info.failedTiles.size(); ++i) out << (i ? ", " : "") << jsonString(info.failedTiles[i]);
+    out << "],\n  \"unreadable_tiles\": [";
+    for (std::size_t i = 0; i < info.unreadableTiles.size(); ++i) out << (i ? ", " : "") << jsonString(info.unreadableTiles[i]);
     out << "],\n  \"tile_bytes\": " << info.tileBytes << ",\n";
   }
   out << "  \"layers\": [";
@@ -216,8 +218,10 @@ std::string toText(const HierarchyInfo& info) {
   out << "\n";
   for (const auto& [k, v] : info.metadata) out << "  " << k << " = " << v << "\n";
   for (const std::string& failed : info.failedTiles) out << "  failed tile " << failed << "\n";
+  for (const std::string& unreadable : info.unreadableTiles) out << "  unreadable: " << unreadable << "\n";
   if (catalogue)
-    out << "  levels: the finished tiles' rows added up: a vertex or cell on a line two tiles share is counted\n"
+    out << "  levels: the " << (info.unreadableTiles.empty() ? "" : "readable ")
+        << "finished tiles' rows added up: a vertex or cell on a line two tiles share is counted\n"
            "  in each, times are summed, the maximum error is the largest, outlines are not counted;\n"
            "  tinlod accuracy measures the tiles as one TIN\n";
   out << std::setw(6) << "level" << std::setw(11) << "vertices" << std::setw(11) << "triangles" << std::setw(10)

@@ -26,11 +26,14 @@ struct HierarchyInfo {
   // and the bytes of the finished tiles' files (`bytes` is the catalogue's own).
   std::map<std::string, std::size_t> tileStatuses;
   std::vector<std::string> failedTiles;
+  // Its finished tiles it cannot read, each as the reason (which names the tile): the
+  // levels are then the other tiles'.
+  std::vector<std::string> unreadableTiles;
   std::uintmax_t tileBytes = 0;
 };
 
-// Throws Error when the file is not a GeoPackage made by tinlod (or a tinlod-tiles catalogue
-// whose finished tiles are not).
+// Throws Error when the file is not a GeoPackage made by tinlod. A tinlod-tiles catalogue's
+// finished tiles it cannot read are listed in unreadableTiles.
 HierarchyInfo readHierarchyInfo(const std::string& path);
 
 std::string toJson(const HierarchyInfo& info);
