@@ -33,5 +33,5 @@ if(TINLOD_WITH_QGIS)
 endif()
 # tinlod-tiles runs on Debian's Python with GDAL's bindings and Dask; the rest of tinlod
 # works without them.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-gdal, python3-distributed")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-gdal, python3-numpy, python3-distributed")
 include(CPack)

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config git zip ca-certificates
   libcgal-dev libgmp-dev libmpfr-dev
   libgdal-dev gdal-bin libproj-dev libgeos-dev libsqlite3-dev
-  qtbase5-dev libqgis-dev qgis qgis-providers python3-qgis python3-gdal
+  qtbase5-dev libqgis-dev qgis qgis-providers python3-qgis python3-gdal python3-numpy
   libgtest-dev
   xvfb xauth
   python3-distributed

@@ -11,6 +11,7 @@ import tempfile
 
 sys.path.insert(0, sys.argv[1])
 from tinlodtiles import thresholds  # noqa: E402
+from tinlodtiles.importance_bins import Bins, added  # noqa: E402
 from tinlodtiles.surveyed_tile import SurveyedTile  # noqa: E402
 from script_checks import check, exit_code  # noqa: E402
 
@@ -81,14 +82,14 @@ check("... and it is the stop level -exact_stop walks", thresholds.stop_level(ti
 # picks (picked_histogram), 30 of bin 3's 40 (the first candidates are seldom blocked);
 # beyond, the level's share of what its pick went through (0.5).
 walked = dict(level(100, 40, 80, {3: 40, 4: 40, 5: 20}), picked_histogram=[[3, 30], [4, 10]])
-counts, picks = SurveyedTile([walked], 20).state()
+counts, picks = (b.as_dict() for b in SurveyedTile([walked], 20).state())
 check("a walked bin's picks are the survey's, beyond the walk the level's share",
       counts == {3: 40, 4: 40, 5: 20} and picks == {3: 30, 4: 20, 5: 10}, (counts, picks))
 
 # A survey that walked on through every candidate (walk_histogram) gives its walk's picks in
 # every bin: bin 4's 12 and bin 5's 3, where the share gave 20 and 10.
 walked_on = dict(walked, walk_histogram=[[3, 30], [4, 12], [5, 3]])
-counts, picks = SurveyedTile([walked_on], 20).state()
+counts, picks = (b.as_dict() for b in SurveyedTile([walked_on], 20).state())
 check("a survey's walk through every candidate gives its picks in every bin",
       counts == {3: 40, 4: 40, 5: 20} and picks == {3: 30, 4: 12, 5: 3}, (counts, picks))
 
@@ -98,7 +99,7 @@ check("a survey's walk through every candidate gives its picks in every bin",
 rising = [dict(row(100, 10), last=1e6), dict(row(50, 40), last=4e6)]
 tile = SurveyedTile(rising, 50)
 tile.vertices = 25
-counts, picks = tile.state()
+counts, picks = (b.as_dict() for b in tile.state())
 check("below the survey's last count: its last level, importances raised",
       tile.rise() == 120 and counts == {160: 25.0} and picks == {160: 12.5}, (tile.rise(), counts, picks))
 
@@ -174,6 +175,20 @@ large = [survey_row(1000, 200, 400, {400: 400}, 1e-6), survey_row(800, 160, 320,
          survey_row(640, 128, 256, {420: 256}, 4e-6), survey_row(512, 100, 200, {430: 200}, 8e-6)]
 check("a tile followed down to no vertex does not stop the thresholds",
       len(thresholds.level_thresholds([small, large], 20, 5)) == 4)
+
+# Bins: a survey's histogram as one array from its lowest bin above 0, bin 0's ties apart;
+# in 16 bits where every count fits, else 32-bit floats (which hold any count exactly).
+bins = Bins.of([[0, 7], [40, 3], [42, 5]])
+check("Bins keep bin 0 apart and the others from their lowest",
+      (bins.zero, bins.lo, bins.hi, list(bins.values), bins.values.dtype.name) == (7.0, 40, 43, [3, 0, 5], "uint16")
+      and bins.as_dict() == {0: 7, 40: 3, 42: 5}, (bins.zero, bins.lo, list(bins.values)))
+check("... a count beyond 16 bits in 32-bit floats, exactly",
+      Bins.of([[5, 70000], [6, 1]]).values.dtype.name == "float32" and Bins.of([[5, 70000]]).get(5) == 70000)
+check("... read over any run of bins, 0 outside theirs", list(bins.on(-1, 44)[[1, 41, 42, 43, 44]]) == [7, 3, 0, 5, 0])
+check("... raised by a shift, bin 0 staying", bins.shifted(10).as_dict() == {0: 7, 50: 3, 52: 5})
+total = added([bins, Bins.of([[0, 1], [39, 2], [42, 1]])], [2.0, 0.5])
+check("... added up with weights over the bins they span",
+      total.as_dict() == {0: 14.5, 39: 1.0, 40: 6.0, 42: 10.5}, total.as_dict())
 
 # A survey of another binning is refused.
 with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:

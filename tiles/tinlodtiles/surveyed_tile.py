@@ -10,7 +10,9 @@ takes (independence blocks the others). The thresholds are set from those states
 """
 import math
 
-from .importance_bins import BINS_PER_DECADE, bin_top
+import numpy as np
+
+from .importance_bins import BINS_PER_DECADE, Bins, added, bin_of_top
 
 # A survey level that deleted less than this share of what the delete percentage asks
 # (the tile's own stop level) walked only its least important candidates: its blocking is
@@ -18,8 +20,27 @@ from .importance_bins import BINS_PER_DECADE, bin_top
 FULL_LEVEL = 0.75
 
 
+HISTOGRAMS = ("histogram", "picked_histogram", "walk_histogram")
+
+
+def compact(row):
+    """A survey level with its histograms as Bins; the tile's own picks only where the level
+    has no walk through every candidate, which alone is read then. A compact row as it is."""
+    if all(isinstance(row[k], Bins) for k in HISTOGRAMS if k in row) and not (
+            "walk_histogram" in row and "picked_histogram" in row):
+        return row
+    out = dict(row)
+    for key in HISTOGRAMS:
+        if key in out:
+            out[key] = Bins.of(out[key])
+    if "walk_histogram" in out:
+        out.pop("picked_histogram", None)
+    return out
+
+
 class SurveyedTile:
     def __init__(self, levels, delete_pct):
+        levels = [compact(r) for r in levels]
         self.levels = levels
         self.vertices = float(levels[0]["vertices"])  # its own count, as the build pass goes
         self.union = float(levels[0].get("union_vertices", levels[0]["vertices"]))  # its part of the union's
@@ -28,35 +49,34 @@ class SurveyedTile:
         self.full = full or levels
 
     def state(self):
-        """(candidates, picks): bin -> count at the tile's current vertex count, from its
-        survey's two levels around that count (log-interpolated, scaled to the count): the
-        picks of its walk through every candidate. Below the survey's last count, its last
-        level's, raised as its levels' importances rise with fewer vertices."""
-        counts, picks, vertices = {}, {}, 0.0
-        for row, weight in self.around():
-            walked = self.walked(row)
-            for b, n in row.get("histogram", []):
-                counts[b] = counts.get(b, 0.0) + weight * n
-                picks[b] = picks.get(b, 0.0) + weight * walked(b, n)
-            vertices += weight * row["vertices"]
+        """(candidates, picks): Bins at the tile's current vertex count, from its survey's two
+        levels around that count (log-interpolated, scaled to the count): the picks of its
+        walk through every candidate. Below the survey's last count, its last level's,
+        raised as its levels' importances rise with fewer vertices."""
+        around = self.around()
+        rows = [row for row, _ in around]
+        weights = [weight for _, weight in around]
+        vertices = sum(w * r["vertices"] for r, w in around)
         scale = self.vertices / vertices if vertices else 0.0
+        counts = added([Bins.of(r.get("histogram", [])) for r in rows], [w * scale for w in weights])
+        picks = added([self.walked(r) for r in rows], [w * scale for w in weights])
         shift = self.rise()
-        # Bin 0 holds the ties of no importance (a flat sea's), which stay so.
-        return ({b + shift if b else 0: n * scale for b, n in counts.items()},
-                {b + shift if b else 0: n * scale for b, n in picks.items()})
+        return counts.shifted(shift), picks.shifted(shift)
 
     def walked(self, row):
-        """The level's picks of a bin of n candidates: its walk's through every candidate.
-        A survey of an earlier tinlod walked only up to the delete percentage: beyond its
-        picks' bins, the nearest full level's share of what its pick went through."""
+        """The level's picks by bin: its walk's through every candidate. A survey of an
+        earlier tinlod walked only up to the delete percentage: beyond its picks' bins, the
+        nearest full level's share of what its pick went through."""
         if "walk_histogram" in row:
-            walk = dict(row["walk_histogram"])
-            return lambda b, n: walk.get(b, 0)
+            return Bins.of(row["walk_histogram"])
         full = min(self.full, key=lambda r: abs(math.log(max(r["vertices"], 1) / max(row["vertices"], 1))))
         taken = full["picked"] / full["considered"] if full["considered"] else 1.0
-        own = dict(row.get("picked_histogram", []))
-        top = max(own) if own else -1
-        return lambda b, n: own.get(b, 0) if b < top else taken * n
+        counts, own = Bins.of(row.get("histogram", [])), Bins.of(row.get("picked_histogram", []))
+        top = own.hi - 1 if len(own.values) else (0 if own.zero else -1)
+        picks = counts.values.astype(np.float64) * taken
+        below = np.arange(counts.lo, counts.hi) < top
+        picks[below] = own.on(counts.lo, counts.hi)[below]
+        return Bins(own.zero if top > 0 else taken * counts.zero, counts.lo, picks)
 
     def around(self):
         """The survey's levels around the current count, with their weights."""
@@ -101,10 +121,7 @@ def picks_below(counts, picks, threshold, share):
     """A state's picks under (threshold, share): every bin below the threshold's, and in
     that bin the share of its candidates, as far as its picks go (a blocked candidate does
     not count against the share)."""
-    total = 0.0
-    for b, n in counts.items():
-        if bin_top(b) < threshold:
-            total += picks.get(b, 0.0)
-        elif bin_top(b) == threshold:
-            total += min(picks.get(b, 0.0), share * n)
-    return total
+    top = bin_of_top(threshold)
+    if top < 0:
+        return 0.0
+    return float(picks.on(0, top).sum()) + min(picks.get(top), share * counts.get(top))

@@ -13,8 +13,10 @@ ties), a share of its candidates may go.
 """
 import json
 
-from .importance_bins import BINS_PER_DECADE, LOWEST, bin_top  # noqa: F401 (bin_top: the thresholds' bins)
-from .surveyed_tile import SurveyedTile, picks_below
+import numpy as np
+
+from .importance_bins import BINS_PER_DECADE, LOWEST, Bins, added, bin_top
+from .surveyed_tile import SurveyedTile, compact, picks_below
 
 # The catalogue's record that a threshold's share (t:s) is the share of its bin's candidates
 # deleted (tinlod build since 2026-11-28), not of those the pick went through.
@@ -23,11 +25,13 @@ SHARES_DELETED = "deleted"
 
 
 def load_survey(path):
-    """A tile's survey (tinlod build -survey's JSON), checked to have this tinlod's bins."""
+    """A tile's survey (tinlod build -survey's JSON), checked to have this tinlod's bins, its
+    levels' histograms held as Bins (a driver holds thousands of surveys)."""
     with open(path) as f:
         survey = json.load(f)
     if survey.get("bins_per_decade") != BINS_PER_DECADE or survey.get("lowest") != LOWEST:
         raise ValueError("%s was written by another tinlod (bins %s): survey again" % (path, survey.get("bins_per_decade")))
+    survey["levels"] = [compact(r) for r in survey.get("levels", [])]
     return survey
 
 
@@ -73,15 +77,6 @@ def followed_levels(surveys, delete_pct, stop_pct):
     return out
 
 
-def added(histograms):
-    """Histograms (bin: count) added up."""
-    total = {}
-    for h in histograms:
-        for b, n in h.items():
-            total[b] = total.get(b, 0.0) + n
-    return total
-
-
 def union_vertices(rows):
     """The levels' vertices as their union counts them (a vertex two tiles share once); the
     tiles' own counts where a survey has no union count (an earlier tinlod's)."""
@@ -112,29 +107,34 @@ def exact_stop_thresholds(values, second, stop_pct, walked, delete_pct=100.0):
             break
     # The border rule's picks count toward the delete percentage, as in a level of followed_levels.
     target = max(0.0, min(vertices - stop, delete_pct / 100.0 * union_vertices(rows) - border_picked(rows)))
-    per_tile = [(dict(r.get("histogram", [])), dict(r.get("picked_histogram", []))) for r in rows]
+    per_tile = [(Bins.of(r.get("histogram", [])), Bins.of(r.get("picked_histogram", []))) for r in rows]
     stop_threshold = threshold_reaching(added(c for c, _ in per_tile), added(p for _, p in per_tile), target, per_tile)
     return values[:k] + [stop_threshold] + [(0.0, 1.0)] * (len(values) - k - 1)
 
 
 def threshold_reaching(counts, picks, target, tiles=None):
     """The (threshold, share) whose deletions reach `target`: the bin where the picks of the
-    bins up to it (`picks`, bin: count) do, and the share of that bin's candidates (`counts`)
+    bins up to it (`picks`, Bins) do, and the share of that bin's candidates (`counts`)
     still needed (a flat area's ties share the rest). Each tile deletes at most its own
     picks of the bin, so with `tiles` (each tile's (counts, picks)) the share is the one
     whose deletions, so capped tile by tile, add up to what is needed."""
     if target <= 0:
         return 0.0, 1.0
-    threshold, seen = 0.0, 0.0
-    for b in sorted(counts):
-        threshold = bin_top(b)
-        if seen + picks.get(b, 0) >= target:
-            needed = target - seen
-            if tiles is None:
-                return threshold, min(1.0, max(0.0, needed / counts[b]))
-            return threshold, share_reaching([(c.get(b, 0.0), p.get(b, 0.0)) for c, p in tiles], needed)
-        seen += picks.get(b, 0)
-    return threshold, 1.0
+    lo, hi = 0 if counts.zero else counts.lo, counts.hi
+    candidates = counts.on(lo, hi)
+    held = np.flatnonzero(candidates)  # the bins with candidates, in order
+    if not len(held):
+        return 0.0, 1.0
+    taken = picks.on(lo, hi)[held]
+    reached = np.flatnonzero(np.cumsum(taken) >= target)
+    if not len(reached):
+        return bin_top(lo + int(held[-1])), 1.0
+    k = int(reached[0])
+    b = lo + int(held[k])
+    needed = target - float(taken[:k].sum())
+    if tiles is None:
+        return bin_top(b), min(1.0, max(0.0, needed / float(candidates[held[k]])))
+    return bin_top(b), share_reaching([(c.get(b), p.get(b)) for c, p in tiles], needed)
 
 
 def share_reaching(bins, needed):
