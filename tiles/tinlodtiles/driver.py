@@ -177,17 +177,18 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     rows = catalogue.rows()
     surveyed = [t for t in tiles if rows[(t.col, t.row)]["status"] != "empty"]
     missing = [t for t in surveyed if not os.path.isfile(survey_path(folder, t))]
+    loaded = {}  # read as the tasks end, while the others still run: thousands of them
     if missing:
         if not arguments.quiet:
             print("survey pass: %d tiles" % len(missing))
-        outcome = run_tiles(catalogue, missing, arguments, workers, ["-survey"], survey="survey")
+        outcome = run_tiles(catalogue, missing, arguments, workers, ["-survey"], survey="survey", loaded=loaded)
         if outcome.get("failed"):
             raise TilesError("%d tiles failed in the survey pass; %s"
                              % (outcome["failed"], failure_summary(catalogue.rows().values())))
     rows = catalogue.rows()
     surveyed = [t for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
     paths = [survey_path(folder, t) for t in surveyed]
-    surveys = [thresholds.load_survey(p) for p in paths]  # each read once: thousands of them
+    surveys = [loaded.get(t) or thresholds.load_survey(p) for t, p in zip(surveyed, paths)]
     percents = percent(arguments, "-delete_pct", 20), percent(arguments, "-stop_pct", 5)
     levels = [s["levels"] for s in surveys]
     values = thresholds.level_thresholds(levels, *percents)
@@ -367,11 +368,11 @@ class Workers:
         stop(self.client, self.cluster)
 
 
-def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=None):
+def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=None, loaded=None):
     """One task per pending tile; the catalogue follows their futures. Returns the count of
     tiles per status. With `survey` (the surveys' kind, as survey_name takes it), the tasks
     write each tile's survey, and the catalogue records only the tiles found empty (or
-    failed)."""
+    failed); `loaded`, when given, gets each survey read (tile: survey) as its task ends."""
     distributed, client = workers.distributed, workers.client
     outcome = {}
     progress = Progress(len(pending), arguments.quiet)
@@ -380,8 +381,10 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
         submit(client, pending, arguments, extra_options, survey, futures)
         for future in distributed.as_completed(list(futures)):
             tile = futures.pop(future)
-            status = (record_survey(catalogue, tile, future, survey_path(tiles_folder(arguments.catalogue), tile, survey))
-                      if survey else record(catalogue, tile, future, arguments.catalogue))
+            path = survey_path(tiles_folder(arguments.catalogue), tile, survey) if survey else None
+            status = record_survey(catalogue, tile, future, path) if survey else record(catalogue, tile, future, arguments.catalogue)
+            if loaded is not None and status == "surveyed":
+                loaded[tile] = thresholds.load_survey(path)
             outcome[status] = outcome.get(status, 0) + 1
             progress.tile(tile.col, tile.row, status)
     except KeyboardInterrupt:
