@@ -693,6 +693,43 @@ def main(tinlod, tiles):
           "tiles (" in lost[2].stdout and lost[2].stdout.count("  unreadable: tile ") == finished
           and ("%d of the catalogue's finished tiles cannot be read" % finished) in lost[2].stderr,
           lost[2].stdout[-600:] + lost[2].stderr[-300:])
+    # No output replaces a tile of the catalogue it reads (tinlod lod once did from the
+    # command line, where GDAL was not yet set up when it listed its inputs).
+    tile_file = files[0]
+    before = open(tile_file, "rb").read()
+    over = [run([options[options.index("-tinlod") + 1], "lod", catalogue, tile_file, "-max_error", "5", "-overwrite", "-q"]),
+            run([tiles, "merge", catalogue, "-level", "1", tile_file, "-overwrite"])]
+    check("(d) tinlod lod and merge refuse to write over a tile of the catalogue they read",
+          all(r.returncode == 1 for r in over) and "is an input of this run" in over[0].stderr
+          and "is a tile of the catalogue" in over[1].stderr and open(tile_file, "rb").read() == before,
+          [r.stderr[-300:] for r in over])
+    not_one = run([tiles, "merge", tile_file, "-level", "1", os.path.join(work, "n.gpkg")])
+    damaged = os.path.join(work, "damaged.gpkg")
+    with open(catalogue, "rb") as f, open(damaged, "wb") as g:
+        g.write(f.read()[:50000])
+    broken = [run([tiles, "merge", damaged, "-level", "1", os.path.join(work, "n.gpkg")]),
+              run(base + [damaged] + options, env)]
+    check("(d) merge of a GeoPackage that is no catalogue says so, without -overwrite advice",
+          not_one.returncode == 1 and "is not a tinlod-tiles catalogue" in not_one.stderr
+          and "-overwrite" not in not_one.stderr, not_one.stderr)
+    check("(d) a damaged catalogue is named as damaged, by merge and by a rerun",
+          all(r.returncode == 1 and "damaged.gpkg cannot be read" in r.stderr and "Traceback" not in r.stderr
+              for r in broken), [r.stderr[-300:] for r in broken])
+    if os.geteuid() == 0:  # another user, who may read the catalogue but not write it, merges it
+        shared = tempfile.mkdtemp(prefix="tinlod_tiles_shared_")
+        os.chmod(shared, 0o777)
+        shutil.copy(catalogue, shared)
+        shutil.copytree(os.path.join(work, "a_tiles"), os.path.join(shared, "a_tiles"))
+        for place, _, names in os.walk(shared):
+            os.chmod(place, 0o777 if place == shared else 0o755)
+            for name in names:
+                os.chmod(os.path.join(place, name), 0o644)
+        reader = run(["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups", tiles, "merge",
+                      os.path.join(shared, "a.gpkg"), "-level", "1", os.path.join(shared, "m.gpkg"), "-q"])
+        check("(d) merge needs only read access to the catalogue", reader.returncode == 0
+              and level_count(os.path.join(shared, "m.gpkg"), "level_1") == sum(level_count(f, "level_1") for f in files),
+              reader.stderr)
+        shutil.rmtree(shared)
     partly = run([tiles, "merge", stopped, "-level", "1", os.path.join(work, "partly.gpkg")])
     check("(d) merge of a catalogue stopped before its end: the finished tiles' level, and a warning of the others",
           partly.returncode == 0 and "1 of the catalogue's 6 tiles are not finished (1 pending)" in partly.stderr

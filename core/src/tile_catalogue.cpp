@@ -19,6 +19,7 @@ struct Closer {
 using Dataset = std::unique_ptr<GDALDataset, Closer>;
 
 Dataset openVector(const std::string& path) {
+  GDALAllRegister();  // isCatalogue may be the first GDAL call (a job's list of its inputs)
   CPLPushErrorHandler(CPLQuietErrorHandler);
   GDALDataset* ds = static_cast<GDALDataset*>(
       GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));

@@ -90,10 +90,25 @@ class Catalogue:
         return cls.open(path)
 
     @classmethod
-    def open(cls, path):
-        dataset = ogr.Open(path, update=1)
-        if dataset is None or dataset.GetMetadataItem("TINLOD_KIND") != "catalogue" \
-                or dataset.GetLayerByName(LAYER) is None:
+    def open(cls, path, update=True):
+        """The catalogue at `path`, for its driver to write (`update`) or for a reader (merge),
+        which needs only read access; TilesError naming the file when it is not one."""
+        if update and not os.access(path, os.W_OK):
+            raise TilesError("cannot write the catalogue %s: run tinlod-tiles as a user who may, or copy the catalogue "
+                             "and its tiles folder where you can write" % path)
+        try:
+            dataset = ogr.Open(path, update=1 if update else 0)
+            catalogue = dataset is not None and dataset.GetMetadataItem("TINLOD_KIND") == "catalogue" \
+                and dataset.GetLayerByName(LAYER) is not None
+            if catalogue:
+                dataset.GetLayerByName(LAYER).GetFeatureCount()  # a damaged file fails here, not later
+        except RuntimeError as e:
+            raise TilesError("%s cannot be read (%s): it is damaged; build it again with tinlod-tiles -overwrite"
+                             % (path, str(e).strip())) from None
+        if not catalogue:
+            if not update:
+                raise TilesError("CATALOGUE %s is not a tinlod-tiles catalogue: give the GeoPackage tinlod-tiles "
+                                 "wrote (its tiles layer lists the tiles)" % path)
             raise TilesError("%s exists and is no tinlod-tiles catalogue; name another file or add "
                              "-overwrite to replace it" % path)
         return cls(dataset)

@@ -22,6 +22,14 @@ def built_tile_files(catalogue, catalogue_path, extent=None):
             if rows[key]["status"] == "done" and rows[key]["file"] and key in meeting]
 
 
+def check_not_a_tile(out_path, files):
+    """OUT may not be one of the catalogue's tile files: writing it would destroy the tile."""
+    for path in files:
+        if os.path.exists(out_path) and os.path.exists(path) and os.path.samefile(out_path, path):
+            raise TilesError("OUT %s is a tile of the catalogue (%s): writing it would destroy the tile; name "
+                             "another file" % (out_path, os.path.basename(path)))
+
+
 def union_vrt(level, files, vrt_folder=None):
     """The VRT text of level `level` over the files: their paths relative to vrt_folder (so
     the catalogue's folder can move), or absolute without one."""
@@ -104,8 +112,9 @@ def unfinished_warning(rows):
 def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     """The tiles' level `level` (-1: the coarsest; of the tiles meeting `extent`, if given)
     merged into one layer `level_K` of a new GeoPackage; returns K and its triangle count."""
-    catalogue = Catalogue.open(catalogue_path)
+    catalogue = Catalogue.open(catalogue_path, update=False)
     rows = catalogue.rows().values()
+    check_not_a_tile(out_path, built_tile_files(catalogue, catalogue_path))
     # A run stopped before its end has not recorded TINLOD_LEVELS: its finished tiles say.
     levels = int(catalogue.setting("TINLOD_LEVELS") or fewest_levels(rows))
     warning = unfinished_warning(rows)
