@@ -969,6 +969,12 @@ TEST(CatalogueHierarchy, ATileFileThatHoldsAnotherTileIsRefused) {
   const std::string message = test::errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); });
   EXPECT_NE(message.find("tile_0_0.gpkg') holds tile 0,0: remove the file and run tinlod tiles again"), std::string::npos)
       << message;
+  // info names it too, and does not add tile 0,0's rows twice.
+  const HierarchyInfo info = readHierarchyInfo(catalogue);
+  ASSERT_EQ(info.unreadableTiles.size(), 1u);
+  EXPECT_EQ(info.unreadableTiles.front().rfind("tile 1,1 ('", 0), 0u) << info.unreadableTiles.front();
+  EXPECT_NE(info.unreadableTiles.front().find("holds tile 0,0"), std::string::npos) << info.unreadableTiles.front();
+  EXPECT_LT(info.levels[0].triangles, readHierarchyInfo(builtTiles().catalogue).levels[0].triangles);
 }
 
 TEST(CatalogueHierarchy, TilesOfTwoJobsAreRefused) {

@@ -148,16 +148,20 @@ std::vector<LevelStats> PooledLevels::finish() {
   return std::move(levels_);
 }
 
+void requireOwnTile(const std::string& name, const std::string& file, const HierarchyInfo& info) {
+  // A file copied or renamed over another tile's would put its triangles in the wrong place.
+  const auto holds = info.metadata.find("tile");
+  if (holds != info.metadata.end() && holds->second != name)
+    throw Error("tile " + name + " ('" + file + "') holds tile " + holds->second +
+                ": remove the file and run tinlod tiles again to build it");
+}
+
 StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress) {
   requireTileFile(tile.name, tile.file);
   StoredHierarchy stored = readHierarchy(tile.file, progress);
   if (stored.info.kind != "hierarchy")
     throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
-  // A file copied or renamed over another tile's would put its triangles in the wrong place.
-  const auto holds = stored.info.metadata.find("tile");
-  if (holds != stored.info.metadata.end() && holds->second != tile.name)
-    throw Error("tile " + tile.name + " ('" + tile.file + "') holds tile " + holds->second +
-                ": remove the file and run tinlod tiles again to build it");
+  requireOwnTile(tile.name, tile.file, stored.info);
   // Under -max_error a tile that refused line vertices is built again with its neighbours
   // until none does: a run stopped before then leaves tiles that do not meet on their lines.
   const auto refused = stored.info.metadata.find("border_refused");

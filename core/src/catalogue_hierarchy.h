@@ -52,6 +52,9 @@ class PooledLevels {
 // A tile's hierarchy file; throws Error naming the tile when it is a single TIN.
 StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress);
 
+// Throws Error when the tile's file holds another tile (copied or renamed over it).
+void requireOwnTile(const std::string& name, const std::string& file, const HierarchyInfo& info);
+
 // What checkSameJob compares of a tile (and what a job on the tiles keeps of the first):
 // its levels, CRS and options, without its vertices and triangles.
 Hierarchy jobOf(const Hierarchy& h);

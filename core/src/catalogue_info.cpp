@@ -13,9 +13,12 @@ HierarchyInfo finishedTileInfo(const TileStatus& tile) {
   try {
     HierarchyInfo info = readHierarchyInfo(tile.file);
     if (info.kind != "hierarchy") throw Error("it is a single TIN (" + info.kind + "), not a hierarchy");
+    requireOwnTile(tile.name, tile.file, info);
     return info;
   } catch (const Error& e) {
-    throw Error("tile " + tile.name + " of the catalogue ('" + tile.file + "'): " + e.what());
+    const std::string why = e.what();
+    if (why.rfind("tile " + tile.name + " ", 0) == 0) throw;  // it names the tile already
+    throw Error("tile " + tile.name + " of the catalogue ('" + tile.file + "'): " + why);
   }
 }
 
