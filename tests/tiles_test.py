@@ -510,6 +510,18 @@ def main(tinlod, tiles):
           alike.returncode == 1 and "tiles failed in the survey pass; they say:" in alike.stderr
           and "the worker's disk is full" in alike.stderr and " and 5 more)" in alike.stderr
           and "every tile failed alike" in alike.stderr and "-overwrite" in alike.stderr, alike.stderr[-2000:])
+    with open(failing, "w") as f:  # the same, but the empty tile found empty (tinlod's exit 3)
+        f.write('#!/bin/sh\nfor a in "$@"; do [ "$a" = -check ] && exec "%s" "$@"; [ "$a" = %d,%d ] && exit 3; done\n'
+                'echo "ERROR: the worker\'s disk is full" >&2\nexit 1\n' % ((program,) + EMPTY_TILE))
+    alike = run(base + [os.path.join(work, "f2.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2", "-retries", "0",
+                        "-tinlod", failing], env)
+    check("... and so is it when one tile is empty and all the others fail alike",
+          alike.returncode == 1 and " and 4 more)" in alike.stderr and "every tile failed alike" in alike.stderr,
+          alike.stderr[-2000:])
+    empty = run(base + [os.path.join(work, "e0.gpkg")] + options + ["-valid_range", "50000", "90000"], env)
+    check("a job whose every tile is empty (no valid cell) is an error naming the fix, not a success",
+          empty.returncode == 1 and "none of the 6 tiles has a valid cell" in empty.stderr
+          and "-overwrite" in empty.stderr, empty.stdout[-500:] + empty.stderr[-1000:])
 
     # (a) A run: the catalogue ends complete.
     catalogue = os.path.join(work, "a.gpkg")

@@ -575,6 +575,11 @@ def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
         print("ERROR: %d tiles failed after their retries; %s" % (states["failed"], failure_summary(rows)),
               file=sys.stderr)
         return 1
+    if rows and states.get("empty") == len(rows):  # a script must not take it for a result
+        print("ERROR: none of the %d tiles has a valid cell of %s as tinlod build reads it (its band, -valid_range, "
+              "the band's nodata), so nothing was built: correct the options and run again with -overwrite"
+              % (len(rows), arguments.dem), file=sys.stderr)
+        return 1
     return 0
 
 
@@ -592,7 +597,7 @@ def failure_summary(rows):
              for message, tiles in ranked[:3]]
     if len(ranked) > 3:
         lines.append("%d other messages (the catalogue's error field has each)" % (len(ranked) - 3))
-    alike = len(ranked) == 1 and all(row["status"] == "failed" for row in rows)
+    alike = len(ranked) == 1 and all(row["status"] in ("failed", "empty") for row in rows)
     advice = ("every tile failed alike: if the DEM or the options are wrong, correct them and run again with "
               "-overwrite (the catalogue keeps the options it was made with)" if alike else "run again to retry them")
     return "\n  ".join(["they say:"] + lines) + "\n" + advice
