@@ -51,6 +51,15 @@ with tempfile.TemporaryDirectory() as folder:
 check("a relative name in a folder whose name is not UTF-8 is refused too",
       message is not None and "d\\xe9m/dem.tif is not UTF-8 text" in message, message)
 
+for address in ("foo", "tcp://", "host:port", "10.0.0.1"):
+    message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", "300", "-scheduler", address])
+    check("-scheduler %s is refused before anything is written, saying what an address is" % address,
+          message is not None and message.startswith("-scheduler %s: give the scheduler's address, tcp://host:port"
+                                                     % address), message)
+for address in ("tcp://10.0.0.1:8786", "node7:8786", "[::1]:8786", "tls://node7:8786"):
+    message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", "300", "-scheduler", address])
+    check("-scheduler %s is an address" % address, message is None or not message.startswith("-scheduler"), message)
+
 with tempfile.TemporaryDirectory() as folder:
     catalogue = os.path.join(folder, "c.gpkg")
     open(catalogue, "w").close()

@@ -632,13 +632,14 @@ def main(tinlod, tiles):
     # A -fixed file edited in place after the job: the finished tiles kept the old points.
     points = make_points(dem, os.path.join(work, "points.gpkg"))
     pinned = os.path.join(work, "p.gpkg")
-    with_points = run(base + [pinned] + options + ["-fixed", points], env)
-    check("(c) a job with -fixed points runs, and records the points file's bytes and time of change",
+    with_points = run(base + [pinned] + options + ["-fixed", points + "|layername=points"], env)
+    check("(c) a job with -fixed points (a layer named as QGIS names one) runs, and records the points file's "
+          "bytes and time of change",
           with_points.returncode == 0 and "bytes, changed " in (rows(pinned)[2].get("TINLOD_FIXED_STAMP") or ""),
           with_points.stderr[-1000:])
     stat = os.stat(points)
     os.utime(points, ns=(stat.st_atime_ns, stat.st_mtime_ns + 10 ** 9))
-    edited = run(base + [pinned] + options + ["-fixed", points], env)
+    edited = run(base + [pinned] + options + ["-fixed", points + "|layername=points"], env)
     check("(c) ... and a rerun after the points file changed is refused, naming it and -overwrite",
           edited.returncode == 1 and ("the -fixed file %s has changed since" % points) in edited.stderr
           and "-overwrite" in edited.stderr, edited.stderr[-1000:])

@@ -157,6 +157,11 @@ def parse_run(args):
     arguments = RunArguments(positionals[0], positionals[1], whole_number(options["-tile_size"], "-tile_size", 1),
                              scheduler=options.get("-scheduler"), overwrite="-overwrite" in options,
                              quiet="-q" in options, build_options=absolute_files(build_options))
+    # tcp:// (Dask's default) or none; another protocol (tls://, ucx://) is the client's to read.
+    if arguments.scheduler and not re.match(r"(?!tcp://)\w+://", arguments.scheduler) \
+            and not re.fullmatch(r"(?:tcp://)?\[?[^\]/]+?\]?:\d+/?", arguments.scheduler):
+        raise TilesError("-scheduler %s: give the scheduler's address, tcp://host:port or host:port (`dask scheduler` "
+                         "prints it: tcp://host:8786 by default)" % arguments.scheduler)
     if "-workers" in options:
         arguments.workers = whole_number(options["-workers"], "-workers", 1)
     if "-retries" in options:

@@ -43,7 +43,9 @@ def options_part(settings):
 
 def file_stamp(path):
     """A local file's bytes and time of change; "" for a GDAL virtual path (/vsi...). A
-    VRT's stamp is its own, not its sources'; a shapefile's that of its .shp."""
+    VRT's stamp is its own, not its sources'; a shapefile's that of its .shp; a layer named
+    as QGIS names one (points.gpkg|layername=p), its file's."""
+    path = path.split("|", 1)[0]
     if path.startswith("/vsi"):
         return ""
     status = os.stat(path)

@@ -416,7 +416,7 @@ def start_client(distributed, arguments):
     if arguments.scheduler:
         try:
             return distributed.Client(arguments.scheduler, timeout="20s"), None
-        except OSError as e:
+        except (OSError, ValueError) as e:  # ValueError: an address Dask cannot read
             raise TilesError("cannot reach the Dask scheduler %s (%s): is `dask scheduler` running there?"
                              % (arguments.scheduler, e)) from None
     # Threads, not processes: a task only waits on its tinlod (the GIL is free meanwhile),
