@@ -54,10 +54,10 @@ def file_stamp(path):
 
 
 def stamped_file(settings, key):
-    """The file a stamp is of, as the job's settings name it."""
+    """The file a stamp is of, as the job's settings name it (a layer's: its file)."""
     if key == SOURCE_STAMP:
         return settings["TINLOD_SOURCE"]
-    return build_option(shlex.split(settings["TINLOD_BUILD_OPTIONS"]), "-fixed")
+    return build_option(shlex.split(settings["TINLOD_BUILD_OPTIONS"]), "-fixed").split("|", 1)[0]
 
 
 def same_file(recorded, given):
