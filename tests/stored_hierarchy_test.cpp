@@ -267,6 +267,10 @@ TEST(StoredHierarchy, CentresAndPointsToKeepRefuseOtherGeometries) {
   EXPECT_EQ(
       test::errorOf([&] { runBuildJob(s.dem, dir + "/h.gpkg", {}, keep, false, {}); }),
       "-fixed (points to keep): the layer of '" + dir + "/area.gpkg' holds Polygon features: a point layer is needed");
+  // -check (which tinlod tiles runs before any tile) refuses it too, reading no DEM.
+  EXPECT_EQ(
+      test::errorOf([&] { checkBuildJob(s.dem, {}, keep, AccuracyOutputs(), {}, {}, {}); }),
+      "-fixed (points to keep): the layer of '" + dir + "/area.gpkg' holds Polygon features: a point layer is needed");
   // A multipoint's points are all centres.
   test::writeWktLayer(dir + "/centres.gpkg", {"MULTIPOINT ((400500 5200500), (401000 5201000))"});
   lod.centresPath = dir + "/centres.gpkg";

@@ -16,6 +16,10 @@
 namespace tinlod {
 void checkPointsExist(const std::string& path, const std::string& what) {
   if (plainPathMissing(parseLayerSource(path, what).path)) throw Error(what + ": '" + path + "' does not exist");
+  // A layer of polygons would otherwise be refused only after the long work (in every
+  // tile of a tiled run, after a survey pass).
+  const OpenLayer open = openLayer(path, what);
+  checkPointLayer(*open.layer, what, open.path);
 }
 
 std::vector<std::array<double, 2>> readPoints(const std::string& path, const std::string& targetWkt,

@@ -13,7 +13,8 @@ namespace tinlod {
 // of a vector file GDAL reads, transformed to the CRS `targetWkt`. A layer without a CRS
 // is taken to be in it already (a warning says so). Throws Error naming the file, and
 // the type found when the layer or a feature holds lines, polygons or collections.
-// Throws Error when a plain path does not exist (checked before any long work).
+// Throws Error when a plain path does not exist or its layer is not one of points (checked
+// before any long work).
 // `what` names the points in messages.
 void checkPointsExist(const std::string& path, const std::string& what = "points to keep");
 
