@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <random>
@@ -975,6 +976,43 @@ TEST(CatalogueHierarchy, ATileFileThatHoldsAnotherTileIsRefused) {
   EXPECT_EQ(info.unreadableTiles.front().rfind("tile 1,1 ('", 0), 0u) << info.unreadableTiles.front();
   EXPECT_NE(info.unreadableTiles.front().find("holds tile 0,0"), std::string::npos) << info.unreadableTiles.front();
   EXPECT_LT(info.levels[0].triangles, readHierarchyInfo(builtTiles().catalogue).levels[0].triangles);
+}
+
+// A finished tile's file cut short: every reader names the tile and the fix.
+TEST(CatalogueHierarchy, ADamagedTileIsNamedWithTheFix) {
+  const std::string cut = std::filesystem::path(builtTiles().files[1]).parent_path().string() + "/cut_tile.gpkg";
+  {
+    std::ifstream in(builtTiles().files[1], std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(cut, std::ios::binary) << bytes.substr(0, 50000);
+  }
+  const std::string catalogue = alteredCatalogue(
+      "cut_short.gpkg", "UPDATE tiles SET file = '" + cut + "' WHERE tile_col = 1 AND tile_row = 0");
+  const std::string dir = test::tempDir();
+  std::vector<std::string> tiles;
+  const std::string points = tileCentresRoundAndRound(dir, tiles);
+  for (const std::string& message :
+       {test::errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); }),
+        test::errorOf([&] { runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet); }),
+        test::errorOf([&] {
+          extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 6}; }, kRange);
+        }),
+        test::errorOf([&] { runLocateJob(catalogue, points, dir + "/located.gpkg", 0, false, kQuiet); })}) {
+    EXPECT_TRUE(test::contains(message, "tile 1,0 ('" + cut + "') cannot be read: ")) << message;
+    EXPECT_TRUE(test::contains(message, "remove the file and run tinlod tiles on the catalogue again")) << message;
+  }
+}
+
+// A catalogue named as a tile (its own, here) is refused, not read without end.
+TEST(CatalogueHierarchy, ACatalogueAsItsOwnTileIsRefused) {
+  const std::string catalogue =
+      alteredCatalogue("own_tile.gpkg", "UPDATE tiles SET file = 'own_tile.gpkg' WHERE tile_col = 1 AND tile_row = 0");
+  const HierarchyInfo info = readHierarchyInfo(catalogue);
+  ASSERT_EQ(info.unreadableTiles.size(), 1u);
+  EXPECT_TRUE(test::contains(info.unreadableTiles.front(), "it is a tinlod-tiles catalogue, not a tile"))
+      << info.unreadableTiles.front();
+  const std::string message = test::errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); });
+  EXPECT_TRUE(test::contains(message, "tile 1,0 ('")) << message;
 }
 
 TEST(CatalogueHierarchy, TilesOfTwoJobsAreRefused) {

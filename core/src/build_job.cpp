@@ -84,9 +84,26 @@ void validateTile(const TileSpec& tile, const SampleOptions& sample, const Hiera
                 "-survey lists the tile's own outline cells");
 }
 
-void addTileMetadata(const Dem& dem, const TileSpec& tile, std::map<std::string, std::string>& m) {
+// -level_thresholds as given (t[:s],...), to a few digits: the catalogue holds them exactly.
+std::string levelThresholdsText(const HierarchyOptions& options) {
+  std::string text;
+  for (std::size_t k = 0; k < options.levelThresholds.size(); ++k) {
+    text += (k ? "," : "") + formatNumber(options.levelThresholds[k]);
+    if (k < options.levelShares.size() && options.levelShares[k] < 1) text += ":" + formatNumber(options.levelShares[k]);
+  }
+  return text;
+}
+
+// What a tile was built with beside the options every build records: a tile opened alone
+// says how many levels its job makes, and the raster's thresholds it deleted by.
+void addTileMetadata(const Dem& dem, const TileSpec& tile, const HierarchyOptions& options,
+                     std::map<std::string, std::string>& m) {
   const auto pair = [](std::int64_t a, std::int64_t b) { return std::to_string(a) + "," + std::to_string(b); };
   m["TINLOD_TILE"] = pair(tile.col, tile.row);
+  m["TINLOD_TILE_LEVELS"] = std::to_string(tileLevels(options) + 1) + " (levels 0 to " + std::to_string(tileLevels(options)) +
+                            ", as every tile of its job)";
+  if (!options.levelThresholds.empty())
+    m["TINLOD_LEVEL_THRESHOLDS"] = levelThresholdsText(options) + " (the raster's, one per level, from its tiles' surveys)";
   m["TINLOD_TILE_SIZE"] = std::to_string(tile.size);
   m["TINLOD_TILE_WINDOW"] = pair(dem.window.colOffset, dem.window.rowOffset) + "," + pair(dem.width, dem.height);
   m["TINLOD_RASTER_SIZE"] = pair(dem.wholeWidth(), dem.wholeHeight());
@@ -318,7 +335,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
     releaseMemory(h.base.triangles);
   }
   writeOptions.metadata = buildMetadata(demPath, sample, options, h.base.crsName);
-  if (tile.size > 0) addTileMetadata(dem, tile, writeOptions.metadata);
+  if (tile.size > 0) addTileMetadata(dem, tile, options, writeOptions.metadata);
   if (tile.size > 0) addAgreementMetadata(dem, borders, h, writeOptions.metadata, all);
   if (borders.outlineListed)  // how many of the -line_outline cells are on this tile's lines
     writeOptions.metadata["TINLOD_LINE_OUTLINE_CELLS"] =

@@ -142,9 +142,11 @@ struct NeighbourTriangles {
 
 void readNeighbourTriangles(const CatalogueTile& tile, const std::array<double, 4>& box, std::int32_t coarsest,
                             NeighbourTriangles& out) {
+  requireTileFile(tile.name, tile.file);
   const DatasetPtr ds = openReadOnly(tile.file, GDAL_OF_VECTOR);
-  OGRLayer* layer = ds ? ds->GetLayerByName("triangles") : nullptr;
-  if (!layer) throw Error("tile " + tile.name + " ('" + tile.file + "') has no triangles layer: build the tiles with tinlod tiles");
+  if (!ds) throw Error(unreadableTile(tile.name, tile.file, "it is not a GeoPackage GDAL can read"));
+  OGRLayer* layer = ds->GetLayerByName("triangles");
+  if (!layer) throw Error(unreadableTile(tile.name, tile.file, "it has no triangles layer"));
   const StoredTable table(tile.file, *layer);
   const int first = table.column("first_level"), last = table.column("last_level");
   layer->SetSpatialFilterRect(box[0], box[1], box[2], box[3]);  // through the GeoPackage's R-tree

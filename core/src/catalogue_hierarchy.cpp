@@ -158,7 +158,14 @@ void requireOwnTile(const std::string& name, const std::string& file, const Hier
 
 StoredHierarchy readCatalogueTile(const CatalogueTile& tile, const ProgressRange& progress) {
   requireTileFile(tile.name, tile.file);
-  StoredHierarchy stored = readHierarchy(tile.file, progress);
+  StoredHierarchy stored;
+  try {
+    stored = readHierarchy(tile.file, progress);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    throw Error(unreadableTile(tile.name, tile.file, e.what()));
+  }
   if (stored.info.kind != "hierarchy")
     throw Error("tile " + tile.name + " ('" + tile.file + "') is a single TIN, not a hierarchy: build the tiles with tinlod tiles");
   requireOwnTile(tile.name, tile.file, stored.info);

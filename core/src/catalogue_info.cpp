@@ -11,6 +11,8 @@ namespace {
 HierarchyInfo finishedTileInfo(const TileStatus& tile) {
   requireTileFile(tile.name, tile.file);
   try {
+    // Read as a catalogue, a catalogue named as its own tile would be read without end.
+    if (isCatalogue(tile.file)) throw Error("it is a tinlod-tiles catalogue, not a tile");
     HierarchyInfo info = readHierarchyInfo(tile.file);
     if (info.kind != "hierarchy") throw Error("it is a single TIN (" + info.kind + "), not a hierarchy");
     requireOwnTile(tile.name, tile.file, info);

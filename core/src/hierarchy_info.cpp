@@ -115,7 +115,7 @@ HierarchyInfo catalogueInfo(GDALDataset& ds, HierarchyInfo info) {
 std::string tileCounts(const HierarchyInfo& info) {
   std::size_t all = 0;
   for (const auto& [status, count] : info.tileStatuses) all += count;
-  return std::to_string(all) + " tiles" + (all ? " (" + statusCounts(info.tileStatuses) + ")" : "");
+  return std::to_string(all) + (all == 1 ? " tile" : " tiles") + (all ? " (" + statusCounts(info.tileStatuses) + ")" : "");
 }
 
 }  // namespace

@@ -137,6 +137,11 @@ void requireTileFile(const std::string& name, const std::string& file) {
                 "on the catalogue again to build the tile");
 }
 
+std::string unreadableTile(const std::string& name, const std::string& file, const std::string& why) {
+  return "tile " + name + " ('" + file + "') cannot be read: " + why +
+         "; remove the file and run tinlod tiles on the catalogue again to build it";
+}
+
 void requireTileCells(const std::string& path, const std::vector<CatalogueTile>& tiles) {
   for (const CatalogueTile& tile : tiles)
     if (tile.xsize < 2 || tile.ysize < 2)

@@ -61,4 +61,8 @@ void requireTileCells(const std::string& path, const std::vector<CatalogueTile>&
 // the catalogue names it relative to itself, so its tiles folder must stay beside it.
 void requireTileFile(const std::string& name, const std::string& file);
 
+// The message for a finished tile whose file cannot be read (damaged, or not a tile), and
+// the fix.
+std::string unreadableTile(const std::string& name, const std::string& file, const std::string& why);
+
 }  // namespace tinlod
