@@ -60,9 +60,18 @@ for address in ("tcp://10.0.0.1:8786", "node7:8786", "[::1]:8786", "tls://node7:
     message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", "300", "-scheduler", address])
     check("-scheduler %s is an address" % address, message is None or not message.startswith("-scheduler"), message)
 
+for size, block, least in (("0", None, 6), ("3", None, 6), ("8", "4", 8), ("5", "5", 10)):
+    extra = ["--", "-block", block] if block else []
+    message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", size] + extra)
+    check("-tile_size %s with -block %s is refused below two blocks, naming the least" % (size, block or 3),
+          message is not None and (message.startswith("-tile_size %s: a tile is at least two blocks" % size)
+                                   and ("give %d or more" % least) in message) == (int(size) < least), message)
+
 with tempfile.TemporaryDirectory() as folder:
     catalogue = os.path.join(folder, "c.gpkg")
     open(catalogue, "w").close()
+    message = refusal(parse_merge, [catalogue, os.path.join(folder, "out.gpkg")])
+    check("merge without -level names it", message is not None and message.startswith("merge needs -level K"), message)
     for level in ("-2", "x", "1.5"):
         message = refusal(parse_merge, [catalogue, "-level", level, os.path.join(folder, "out.gpkg")])
         check("merge -level %s is refused, naming -1 for the coarsest" % level,

@@ -419,6 +419,10 @@ def exact_stop(base, options, work, env):
           not [n for n in os.listdir(folder) if "survey" in n]
           and rows(os.path.join(work, "exact.gpkg"))[2].get("TINLOD_EXACT_STOP") == "yes"
           and not rows(os.path.join(work, "plain.gpkg"))[2].get("TINLOD_EXACT_STOP"), os.listdir(folder))
+    finished = run(base + [os.path.join(work, "plain.gpkg"), "-exact_stop"] + options, env)
+    check("(l) ... -exact_stop on a finished catalogue made without it says so too (nothing is built)",
+          finished.returncode == 0 and "set without -exact_stop" in finished.stderr
+          and "0 tiles run" in finished.stdout, finished.stdout + finished.stderr[-1000:])
     os.remove(os.path.join(work, "plain_tiles", "tile_0_0.gpkg"))
     late = run(base + [os.path.join(work, "plain.gpkg"), "-exact_stop"] + options, env)
     check("(l) -exact_stop on a catalogue whose thresholds were set without it says they are reused, naming -overwrite",
@@ -444,8 +448,11 @@ def main(tinlod, tiles):
     base = [tiles, dem]
     options = ["-tile_size", str(TILE_SIZE), "-workers", "2", "-tinlod", program, "--", "-seed", "5"]
 
-    check("tinlod tiles --help is tinlod-tiles --help",
-          run([tinlod, "tiles", "--help"]).stdout == run([tiles, "--help"]).stdout)
+    check("tinlod tiles --help is tinlod-tiles --help, and so is tinlod-tiles merge --help",
+          run([tinlod, "tiles", "--help"]).stdout == run([tiles, "--help"]).stdout == run([tiles, "merge", "--help"]).stdout)
+    version = run([tiles, "--version"])
+    check("tinlod-tiles --version names the tinlod it runs", version.returncode == 0
+          and version.stdout.startswith("tinlod-tiles, running tinlod ") and "GDAL" in version.stdout, version.stdout)
     bad = run(base + [os.path.join(work, "x.gpkg"), "-tile_size", "100", "-tinlod", program])
     check("-tile_size not a multiple of -block is refused, naming both",
           bad.returncode == 1 and "-tile_size 100" in bad.stderr and "-block 3" in bad.stderr, bad.stderr)
@@ -518,6 +525,15 @@ def main(tinlod, tiles):
     check("... and so is it when one tile is empty and all the others fail alike",
           alike.returncode == 1 and " and 4 more)" in alike.stderr and "every tile failed alike" in alike.stderr,
           alike.stderr[-2000:])
+    warning = os.path.join(work, "warning_tinlod")  # tinlod with a warning of its own
+    with open(warning, "w") as f:
+        f.write('#!/bin/sh\necho "Warning: 2 of the 3 points to keep fall outside" >&2\nexec "%s" "$@"\n' % program)
+    os.chmod(warning, 0o755)
+    warned = run(base + [os.path.join(work, "wn.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2", "-tinlod", warning],
+                 env)
+    check("a warning tinlod gives on a tile is shown once per tile built, naming the tile (a worker's stderr goes "
+          "nowhere)", warned.returncode == 0 and warned.stderr.count("Warning: tile ") == 5
+          and "Warning: tile 0,0: 2 of the 3 points to keep fall outside\n" in warned.stderr, warned.stderr[-2000:])
     empty = run(base + [os.path.join(work, "e0.gpkg")] + options + ["-valid_range", "50000", "90000"], env)
     check("a job whose every tile is empty (no valid cell) is an error naming the fix, not a success",
           empty.returncode == 1 and "none of the 6 tiles has a valid cell" in empty.stderr
@@ -567,7 +583,7 @@ def main(tinlod, tiles):
     os.remove(os.path.join(folder, "tile_0_1.gpkg"))
     before.pop("tile_0_1.gpkg")
     again = run(base + [catalogue] + options, env)
-    check("(c) a tile whose file is gone is built again, alone", "1 tiles run, 5 skipped" in again.stdout
+    check("(c) a tile whose file is gone is built again, alone", "1 tile run, 5 skipped" in again.stdout
           and os.path.isfile(os.path.join(folder, "tile_0_1.gpkg")), again.stdout + again.stderr[-1000:])
     after = file_times(folder)
     after.pop("tile_0_1.gpkg", None)
@@ -579,7 +595,7 @@ def main(tinlod, tiles):
             f.write(content)
         repaired = run(base + [catalogue] + options, env)
         check("(c) a tile whose file is %s is said and built again, alone" % damage,
-              "WARNING: tile 1,0 is built again: " in repaired.stderr and "1 tiles run, 5 skipped" in repaired.stdout
+              "Warning: tile 1,0 is built again: " in repaired.stderr and "1 tile run, 5 skipped" in repaired.stdout
               and open(os.path.join(folder, "tile_1_0.gpkg"), "rb").read()[:100] == original[:100],
               repaired.stdout + repaired.stderr[-1000:])
     link = os.path.join(work, "dem_link.tif")
@@ -756,6 +772,10 @@ def main(tinlod, tiles):
           metadata.get("TINLOD_SELECTION") == "global" and len(thresholds) == levels - 1
           and all(float(t.split(":")[0]) >= 0 for t in thresholds), metadata)
     check("(f) no survey file is left", not [n for n in os.listdir(folder) if "survey" in n], os.listdir(folder))
+    own = gdal.OpenEx(os.path.join(folder, "tile_1_1.gpkg"), gdal.OF_VECTOR).GetMetadata()
+    check("(f) a tile opened alone says its job's levels and the raster's thresholds it was built with",
+          own.get("TINLOD_TILE_LEVELS", "").startswith("%d (levels 0 to %d" % (levels, levels - 1))
+          and len(own.get("TINLOD_LEVEL_THRESHOLDS", "").split(" (")[0].split(",")) == levels - 1, own)
     # (k) The line cells on a tile's outline, which the surveys list: the build pass keeps
     # these, not every line cell near nodata (the empty corner's lines).
     outline_file = os.path.join(folder, "line_outline.txt")
@@ -781,7 +801,7 @@ def main(tinlod, tiles):
     with open(outline_file, "w") as f:
         f.write(whole_list)
     back = run(base + [catalogue] + options, env)
-    check("(k) with the file back the tile is built again", back.returncode == 0 and "1 tiles run, 5 skipped" in back.stdout,
+    check("(k) with the file back the tile is built again", back.returncode == 0 and "1 tile run, 5 skipped" in back.stdout,
           back.stdout + back.stderr[-1000:])
     # (f) A threshold's share (t:s) is the share of its bin's ties deleted, as the catalogue
     # records; one whose thresholds an earlier tinlod-tiles set (shares of the ties gone
@@ -795,7 +815,7 @@ def main(tinlod, tiles):
     os.remove(os.path.join(folder, "tile_0_1.gpkg"))
     ours = run(base + [catalogue] + options, env)
     check("(f) a rerun of this tinlod-tiles' catalogue with a share says nothing of it",
-          ours.returncode == 0 and "1 tiles run, 5 skipped" in ours.stdout and "earlier tinlod-tiles" not in ours.stderr,
+          ours.returncode == 0 and "1 tile run, 5 skipped" in ours.stdout and "earlier tinlod-tiles" not in ours.stderr,
           ours.stdout + ours.stderr[-1000:])
     edit = gdal.OpenEx(catalogue, gdal.OF_VECTOR | gdal.OF_UPDATE)
     edit.SetMetadataItem("TINLOD_THRESHOLD_SHARES", None)
@@ -803,7 +823,7 @@ def main(tinlod, tiles):
     os.remove(os.path.join(folder, "tile_0_1.gpkg"))
     earlier = run(base + [catalogue] + options, env)
     check("(f) a catalogue an earlier tinlod-tiles set the thresholds of is resumed, with a warning",
-          earlier.returncode == 0 and "1 tiles run, 5 skipped" in earlier.stdout
+          earlier.returncode == 0 and "1 tile run, 5 skipped" in earlier.stdout
           and "set by an earlier tinlod-tiles" in earlier.stderr and "-overwrite" in earlier.stderr,
           earlier.stdout + earlier.stderr[-1000:])
     by_tile = os.path.join(work, "t.gpkg")

@@ -19,6 +19,7 @@ skipped. Each level across the tiles is one layer: <stem>_levels/level_K.vrt.
 Usage: tinlod-tiles DEM CATALOGUE.gpkg -tile_size N [options] [-- build options]
        tinlod-tiles merge CATALOGUE.gpkg -level K OUT.gpkg [-te xmin ymin xmax ymax]
                           [-overwrite] [-q]
+       tinlod-tiles --version
 
 Tiles:
   -tile_size N     cells per tile side, a multiple of the build's -block (default 3);
@@ -154,7 +155,7 @@ def parse_run(args):
     if "-workers" in options and "-scheduler" in options:
         raise TilesError("-workers sizes the local cluster; a -scheduler's workers are started with it "
                          "(dask worker ADDRESS --nworkers n): give one of them")
-    arguments = RunArguments(positionals[0], positionals[1], whole_number(options["-tile_size"], "-tile_size", 1),
+    arguments = RunArguments(positionals[0], positionals[1], whole_number(options["-tile_size"], "-tile_size", 0),
                              scheduler=options.get("-scheduler"), overwrite="-overwrite" in options,
                              quiet="-q" in options, build_options=absolute_files(build_options))
     # tcp:// (Dask's default) or none; another protocol (tls://, ucx://) is the client's to read.
@@ -201,6 +202,9 @@ def check_run(arguments):
         if option in REFUSED_BUILD_OPTIONS:
             raise TilesError("%s after --: %s" % (option, REFUSED_BUILD_OPTIONS[option]))
     block = build_block(arguments.build_options)
+    if arguments.tile_size < 2 * block:
+        raise TilesError("-tile_size %d: a tile is at least two blocks of -block %d: give %d or more (thousands of "
+                         "cells make fewer, larger tiles)" % (arguments.tile_size, block, 2 * block))
     if arguments.tile_size % block:
         lower = arguments.tile_size - arguments.tile_size % block
         raise TilesError("-tile_size %d is not a multiple of -block %d (so the tiles' samples would not meet): "
@@ -273,8 +277,11 @@ def find_tinlod(given):
 def parse_merge(args):
     check_text(args)
     positionals, options = split_options(args, {"-level": 1, "-te": 4}, ("-overwrite", "-q"))
-    if len(positionals) != 2 or "-level" not in options:
+    if len(positionals) != 2:
         raise TilesError("usage: tinlod-tiles merge CATALOGUE.gpkg -level K OUT.gpkg [-te xmin ymin xmax ymax]")
+    if "-level" not in options:
+        raise TilesError("merge needs -level K: the level to merge, 0 to the catalogue's TINLOD_LEVELS - 1, or -1 "
+                         "for the coarsest")
     catalogue, out = positionals
     if not os.path.isfile(catalogue):
         raise TilesError("CATALOGUE %s does not exist" % catalogue)

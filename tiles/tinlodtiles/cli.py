@@ -1,35 +1,52 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """tinlod-tiles' command line: parse, run, and report a failure once (exit 1, "ERROR: ...")."""
+import subprocess
 import sys
 
 from osgeo import gdal, ogr
 
-from .arguments import HELP, parse_merge, parse_run
+from .arguments import HELP, find_tinlod, parse_merge, parse_run
 from .errors import TilesError
 
 STOPPED_EXIT_CODE = 130  # as a shell reports a run ended by Ctrl-C
 
 
 def main(args):
-    if not args or args[0] in ("--help", "-h"):
+    if not args or args[0] in ("--help", "-h") or args[:2] in (["merge", "--help"], ["merge", "-h"]):
         sys.stdout.write(HELP)
         return 0 if args else 1
+    if args == ["--version"]:
+        return version()
     gdal.UseExceptions()
     ogr.UseExceptions()
+    merging = args[0] == "merge"
     try:
-        if args[0] == "merge":
+        if merging:
             return merge(parse_merge(args[1:]))
         return run(parse_run(args))
     except TilesError as e:
         print("ERROR: %s" % e, file=sys.stderr)
         return 1
-    except KeyboardInterrupt:  # outside the tiles' loop: the catalogue holds what finished
-        print("ERROR: stopped before the end; the catalogue keeps the tiles finished so far: run again to "
-              "resume", file=sys.stderr)
+    except KeyboardInterrupt:  # outside the tiles' loop: a catalogue holds what finished
+        print("ERROR: stopped before the end; %s" % ("nothing was written (OUT is as it was)" if merging else
+                                                      "run again to resume: a catalogue keeps the tiles finished"),
+              file=sys.stderr)
         return STOPPED_EXIT_CODE
     except RuntimeError as e:  # GDAL's own errors
         print("ERROR: %s" % e, file=sys.stderr)
         return 1
+
+
+def version():
+    """tinlod-tiles runs the tinlod it finds: its version is that tinlod's."""
+    try:
+        tinlod = find_tinlod(None)
+    except TilesError as e:
+        print("tinlod-tiles (%s)" % e)
+        return 1
+    found = subprocess.run([tinlod, "--version"], capture_output=True, text=True)
+    print("tinlod-tiles, running %s (%s)" % (found.stdout.strip() or "an unknown tinlod", tinlod))
+    return found.returncode
 
 
 def run(arguments):

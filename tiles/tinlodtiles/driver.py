@@ -24,7 +24,7 @@ from .catalogue import BUILD_SETTINGS, FIXED_STAMP, SOURCE_STAMP, Catalogue, fil
 from .errors import TilesError
 from .grid import tile_grid
 from .levels import fewest_levels, write_level_vrts
-from .progress import Progress
+from .progress import Progress, n_tiles
 from .tile_file import read_tile_summary
 from .tin_crs import predicted_tin_srs
 
@@ -59,6 +59,8 @@ def run(arguments):
         if agreeing:  # a run stopped between two rounds of agreement left tiles to build again
             listed = set(pending)
             pending += [t for t in tiles_to_agree(catalogue, tiles, arguments)[0] if t not in listed]
+        if not pending:  # nothing to build: the thresholds stay as they were set
+            warn_of_reused_thresholds(catalogue, arguments)
         started = set(pending)  # surveyed or built by this run (a survey may find a tile empty)
         try:
             outcome, built, rounds = build(catalogue, tiles, arguments, folder, pending, agreeing)
@@ -118,8 +120,8 @@ def agree_lines(catalogue, tiles, arguments, workers, extra, outcome, built):
             break
         rounds += 1
         if not arguments.quiet:
-            print("border agreement, round %d: %d tiles again (%d line cells kept under -max_error)"
-                  % (rounds, len(again), kept))
+            print("border agreement, round %d: %s again (%d line cells kept under -max_error)"
+                  % (rounds, n_tiles(len(again)), kept))
         built.update(again)
         for status, count in run_tiles(catalogue, again, arguments, workers, extra).items():
             outcome[status] = outcome.get(status, 0) + count
@@ -164,14 +166,7 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     has run over every tile (a rerun reuses them), as text for -level_thresholds."""
     recorded = catalogue.setting("TINLOD_LEVEL_THRESHOLDS")
     if recorded:
-        if ":" in recorded and catalogue.setting(thresholds.SHARES_SETTING) != thresholds.SHARES_DELETED:
-            print("warning: %s's thresholds were set by an earlier tinlod-tiles, whose share of a bin's flat ties "
-                  "counted the ties gone through, not those deleted: the tiles built now delete more of their flat "
-                  "ties at those levels (the union still fits together); add -overwrite to build every tile alike"
-                  % arguments.catalogue, file=sys.stderr)
-        if arguments.exact_stop and catalogue.setting(EXACT_STOP) != "yes":
-            print("warning: %s's thresholds were set without -exact_stop, and a rerun reuses them: add -overwrite "
-                  "to set them again with it" % arguments.catalogue, file=sys.stderr)
+        warn_of_reused_thresholds(catalogue, arguments)
         return recorded
     folder = tiles_folder(arguments.catalogue)
     rows = catalogue.rows()
@@ -180,11 +175,11 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     loaded = {}  # read as the tasks end, while the others still run: thousands of them
     if missing:
         if not arguments.quiet:
-            print("survey pass: %d tiles" % len(missing))
+            print("survey pass: %s" % n_tiles(len(missing)))
         outcome = run_tiles(catalogue, missing, arguments, workers, ["-survey"], survey="survey", loaded=loaded)
         if outcome.get("failed"):
-            raise TilesError("%d tiles failed in the survey pass; %s"
-                             % (outcome["failed"], failure_summary(catalogue.rows().values())))
+            raise TilesError("%s failed in the survey pass; %s"
+                             % (n_tiles(outcome["failed"]), failure_summary(catalogue.rows().values())))
     rows = catalogue.rows()
     surveyed = [t for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
     paths = [survey_path(folder, t) for t in surveyed]
@@ -210,6 +205,21 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     return text
 
 
+def warn_of_reused_thresholds(catalogue, arguments):
+    """A rerun reuses the thresholds recorded: say where they differ from what it was asked."""
+    recorded = catalogue.setting("TINLOD_LEVEL_THRESHOLDS")
+    if not recorded:
+        return
+    if ":" in recorded and catalogue.setting(thresholds.SHARES_SETTING) != thresholds.SHARES_DELETED:
+        print("Warning: %s's thresholds were set by an earlier tinlod-tiles, whose share of a bin's flat ties "
+              "counted the ties gone through, not those deleted: the tiles built now delete more of their flat "
+              "ties at those levels (the union still fits together); add -overwrite to build every tile alike"
+              % arguments.catalogue, file=sys.stderr)
+    if arguments.exact_stop and catalogue.setting(EXACT_STOP) != "yes":
+        print("Warning: %s's thresholds were set without -exact_stop, and a rerun reuses them: add -overwrite "
+              "to set them again with it" % arguments.catalogue, file=sys.stderr)
+
+
 def percent(arguments, name, default):
     return float(build_option(arguments.build_options, name) or default)
 
@@ -233,13 +243,13 @@ def exact_stop(catalogue, surveyed, arguments, workers, values, first, percents)
     missing = [t for t in surveyed if not os.path.isfile(survey_path(folder, t, SECOND_SURVEY))]
     if missing:
         if not arguments.quiet:
-            print("second survey pass (-exact_stop): %d tiles" % len(missing))
+            print("second survey pass (-exact_stop): %s" % n_tiles(len(missing)))
         walked = values[:level] + [(1e308, 1.0)] + values[level + 1:]
         extra = ["-survey", "-level_thresholds", thresholds.as_option(walked)] + line_outline.build_option(catalogue, folder)
         outcome = run_tiles(catalogue, missing, arguments, workers, extra, survey=SECOND_SURVEY)
         if outcome.get("failed"):
-            raise TilesError("%d tiles failed in the second survey pass; %s"
-                             % (outcome["failed"], failure_summary(catalogue.rows().values())))
+            raise TilesError("%s failed in the second survey pass; %s"
+                             % (n_tiles(outcome["failed"]), failure_summary(catalogue.rows().values())))
     second = [thresholds.load_survey(survey_path(folder, t, SECOND_SURVEY))["levels"] for t in surveyed]
     return thresholds.exact_stop_thresholds(values, second, percents[1], level, percents[0])
 
@@ -348,7 +358,7 @@ def finished_file(path, tile):
         read_tile_summary(path, "%d,%d" % (tile.col, tile.row))
         return True
     except TilesError as e:
-        print("WARNING: tile %d,%d is built again: %s" % (tile.col, tile.row, e), file=sys.stderr)
+        print("Warning: tile %d,%d is built again: %s" % (tile.col, tile.row, e), file=sys.stderr)
         return False
 
 
@@ -483,6 +493,8 @@ def record(catalogue, tile, future, catalogue_path):
         result = future.result()
         values.update(status=result["status"], seconds=round(result["seconds"], 3),
                       peak_mib=round(result["peak_mib"], 1), error=None)
+        for warning in result.get("warnings", []):  # a worker's stderr goes nowhere the user sees
+            print("Warning: tile %d,%d: %s" % (tile.col, tile.row, warning), file=sys.stderr)
         if result["status"] == "done":
             try:
                 summary = read_tile_summary(final, "%d,%d" % (tile.col, tile.row))
@@ -508,8 +520,10 @@ def read_attempts(final):
 
 
 def failure_message(future):
+    """Why a task failed, for the catalogue's error field: its row names the tile and counts
+    the attempts, so the task's "tile C,R (attempt N): " is left out."""
     try:
-        return str(future.exception())
+        return re.sub(r"^tile \d+,\d+ \(attempt \d+\): ", "", str(future.exception()))
     except Exception as e:  # a cancelled or lost future has no exception to give
         return "the task ended without a result (%s)" % type(e).__name__
 
@@ -560,7 +574,7 @@ def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
     rows = catalogue.rows().values()
     counts = sorted({row["levels"] for row in rows if row["status"] == "done"})
     if len(counts) > 1:
-        print("WARNING: the tiles have from %d to %d levels; the level files stop at the fewest"
+        print("Warning: the tiles have from %d to %d levels; the level files stop at the fewest"
               % (counts[0], counts[-1]), file=sys.stderr)
     levels = counts[0] if counts else 0
     catalogue.set_setting("TINLOD_LEVELS", str(levels))
@@ -572,7 +586,7 @@ def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
     if not arguments.quiet:
         print_summary(arguments.catalogue, ran, sum(outcome.values()), rounds, skipped, states, levels, vrts)
     if states.get("failed"):
-        print("ERROR: %d tiles failed after their retries; %s" % (states["failed"], failure_summary(rows)),
+        print("ERROR: %s failed after their retries; %s" % (n_tiles(states["failed"]), failure_summary(rows)),
               file=sys.stderr)
         return 1
     if rows and states.get("empty") == len(rows):  # a script must not take it for a result
@@ -590,7 +604,7 @@ def failure_summary(rows):
     messages = {}
     for row in rows:
         if row["status"] == "failed":
-            message = re.sub(r"^tile \d+,\d+ \(attempt \d+\): ", "", row["error"] or "no message")
+            message = re.sub(r"^tile \d+,\d+ \(attempt \d+\): ", "", row["error"] or "no message")  # an earlier run's
             messages.setdefault(message, []).append("%d,%d" % (row["tile_col"], row["tile_row"]))
     ranked = sorted(messages.items(), key=lambda item: -len(item[1]))
     lines = ["%s (tile %s%s)" % (message, tiles[0], " and %d more" % (len(tiles) - 1) if len(tiles) > 1 else "")
@@ -605,8 +619,8 @@ def failure_summary(rows):
 
 def print_summary(catalogue_path, ran, builds, rounds, skipped, states, levels, vrts):
     agreed = " (%d builds in %d rounds of border agreement)" % (builds, rounds) if rounds > 1 else ""
-    print("%d tiles run%s, %d skipped (already finished); the catalogue %s has %s"
-          % (ran, agreed, skipped, catalogue_path,
+    print("%s run%s, %d skipped (already finished); the catalogue %s has %s"
+          % (n_tiles(ran), agreed, skipped, catalogue_path,
              ", ".join("%d %s" % (states[s], s) for s in ("done", "empty", "failed", "pending") if s in states)))
     pattern = os.path.join(levels_folder(catalogue_path), "level_K.vrt")
     if vrts and len(vrts) == levels:

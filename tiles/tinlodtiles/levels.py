@@ -119,7 +119,7 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     levels = int(catalogue.setting("TINLOD_LEVELS") or fewest_levels(rows))
     warning = unfinished_warning(rows)
     if warning:
-        print("WARNING: " + warning, file=sys.stderr)
+        print("Warning: " + warning, file=sys.stderr)
     if level == -1 and levels:  # the coarsest, as tinlod's -level -1
         level = levels - 1
     if not 0 <= level < levels:

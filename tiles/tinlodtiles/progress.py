@@ -4,6 +4,11 @@ line per tile elsewhere (a log keeps each tile's outcome)."""
 import sys
 
 
+def n_tiles(count):
+    """"1 tile", "2 tiles"."""
+    return "%d tile%s" % (count, "" if count == 1 else "s")
+
+
 class Progress:
     def __init__(self, total, quiet):
         self.total, self.quiet, self.finished = total, quiet, 0

@@ -15,6 +15,7 @@ EMPTY_EXIT_CODE = 3  # the core's "the tile holds no valid data: nothing written
 KILL_HOOK_VARIABLE = "TINLOD_TILES_TEST_KILL"  # "C,R:seconds", for the tests only
 _PR_SET_PDEATHSIG = 1
 ERROR_PREFIX = "ERROR: "  # how tinlod starts a failure's message on stderr
+WARNING_PREFIX = "Warning: "  # and a warning's
 
 
 class TileFailed(Exception):
@@ -23,8 +24,8 @@ class TileFailed(Exception):
 
 def run_tile(job):
     """Build one tile. `job` is a dict: tinlod, dem, tiles_dir, name, col, row, tile_size,
-    build_options, kill_hook. Returns the tile's status ('done' or 'empty'), seconds and peak MiB;
-    raises TileFailed otherwise."""
+    build_options, kill_hook. Returns the tile's status ('done' or 'empty'), seconds, peak MiB
+    and tinlod's warnings; raises TileFailed otherwise."""
     final = os.path.join(job["tiles_dir"], job["name"])
     partial = partial_path(final)
     attempt = count_attempt(final)
@@ -34,15 +35,15 @@ def run_tile(job):
     if job.get("survey"):
         command.append("-survey")
     kill_after = kill_hook_seconds(job, attempt)
-    code, seconds, peak_mib, message = run_measured(command, final + ".log", kill_after, job.get("threads"))
+    code, seconds, peak_mib, message, warnings = run_measured(command, final + ".log", kill_after, job.get("threads"))
     if code == EMPTY_EXIT_CODE:
         remove_if_present(partial)
-        return {"status": "empty", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt}
+        return {"status": "empty", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt, "warnings": []}
     if code != 0 or not os.path.isfile(partial):
         remove_if_present(partial)
         raise TileFailed("tile %d,%d (attempt %d): %s" % (job["col"], job["row"], attempt, message))
     publish(partial, final)
-    return {"status": "done", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt}
+    return {"status": "done", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt, "warnings": warnings}
 
 
 def publish(partial, final):
@@ -101,7 +102,7 @@ def kill_hook_seconds(job, attempt):
 
 def run_measured(command, log_path, kill_after=None, threads=None):
     """Runs the command; returns (exit code, wall seconds, peak RSS in MiB, last stderr
-    line). A signal gives a negative code, as in subprocess."""
+    line, its warnings). A signal gives a negative code, as in subprocess."""
     start = time.monotonic()
     with open(log_path, "wb") as log:
         # A session of its own: the terminal's Ctrl-C reaches the driver, which stops the
@@ -113,8 +114,9 @@ def run_measured(command, log_path, kill_after=None, threads=None):
     process.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
     seconds = time.monotonic() - start
     message = last_error_line(log_path, process.returncode)
+    warnings = warning_lines(log_path)
     remove_if_present(log_path)
-    return process.returncode, seconds, usage.ru_maxrss / 1024.0, message
+    return process.returncode, seconds, usage.ru_maxrss / 1024.0, message, warnings
 
 
 def wait_or_kill(pid, start, kill_after):
@@ -150,6 +152,16 @@ def last_error_line(log_path, code):
     if code < 0:
         return "tinlod was killed by signal %d" % -code
     return lines[-1] if lines else "tinlod exited with code %d" % code
+
+
+def warning_lines(log_path):
+    """tinlod's warnings ("Warning: ..."), each once, in order, without the prefix."""
+    try:
+        with open(log_path, errors="replace") as f:
+            lines = [line.strip() for line in f if line.startswith(WARNING_PREFIX)]
+    except OSError:
+        return []
+    return list(dict.fromkeys(line[len(WARNING_PREFIX):] for line in lines))
 
 
 def tinlod_error(stderr_text):
