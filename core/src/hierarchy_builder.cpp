@@ -753,8 +753,8 @@ class Simplifier {
              formatNumber(options_.maxError) + " m (or level 0's own distance there) from the surface";
     if (options_.thresholdMode) return why + ": the others' importance is not below -threshold";
     if (options_.measure == Measure::Degree) return why + ": the others have a degree above -max_degree " + std::to_string(options_.maxDegree);
-    return why + ": " + std::to_string(fixed) + " vertices are fixed (raster corners, points to keep" +
-           (options_.keepOutline ? ", the outline with -keep_outline" : "") + ") and " + std::to_string(outlineLeft_) +
+    return why + ": " + std::to_string(fixed) + " vertices are fixed (raster corners, outline vertices where two parts of "
+           "the TIN touch, points to keep" + (options_.keepOutline ? ", the outline with -keep_outline" : "") + ") and " + std::to_string(outlineLeft_) +
            " are on the outline, where they go only while it moves less than -outline_tolerance";
   }
 
