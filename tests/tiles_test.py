@@ -55,16 +55,19 @@ def make_dem(tinlod, path):
     dataset = None
 
 
-def make_points(dem, path):
-    """A GeoPackage of one point at the DEM's centre, in its CRS: points for -fixed."""
+def make_points(dem, path, beyond=0):
+    """A GeoPackage of one point at the DEM's centre, in its CRS: points for -fixed; and
+    `beyond` points beyond its extent."""
     raster = gdal.Open(dem)
     x0, dx, _, y0, _, dy = raster.GetGeoTransform()
     source = ogr.GetDriverByName("GPKG").CreateDataSource(path)
     layer = source.CreateLayer("points", raster.GetSpatialRef(), ogr.wkbPoint)
-    feature = ogr.Feature(layer.GetLayerDefn())
-    feature.SetGeometry(ogr.CreateGeometryFromWkt("POINT (%r %r)" % (x0 + dx * raster.RasterXSize / 2,
-                                                                     y0 + dy * raster.RasterYSize / 2)))
-    layer.CreateFeature(feature)
+    places = [(x0 + dx * raster.RasterXSize / 2, y0 + dy * raster.RasterYSize / 2)]
+    places += [(x0 - (k + 1) * 100 * dx, y0) for k in range(beyond)]
+    for x, y in places:
+        feature = ogr.Feature(layer.GetLayerDefn())
+        feature.SetGeometry(ogr.CreateGeometryFromWkt("POINT (%r %r)" % (x, y)))
+        layer.CreateFeature(feature)
     source = raster = None
     return path
 
@@ -646,9 +649,12 @@ def main(tinlod, tiles):
           and "0 tiles run, 6 skipped" in again_as_given.stdout, again_as_given.stdout + again_as_given.stderr[-1000:])
 
     # A -fixed file edited in place after the job: the finished tiles kept the old points.
-    points = make_points(dem, os.path.join(work, "points.gpkg"))
+    points = make_points(dem, os.path.join(work, "points.gpkg"), beyond=2)
     pinned = os.path.join(work, "p.gpkg")
     with_points = run(base + [pinned] + options + ["-fixed", points + "|layername=points"], env)
+    check("(c) -fixed points beyond the DEM's extent are said to be ignored, as a whole run says",
+          "Warning: 2 of the 3 points to keep (-fixed) lie beyond the DEM's extent and are ignored" in with_points.stderr,
+          with_points.stderr[-1000:])
     check("(c) a job with -fixed points (a layer named as QGIS names one) runs, and records the points file's "
           "bytes and time of change",
           with_points.returncode == 0 and "bytes, changed " in (rows(pinned)[2].get("TINLOD_FIXED_STAMP") or ""),

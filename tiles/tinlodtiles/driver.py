@@ -17,7 +17,7 @@ import threading
 
 from osgeo import gdal
 
-from . import agreement, build_check, line_outline, task, thresholds
+from . import agreement, build_check, fixed_points, line_outline, task, thresholds
 from .cell_file import read_cells, write_cells
 from .arguments import build_option
 from .catalogue import BUILD_SETTINGS, FIXED_STAMP, SOURCE_STAMP, Catalogue, file_stamp, levels_folder, tiles_folder
@@ -38,6 +38,8 @@ def run(arguments):
                                                      arguments.tile_size, tiles, arguments.build_options)
     fixed = build_option(arguments.build_options, "-fixed")  # there: -check opened it
     settings[FIXED_STAMP] = file_stamp(fixed) if fixed else ""
+    if fixed and not build_option(arguments.build_options, "-s_srs"):  # else the DEM's own CRS is not the one
+        warn_of_points_outside(fixed, dem)
     if os.path.exists(arguments.catalogue) and not arguments.overwrite:
         Catalogue.open(arguments.catalogue).close()  # refused before anything is written
     if arguments.scheduler:
@@ -70,6 +72,18 @@ def run(arguments):
             raise
         ran = len(started | built)
         return finish(catalogue, arguments, len(tiles) - ran, outcome, ran, rounds)
+
+
+def warn_of_points_outside(fixed, dem):
+    """A whole run says how many points to keep fall outside its data; no tile sees those
+    beyond the DEM's extent."""
+    try:
+        outside, total = fixed_points.outside_count(fixed, dem)
+    except RuntimeError:  # GDAL's: -check has said what it could of the file
+        return
+    if outside:
+        print("Warning: %d of the %d points to keep (-fixed) lie beyond the DEM's extent and are ignored"
+              % (outside, total), file=sys.stderr)
 
 
 def build(catalogue, tiles, arguments, folder, pending, agreeing):
