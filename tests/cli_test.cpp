@@ -366,6 +366,7 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   const CliRun near = tinlod("lod -center 404500 5203750 -dropoff 200 " + dir + "/h.gpkg " + dir + "/near.gpkg");
   ASSERT_EQ(near.exitCode, 0) << near.err;
   EXPECT_TRUE(has(near.out, "Triangles by level: 0: ")) << near.out;
+  EXPECT_TRUE(has(near.out, " s, reading and writing aside)")) << near.out;  // the study's figure, said as such
   const std::string points = geojson(dir + "/c.geojson", R"({"type": "Point", "coordinates": [404500, 5203750]})");
   const CliRun fromFile = tinlod("lod -centers " + points + " -dropoff 200 " + dir + "/h.gpkg " + dir + "/file.gpkg");
   ASSERT_EQ(fromFile.exitCode, 0) << fromFile.err;

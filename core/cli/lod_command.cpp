@@ -79,7 +79,8 @@ int lodCommand(std::vector<std::string> args) {
   const LodSummary s = runLodJob(files[0], files[1], o, overwrite, terminalFeedback(quiet), vertexIndex);
   if (!quiet) {
     std::cout << "Wrote " << s.triangles << " triangles and " << s.vertices << " vertices (level 0 has "
-              << s.levelZeroTriangles << " triangles; extracted in " << s.seconds << " s) in " << s.crsName << " to "
+              << s.levelZeroTriangles << " triangles; extraction alone in " << s.seconds
+              << " s, reading and writing aside) in " << s.crsName << " to "
               << files[1] << "\nTriangles by level:";
     for (std::size_t L = 0; L < s.trianglesPerLevel.size(); ++L)
       if (s.trianglesPerLevel[L]) std::cout << " " << L << ": " << s.trianglesPerLevel[L];
