@@ -952,20 +952,24 @@ TEST(CatalogueHierarchy, TileByTileATileOfAnotherDemIsRefused) {
   }
 }
 
+// What the catalogue's readers (merge, accuracy, lod, locate) say of it.
+std::vector<std::string> readersErrors(const std::string& catalogue) {
+  const std::string dir = test::tempDir();
+  std::vector<std::string> tiles;
+  const std::string points = tileCentresRoundAndRound(dir, tiles);
+  return {test::errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); }),
+          test::errorOf([&] { runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet); }),
+          test::errorOf([&] {
+            extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 6}; }, kRange);
+          }),
+          test::errorOf([&] { runLocateJob(catalogue, points, dir + "/located.gpkg", 0, false, kQuiet); })};
+}
+
 TEST(CatalogueHierarchy, ATileFileThatHoldsAnotherTileIsRefused) {
   // Tile 1,1's file copied from tile 0,0's: its triangles would land on tile 0,0's.
   const std::string catalogue =
       alteredCatalogue("swapped.gpkg", "UPDATE tiles SET file = 'tile_0_0.gpkg' WHERE tile_col = 1 AND tile_row = 1");
-  const std::string dir = test::tempDir();
-  std::vector<std::string> tiles;
-  const std::string points = tileCentresRoundAndRound(dir, tiles);
-  for (const std::string& message :
-       {test::errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); }),
-        test::errorOf([&] { runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet); }),
-        test::errorOf([&] {
-          extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 6}; }, kRange);
-        }),
-        test::errorOf([&] { runLocateJob(catalogue, points, dir + "/located.gpkg", 0, false, kQuiet); })})
+  for (const std::string& message : readersErrors(catalogue))
     EXPECT_NE(message.find("tile 1,1 ('"), std::string::npos) << message;
   const std::string message = test::errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); });
   EXPECT_NE(message.find("tile_0_0.gpkg') holds tile 0,0: remove the file and run tinlod tiles again"), std::string::npos)
@@ -988,16 +992,7 @@ TEST(CatalogueHierarchy, ADamagedTileIsNamedWithTheFix) {
   }
   const std::string catalogue = alteredCatalogue(
       "cut_short.gpkg", "UPDATE tiles SET file = '" + cut + "' WHERE tile_col = 1 AND tile_row = 0");
-  const std::string dir = test::tempDir();
-  std::vector<std::string> tiles;
-  const std::string points = tileCentresRoundAndRound(dir, tiles);
-  for (const std::string& message :
-       {test::errorOf([&] { readHierarchyOrCatalogue(catalogue, kRange); }),
-        test::errorOf([&] { runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", kQuiet); }),
-        test::errorOf([&] {
-          extractCatalogueLod(catalogue, [](const std::string&) { return LodOptions{{}, std::nan(""), 6}; }, kRange);
-        }),
-        test::errorOf([&] { runLocateJob(catalogue, points, dir + "/located.gpkg", 0, false, kQuiet); })}) {
+  for (const std::string& message : readersErrors(catalogue)) {
     EXPECT_TRUE(test::contains(message, "tile 1,0 ('" + cut + "') cannot be read: ")) << message;
     EXPECT_TRUE(test::contains(message, "remove the file and run tinlod tiles on the catalogue again")) << message;
   }
