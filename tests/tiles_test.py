@@ -9,6 +9,7 @@ Usage: tiles_test.py TINLOD_CLI TINLOD_TILES STANDIN
 Skipped (exit 77) where python3-distributed is absent. A tinlod without -tile_size (the core
 before tiles) is stood in for by STANDIN, which cuts the tile's window itself."""
 import json
+import math
 import os
 import re
 import shutil
@@ -855,6 +856,37 @@ def main(tinlod, tiles):
           via_catalogue.returncode == 0 and all(r.returncode == 0 for r in via_tiles)
           and heights[0] == (one[0][0][0], "0,0") and heights[1] == (one[1][1][0], "1,0")
           and heights[0][0] is not None, (heights, one, via_catalogue.stderr))
+
+    # A point a few ULP either side of a shared line is in one tile or the other, never
+    # between: the catalogue's boxes are the tiles' extents rounded to 15 digits (a DEM whose
+    # lines fall on no round number).
+    odd_dem = os.path.join(work, "odd.tif")
+    gdal.Translate(odd_dem, dem)
+    odd = gdal.Open(odd_dem, gdal.GA_Update)
+    x0, dx, _, y0, _, dy = odd.GetGeoTransform()
+    odd.SetGeoTransform((x0 + 0.123456789, dx * 1.0123456789, 0, y0 + 0.987654321, 0, dy * 1.0123456789))
+    odd = None
+    odd_catalogue = os.path.join(work, "odd.gpkg")
+    check("(e) a DEM whose lines fall on no round number is built",
+          run(base[:1] + [odd_dem, odd_catalogue] + options, env).returncode == 0)
+    tile00 = ogr.Open(os.path.join(work, "odd_tiles", "tile_0_0.gpkg"))  # held: its layer dies with it
+    line = [(f.GetGeometryRef().GetX(), f.GetGeometryRef().GetY()) for f in tile00.GetLayerByName("vertices")]
+    tile00 = None
+    y_line = min(y for _, y in line)  # its line with tile 0,1 (5202953.827160832, its box's 5202953.82716083)
+    xs = sorted(x for x, y in line if y == y_line)
+    x_mid = (xs[len(xs) // 2] + xs[len(xs) // 2 + 1]) / 2
+    beside = []
+    for direction in (-math.inf, math.inf):
+        y = y_line
+        for _ in range(3):
+            y = math.nextafter(y, direction)
+            beside.append((x_mid, y))
+    beside_points = os.path.join(work, "beside_points.gpkg")
+    write_points(beside_points, beside, odd_catalogue)
+    located = run([tinlod, "locate", odd_catalogue, beside_points, os.path.join(work, "beside.gpkg"), "-q"])
+    check("(e) locate finds points 1 to 3 ULP either side of a shared line", located.returncode == 0
+          and all(h is not None for h, _ in point_values(os.path.join(work, "beside.gpkg"))),
+          point_values(os.path.join(work, "beside.gpkg")))
 
     exact_stop(base, options, work, env)
     info_of_catalogue(tinlod, catalogue)

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "point_surface.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "catalogue_hierarchy.h"
 #include "tinlod/error.h"
 
@@ -45,8 +48,12 @@ PointSurface::Loaded& PointSurface::load(std::size_t tile) {
 }
 
 bool PointSurface::holds(std::size_t tile, double x, double y) const {
+  // The catalogue's boxes are the tiles' layer extents, which GDAL rounds to 15 digits: a
+  // point just beside a shared line fell between two boxes (5e-9 m at 3e6 m). A box a
+  // millionth of a millimetre per metre larger only adds a tile to try: the tile's TIN says.
   const auto& b = tiles_[tile].box;
-  return x >= b[0] && x <= b[2] && y >= b[1] && y <= b[3];
+  const double margin = 1e-9 * std::max({std::abs(b[0]), std::abs(b[1]), std::abs(b[2]), std::abs(b[3]), 1.0});
+  return x >= b[0] - margin && x <= b[2] + margin && y >= b[1] - margin && y <= b[3] + margin;
 }
 
 std::size_t PointSurface::firstTileAt(double x, double y) const {
