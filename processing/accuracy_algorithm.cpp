@@ -64,9 +64,17 @@ bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProce
 
 QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessingContext& context,
                                                QgsProcessingFeedback* feedback) {
+  const ParameterNames names{{QStringLiteral("-level"), QStringLiteral("LEVEL")},
+                             {QStringLiteral("-accuracy"), QStringLiteral("ACCURACY")},
+                             {QStringLiteral("-report"), QStringLiteral("REPORT")},
+                             {QStringLiteral("-step"), QStringLiteral("STEP")},
+                             {QStringLiteral("-reference"), QStringLiteral("REFERENCE")},
+                             {QStringLiteral("-control_spacing"), QStringLiteral("CONTROL_SPACING")}};
   const AccuracyReport report = translateErrors(
-      [&] { return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback), validHeights_); },
-      {{QStringLiteral("-level"), QStringLiteral("LEVEL")}});
+      [&] {
+        return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback, names), validHeights_);
+      },
+      names);
   const int level = accuracy_.rasterLevel < 0 ? static_cast<int>(report.rows.size()) - 1 : accuracy_.rasterLevel;
   const LevelAccuracy& row = report.rows[static_cast<std::size_t>(level)];
   for (const LevelAccuracy& r : report.rows) {

@@ -111,9 +111,16 @@ QVariantMap ExtractLodAlgorithm::processAlgorithm(const QVariantMap& parameters,
                                                   QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   const bool vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
-  const LodSummary s = translateErrors([&] {
-    return runLodJob(hierarchy_, output.toStdString(), options_, true, processingFeedback(feedback), vertexIndex);
-  });
+  const ParameterNames names{{QStringLiteral("-centers"), QStringLiteral("CENTERS")},
+                             {QStringLiteral("-center_srs"), QStringLiteral("the CRS of CENTER")},
+                             {QStringLiteral("-center"), QStringLiteral("CENTER")},
+                             {QStringLiteral("-dropoff"), QStringLiteral("DROPOFF")},
+                             {QStringLiteral("-max_error"), QStringLiteral("MAX_ERROR")},
+                             {QStringLiteral("-error_growth"), QStringLiteral("ERROR_GROWTH")},
+                             {QStringLiteral("-region"), QStringLiteral("REGION")}};
+  const LodSummary s = translateErrors(
+      [&] { return runLodJob(hierarchy_, output.toStdString(), options_, true, processingFeedback(feedback, names), vertexIndex); },
+      names);
   feedback->pushInfo(QStringLiteral("%1 triangles (level 0 has %2) and %3 vertices in %4")
                          .arg(s.triangles).arg(s.levelZeroTriangles).arg(s.vertices).arg(QString::fromStdString(s.crsName)));
   loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"),

@@ -24,7 +24,7 @@ std::shared_ptr<void> stopSignalsWhileRunning() {
 
 }  // namespace
 
-Feedback processingFeedback(QgsProcessingFeedback* feedback) {
+Feedback processingFeedback(QgsProcessingFeedback* feedback, const ParameterNames& names) {
   Feedback out;
   if (!feedback) return out;
   auto lastPhase = std::make_shared<std::string>();
@@ -37,12 +37,14 @@ Feedback processingFeedback(QgsProcessingFeedback* feedback) {
     feedback->setProgress(100.0 * fraction);
     return !feedback->isCanceled();
   };
-  out.warning = [feedback](const std::string& m) { feedback->pushWarning(QString::fromStdString(m)); };
+  out.warning = [feedback, names](const std::string& m) {
+    feedback->pushWarning(withParameterNames(QString::fromStdString(m), names));
+  };
   out.info = [feedback](const std::string& m) { feedback->pushInfo(QString::fromStdString(m)); };
   return out;
 }
 
-QString withParameterNames(const QString& message, const QList<QPair<QString, QString>>& names) {
+QString withParameterNames(const QString& message, const ParameterNames& names) {
   QString out = message;
   for (const auto& [option, parameter] : names)
     out.replace(QRegularExpression(QStringLiteral("(^|[\\s'(])") + QRegularExpression::escape(option) + QStringLiteral("\\b")),

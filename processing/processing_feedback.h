@@ -14,19 +14,23 @@
 
 namespace tinlod::qgis {
 
-// The core's Feedback over a QgsProcessingFeedback: progress bar, phase text, warnings,
-// information, and cancellation from the dialog's Cancel button.
-Feedback processingFeedback(QgsProcessingFeedback* feedback);
+// A command-line option's name, and the algorithm's parameter it is ("-level", "LEVEL").
+using ParameterNames = QList<QPair<QString, QString>>;
+
+// The core's Feedback over a QgsProcessingFeedback: progress bar, phase text, warnings
+// (their options named as the algorithm's parameters), information, and cancellation from
+// the dialog's Cancel button.
+Feedback processingFeedback(QgsProcessingFeedback* feedback, const ParameterNames& names = {});
 
 // The core's message with its command-line option names as the algorithm's parameters
 // ("-level 99 does not exist" from LEVEL is "LEVEL 99 does not exist").
-QString withParameterNames(const QString& message, const QList<QPair<QString, QString>>& names);
+QString withParameterNames(const QString& message, const ParameterNames& names);
 
 // Runs core work, turning tinlod::Error (and any std::exception) into the
 // QgsProcessingException that QGIS shows the user, the options the message names given as
 // the algorithm's parameters (`names`: option, parameter).
 template <typename Work>
-auto translateErrors(Work&& work, const QList<QPair<QString, QString>>& names = {}) -> decltype(work()) {
+auto translateErrors(Work&& work, const ParameterNames& names = {}) -> decltype(work()) {
   try {
     return work();
   } catch (const std::exception& e) {

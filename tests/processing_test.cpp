@@ -750,6 +750,15 @@ TEST(Processing, ExtractLodMatchesTheCommandLineCoreAndNamesMissingTests) {
                                    {{"HIERARCHY", QString::fromStdString(dir + "/h.gpkg")}, {"OUTPUT", out + "x"}});
   EXPECT_FALSE(none.ok);
   EXPECT_TRUE(none.error.contains("DROPOFF")) << none.error.toStdString();
+  // The core's option names come out as the parameters the user set.
+  const Result growth = runAlgorithm(QStringLiteral("tinlod:extractlod"),
+                                     {{"HIERARCHY", QString::fromStdString(dir + "/h.gpkg")},
+                                      {"CENTER", QStringLiteral("404500,5203750 [EPSG:32632]")},
+                                      {"DROPOFF", 200},
+                                      {"ERROR_GROWTH", 0.01},
+                                      {"OUTPUT", out + "y"}});
+  EXPECT_FALSE(growth.ok);
+  EXPECT_TRUE(growth.error.contains("ERROR_GROWTH needs MAX_ERROR")) << growth.error.toStdString();
 }
 
 // HIERARCHY as a level layer already on the map (by its id, as the dialog's layer list

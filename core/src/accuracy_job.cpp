@@ -182,7 +182,9 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   const ProgressRange all(feedback, 0, 1);
   if (isCatalogue(hierarchyPath) && !outputs.compareInsert) {
     // A tile at a time: the memory of one tile, whatever the catalogue's size.
-    const HierarchyInfo first = readHierarchyInfo(readCatalogue(hierarchyPath).front().file);
+    const CatalogueTile tile = readCatalogue(hierarchyPath).front();
+    requireTileFile(tile.name, tile.file);  // a tiles folder moved away: say where it must be
+    const HierarchyInfo first = readHierarchyInfo(tile.file);
     if (band == 0) band = sampledBand(first);
     warnOfAnotherSourceSrs(sourceSrs, first, all);
     const auto demCrsWkt = [&] {
