@@ -789,13 +789,28 @@ TEST(CatalogueHierarchy, JobsOnACatalogueWithUnfinishedTilesSayHowMany) {
   LodJobOptions o;
   o.lod.maxError = 6;
   runLodJob(catalogue, dir + "/lod.gpkg", o, false, lod.feedback());
-  runAccuracyJob(test::smallSyntheticDemFile(), catalogue, AccuracyOutputs{}, 0, "", accuracy.feedback());
+  AccuracyOutputs report;
+  report.reportPath = dir + "/report.json";
+  runAccuracyJob(test::smallSyntheticDemFile(), catalogue, report, 0, "", accuracy.feedback());
   std::vector<std::string> tiles;
   test::RecordingFeedback locate;
   runLocateJob(catalogue, tileCentresRoundAndRound(dir, tiles), dir + "/located.gpkg", 0, false, locate.feedback());
   EXPECT_TRUE(lod.warned(expected));
   EXPECT_TRUE(accuracy.warned(expected));
   EXPECT_TRUE(locate.warned(expected));
+  // What they write says so too, wherever it is read later.
+  const std::string note = "2 of the catalogue's 9 tiles are not finished (1 failed, 1 pending): the finished tiles alone";
+  for (const char* out : {"/lod.gpkg", "/located.gpkg"}) {
+    GDALDataset* ds = static_cast<GDALDataset*>(
+        GDALOpenEx((dir + out).c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+    ASSERT_NE(ds, nullptr) << out;
+    const char* item = ds->GetMetadataItem("TINLOD_UNFINISHED_TILES");
+    EXPECT_EQ(std::string(item ? item : ""), note) << out;
+    GDALClose(ds);
+  }
+  std::ifstream json(dir + "/report.json");
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(test::contains(text, "(" + note + ")")) << text.substr(0, 300);
 }
 
 TEST(CatalogueHierarchy, LocateReadsEachTileOnceWhateverTheOrderOfThePoints) {

@@ -604,7 +604,11 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
   std::vector<LevelAccuracy> rows;
   for (std::size_t L = 0; L < sums.size(); ++L) rows.push_back(rowOf(sums[L], job, demName(demPath), std::int32_t(L)));
   requireTestPoints(rows, demPath);
-  AccuracyReport report = makeReport(outputs.options, "Accuracy of the TIN hierarchy of " + demName(demPath),
+  // A report of some tiles only says so wherever it is read later.
+  const std::string unfinished = unfinishedTiles(cataloguePath);
+  AccuracyReport report = makeReport(outputs.options,
+                                     "Accuracy of the TIN hierarchy of " + demName(demPath) +
+                                         (unfinished.empty() ? "" : " (" + unfinished + ": the finished tiles alone)"),
                                      crsNameOf(g->header.crsWkt), std::move(rows));
   if (canvas) canvas->finish(progress.sub(0.95, 0.99));
   if (files.report) writeAccuracyReport(report, *files.report);

@@ -16,6 +16,7 @@
 #include "layer_transform.h"
 #include "point_geometry.h"
 #include "point_surface.h"
+#include "tile_catalogue.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_locator.h"
@@ -124,6 +125,7 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   const StagedFile& staged = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   PointSurface surface(hierarchyPath, all.sub(0, 0.4));
+  if (surface.tiled()) addUnfinishedTiles(hierarchyPath, writeOptions.metadata);
   if (level == -1) level = surface.coarsest(), writeOptions.metadata["TINLOD_LEVEL"] = std::to_string(level);  // as accuracy's -level
   if (level < 0 || level > surface.coarsest())
     throw Error("-level " + std::to_string(level) + " does not exist: '" + hierarchyPath + "' has levels 0 to " +

@@ -150,6 +150,7 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   s.trianglesPerLevel.assign(static_cast<std::size_t>(lod.coarsest) + 1, 0);
   for (double level : lod.firstLevel) ++s.trianglesPerLevel[static_cast<std::size_t>(level)];
   writeOptions.metadata["TINLOD_CRS"] = lod.tin.crsName;
+  if (isCatalogue(hierarchyPath)) addUnfinishedTiles(hierarchyPath, writeOptions.metadata);
   writeTinGpkg(lod.tin, out, writeOptions, all.sub(0.6, 1), {{"level", lod.vertexLevel, true}},
                {{"first_level", lod.firstLevel, true}, {"last_level", lod.lastLevel, true}});
   files.commit();

@@ -108,7 +108,7 @@ std::vector<TileStatus> readTileStatuses(const std::string& path) {
   return tiles;
 }
 
-std::string unfinishedTilesWarning(const std::string& path) {
+std::string unfinishedTiles(const std::string& path) {
   std::map<std::string, std::size_t> unfinished;
   std::size_t all = 0, count = 0;
   for (const TileStatus& tile : readTileStatuses(path)) {
@@ -117,7 +117,17 @@ std::string unfinishedTilesWarning(const std::string& path) {
   }
   if (count == 0) return "";
   return std::to_string(count) + " of the catalogue's " + std::to_string(all) + " tiles are not finished (" +
-         statusCounts(unfinished) + "): only the finished tiles are read; run tinlod tiles again to finish them";
+         statusCounts(unfinished) + ")";
+}
+
+void addUnfinishedTiles(const std::string& path, std::map<std::string, std::string>& metadata) {
+  if (const std::string unfinished = unfinishedTiles(path); !unfinished.empty())
+    metadata["TINLOD_UNFINISHED_TILES"] = unfinished + ": the finished tiles alone";
+}
+
+std::string unfinishedTilesWarning(const std::string& path) {
+  const std::string unfinished = unfinishedTiles(path);
+  return unfinished.empty() ? "" : unfinished + ": only the finished tiles are read; run tinlod tiles again to finish them";
 }
 
 void warnOfUnfinishedTiles(const std::string& path, const ProgressRange& progress) {

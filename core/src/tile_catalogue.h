@@ -47,6 +47,11 @@ std::vector<TileStatus> readTileStatuses(const std::string& path);
 // (pending or failed; an empty tile holds no data): the result covers the finished ones
 // only. Empty when every tile is done or empty.
 std::string unfinishedTilesWarning(const std::string& path);
+// "N of the catalogue's M tiles are not finished (by status)", or "": what an output made
+// from the finished tiles alone records (TINLOD_UNFINISHED_TILES, a report's title).
+std::string unfinishedTiles(const std::string& path);
+// Records unfinishedTiles, if any, as an output's TINLOD_UNFINISHED_TILES.
+void addUnfinishedTiles(const std::string& path, std::map<std::string, std::string>& metadata);
 // Warns of them through `progress`, if there are any.
 void warnOfUnfinishedTiles(const std::string& path, const ProgressRange& progress);
 
