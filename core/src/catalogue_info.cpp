@@ -11,9 +11,9 @@ namespace {
 HierarchyInfo finishedTileInfo(const TileStatus& tile) {
   requireTileFile(tile.name, tile.file);
   try {
-    // Read as a catalogue, a catalogue named as its own tile would be read without end.
-    if (isCatalogue(tile.file)) throw Error("it is a tinlod-tiles catalogue, not a tile");
-    HierarchyInfo info = readHierarchyInfo(tile.file);
+    // Its own tiles unread: a catalogue named as its own tile would be read without end.
+    HierarchyInfo info = readHierarchyInfo(tile.file, false);
+    if (info.kind == "catalogue") throw Error("it is a tinlod-tiles catalogue, not a tile");
     if (info.kind != "hierarchy") throw Error("it is a single TIN (" + info.kind + "), not a hierarchy");
     requireOwnTile(tile.name, tile.file, info);
     return info;

@@ -120,7 +120,7 @@ std::string tileCounts(const HierarchyInfo& info) {
 
 }  // namespace
 
-HierarchyInfo readHierarchyInfo(const std::string& path) {
+HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
   GDALAllRegister();
   if (!std::filesystem::exists(path)) throw Error("'" + path + "' does not exist");
   const char* const gpkgOnly[] = {"GPKG", nullptr};
@@ -138,7 +138,13 @@ HierarchyInfo readHierarchyInfo(const std::string& path) {
       info.metadata[key] = kv.substr(eq + 1);
     }
   }
-  if (info.metadata.count("kind") && info.metadata["kind"] == "catalogue") return catalogueInfo(*ds, std::move(info));
+  if (info.metadata.count("kind") && info.metadata["kind"] == "catalogue") {
+    if (!withTiles) {
+      info.kind = "catalogue";
+      return info;
+    }
+    return catalogueInfo(*ds, std::move(info));
+  }
   if (!ds->GetLayerByName("triangles") || info.metadata.empty())
     throw Error("'" + path + "' was not written by tinlod (no tinlod metadata or triangles layer)");
   info.kind = info.metadata.count("kind") ? info.metadata["kind"] : "tin";

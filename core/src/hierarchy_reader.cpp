@@ -86,7 +86,7 @@ void countSingleLevel(Hierarchy& h) {
 
 StoredHierarchy readHierarchy(const std::string& path, const ProgressRange& progress) {
   StoredHierarchy out;
-  out.info = readHierarchyInfo(path);  // also refuses files tinlod did not write, and checks the levels
+  out.info = readHierarchyInfo(path, false);  // also refuses files tinlod did not write, and checks the levels
   if (out.info.kind == "catalogue")
     throw Error("'" + path + "' is a tinlod-tiles catalogue, not the hierarchy of one tile: give the catalogue itself");
   const char* const gpkgOnly[] = {"GPKG", nullptr};

@@ -33,8 +33,10 @@ struct HierarchyInfo {
 };
 
 // Throws Error when the file is not a GeoPackage made by tinlod. A tinlod-tiles catalogue's
-// finished tiles it cannot read are listed in unreadableTiles.
-HierarchyInfo readHierarchyInfo(const std::string& path);
+// finished tiles it cannot read are listed in unreadableTiles; without `withTiles` a
+// catalogue's tiles are not read at all (its kind and metadata alone), as a reader that
+// refuses catalogues, or takes a file for a tile, needs.
+HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles = true);
 
 std::string toJson(const HierarchyInfo& info);
 std::string toText(const HierarchyInfo& info);
