@@ -77,8 +77,8 @@ with tempfile.TemporaryDirectory() as folder:
     with open(log, "w") as f:
         f.write("0...10..\nERROR 1: TIFFReadEncodedTile() failed\n")
     check("a crash after GDAL's error records GDAL's line; a kill without one, the signal",
-          task.last_error_line(log, -11) == "ERROR 1: TIFFReadEncodedTile() failed"
-          and task.last_error_line(os.path.join(folder, "none.log"), -9) == "tinlod was killed by signal 9",
-          task.last_error_line(log, -11))
+          task.last_error_line(task.read_log(log), -11) == "ERROR 1: TIFFReadEncodedTile() failed"
+          and task.last_error_line(task.read_log(os.path.join(folder, "none.log")), -9) == "tinlod was killed by signal 9",
+          task.last_error_line(task.read_log(log), -11))
 
 sys.exit(exit_code("task"))

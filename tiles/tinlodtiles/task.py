@@ -113,9 +113,9 @@ def run_measured(command, log_path, kill_after=None, threads=None):
         status, usage = wait_or_kill(process.pid, start, kill_after)
     process.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
     seconds = time.monotonic() - start
-    message = last_error_line(log_path, process.returncode)
-    warnings = warning_lines(log_path)
+    text = read_log(log_path)
     remove_if_present(log_path)
+    message, warnings = last_error_line(text, process.returncode), warning_lines(text)
     return process.returncode, seconds, usage.ru_maxrss / 1024.0, message, warnings
 
 
@@ -134,14 +134,18 @@ def wait_or_kill(pid, start, kill_after):
     return status, usage
 
 
-def last_error_line(log_path, code):
-    """The message to record: tinlod's last error (its lines after ERROR too), else the last
-    other ERROR line, else its last line, else the code."""
+def read_log(log_path):
+    """What tinlod wrote to stderr ("" when there is no log)."""
     try:
         with open(log_path, errors="replace") as f:
-            text = f.read()
+            return f.read()
     except OSError:
-        text = ""
+        return ""
+
+
+def last_error_line(text, code):
+    """The message to record from tinlod's stderr: its last error (its lines after ERROR
+    too), else the last other ERROR line, else its last line, else the code."""
     error = tinlod_error(text)
     if error is not None:
         return ERROR_PREFIX + error
@@ -154,13 +158,9 @@ def last_error_line(log_path, code):
     return lines[-1] if lines else "tinlod exited with code %d" % code
 
 
-def warning_lines(log_path):
-    """tinlod's warnings ("Warning: ..."), each once, in order, without the prefix."""
-    try:
-        with open(log_path, errors="replace") as f:
-            lines = [line.strip() for line in f if line.startswith(WARNING_PREFIX)]
-    except OSError:
-        return []
+def warning_lines(text):
+    """tinlod's warnings in its stderr ("Warning: ..."), each once, in order, without the prefix."""
+    lines = [line.strip() for line in text.split("\n") if line.startswith(WARNING_PREFIX)]
     return list(dict.fromkeys(line[len(WARNING_PREFIX):] for line in lines))
 
 
