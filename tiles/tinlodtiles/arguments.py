@@ -197,6 +197,12 @@ def absolute_files(build_options):
     return out
 
 
+def layer_spec(spec):
+    """(file, layer name or None) of a layer named as QGIS names one: points.gpkg|layername=p."""
+    path, _, layer = spec.partition("|")
+    return path, (layer.split("=", 1)[1] if layer.startswith("layername=") else None)
+
+
 def check_run(arguments):
     for option in arguments.build_options:
         if option in REFUSED_BUILD_OPTIONS:

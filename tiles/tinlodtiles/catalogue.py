@@ -11,7 +11,7 @@ import time
 
 from osgeo import ogr, osr
 
-from .arguments import build_option
+from .arguments import build_option, layer_spec
 from .build_check import same_version
 from .errors import TilesError
 
@@ -45,7 +45,7 @@ def file_stamp(path):
     """A local file's bytes and time of change; "" for a GDAL virtual path (/vsi...). A
     VRT's stamp is its own, not its sources'; a shapefile's that of its .shp; a layer named
     as QGIS names one (points.gpkg|layername=p), its file's."""
-    path = path.split("|", 1)[0]
+    path = layer_spec(path)[0]
     if path.startswith("/vsi"):
         return ""
     status = os.stat(path)
@@ -57,7 +57,7 @@ def stamped_file(settings, key):
     """The file a stamp is of, as the job's settings name it (a layer's: its file)."""
     if key == SOURCE_STAMP:
         return settings["TINLOD_SOURCE"]
-    return build_option(shlex.split(settings["TINLOD_BUILD_OPTIONS"]), "-fixed").split("|", 1)[0]
+    return layer_spec(build_option(shlex.split(settings["TINLOD_BUILD_OPTIONS"]), "-fixed"))[0]
 
 
 def same_file(recorded, given):

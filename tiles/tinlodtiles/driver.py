@@ -534,12 +534,17 @@ def read_attempts(final):
 
 
 def failure_message(future):
-    """Why a task failed, for the catalogue's error field: its row names the tile and counts
-    the attempts, so the task's "tile C,R (attempt N): " is left out."""
+    """Why a task failed, for the catalogue's error field."""
     try:
-        return re.sub(r"^tile \d+,\d+ \(attempt \d+\): ", "", str(future.exception()))
+        return without_task_prefix(str(future.exception()))
     except Exception as e:  # a cancelled or lost future has no exception to give
         return "the task ended without a result (%s)" % type(e).__name__
+
+
+def without_task_prefix(message):
+    """A task's failure without its "tile C,R (attempt N): ": the catalogue's row names the
+    tile and counts the attempts (an earlier tinlod-tiles recorded it with it)."""
+    return re.sub(r"^tile \d+,\d+ \(attempt \d+\): ", "", message)
 
 
 def stop(client, cluster):
@@ -618,7 +623,7 @@ def failure_summary(rows):
     messages = {}
     for row in rows:
         if row["status"] == "failed":
-            message = re.sub(r"^tile \d+,\d+ \(attempt \d+\): ", "", row["error"] or "no message")  # an earlier run's
+            message = without_task_prefix(row["error"] or "no message")
             messages.setdefault(message, []).append("%d,%d" % (row["tile_col"], row["tile_row"]))
     ranked = sorted(messages.items(), key=lambda item: -len(item[1]))
     lines = ["%s (tile %s%s)" % (message, tiles[0], " and %d more" % (len(tiles) - 1) if len(tiles) > 1 else "")

@@ -4,13 +4,14 @@ a whole run says how many points fall outside its data. A tile warns of those in
 extent that fall on nodata (the driver shows its warnings)."""
 from osgeo import gdal, ogr, osr
 
+from .arguments import layer_spec
+
 
 def outside_count(spec, dem):
     """(points beyond the DEM's extent, points) of a -fixed layer (file, or file|layername=x);
     (0, 0) when the layer or a CRS cannot be read (tinlod's -check has said what it could)."""
-    path, _, layer_part = spec.partition("|")
+    path, name = layer_spec(spec)
     dataset = gdal.OpenEx(path, gdal.OF_VECTOR)
-    name = layer_part.split("=", 1)[1] if layer_part.startswith("layername=") else None
     layer = dataset.GetLayerByName(name) if name else dataset.GetLayer(0)
     source, target = layer.GetSpatialRef(), dem.GetSpatialRef()
     if source is None or target is None:
