@@ -293,6 +293,69 @@ TEST(CatalogueHierarchy, LodTileByTileIsThatOfTheTilesReadAsOne) {
   EXPECT_GE(most, 2) << "no line vertex had to be exchanged: the test shows nothing";
 }
 
+// The rows of a lod output's layer in fid order: each feature's fields, then its geometry's
+// points (x, y, z), as numbers.
+std::vector<std::vector<double>> rowsOf(const std::string& path, const char* layerName) {
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  std::vector<std::vector<double>> rows;
+  if (!ds) return rows;
+  OGRLayer* layer = ds->GetLayerByName(layerName);
+  for (auto& f : *layer) {
+    std::vector<double> row{double(f->GetFID())};
+    for (int i = 0; i < f->GetFieldCount(); ++i) row.push_back(f->GetFieldAsDouble(i));
+    OGRGeometry* g = f->GetGeometryRef();
+    const OGRSimpleCurve* ring = g && wkbFlatten(g->getGeometryType()) == wkbPolygon ? g->toPolygon()->getExteriorRing() : nullptr;
+    if (g && wkbFlatten(g->getGeometryType()) == wkbPoint) row.insert(row.end(), {g->toPoint()->getX(), g->toPoint()->getY(), g->toPoint()->getZ()});
+    for (int k = 0; ring && k < ring->getNumPoints(); ++k) row.insert(row.end(), {ring->getX(k), ring->getY(k), ring->getZ(k)});
+    rows.push_back(row);
+  }
+  GDALClose(ds);
+  return rows;
+}
+
+TEST(CatalogueHierarchy, LodJobWritesTheTilesAsTheyComeWhatTheExtractionHoldsWhole) {
+  LodJobOptions o;
+  o.lod.centres = {{test::smallSyntheticDem().centreX(kTileSize), test::smallSyntheticDem().centreY(kTileSize)}};
+  o.lod.maxError = 4, o.lod.errorGrowth = 0.002;
+  const ExtractedLod whole = extractCatalogueLod(builtTiles().catalogue, [&](const std::string&) { return o.lod; }, kRange);
+  ASSERT_GE(whole.passes, 2) << "no line vertex was exchanged: the shared vertices are not tested";
+  const std::string dir = test::tempDir();
+  const LodSummary s = runLodJob(builtTiles().catalogue, dir + "/lod.gpkg", o, false, kQuiet, true);
+  EXPECT_EQ(s.vertices, whole.tin.vertices.size());
+  EXPECT_EQ(s.triangles, whole.tin.triangles.size());
+  std::size_t byLevel = 0;
+  for (std::size_t n : s.trianglesPerLevel) byLevel += n;
+  EXPECT_EQ(byLevel, whole.tin.triangles.size());
+  EXPECT_EQ(s.trianglesPerLevel.size(), static_cast<std::size_t>(whole.coarsest) + 1);
+  // Every row as the whole TIN would write it: ids, outline, levels, geometry.
+  const auto vertices = rowsOf(dir + "/lod.gpkg", "vertices");
+  const auto triangles = rowsOf(dir + "/lod.gpkg", "triangles");
+  ASSERT_EQ(vertices.size(), whole.tin.vertices.size());
+  ASSERT_EQ(triangles.size(), whole.tin.triangles.size());
+  std::size_t outline = 0;
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    const TinVertex& p = whole.tin.vertices[v];
+    const std::vector<double> expected{double(v + 1), double(v + 1), double(p.row), double(p.col), double(p.outline),
+                                       whole.vertexLevel[v], p.x, p.y, p.z};
+    EXPECT_EQ(vertices[v], expected) << "vertex " << v;
+    outline += p.outline;
+  }
+  EXPECT_GT(outline, 0u);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const Triangle& c = whole.tin.triangles[t];
+    std::vector<double> expected{double(t + 1), double(t + 1), double(c[0] + 1), double(c[1] + 1), double(c[2] + 1),
+                                 whole.firstLevel[t], whole.lastLevel[t]};
+    for (int k = 0; k < 4; ++k) {
+      const TinVertex& p = whole.tin.vertices[c[k % 3]];
+      expected.insert(expected.end(), {p.x, p.y, p.z});
+    }
+    EXPECT_EQ(triangles[t], expected) << "triangle " << t;
+  }
+  // The tiles' parts waited beside the output, and nothing of them is left.
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string(), "lod.gpkg");
+}
+
 TEST(CatalogueHierarchy, AccuracyOfACatalogueIsMeasuredOverAllItsTiles) {
   AccuracyOutputs outputs;
   outputs.options.reference = Reference::Dem;

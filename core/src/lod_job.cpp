@@ -16,6 +16,7 @@
 #include "layer_source.h"
 #include "layer_transform.h"
 #include "polygon_region.h"
+#include "streamed_lod_file.h"
 #include "text_and_paths.h"
 #include "tile_catalogue.h"
 #include "tinlod/error.h"
@@ -109,17 +110,64 @@ std::string centresAdvice(const LodJobOptions& options) {
 
 // A centre far from the data (a longitude and latitude given for a projected TIN, say)
 // restores nothing near it: the TIN comes out at its coarsest, which deserves a word.
-void warnOfCentresOutside(const std::vector<std::array<double, 2>>& centres, const Tin& tin, const LodJobOptions& options,
-                          const ProgressRange& progress) {
-  if (centres.empty() || tin.vertices.empty()) return;
-  double x0 = tin.vertices[0].x, x1 = x0, y0 = tin.vertices[0].y, y1 = y0;
-  for (const TinVertex& v : tin.vertices) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
+void warnOfCentresOutside(const std::vector<std::array<double, 2>>& centres, const Envelope& extent,
+                          const std::string& crsName, const LodJobOptions& options, const ProgressRange& progress) {
+  if (centres.empty() || extent.isEmpty()) return;
   std::size_t outside = 0;
-  for (const auto& c : centres) outside += c[0] < x0 || c[0] > x1 || c[1] < y0 || c[1] > y1;
+  for (const auto& c : centres) outside += c[0] < extent.minX || c[0] > extent.maxX || c[1] < extent.minY || c[1] > extent.maxY;
   if (outside == 0) return;
   progress.warn(std::to_string(outside) + " of the " + std::to_string(centres.size()) + " centres of detail lie outside the TIN (x " +
-                formatNumber(x0) + " to " + formatNumber(x1) + ", y " + formatNumber(y0) + " to " + formatNumber(y1) + " in " +
-                tin.crsName + "): " + centresAdvice(options));
+                formatNumber(extent.minX) + " to " + formatNumber(extent.maxX) + ", y " + formatNumber(extent.minY) + " to " +
+                formatNumber(extent.maxY) + " in " + crsName + "): " + centresAdvice(options));
+}
+
+Envelope extentOf(const Tin& tin) {
+  Envelope e = Envelope::empty();
+  for (const TinVertex& v : tin.vertices) e.extend(v.x, v.y);
+  return e;
+}
+
+// One hierarchy GeoPackage: read whole, its TIN written whole.
+LodSummary writeFileLod(const std::string& path, const StagedFile& out, const LodJobOptions& options,
+                        GpkgWriteOptions writeOptions, const ProgressRange& progress) {
+  std::unique_ptr<PolygonRegion> region;
+  std::vector<std::array<double, 2>> centres;  // in the hierarchy's CRS, once read
+  const ExtractedLod lod = extractFileLod(path, options, region, centres, progress.sub(0, 0.6));
+  warnOfCentresOutside(centres, extentOf(lod.tin), lod.tin.crsName, options, progress);
+  writeOptions.metadata["TINLOD_CRS"] = lod.tin.crsName;
+  writeTinGpkg(lod.tin, out, writeOptions, progress.sub(0.6, 1), {{"level", lod.vertexLevel, true}},
+               {{"first_level", lod.firstLevel, true}, {"last_level", lod.lastLevel, true}});
+  LodSummary s;
+  s.seconds = lod.seconds;
+  s.trianglesPerLevel.assign(static_cast<std::size_t>(lod.coarsest) + 1, 0);
+  for (double level : lod.firstLevel) ++s.trianglesPerLevel[static_cast<std::size_t>(level)];
+  s.vertices = lod.tin.vertices.size(), s.triangles = lod.tin.triangles.size();
+  s.levelZeroTriangles = lod.levelZeroTriangles;
+  s.crsName = lod.tin.crsName;
+  return s;
+}
+
+// A catalogue a tile at a time, into the output as each tile's part comes: the memory of
+// one tile, and 16 bytes an output triangle for the spatial index.
+LodSummary writeCatalogueLod(const std::string& path, const StagedFile& out, const LodJobOptions& options,
+                             GpkgWriteOptions writeOptions, const ProgressRange& progress) {
+  std::unique_ptr<PolygonRegion> region;
+  std::vector<std::array<double, 2>> centres;
+  addUnfinishedTiles(path, writeOptions.metadata);
+  StreamedLodFile file(out, std::move(writeOptions));
+  const CatalogueLodRun run = extractCatalogueLod(
+      path, [&](const std::string& crs) { return resolvedOptions(options, crs, region, centres, progress); },
+      out.staging.parent_path() / "lod_parts", file, progress.sub(0, 0.95));
+  warnOfCentresOutside(centres, file.extent(), file.crsName(), options, progress);
+  file.finish(progress.sub(0.95, 1));
+  LodSummary s;
+  s.seconds = run.seconds;
+  s.trianglesPerLevel = file.trianglesByFirstLevel();
+  s.trianglesPerLevel.resize(std::max(s.trianglesPerLevel.size(), static_cast<std::size_t>(run.coarsest) + 1), 0);
+  s.vertices = file.vertices(), s.triangles = file.triangles();
+  s.levelZeroTriangles = run.levelZeroTriangles;
+  s.crsName = file.crsName();
+  return s;
 }
 
 }  // namespace
@@ -135,29 +183,10 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   OutputFiles files(overwrite, datasetFiles(inputs));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
-  std::unique_ptr<PolygonRegion> region;
-  std::vector<std::array<double, 2>> centres;  // in the hierarchy's CRS, once read
-  // A catalogue a tile at a time: the memory of one tile and of the output.
-  const ExtractedLod lod =
-      isCatalogue(hierarchyPath)
-          ? extractCatalogueLod(hierarchyPath,
-                                [&](const std::string& crs) { return resolvedOptions(options, crs, region, centres, all); },
-                                all.sub(0, 0.6))
-          : extractFileLod(hierarchyPath, options, region, centres, all.sub(0, 0.6));
-  warnOfCentresOutside(centres, lod.tin, options, all);
-  LodSummary s;
-  s.seconds = lod.seconds;
-  s.trianglesPerLevel.assign(static_cast<std::size_t>(lod.coarsest) + 1, 0);
-  for (double level : lod.firstLevel) ++s.trianglesPerLevel[static_cast<std::size_t>(level)];
-  writeOptions.metadata["TINLOD_CRS"] = lod.tin.crsName;
-  if (isCatalogue(hierarchyPath)) addUnfinishedTiles(hierarchyPath, writeOptions.metadata);
-  writeTinGpkg(lod.tin, out, writeOptions, all.sub(0.6, 1), {{"level", lod.vertexLevel, true}},
-               {{"first_level", lod.firstLevel, true}, {"last_level", lod.lastLevel, true}});
+  const LodSummary s = isCatalogue(hierarchyPath) ? writeCatalogueLod(hierarchyPath, out, options, writeOptions, all)
+                                                  : writeFileLod(hierarchyPath, out, options, writeOptions, all);
   files.commit();
   all.finish("Done");
-  s.vertices = lod.tin.vertices.size(), s.triangles = lod.tin.triangles.size();
-  s.levelZeroTriangles = lod.levelZeroTriangles;
-  s.crsName = lod.tin.crsName;
   return s;
 }
 

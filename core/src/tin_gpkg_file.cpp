@@ -63,4 +63,18 @@ void TinGpkgFile::finish(const Tin& tin, const std::vector<ExtraField>& triangle
   out_.finish(rest);
 }
 
+GpkgFeatureRows& TinGpkgFile::triangleRows() {
+  if (!triangleRows_) triangleRows_.emplace(out_.database(), "triangles", triangleNames_);
+  return *triangleRows_;
+}
+
+void TinGpkgFile::finishRows(std::vector<RtreeBox> vertexBoxes, std::vector<RtreeBox> triangleBoxes,
+                             const ProgressRange& progress) {
+  vertexRows_->finish();
+  triangleRows().finish();
+  if (vertexIndex_) out_.indexLater("vertices", [boxes = std::move(vertexBoxes)]() mutable { return std::move(boxes); });
+  out_.indexLater("triangles", [boxes = std::move(triangleBoxes)]() mutable { return std::move(boxes); });
+  out_.finish(progress);
+}
+
 }  // namespace tinlod

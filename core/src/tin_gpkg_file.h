@@ -39,11 +39,19 @@ class TinGpkgFile {
   void finish(const Tin& tin, const std::vector<ExtraField>& triangleExtra, const ProgressRange& rows,
               const ProgressRange& rest);
 
+  // For a writer that has the triangles a batch at a time too: the triangles layer's rows
+  // (fields: triangleFields(), then the extra ones), written with writeTriangleRows; then
+  // finishRows() with the layers' boxes in fid order (the vertices' only with a vertex
+  // index) ends both layers, writes the indexes and commits.
+  GpkgFeatureRows& triangleRows();
+  void finishRows(std::vector<RtreeBox> vertexBoxes, std::vector<RtreeBox> triangleBoxes, const ProgressRange& progress);
+  bool vertexIndex() const { return vertexIndex_; }
+
  private:
   GpkgOutput out_;
   bool vertexIndex_;
   std::vector<std::string> vertexNames_, triangleNames_;  // the layers' fields, as made
-  std::optional<GpkgFeatureRows> vertexRows_;
+  std::optional<GpkgFeatureRows> vertexRows_, triangleRows_;
   std::int32_t srsId_ = 0;
 };
 

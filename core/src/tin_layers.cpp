@@ -40,20 +40,27 @@ void writeVertexRows(const std::vector<TinVertex>& vertices, std::int64_t firstI
 
 void writeTriangles(const Tin& tin, std::size_t count, const TriangleAt& triangle, GpkgFeatureRows& rows,
                     std::int32_t srsId, const MoreFields& more, const ProgressRange& progress) {
+  writeTriangleRows(tin.vertices, count, triangle, {}, 1, rows, srsId, more, progress);
+  rows.finish();
+}
+
+void writeTriangleRows(const std::vector<TinVertex>& vertices, std::size_t count, const TriangleAt& triangle,
+                       const std::vector<VertexId>& id, std::int64_t firstId, GpkgFeatureRows& rows, std::int32_t srsId,
+                       const MoreFields& more, const ProgressRange& progress) {
   GpkgGeometryBlob polygon(srsId);
   for (std::size_t i = 0; i < count; ++i) {
     const Triangle& t = triangle(i);
-    rows.set(0, static_cast<std::int64_t>(i) + 1);
-    for (int k = 0; k < 3; ++k) rows.set(k + 1, static_cast<std::int64_t>(t[k]) + 1);
+    const std::int64_t fid = firstId + static_cast<std::int64_t>(i);
+    rows.set(0, fid);
+    for (int k = 0; k < 3; ++k) rows.set(k + 1, static_cast<std::int64_t>(id.empty() ? t[k] : id[t[k]]) + 1);
     if (more) more(rows, i);
     polygon.polygon(3, [&](std::size_t k, double& x, double& y, double& z) {
-      const TinVertex& v = tin.vertices[t[k]];
+      const TinVertex& v = vertices[t[k]];
       x = v.x, y = v.y, z = v.z;
     }, true);
-    rows.insert(static_cast<std::int64_t>(i) + 1, polygon);
+    rows.insert(fid, polygon);
     if ((i & 0x3FFF) == 0) progress.report(double(i) / count, "Writing triangles");
   }
-  rows.finish();
 }
 
 std::vector<RtreeBox> vertexBoxes(const Tin& tin) {
@@ -66,13 +73,18 @@ std::vector<RtreeBox> vertexBoxes(const Tin& tin) {
 std::vector<RtreeBox> triangleBoxes(const Tin& tin, std::size_t count, const TriangleAt& triangle) {
   std::vector<RtreeBox> boxes;
   boxes.reserve(count);
+  addTriangleBoxes(tin.vertices, count, triangle, boxes);
+  return boxes;
+}
+
+void addTriangleBoxes(const std::vector<TinVertex>& vertices, std::size_t count, const TriangleAt& triangle,
+                      std::vector<RtreeBox>& boxes) {
   for (std::size_t i = 0; i < count; ++i) {
     const Triangle& t = triangle(i);
     Envelope e = Envelope::empty();
-    for (int k = 0; k < 3; ++k) e.extend(tin.vertices[t[k]].x, tin.vertices[t[k]].y);
+    for (int k = 0; k < 3; ++k) e.extend(vertices[t[k]].x, vertices[t[k]].y);
     boxes.push_back(outwardBox(e));
   }
-  return boxes;
 }
 
 }  // namespace tinlod

@@ -33,9 +33,18 @@ using TriangleAt = std::function<const Triangle&(std::size_t)>;
 
 void writeTriangles(const Tin& tin, std::size_t count, const TriangleAt& triangle, GpkgFeatureRows& rows,
                     std::int32_t srsId, const MoreFields& more, const ProgressRange& progress);
+// The rows alone, ids from `firstId` on, the layer left unfinished: for a writer that has
+// the triangles a batch at a time. Their corners index `vertices`; the vertex ids written
+// are id[corner] + 1 (corner + 1 when `id` is empty).
+void writeTriangleRows(const std::vector<TinVertex>& vertices, std::size_t count, const TriangleAt& triangle,
+                       const std::vector<VertexId>& id, std::int64_t firstId, GpkgFeatureRows& rows, std::int32_t srsId,
+                       const MoreFields& more, const ProgressRange& progress);
 
 // The boxes of the layers' spatial indexes, in fid order.
 std::vector<RtreeBox> vertexBoxes(const Tin& tin);
 std::vector<RtreeBox> triangleBoxes(const Tin& tin, std::size_t count, const TriangleAt& triangle);
+// The same added to `boxes`, of triangles whose corners index `vertices`.
+void addTriangleBoxes(const std::vector<TinVertex>& vertices, std::size_t count, const TriangleAt& triangle,
+                      std::vector<RtreeBox>& boxes);
 
 }  // namespace tinlod
