@@ -111,7 +111,13 @@ std::string alteredCatalogue(const std::string& name, const std::vector<std::str
   GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(catalogue.c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE, nullptr, nullptr, nullptr));
   EXPECT_NE(ds, nullptr) << catalogue;
   if (!ds) return catalogue;
-  for (const std::string& statement : sql) ds->ExecuteSQL(statement.c_str(), nullptr, nullptr);
+  for (const std::string& statement : sql) {
+    // A statement that failed would leave the catalogue as it was: a test comparing the
+    // altered one with the original would then pass on nothing.
+    CPLErrorReset();
+    ds->ExecuteSQL(statement.c_str(), nullptr, nullptr);
+    EXPECT_EQ(CPLGetLastErrorType(), CE_None) << statement << ": " << CPLGetLastErrorMsg();
+  }
   GDALClose(ds);
   return catalogue;
 }

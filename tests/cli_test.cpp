@@ -6,6 +6,7 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <vector>
 
 #include "test_support.h"
 
@@ -96,6 +98,41 @@ TEST(Cli, OptionsReachTheCore) {
   EXPECT_EQ(k1.exitCode, 0) << k1.err;
   const CliRun k3 = tinlod("sample " + defaultDem() + " " + dir + "/b.gpkg");
   auto vertices = [](const std::string& out) { return std::stol(out.substr(out.find("Wrote ") + 6)); };
+  // -t_srs: the layer's CRS; -jitter: every vertex (in the DEM's own CRS, below) within
+  // [0, 0.1) m of its cell's centre in x and y; -seed: other offsets.
+  GDALAllRegister();
+  GDALDataset* a = static_cast<GDALDataset*>(GDALOpenEx((dir + "/a.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(a, nullptr);
+  const OGRSpatialReference* srs = a->GetLayerByName("vertices")->GetSpatialRef();
+  ASSERT_NE(srs, nullptr);
+  EXPECT_STREQ(srs->GetAuthorityCode(nullptr), "32633");
+  GDALClose(a);
+  auto offsets = [&](const std::string& seed, const std::string& name) {
+    EXPECT_EQ(tinlod("sample -q -block 1 -jitter 0.1 -seed " + seed + " " + defaultDem() + " " + dir + "/" + name).exitCode, 0);
+    GDALDataset* dem = static_cast<GDALDataset*>(GDALOpen(defaultDem().c_str(), GA_ReadOnly));
+    double gt[6];
+    dem->GetGeoTransform(gt);
+    GDALClose(dem);
+    GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx((dir + "/" + name).c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    std::vector<std::array<double, 2>> out;
+    for (auto& f : *ds->GetLayerByName("vertices")) {
+      const OGRPoint* p = f->GetGeometryRef()->toPoint();
+      out.push_back({p->getX() - (gt[0] + (f->GetFieldAsInteger("col") + 0.5) * gt[1]),
+                     p->getY() - (gt[3] + (f->GetFieldAsInteger("row") + 0.5) * gt[5])});
+    }
+    GDALClose(ds);
+    return out;
+  };
+  const auto five = offsets("5", "s5.gpkg"), six = offsets("6", "s6.gpkg");
+  ASSERT_EQ(five.size(), six.size());
+  std::size_t moved = 0, differ = 0;
+  for (std::size_t i = 0; i < five.size(); ++i) {
+    for (double d : five[i]) EXPECT_TRUE(std::fabs(d) < 0.1 + 1e-9) << "vertex " << i << " moved " << d << " m";
+    moved += five[i][0] != 0 || five[i][1] != 0;
+    differ += five[i] != six[i];
+  }
+  EXPECT_GT(moved, five.size() / 2);
+  EXPECT_GT(differ, five.size() / 2);
   const CliRun k1Loud = tinlod("sample -block 1 -overwrite " + defaultDem() + " " + dir + "/a.gpkg");
   EXPECT_GT(vertices(k1Loud.out), 5 * vertices(k3.out));
 }

@@ -17,12 +17,12 @@ here=$(cd "$(dirname "$0")" && pwd)
 for tool in xvfb-run xauth; do
   if ! command -v "$tool" > /dev/null; then
     echo "skipped: $tool is absent (Debian: apt-get install xvfb xauth); the desktop test needs a virtual X server"
-    exit 0
+    exit 77
   fi
 done
 if [[ ! -x /usr/bin/qgis ]]; then
   echo "skipped: /usr/bin/qgis (the QGIS desktop) is absent"
-  exit 0
+  exit 77
 fi
 [[ -f $plugin_zip ]] || { echo "FAILED: no plugin zip at $plugin_zip"; exit 1; }
 

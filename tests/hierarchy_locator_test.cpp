@@ -190,13 +190,20 @@ TEST(HierarchyLocator, VerticesAreFoundWithTheirOwnHeightAtEveryLevel) {
 TEST(HierarchyLocator, SamePointSameAnswer) {
   const Hierarchy h = buildFrom(test::smallSyntheticDem());
   const HierarchyLocator a(h), b(h);
-  for (const auto& [x, y] : randomPoints(h.base, 500, 7)) {
-    const LocatedPoint p = a.locate(x, y), q = b.locate(x, y);
+  // b answers the points in the other order: no answer depends on the queries before it.
+  const auto points = randomPoints(h.base, 500, 7);
+  std::vector<LocatedPoint> backwards(points.size());
+  for (std::size_t i = points.size(); i-- > 0;) backwards[i] = b.locate(points[i][0], points[i][1]);
+  std::size_t found = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const LocatedPoint p = a.locate(points[i][0], points[i][1]), &q = backwards[i];
     EXPECT_EQ(p.triangle, q.triangle);
     if (p.found()) {
       EXPECT_EQ(p.z, q.z);
+      ++found;
     }
   }
+  EXPECT_GT(found, 250u);  // some points lie in the margin around the TIN, or in its void
 }
 
 TEST(HierarchyLocator, ThreadsShareOneLocator) {

@@ -154,6 +154,8 @@ void expectValidHierarchy(const Dem& dem, const Hierarchy& h) {
     std::set<VertexId> deleted;
     for (const Group& g : h.groups)
       if (g.level == L) deleted.insert(g.vertex);
+    EXPECT_EQ(deleted.size(), h.levels[L].deleted) << "level " << L;
+    EXPECT_GT(deleted.size(), 0u) << "level " << L;
     for (std::uint32_t t : h.levelTriangles(L - 1)) {
       const Triangle& v = h.triangles[t].v;
       for (int k = 0; k < 3; ++k)

@@ -8,7 +8,7 @@ build=$1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 for tool in cpack dpkg-deb dpkg-shlibdeps; do
-  command -v "$tool" > /dev/null || { echo "skipped: $tool is not installed"; exit 0; }
+  command -v "$tool" > /dev/null || { echo "skipped: $tool is not installed"; exit 77; }
 done
 
 # shellcheck source-path=SCRIPTDIR source=script_support.sh

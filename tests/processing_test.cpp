@@ -19,6 +19,8 @@
 #include <qgsproject.h>
 #include <qgsvectorlayer.h>
 #include <qgsgeometry.h>
+#include <qgspoint.h>
+#include <qgsfeatureiterator.h>
 #include <qgsvectordataprovider.h>
 
 #include <QFile>
@@ -816,6 +818,18 @@ TEST(Processing, LocateAddsElevationsAsTheCoreDoes) {
   EXPECT_GT(r.outputs.value("POINTS").toLongLong(), 1000);
   EXPECT_EQ(r.outputs.value("LOCATED").toLongLong(), r.outputs.value("POINTS").toLongLong());
   EXPECT_EQ(featureCount(out, "points"), r.outputs.value("POINTS").toLongLong());
+  // Each point is a vertex of level 0: its elevation is the vertex's own height.
+  QgsVectorLayer located(out + "|layername=points", QStringLiteral("points"), QStringLiteral("ogr"));
+  ASSERT_TRUE(located.isValid());
+  QgsFeature f;
+  std::size_t checked = 0, wrong = 0;
+  for (QgsFeatureIterator it = located.getFeatures(); it.nextFeature(f); ++checked) {
+    const QgsPoint* p = qgsgeometry_cast<const QgsPoint*>(f.geometry().constGet());
+    wrong += !p || f.attribute(QStringLiteral("elevation")).isNull() ||
+             std::fabs(f.attribute(QStringLiteral("elevation")).toDouble() - p->z()) > 1e-6;
+  }
+  EXPECT_EQ(checked, std::size_t(r.outputs.value("POINTS").toLongLong()));
+  EXPECT_EQ(wrong, 0u);
   const Result bad = runAlgorithm(QStringLiteral("tinlod:locate"), {{"INPUT", points},
                                                                     {"HIERARCHY", QString::fromStdString(dir + "/h.gpkg")},
                                                                     {"LEVEL", 99},

@@ -65,10 +65,15 @@ TEST(Sampler, BlockOneTakesEveryValidCell) {
 
 TEST(Sampler, NodataNeverSampledAndItsRimIsOutline) {
   const Dem dem = test::makeDem(30, 30, 10, [](int r, int c) { return std::hypot(r - 15, c - 15) < 6 ? NAN : 1.0f; });
+  std::size_t rim = 0;
   for (const SampleCell& c : sampleCells(dem, 3, 5, kRange)) {
     ASSERT_TRUE(dem.valid(c.row, c.col));
-    if (std::abs(std::hypot(c.row - 15, c.col - 15) - 6.5) < 0.4) EXPECT_TRUE(c.outline);
+    if (std::abs(std::hypot(c.row - 15, c.col - 15) - 6.5) < 0.4) {
+      EXPECT_TRUE(c.outline);
+      ++rim;
+    }
   }
+  EXPECT_GT(rim, 10u);  // the rim is taken whole: some 40 cells lie within 0.4 of radius 6.5
 }
 
 TEST(Sampler, RandomCellIsUniformOverTheBlock) {

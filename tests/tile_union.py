@@ -13,8 +13,9 @@ For each level k, over the union of the tiles' level k:
 - no crack: no edge on a shared border line has a vertex of the union strictly inside it
   (a T-junction, where one tile kept a vertex the other deleted).
 With --whole (a run over the whole raster with the same options), each level's area and
-its pooled RMSE and maximum error against the DEM are compared with the whole run's.
-Exit status 1 when any tile union is not conforming.  Reads the GeoPackages with sqlite3
+its pooled RMSE and maximum error against the DEM are printed beside the whole run's; with
+--max_area_change F too, a level whose area differs from the whole run's by more than F
+(relative) fails. Exit status 1 when any tile union is not conforming, or its area is off.  Reads the GeoPackages with sqlite3
 and osgeo (for the metadata), nothing else.
 """
 import argparse
@@ -138,6 +139,8 @@ def main():
     ap.add_argument("--whole")
     ap.add_argument("--json")
     ap.add_argument("--levels", help="comma-separated levels to check (default: all)")
+    ap.add_argument("--max_area_change", type=float,
+                    help="with --whole: the largest relative change of a level's area from the whole run's")
     ap.add_argument("tiles", nargs="+")
     args = ap.parse_args()
     tiles = [Tile(p) for p in args.tiles]
@@ -161,6 +164,13 @@ def main():
             wl = whole.levels[k]
             row.update({"whole_vertices": wl[0], "whole_area": whole.area(k), "whole_rmse": wl[3], "whole_max_error": wl[2]})
         report.append(row)
+        if args.max_area_change is not None:
+            if "whole_area" not in row:
+                problems.append(f"level {k}: no area to compare with (--max_area_change needs --whole with this level)")
+            elif abs(area / row["whole_area"] - 1) > args.max_area_change:
+                problems.append(f"level {k}: area {area:.1f} is {area / row['whole_area']:.6f} of the whole run's "
+                                f"{row['whole_area']:.1f} (more than {args.max_area_change} apart)")
+            row["problems"] = len(problems)
         for p in problems[:10]:
             print("  " + p)
         failed |= bool(problems)

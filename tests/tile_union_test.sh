@@ -32,16 +32,21 @@ build_tiles() {
 
 "$tinlod" makedem "$work/dem.tif" -size 400 330 -q
 check "12 tiles of the synthetic DEM are built" test "$(build_tiles "$work/dem.tif" 120 "$work/syn")" = 12
-check "their union is conforming at every level" union "$work"/syn_*.gpkg
+"$tinlod" build "$work/dem.tif" "$work/whole.gpkg" -q
+# The tiles' lines hold unjittered vertices, so the areas differ a little (3e-5 measured).
+check "their union is conforming at every level, with the whole run's area (to 1e-4)" \
+  union --whole "$work/whole.gpkg" --max_area_change 1e-4 "$work"/syn_*.gpkg
 check "... and has 15 levels (the defaults' 14 above level 0)" test "$(grep -c 'conforming=yes' "$work/union.log")" = 15
 cp "$work/union.log" "$work/union_ok.log"
 
 # The two passes of -selection global: every tile's survey, one threshold per level for the
 # whole raster, then the tiles built with them fit together as well.
+failed=0
 for f in "$work"/syn_*.gpkg; do
   t=$(basename "$f" .gpkg); t=${t#syn_}
-  "$tinlod" build "$work/dem.tif" "$work/survey_$t.json" -tile_size 120 -tile "${t/_/,}" -q -survey
+  "$tinlod" build "$work/dem.tif" "$work/survey_$t.json" -tile_size 120 -tile "${t/_/,}" -q -survey || failed=$((failed + 1))
 done
+check "the 12 tiles are surveyed" test "$failed" = 0
 thresholds=$(cd "$here/../tiles" && /usr/bin/python3 -c "
 import glob
 from tinlodtiles.thresholds import read_survey, level_thresholds, as_option
@@ -56,12 +61,15 @@ cell_file.write_cells(sys.argv[2], line_outline.gather(glob.glob(sys.argv[1])))"
 }
 line_outline_union "$work/survey_*.json" "$work/line_outline.txt"
 check "the surveys list line cells on the outline (the void reaches a line)" test -s "$work/line_outline.txt"
+failed=0
 for f in "$work"/syn_*.gpkg; do
   t=$(basename "$f" .gpkg); t=${t#syn_}
   "$tinlod" build "$work/dem.tif" "$work/glob_$t.gpkg" -tile_size 120 -tile "${t/_/,}" -q -level_thresholds "$thresholds" \
-    -line_outline "$work/line_outline.txt"
+    -line_outline "$work/line_outline.txt" || failed=$((failed + 1))
 done
-check "tiles built with the thresholds and the line outline fit together at every level" union "$work"/glob_*.gpkg
+check "the 12 tiles are built with the thresholds" test "$failed" = 0
+check "tiles built with the thresholds and the line outline fit together at every level, with the whole run's area" \
+  union --whole "$work/whole.gpkg" --max_area_change 1e-4 "$work"/glob_*.gpkg
 level_counts() { /usr/bin/python3 -c "import sqlite3,sys; print([r[0] for r in sqlite3.connect(sys.argv[1]).execute('select vertices from levels')])" "$1"; }
 check "... and the thresholds changed what they deleted" test "$(level_counts "$work/glob_1_1.gpkg")" != "$(level_counts "$work/syn_1_1.gpkg")"
 err=$("$tinlod" build "$work/dem.tif" "$work/x.gpkg" -tile_size 120 -tile 0,0 -level_thresholds 1,2 2>&1)
@@ -71,7 +79,9 @@ check "too few thresholds are refused" grep -q "gives 2 thresholds for 14 levels
 # another delete percentage thins the border lines otherwise.
 cp "$work/syn_1_1.gpkg" "$work/keep.gpkg"
 "$tinlod" build "$work/dem.tif" "$work/syn_1_1.gpkg" -tile_size 120 -tile 1,1 -q -overwrite -seed 2
-check "a tile with another seed is refused (vertices apart)" bash -c "! /usr/bin/python3 '$here/tile_union.py' '$work'/syn_*.gpkg | grep -q '^OK'"
+/usr/bin/python3 "$here/tile_union.py" "$work"/syn_*.gpkg > "$work/apart.log" 2>&1
+check "a tile with another seed is refused (vertices apart)" test $? = 1
+check "... naming a vertex at two places" grep -q "elsewhere$" "$work/apart.log"
 "$tinlod" build "$work/dem.tif" "$work/syn_1_1.gpkg" -tile_size 120 -tile 1,1 -q -overwrite -delete_pct 5 -max_levels 14
 /usr/bin/python3 "$here/tile_union.py" "$work"/syn_*.gpkg > "$work/crack.log" 2>&1
 check "a tile thinned otherwise is refused (a crack)" grep -q "(a crack)" "$work/crack.log"
@@ -104,7 +114,10 @@ if [[ -f $data/swiss_alps_N46E008.tif ]]; then
   dem=$data/swiss_alps_N46E008.tif  # degrees, 7 % voids
   check "4 tiles of swiss_alps are built" test "$(build_tiles "$dem" 600 "$work/alps")" = 4
   "$tinlod" build "$dem" "$work/alps_whole.gpkg" -q
-  check "their union is conforming at every level, with the whole run's area" union --whole "$work/alps_whole.gpkg" "$work"/alps_*_*.gpkg
+  # The outline moves within -outline_tolerance, a little otherwise than in the whole run
+  # where the tiles keep the lines' outline cells (1.9e-4 measured at level 14).
+  check "their union is conforming at every level, with the whole run's area (to 1e-3)" \
+    union --whole "$work/alps_whole.gpkg" --max_area_change 1e-3 "$work"/alps_*_*.gpkg
   check "... 15 levels" test "$(grep -c 'conforming=yes' "$work/union.log")" = 15
   check "... level 0's area is the whole run's (to 1e-4)" /usr/bin/python3 -c "
 import re,sys
@@ -113,21 +126,25 @@ sys.exit(abs(float(re.search(r'area ratio ([0-9.]+)', line).group(1)) - 1) > 1e-
   tail -3 "$work/union.log"
   # The two passes of tinlod tiles: the surveys' thresholds and line outline. Only the line
   # cells on a tile's outline stay, of those near the voids; the union is still conforming.
+  failed=0
   for t in 0_0 0_1 1_0 1_1; do
-    "$tinlod" build "$dem" "$work/alps_survey_$t.json" -tile_size 600 -tile "${t/_/,}" -q -survey
+    "$tinlod" build "$dem" "$work/alps_survey_$t.json" -tile_size 600 -tile "${t/_/,}" -q -survey || failed=$((failed + 1))
   done
+  check "the 4 swiss_alps tiles are surveyed" test "$failed" = 0
   thresholds=$(cd "$here/../tiles" && /usr/bin/python3 -c "
 import glob
 from tinlodtiles.thresholds import read_survey, level_thresholds, as_option
 print(as_option(level_thresholds([read_survey(p) for p in sorted(glob.glob('$work/alps_survey_*.json'))], 20, 5)))")
   line_outline_union "$work/alps_survey_*.json" "$work/alps_line_outline.txt"
   check "the swiss_alps surveys list line cells on the outline" test -s "$work/alps_line_outline.txt"
+  failed=0
   for t in 0_0 0_1 1_0 1_1; do
     "$tinlod" build "$dem" "$work/alpsglob_$t.gpkg" -tile_size 600 -tile "${t/_/,}" -q -level_thresholds "$thresholds" \
-      -line_outline "$work/alps_line_outline.txt"
+      -line_outline "$work/alps_line_outline.txt" || failed=$((failed + 1))
   done
-  check "tiles of swiss_alps built so are conforming at every level, with the whole run's area" \
-    union --whole "$work/alps_whole.gpkg" "$work"/alpsglob_*.gpkg
+  check "the 4 swiss_alps tiles are built with the thresholds" test "$failed" = 0
+  check "tiles of swiss_alps built so are conforming at every level, with the whole run's area (to 1e-3)" \
+    union --whole "$work/alps_whole.gpkg" --max_area_change 1e-3 "$work"/alpsglob_*.gpkg
   check "... 15 levels" test "$(grep -c 'conforming=yes' "$work/union.log")" = 15
   tail -1 "$work/union.log"
 else

@@ -885,6 +885,7 @@ def main(tinlod, tiles):
     write_points(beside_points, beside, odd_catalogue)
     located = run([tinlod, "locate", odd_catalogue, beside_points, os.path.join(work, "beside.gpkg"), "-q"])
     check("(e) locate finds points 1 to 3 ULP either side of a shared line", located.returncode == 0
+          and len(point_values(os.path.join(work, "beside.gpkg"))) == len(beside)
           and all(h is not None for h, _ in point_values(os.path.join(work, "beside.gpkg"))),
           point_values(os.path.join(work, "beside.gpkg")))
 
