@@ -48,7 +48,8 @@ double secantByDefinition(const Polyline& line, std::size_t i, double d) {
     area += (a[0] - polygon[0][0]) * (b[1] - polygon[0][1]) - (a[1] - polygon[0][1]) * (b[0] - polygon[0][0]);
   }
   const LinePoint &t = polygon.front(), &h = polygon.back();
-  return -0.5 * area / ((h[0] - t[0]) * (h[0] - t[0]) + (h[1] - t[1]) * (h[1] - t[1]));
+  const double secant2 = (h[0] - t[0]) * (h[0] - t[0]) + (h[1] - t[1]) * (h[1] - t[1]);
+  return secant2 < 0.01 * d * d ? NAN : -0.5 * area / secant2;  // a secant under d / 10: undefined
 }
 
 TEST(Concavity, StraightLineIsZeroAndEndsHaveNoValue) {
@@ -99,6 +100,30 @@ TEST(Concavity, AClosedContourHasNoEnds) {
   // A window reaching round the ring to itself measures nothing.
   const std::vector<double> tooWide = secantConcavity(ring, 0.51 * 2 * kPi * R);
   for (double v : tooWide) EXPECT_TRUE(std::isnan(v));
+}
+
+// A line that turns back on itself within the window has a secant far shorter than the
+// window: its ratio would be huge (2.9e10 on a real contour), so it is undefined there.
+TEST(Concavity, ASecantShorterThanATenthOfTheWindowMeasuresNothing) {
+  const double R = 100, perimeter = 2 * kPi * R;
+  Polyline ring = arc(R, 0, 2 * kPi, 4001);
+  ring.back() = ring.front();
+  // Half the perimeter and a little: the window's ends come 3 cm apart.
+  for (double v : secantConcavity(ring, 0.49995 * perimeter)) EXPECT_TRUE(std::isnan(v));
+  // A hairpin: out 500 m east, a half circle of radius 4 m, back west.
+  Polyline hairpin;
+  for (int i = 0; i <= 100; ++i) hairpin.push_back({5.0 * i, 0});
+  for (int i = 1; i < 20; ++i) hairpin.push_back({500 + 4 * std::sin(kPi * i / 20), 4 - 4 * std::cos(kPi * i / 20)});
+  for (int i = 100; i >= 0; --i) hairpin.push_back({5.0 * i, 8});
+  const std::vector<double> secant = secantConcavity(hairpin, 100);
+  std::size_t measured = 0;
+  for (std::size_t i = 0; i < hairpin.size(); ++i) {
+    if (std::isnan(secant[i])) continue;
+    ++measured;
+    EXPECT_LT(std::fabs(secant[i]), 32) << "vertex " << i;
+  }
+  EXPECT_TRUE(std::isnan(secant[110]));  // the bend: its ends 8 m apart, 100 m along each arm
+  EXPECT_GT(measured, 100u);             // the arms, away from the bend, are measured
 }
 
 TEST(Concavity, TheSweepMatchesTheDefinitionEverywhere) {

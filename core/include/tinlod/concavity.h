@@ -11,7 +11,9 @@ namespace tinlod {
 // The secant concavity of every vertex: with the points a distance `window` along the
 // line before and after it, the signed area between the line and the secant joining them
 // over the secant's length squared. Positive where the line bulges to its left (convex
-// seen from the left side), 0 on a straight line; NaN within `window` of an endpoint.
+// seen from the left side), 0 on a straight line; NaN within `window` of an endpoint, and
+// where the secant is shorter than a tenth of `window` (the line turned back on itself:
+// the ratio would grow without bound, to |value| 32 or more).
 // One sweep: the window's ends move along with the vertex and the area comes from
 // prefix sums, O(n) for the whole line. A closed line (first vertex = last) has no ends:
 // it is measured around (both measures), where twice the window (radius) is shorter
