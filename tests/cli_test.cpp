@@ -520,6 +520,29 @@ TEST(Cli, LocateAddsTheElevationOfTheChosenLevelToEveryPoint) {
   EXPECT_EQ(tinlod("locate " + dir + "/h.gpkg " + dir + "/none.geojson " + dir + "/c.gpkg").exitCode, 1);
 }
 
+// -overwrite replaces the layers of the same kind of output: a TIN given as a lines job's
+// output (or a lines output as a TIN's) would become a file of two kinds, so it is refused
+// before any work, the file untouched.
+TEST(Cli, OverwriteRefusesATinlodFileOfAnotherKind) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("sample -q " + defaultDem() + " " + dir + "/tin.gpkg").exitCode, 0);
+  std::ofstream(dir + "/l.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [[0, 0], [1, 1], [2, 0], [3, 3], [4, 0]]}}]})";
+  const std::string before = test::readFile(dir + "/tin.gpkg");
+  for (const char* job : {"lines dp -points", "lines concavity -window 1"}) {
+    const CliRun r = tinlod(std::string(job) + " -overwrite " + dir + "/l.geojson " + dir + "/tin.gpkg");
+    EXPECT_EQ(r.exitCode, 1) << job;
+    EXPECT_TRUE(has(r.err, "holds a tinlod tin output: -overwrite replaces the layers of the same kind")) << r.err;
+  }
+  EXPECT_EQ(test::readFile(dir + "/tin.gpkg"), before);
+  ASSERT_EQ(tinlod("lines dp -q " + dir + "/l.geojson " + dir + "/dp.gpkg").exitCode, 0);
+  const CliRun intoLines = tinlod("build -q -overwrite " + defaultDem() + " " + dir + "/dp.gpkg");
+  EXPECT_EQ(intoLines.exitCode, 1);
+  EXPECT_TRUE(has(intoLines.err, "holds a tinlod dp_values output")) << intoLines.err;
+  // A TIN, a hierarchy and a level-of-detail TIN replace one another.
+  EXPECT_EQ(tinlod("build -q -overwrite " + defaultDem() + " " + dir + "/tin.gpkg").exitCode, 0);
+}
+
 TEST(Cli, LinesDpWritesValuesAsMAndTheSimplifiedLines) {
   const std::string dir = test::tempDir();
   // The hand-worked line of the unit test, in metres, and a line in degrees.
@@ -616,7 +639,7 @@ TEST(Cli, LocateWorksOnALodTinAndOnANamedLayerAndRefusesDamage) {
   // Writing into a tinlod file would replace its metadata.
   const CliRun into = tinlod("locate -overwrite " + dir + "/h.gpkg \"" + dir + "/two.gpkg|layername=wells\" " + dir + "/lod.gpkg");
   EXPECT_EQ(into.exitCode, 1);
-  EXPECT_TRUE(has(into.err, "is a tinlod GeoPackage")) << into.err;
+  EXPECT_TRUE(has(into.err, "holds a tinlod lod output")) << into.err;
   // A hierarchy without its groups is refused, not read past its end.
   ASSERT_EQ(std::system(("cp " + dir + "/h.gpkg " + dir + "/broken.gpkg && ogrinfo -q " + dir +
                          "/broken.gpkg -sql \"DELLAYER:groups\" > /dev/null").c_str()),

@@ -52,6 +52,29 @@ GDALDataset* openOrCreate(const fs::path& tmp, bool fromCopy) {
   return ds;
 }
 
+// The outputs whose layers replace each other's: a TIN, a hierarchy and a level-of-detail
+// TIN share theirs (isTinlodLayer); each other kind has its own.
+std::string familyOf(const std::string& kind) {
+  return kind == "tin" || kind == "hierarchy" || kind == "lod" ? "tin" : kind;
+}
+
+// -overwrite replaces the layers of the output being written and keeps a GeoPackage's other
+// layers: into a tinlod file of another kind (a TIN given as a lines job's output), that
+// would leave the old kind's layers under the new kind's metadata, a file neither reads.
+void refuseAnotherKind(const std::string& path, const GpkgWriteOptions& options) {
+  const auto given = options.metadata.find("TINLOD_KIND");
+  const std::string kind = given == options.metadata.end() ? "" : given->second;
+  GDALAllRegister();
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  CPLPopErrorHandler();
+  const char* old = ds ? ds->GetMetadataItem("TINLOD_KIND") : nullptr;
+  if (!old || kind.empty() || familyOf(old) == familyOf(kind)) return;
+  throw Error("'" + path + "' holds a tinlod " + old + " output: -overwrite replaces the layers of the same kind " +
+              "of output and keeps the others, so writing " + kind + " into it would leave a file of two kinds that " +
+              "neither reads; name another file, or remove this one first");
+}
+
 }  // namespace
 
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
@@ -65,6 +88,7 @@ void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
   if (fs::exists(out) && !options.overwrite)
     throw Error("output '" + path +
                 "' exists: add -overwrite to replace its tinlod layers (its other layers are kept)");
+  if (fs::exists(out)) refuseAnotherKind(path, options);
 }
 
 bool isTinlodLayer(const std::string& name) {
@@ -84,6 +108,7 @@ GpkgOutput::GpkgOutput(const StagedFile& file, const GpkgWriteOptions& options,
   // A file of ours alone is replaced by a new one: faster than copying it, dropping its
   // layers and compacting what they leave (a rewrite of the whole file without a word of
   // progress). One with other content is copied and updated.
+  if (file_.existed && file_.keepContent && fs::exists(file_.target)) refuseAnotherKind(file_.path, options_);  // checked again: it may have changed
   const bool update = file_.existed && file_.keepContent && fs::exists(file_.target) && !holdsOnly(file_.target, ours);
   if (update) copyForUpdate(file_);
   ds_ = openOrCreate(file_.staging, update);
