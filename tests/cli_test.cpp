@@ -366,6 +366,9 @@ TEST(Cli, InsertKeepsTheToleranceThatAccuracyMeasuresAgain) {
   EXPECT_TRUE(has(r.out, "over 105778 cells")) << r.out;  // every valid cell of the default DEM
   const CliRun info = tinlod("info " + dir + "/i.gpkg");
   EXPECT_TRUE(has(info.out, "method = insert")) << info.out;
+  // The RMSE the insertion recorded, in the table as in -json (null before).
+  const std::string rmse = r.out.substr(r.out.find("RMSE ") + 5, 4);
+  EXPECT_TRUE(has(tinlod("info -json " + dir + "/i.gpkg").out, "\"rmse\": " + rmse)) << rmse;
   // The accuracy command measures the TIN against the DEM by its own rasteriser.
   const CliRun acc = tinlod("accuracy -reference dem -report " + dir + "/i.csv " + defaultDem() + " " + dir + "/i.gpkg");
   ASSERT_EQ(acc.exitCode, 0) << acc.err;
@@ -536,6 +539,9 @@ TEST(Cli, OverwriteRefusesATinlodFileOfAnotherKind) {
   }
   EXPECT_EQ(test::readFile(dir + "/tin.gpkg"), before);
   ASSERT_EQ(tinlod("lines dp -q " + dir + "/l.geojson " + dir + "/dp.gpkg").exitCode, 0);
+  const CliRun info = tinlod("info " + dir + "/dp.gpkg");
+  EXPECT_EQ(info.exitCode, 1);
+  EXPECT_TRUE(has(info.err, "is a tinlod dp_values output (of tinlod lines or locate), not a TIN")) << info.err;
   const CliRun intoLines = tinlod("build -q -overwrite " + defaultDem() + " " + dir + "/dp.gpkg");
   EXPECT_EQ(intoLines.exitCode, 1);
   EXPECT_TRUE(has(intoLines.err, "holds a tinlod dp_values output")) << intoLines.err;

@@ -83,6 +83,7 @@ LevelStats singleLevel(GDALDataset& ds, const HierarchyInfo& info) {
   // unknown, not zero. Greedy insertion records its maximum error over the candidates.
   l.maxError = l.rmse = std::nan("");
   if (const auto e = info.metadata.find("max_error"); e != info.metadata.end()) l.maxError = std::strtod(e->second.c_str(), nullptr);
+  if (const auto e = info.metadata.find("rmse"); e != info.metadata.end()) l.rmse = std::strtod(e->second.c_str(), nullptr);
   OGRLayer* vertices = ds.GetLayerByName("vertices");
   if (vertices && vertices->GetLayerDefn()->GetFieldIndex("outline") >= 0 && vertices->SetAttributeFilter("outline = 1") == OGRERR_NONE) {
     l.outlineVertices = static_cast<std::size_t>(std::max<GIntBig>(0, vertices->GetFeatureCount()));
@@ -145,6 +146,11 @@ HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
     }
     return catalogueInfo(*ds, std::move(info));
   }
+  const auto kind = info.metadata.find("kind");
+  if (!ds->GetLayerByName("triangles") && kind != info.metadata.end() && kind->second != "tin" &&
+      kind->second != "hierarchy" && kind->second != "lod")
+    throw Error("'" + path + "' is a tinlod " + kind->second + " output (of tinlod lines or locate), not a TIN or a " +
+                "hierarchy: its layers and metadata are shown by ogrinfo -so, and it opens in QGIS as it is");
   if (!ds->GetLayerByName("triangles") || info.metadata.empty())
     throw Error("'" + path + "' was not written by tinlod (no tinlod metadata or triangles layer)");
   info.kind = info.metadata.count("kind") ? info.metadata["kind"] : "tin";
