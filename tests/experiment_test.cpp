@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <set>
 #include <string>
@@ -80,6 +81,21 @@ TEST(Experiment, EveryLevelHasInsertsRmseAtItsSizeAndTheirRatio) {
     EXPECT_LT(l->insertRatio, kRatioLimit) << "delete " << l->deletePct << " %, level " << l->level;
   }
   for (const LevelAccuracy* i : inserted) EXPECT_TRUE(std::isnan(i->insertRatio));
+}
+
+// A DEM that cannot be read stops the run before the first DEM's hierarchies are built,
+// not after them (a real experiment's first DEMs take minutes to hours).
+TEST(Experiment, EveryDemIsCheckedBeforeTheWork) {
+  const std::string notARaster = test::tempDir() + "/notes.txt";
+  std::ofstream(notARaster) << "not a DEM\n";
+  ExperimentOptions o;
+  o.methods = {Measure::Volume};
+  o.deletePcts = {20};
+  test::RecordingFeedback feedback;
+  const std::string error = test::errorOf(
+      [&] { runExperiment({test::smallSyntheticDemFile(), notARaster}, o, {}, feedback.feedback()); });
+  EXPECT_NE(error.find("notes.txt"), std::string::npos) << error;
+  for (const std::string& info : feedback.infos) EXPECT_EQ(info.find("delete"), std::string::npos) << info;
 }
 
 TEST(Experiment, InsertAloneIsRefusedForWantOfCounts) {

@@ -65,6 +65,18 @@ void runDem(const std::string& path, const ExperimentOptions& options, std::vect
     for (LevelAccuracy& row : *part) rows.push_back(std::move(row));
 }
 
+// Each DEM read and sampled once before the work: one that cannot be (not a raster, too
+// small, a CRS that cannot be placed) fails the run at its start, not after the DEMs
+// before it have taken their minutes or hours.
+void checkDems(const std::vector<std::string>& dems, const ExperimentOptions& options, const ProgressRange& progress) {
+  for (std::size_t i = 0; i < dems.size(); ++i) {
+    const ProgressRange part = progress.sub(double(i) / dems.size(), double(i + 1) / dems.size());
+    part.report(0, "Checking " + demName(dems[i]));
+    const Dem dem = readDem(dems[i], options.sample.band, part.sub(0, 0.4), options.sample.validHeights);
+    sampleTin(dem, options.sample, part.sub(0.4, 1));
+  }
+}
+
 }  // namespace
 
 AccuracyReport runExperiment(const std::vector<std::string>& dems, const ExperimentOptions& options,
@@ -78,9 +90,11 @@ AccuracyReport runExperiment(const std::vector<std::string>& dems, const Experim
     staged.push_back(&files.add(path, "-report"));
   }
   const ProgressRange all(feedback, 0, 1);
+  if (dems.size() > 1) checkDems(dems, options, all.sub(0, 0.05));
+  const ProgressRange runs = dems.size() > 1 ? all.sub(0.05, 1) : all;
   std::vector<LevelAccuracy> rows;
   for (std::size_t i = 0; i < dems.size(); ++i)
-    runDem(dems[i], options, rows, all.sub(double(i) / dems.size(), double(i + 1) / dems.size()));
+    runDem(dems[i], options, rows, runs.sub(double(i) / dems.size(), double(i + 1) / dems.size()));
   AccuracyReport report;
   report.title = "The study's experiment over " + std::to_string(dems.size()) + (dems.size() == 1 ? " DEM" : " DEMs");
   report.reference = referenceName(options.accuracy.reference);
