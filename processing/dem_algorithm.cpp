@@ -120,4 +120,11 @@ QString DemAlgorithm::samplingHelp() {
       "there draws a warning.");
 }
 
+ParameterNames DemAlgorithm::demParameterNames(const ParameterNames& more) {
+  ParameterNames names{{QStringLiteral("-b"), QStringLiteral("BAND")},       {QStringLiteral("-valid_range"), QStringLiteral("VALID_RANGE")},
+                       {QStringLiteral("-block"), QStringLiteral("BLOCK")},  {QStringLiteral("-jitter"), QStringLiteral("JITTER")},
+                       {QStringLiteral("-seed"), QStringLiteral("SEED")},    {QStringLiteral("-t_srs"), QStringLiteral("TARGET_CRS")}};
+  return names + more;
+}
+
 }  // namespace tinlod::qgis

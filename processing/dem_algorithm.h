@@ -7,6 +7,7 @@
 #include <string>
 
 #include "accuracy_raster_style.h"
+#include "processing_feedback.h"
 #include "tinlod/accuracy_job.h"
 #include "tinlod/sample_options.h"
 
@@ -39,6 +40,9 @@ class DemAlgorithm : public QgsProcessingAlgorithm {
   std::optional<HeightRange> validRange(const QVariantMap& parameters, QgsProcessingContext& context);
   // Flags a parameter Advanced (shown folded in the dialog) and returns it.
   static QgsProcessingParameterDefinition* advanced(QgsProcessingParameterDefinition* parameter);
+  // The DEM and sampling parameters by the command line's options, for the core's messages
+  // ("consider a smaller -jitter" comes out as JITTER), and `more` after them.
+  static ParameterNames demParameterNames(const ParameterNames& more = {});
 
   std::string demSource_;
   SampleOptions sample_;

@@ -111,9 +111,11 @@ QVariantMap GreedyInsertionAlgorithm::processAlgorithm(const QVariantMap& parame
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   const bool vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
   // QGIS asks before overwriting a file; the core then keeps the file's other layers.
-  const InsertSummary s = translateErrors([&] {
-    return runInsertJob(demSource_, output.toStdString(), insert_, true, processingFeedback(feedback), vertexIndex);
-  });
+  const InsertSummary s = translateErrors(
+      [&] {
+        return runInsertJob(demSource_, output.toStdString(), insert_, true, processingFeedback(feedback, demParameterNames()), vertexIndex);
+      },
+      demParameterNames());
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3; maximum error %4 m, RMSE %5 m over %6 cells")
                          .arg(s.vertices).arg(s.triangles).arg(QString::fromStdString(s.crsName))
                          .arg(s.measuredMaxError).arg(s.rmse).arg(s.measuredCells));

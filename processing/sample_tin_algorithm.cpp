@@ -61,9 +61,11 @@ QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, 
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   const bool vertexIndex = parameterAsBoolean(parameters, QStringLiteral("VERTEX_INDEX"), context);
   // QGIS asks before overwriting a file; the core then keeps the file's other layers.
-  const SampleSummary summary = translateErrors([&] {
-    return runSampleJob(demSource_, output.toStdString(), sample_, true, processingFeedback(feedback), vertexIndex);
-  });
+  const SampleSummary summary = translateErrors(
+      [&] {
+        return runSampleJob(demSource_, output.toStdString(), sample_, true, processingFeedback(feedback, demParameterNames()), vertexIndex);
+      },
+      demParameterNames());
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3")
                          .arg(summary.vertices).arg(summary.triangles).arg(QString::fromStdString(summary.crsName)));
   // The vertices load hidden: a hundred thousand dots would cover the map.

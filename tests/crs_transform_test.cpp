@@ -150,7 +150,7 @@ TEST(Crs, ALocalCrsIsNoPlaceToTransformFromAndTheErrorSaysSoWithoutWkt) {
   const std::string error =
       test::errorOf([&] { CrsTransform::forDem(dem, "", "EPSG:32632", ProgressRange(Feedback{}, 0, 1)); });
   EXPECT_EQ(error, "'test DEM' has no CRS (only a local one, unnamed), so it cannot be transformed to WGS 84 / UTM "
-                   "zone 32N (EPSG:32632): name its CRS with -s_srs, e.g. -s_srs EPSG:4326");
+                   "zone 32N (EPSG:32632): name its CRS with -s_srs, e.g. -s_srs EPSG:4326 (QGIS: assign the layer's CRS)");
   EXPECT_NE(CrsTransform::forDem(dem, "EPSG:4326", "EPSG:32632", ProgressRange(Feedback{}, 0, 1)).targetName().find("32632"),
             std::string::npos);
 }

@@ -193,6 +193,17 @@ TEST(Processing, ParametersReachTheCore) {
   EXPECT_EQ(layer.crs().authid(), QStringLiteral("EPSG:32633"));
 }
 
+// The core's messages name the command line's options; in QGIS they name the parameters.
+TEST(Processing, SamplingErrorsNameTheParameters) {
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
+                                {{"INPUT", QString::fromStdString(defaultDem())},
+                                 {"JITTER", 25},  // the default DEM's cells are 20 m
+                                 {"OUTPUT", QString::fromStdString(test::tempDir() + "/tin.gpkg")}});
+  ASSERT_FALSE(r.ok);
+  EXPECT_TRUE(r.error.contains(QStringLiteral("use e.g. JITTER 2"))) << r.error.toStdString();
+  EXPECT_FALSE(r.error.contains(QStringLiteral("-jitter"))) << r.error.toStdString();
+}
+
 TEST(Processing, ValidRangeReachesTheCoreAndABadOneNamesTheParameter) {
   const ProgressRange quiet(Feedback{}, 0, 1);
   std::vector<float> heights;

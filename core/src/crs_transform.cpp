@@ -43,7 +43,7 @@ void centreLonLat(const Dem& dem, const OGRSpatialReference& src, double& lon, d
   std::unique_ptr<OGRSpatialReference> geog(src.CloneGeogCS());
   if (!geog)  // a local or engineering CRS has no longitude and latitude
     throw Error("'" + dem.path + "' has only a local CRS (" + describe(src) + ") in units that are not metres: name its "
-                "CRS with -s_srs (e.g. -s_srs EPSG:4326 for degrees), or a projected one with -t_srs");
+                "CRS with -s_srs (e.g. -s_srs EPSG:4326 for degrees; QGIS: assign the layer's CRS), or a projected one with -t_srs");
   geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&src, geog.get()));
   if (!ct || !ct->Transform(1, &lon, &lat))
@@ -169,7 +169,7 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
     if (!hasSrc || (src.IsLocal() && !src.IsSame(&dst)))
       throw Error("'" + dem.path + "' has no CRS" + (hasSrc ? " (only a local one, " + describe(src) + ")" : "") +
                   ", so it cannot be transformed to " + describe(dst) +
-                  ": name its CRS with -s_srs, e.g. -s_srs EPSG:4326");
+                  ": name its CRS with -s_srs, e.g. -s_srs EPSG:4326 (QGIS: assign the layer's CRS)");
   } else if (!hasSrc) {
     warnAboutMissingCrs(dem, progress);
     impl->name = "no CRS";

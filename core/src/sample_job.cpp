@@ -96,7 +96,7 @@ void checkJitter(const Dem& dem, const CrsTransform& transform, double jitter, c
     msg << "jitter " << jitter << " m is not smaller than the cell size (" << cell << " m): points would leave their cells; ";
     // Cells under a centimetre are degrees read as metres (no CRS, or a local one).
     if (transform.targetWkt().empty() || cell < 0.01)
-      msg << "if the DEM is in degrees, name its CRS with -s_srs EPSG:4326; otherwise ";
+      msg << "if the DEM is in degrees, name its CRS with -s_srs EPSG:4326 (QGIS: assign the layer's CRS); otherwise ";
     msg << "use e.g. -jitter " << std::setprecision(2) << 0.1 * cell;
     throw Error(msg.str());
   }
