@@ -169,6 +169,21 @@ TEST(OutputFiles, OnlyStagingFoldersNobodyHoldsAreRemoved) {
   EXPECT_FALSE(fs::exists(live));
 }
 
+// A run stopped while a writer made a file in its folder may leave the folder, empty and
+// without its lock: the next run for the output removes it, however new it is. One with
+// files but no lock may be one another run has just made, and waits a minute.
+TEST(OutputFiles, AnEmptyStagingFolderWithoutItsLockIsRemoved) {
+  const std::string dir = test::tempDir();
+  const fs::path empty = dir + "/.out.gpkg.tinlod-0000000000000003", young = dir + "/.out.gpkg.tinlod-0000000000000004";
+  fs::create_directories(empty);
+  fs::create_directories(young);
+  write(young / "out.gpkg", "partial");
+  OutputFiles files(false);
+  files.add(dir + "/out.gpkg", "output");
+  EXPECT_FALSE(fs::exists(empty));
+  EXPECT_TRUE(fs::exists(young / "out.gpkg"));
+}
+
 TEST(OutputFiles, MessagesNameTheUsersFileNotTheStagingOne) {
   const std::string dir = test::tempDir();
   OutputFiles files(false);

@@ -12,6 +12,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <thread>
 
 #include "tinlod/error.h"
 
@@ -61,10 +62,13 @@ bool oldEnoughToBeAbandoned(const fs::path& folder) {
   return !ec && fs::file_time_type::clock::now() - written > std::chrono::minutes(1);
 }
 
+// An empty one is removed at once: a run that made it and finds it gone before its lock
+// is made tries another name (tryCreate).
 void removeIfAbandoned(const fs::path& folder) {
   const int fd = open((folder / kLock).c_str(), O_RDWR | O_CLOEXEC);
   if (fd < 0) {
-    if (errno == ENOENT && oldEnoughToBeAbandoned(folder)) removeQuietly(folder);
+    std::error_code ec;
+    if (errno == ENOENT && (fs::is_empty(folder, ec) || oldEnoughToBeAbandoned(folder))) removeQuietly(folder);
     return;
   }
   // Removed while holding the lock, so nobody can take the folder for theirs meanwhile.
@@ -143,7 +147,13 @@ std::mutex& StagingFolder::commitMutex() {
 void StagingFolder::removeAllLive() {
   std::lock_guard<std::mutex> commit(commitMutex());
   std::lock_guard<std::mutex> lock(registryMutex());
-  for (const fs::path& p : registry()) removeQuietly(p);
+  // The job's threads may still be writing: a file made while remove_all ran (a
+  // database's journal) leaves the folder behind, empty once that file goes. Again, then.
+  for (const fs::path& p : registry())
+    for (int attempt = 0; attempt < 5 && fs::exists(p); ++attempt) {
+      if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      removeQuietly(p);
+    }
   registry().clear();
 }
 
