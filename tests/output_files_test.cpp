@@ -184,6 +184,33 @@ TEST(OutputFiles, AnEmptyStagingFolderWithoutItsLockIsRemoved) {
   EXPECT_TRUE(fs::exists(young / "out.gpkg"));
 }
 
+// A replaced raster's old statistics (NAME.aux.xml, which the new one did not write) go
+// with it; one the new raster wrote replaces the old; a failed commit puts the old back.
+TEST(OutputFiles, AReplacedRastersOldStatisticsGoWithIt) {
+  const std::string dir = test::tempDir();
+  write(dir + "/a.tif", "old"), write(dir + "/a.tif.aux.xml", "old stats");
+  write(dir + "/b.tif", "old"), write(dir + "/b.tif.aux.xml", "old stats");
+  {
+    OutputFiles files(true);
+    write(files.add(dir + "/a.tif", "-accuracy").staging, "new");
+    const StagedFile& b = files.add(dir + "/b.tif", "makedem");
+    write(b.staging, "new"), write(b.staging.string() + ".aux.xml", "new stats");
+    files.commit();
+  }
+  EXPECT_EQ(namesIn(dir), (std::set<std::string>{"a.tif", "b.tif", "b.tif.aux.xml"}));
+  EXPECT_EQ(test::readFile(dir + "/b.tif.aux.xml"), "new stats");
+  write(dir + "/a.tif.aux.xml", "old stats");
+  {
+    OutputFiles files(true);
+    write(files.add(dir + "/a.tif", "-accuracy").staging, "newer");
+    write(files.add(dir + "/c.csv", "-report").staging, "x");
+    fs::create_directory(dir + "/c.csv");  // the second move cannot happen
+    EXPECT_THROW(files.commit(), Error);
+  }
+  EXPECT_EQ(test::readFile(dir + "/a.tif"), "new");
+  EXPECT_EQ(test::readFile(dir + "/a.tif.aux.xml"), "old stats");
+}
+
 TEST(OutputFiles, MessagesNameTheUsersFileNotTheStagingOne) {
   const std::string dir = test::tempDir();
   OutputFiles files(false);

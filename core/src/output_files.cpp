@@ -81,6 +81,18 @@ void takeBack(const std::vector<Moved>& moved) {
   }
 }
 
+// GDAL keeps a raster's statistics and histogram in NAME.aux.xml: left beside a replaced
+// file, it would describe the old one (gdalinfo -stats showed the old minimum). Set aside
+// as the replaced files are, so that a failed commit puts it back.
+void setAsideOldSidecar(const StagedFile& file, const StagingFolder& folder, std::vector<Moved>& moved) {
+  const fs::path sidecar = file.target.string() + ".aux.xml";
+  std::error_code ec;
+  if (fs::exists(folder.path() / sidecar.filename(), ec) || !fs::is_regular_file(sidecar, ec)) return;
+  const fs::path backup = folder.backupFor(sidecar.filename());
+  fs::rename(sidecar, backup);
+  moved.push_back({sidecar, backup});
+}
+
 std::string shown(const StagedFile& file, const fs::path& target) {
   return target == file.target ? file.path : target.string();
 }
@@ -156,6 +168,7 @@ void OutputFiles::commit() {
                         "written; add -overwrite to replace it");
           }
         }
+        if (overwrite_ && !file.keepContent) setAsideOldSidecar(file, *folders_[i], moved);
       }
       committed() = true;
     } catch (const fs::filesystem_error& e) {
