@@ -376,6 +376,11 @@ TEST(Cli, InsertKeepsTheToleranceThatAccuracyMeasuresAgain) {
   EXPECT_TRUE(has(csv, "max_abs_error")) << csv;
   const CliRun counted = tinlod("insert -q -max_vertices 250 -candidates samples " + defaultDem() + " " + dir + "/c.gpkg");
   ASSERT_EQ(counted.exitCode, 0) << counted.err;
+  // A limit reached before the TIN is cut free of the void: the summary says so.
+  const CliRun early = tinlod("insert -max_triangles 40 " + defaultDem() + " " + dir + "/early.gpkg");
+  ASSERT_EQ(early.exitCode, 0) << early.err;
+  EXPECT_TRUE(has(early.out, "valid cells in no triangle: the limit came before the TIN was cut free of the holes")) << early.out;
+  EXPECT_TRUE(has(early.err, "came before the TIN was cut free of the nodata holes")) << early.err;
   const CliRun countedInfo = tinlod("info -json " + dir + "/c.gpkg");
   // Exactly 250 inserted; one beside the void may end in no triangle and is left out.
   EXPECT_TRUE(has(countedInfo.out, "\"vertices\": 250,") || has(countedInfo.out, "\"vertices\": 249,")) << countedInfo.out;

@@ -102,8 +102,9 @@ void printSummary(const InsertSummary& s, const InsertOptions& o, const std::str
             << s.rmse << " m over " << s.measuredCells << " cells";
   if (s.uncoveredCells)
     std::cout << " (" << s.uncoveredCells << (s.uncoveredCells == 1 ? " valid cell" : " valid cells")
-              << (o.candidates == InsertCandidates::Cells ? " in no triangle: data one cell wide beside nodata)"
-                                                          : " outside the sampled TIN, as in tinlod sample)");
+              << (s.holesOpen ? " in no triangle: the limit came before the TIN was cut free of the holes)"
+                  : o.candidates == InsertCandidates::Cells ? " in no triangle: data one cell wide beside nodata)"
+                                                            : " outside the sampled TIN, as in tinlod sample)");
   std::cout << std::endl;
 }
 
