@@ -554,6 +554,29 @@ TEST(Cli, OverwriteRefusesATinlodFileOfAnotherKind) {
   EXPECT_EQ(tinlod("build -q -overwrite " + defaultDem() + " " + dir + "/tin.gpkg").exitCode, 0);
 }
 
+// Options that would be ignored, or run twice, are named rather than taken silently.
+TEST(Cli, RepeatedEmptyAndUnusedOptionsAreNamed) {
+  const std::string dir = test::tempDir();
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"-methods volume,volume", "-methods 'volume,volume': 'volume' twice"},
+           {"-methods ''", "-methods is empty"},
+           {"-delete_pcts 10,,20", "-delete_pcts '10,,20': an empty item"}}) {
+    const CliRun r = tinlod("experiment " + args + " -report " + dir + "/e.csv " + defaultDem());
+    EXPECT_EQ(r.exitCode, 1) << args;
+    EXPECT_TRUE(has(r.err, message)) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/e.csv")) << args;
+  }
+  const CliRun insert = tinlod("insert -q -max_vertices 100 -block 5 " + defaultDem() + " " + dir + "/i.gpkg");
+  EXPECT_EQ(insert.exitCode, 0) << insert.err;
+  EXPECT_TRUE(has(insert.err, "Warning: -block, -jitter and -seed sample the candidates of -candidates samples")) << insert.err;
+  const CliRun level = tinlod("accuracy -q -level 0 -report " + dir + "/a.csv " + defaultDem() + " " + dir + "/i.gpkg");
+  EXPECT_EQ(level.exitCode, 0) << level.err;
+  EXPECT_TRUE(has(level.err, "Warning: -level chooses the level of the accuracy raster")) << level.err;
+  const CliRun single = tinlod("accuracy -q -compare_insert -report " + dir + "/b.csv " + defaultDem() + " " + dir + "/i.gpkg");
+  EXPECT_EQ(single.exitCode, 0) << single.err;
+  EXPECT_TRUE(has(single.err, "Warning: -compare_insert: a single TIN has no level above 0")) << single.err;
+}
+
 TEST(Cli, LinesDpWritesValuesAsMAndTheSimplifiedLines) {
   const std::string dir = test::tempDir();
   // The hand-worked line of the unit test, in metres, and a line in degrees.

@@ -41,6 +41,9 @@ int accuracyCommand(std::vector<std::string> args) {
     std::cout << kHelp << kAccuracyHelp;
     return 0;
   }
+  if (a.given("-level") && !a.given("-accuracy"))
+    terminalFeedback(true).warning("-level chooses the level of the accuracy raster (-accuracy) and is unused without "
+                                   "it: the report and the table have every level");
   AccuracyOutputs outputs = accuracyOutputs(a);
   outputs.overwrite = a.flag("-overwrite");
   const int band = a.integer("-b", 0);

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -43,11 +44,17 @@ Usage: tinlod experiment DEM [DEM ...] -report R [options]
   -q                 quiet: no progress, warnings only
 )";
 
-std::vector<std::string> splitList(const std::string& text) {
+// A list option's items: none empty, none twice (each would be run and reported again).
+std::vector<std::string> splitList(const std::string& text, const std::string& option, const std::string& example) {
   std::vector<std::string> out;
   std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(item);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (item.empty() || std::find(out.begin(), out.end(), item) != out.end())
+      throw Error(option + " '" + text + "': " + (item.empty() ? "an empty item" : "'" + item + "' twice") +
+                  "; write e.g. " + option + " " + example);
+    out.push_back(item);
+  }
+  if (out.empty()) throw Error(option + " is empty; write e.g. " + option + " " + example);
   return out;
 }
 
@@ -60,11 +67,12 @@ int experimentCommand(std::vector<std::string> args) {
     return 0;
   }
   ExperimentOptions o;
+  const bool methodsGiven = a.given("-methods"), pctsGiven = a.given("-delete_pcts");
   const std::string methods = a.text("-methods", "");
-  if (!methods.empty()) {
+  if (methodsGiven) {
     o.methods.clear();
     o.insert = false;
-    for (const std::string& m : splitList(methods)) {
+    for (const std::string& m : splitList(methods, "-methods", "volume,insert")) {
       if (m == "insert")
         o.insert = true;
       else if (m == "degree" || m == "normal" || m == "volume" || m == "error")
@@ -74,9 +82,9 @@ int experimentCommand(std::vector<std::string> args) {
     }
   }
   const std::string pcts = a.text("-delete_pcts", "");
-  if (!pcts.empty()) {
+  if (pctsGiven) {
     o.deletePcts.clear();
-    for (const std::string& p : splitList(pcts)) {
+    for (const std::string& p : splitList(pcts, "-delete_pcts", "10,20")) {
       char* end = nullptr;  // all of it a number: stod would read "10abc" as 10
       o.deletePcts.push_back(std::strtod(p.c_str(), &end));
       if (*end != '\0' || !std::isfinite(o.deletePcts.back()))

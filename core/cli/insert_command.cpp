@@ -71,8 +71,12 @@ metadata. Ctrl-C stops the run and leaves no file behind.
 
 InsertOptions insertOptions(Arguments& a) {
   InsertOptions o;
+  const bool sampling = a.given("-block") || a.given("-jitter") || a.given("-seed");
   o.sample = sampleOptions(a);
   o.candidates = parseCandidates(a.text("-candidates", "cells"));
+  if (sampling && o.candidates == InsertCandidates::Cells)
+    terminalFeedback(true).warning("-block, -jitter and -seed sample the candidates of -candidates samples; with every "
+                                   "cell a candidate (the default) they are unused");
   const std::string delaunay = a.text("-delaunay", "ground");
   if (delaunay != "ground" && delaunay != "grid")
     throw Error("-delaunay must be 'ground' (in metres, the default) or 'grid' (square cells), not '" + delaunay + "'");

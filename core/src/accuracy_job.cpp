@@ -106,7 +106,7 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
   if (outputs.compareInsert) {
     const std::vector<std::size_t> counts = insertionCounts(rows);
     if (counts.empty())
-      progress.inform("-compare_insert: a single TIN has no level above 0 to compare with greedy insertion");
+      progress.warn("-compare_insert: a single TIN has no level above 0 to compare with greedy insertion: nothing compared");
     else
       progress.inform("Greedy insertion over the same samples to the vertex count of each of " +
                       std::to_string(counts.size()) + " levels");
