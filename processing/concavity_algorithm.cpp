@@ -84,8 +84,11 @@ bool ConcavityAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProc
 QVariantMap ConcavityAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
                                                  QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
+  const ParameterNames names{{QStringLiteral("LINES"), QStringLiteral("INPUT")}, {QStringLiteral("-window"), QStringLiteral("WINDOW")},
+                             {QStringLiteral("-radius"), QStringLiteral("RADIUS")}, {QStringLiteral("-threshold"), QStringLiteral("THRESHOLD")}};
   const ConcavitySummary s =
-      translateErrors([&] { return runConcavityJob(lines_, output.toStdString(), options_, true, processingFeedback(feedback)); });
+      translateErrors([&] { return runConcavityJob(lines_, output.toStdString(), options_, true, processingFeedback(feedback, names)); },
+                      names);
   feedback->pushInfo(QStringLiteral("%1 vertices of %2 lines; parts: %3 convex, %4 straight, %5 concave")
                          .arg(s.vertices).arg(s.lines).arg(s.convex).arg(s.straight).arg(s.concave));
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=parts"),

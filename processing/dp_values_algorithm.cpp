@@ -70,7 +70,9 @@ bool DpValuesAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProce
 QVariantMap DpValuesAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
                                                 QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
-  const DpSummary s = translateErrors([&] { return runDpJob(lines_, output.toStdString(), options_, true, processingFeedback(feedback)); });
+  const ParameterNames names{{QStringLiteral("LINES"), QStringLiteral("INPUT")}, {QStringLiteral("-threshold"), QStringLiteral("THRESHOLD")}};
+  const DpSummary s = translateErrors(
+      [&] { return runDpJob(lines_, output.toStdString(), options_, true, processingFeedback(feedback, names)); }, names);
   feedback->pushInfo(QStringLiteral("%1 vertices of %2 lines in %3").arg(s.vertices).arg(s.lines).arg(QString::fromStdString(s.crsName)));
   if (options_.threshold >= 0)
     feedback->pushInfo(QStringLiteral("At threshold %1 m: %2 vertices kept, %3 crossings between simplified lines")

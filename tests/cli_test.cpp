@@ -612,7 +612,7 @@ TEST(Cli, LinesDpWritesValuesAsMAndTheSimplifiedLines) {
   EXPECT_TRUE(has(bad.err, "unknown lines tool 'simplify'")) << bad.err;
   const CliRun points = tinlod("lines dp " + defaultDem() + " " + dir + "/x.gpkg");
   EXPECT_EQ(points.exitCode, 1);
-  EXPECT_TRUE(has(points.err, "INPUT")) << points.err;
+  EXPECT_TRUE(has(points.err, "LINES: ")) << points.err;
 }
 
 TEST(Cli, LinesConcavityClassifiesTheBendsOfALine) {
@@ -909,7 +909,7 @@ TEST(Cli, LinesDpSkipsVerticesThatAreNotFiniteAndRefusesOtherGeometries) {
   const std::string points = vectorFile(dir + "/points.gpkg", wkbPoint, {new OGRPoint(1, 2)});
   const CliRun p = tinlod("lines dp " + points + " " + dir + "/x.gpkg");
   EXPECT_EQ(p.exitCode, 1);
-  EXPECT_TRUE(has(p.err, "ERROR: INPUT: '" + points + "' holds Point geometries (layer 'features'): a line layer is needed"))
+  EXPECT_TRUE(has(p.err, "ERROR: LINES: '" + points + "' holds Point geometries (layer 'features'): a line layer is needed"))
       << p.err;
   const std::string polygons = vectorFile(dir + "/polygons.gpkg", wkbMultiPolygon, {});
   const CliRun c = tinlod("lines concavity -window 5 " + polygons + " " + dir + "/x.gpkg");

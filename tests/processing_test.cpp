@@ -849,6 +849,21 @@ TEST(Processing, LocateAddsElevationsAsTheCoreDoes) {
   EXPECT_TRUE(bad.error.contains("LEVEL 99 does not exist") && !bad.error.contains("-level")) << bad.error.toStdString();
 }
 
+// The core names the lines by the command line's operand (LINES); QGIS by its parameter.
+TEST(Processing, LinesErrorsNameTheInputParameter) {
+  const std::string dir = test::tempDir();
+  std::ofstream(dir + "/p.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [0, 0]}}]})";
+  for (const char* id : {"tinlod:dpvalues", "tinlod:concavity"}) {
+    const Result r = runAlgorithm(QString::fromUtf8(id), {{"INPUT", QString::fromStdString(dir + "/p.geojson")},
+                                                          {"WINDOW", 10},
+                                                          {"OUTPUT", QString::fromStdString(dir + "/out.gpkg")}});
+    ASSERT_FALSE(r.ok) << id;
+    EXPECT_TRUE(r.error.contains(QStringLiteral("INPUT: "))) << r.error.toStdString();
+    EXPECT_FALSE(r.error.contains(QStringLiteral("LINES"))) << r.error.toStdString();
+  }
+}
+
 TEST(Processing, DpValuesMatchTheCoreAndCountCrossings) {
   const std::string dir = test::tempDir();
   std::ofstream(dir + "/l.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},

@@ -71,7 +71,7 @@ std::string Arguments::inEffect(const std::set<std::string>& leaveOut) const {
 bool Arguments::flag(const std::string& name) {
   auto it = std::find(args_.begin(), args_.end(), name);
   if (it == args_.end()) return false;
-  args_.erase(it);
+  args_.erase(std::remove(it, args_.end(), name), args_.end());  // -q -q is -q
   note(name, "", false);
   return true;
 }
@@ -211,7 +211,7 @@ void Arguments::rejectOptions(const std::string& usage) const {
 std::vector<std::string> Arguments::operands(std::size_t count, const std::string& usage) {
   rejectOptions(usage);
   if (args_.size() != count)
-    throw Error("expected " + std::to_string(count) + " file names, got " + std::to_string(args_.size()) +
+    throw Error("expected " + std::to_string(count) + (count == 1 ? " file name, got " : " file names, got ") + std::to_string(args_.size()) +
                 "\nUsage: " + usage);
   return args_;
 }

@@ -25,7 +25,7 @@ is measured (as tinlod accuracy does). One combined report; no other file is wri
 
 Usage: tinlod experiment DEM [DEM ...] -report R [options]
 
-  -report R          R.html (plots of all runs), R.csv or R.json; repeat it for several
+  -report R          R.html (plots of all runs), R.csv or R.json; repeat it for several formats
   -methods list      comma-separated (default degree,normal,volume,error,insert); insert is
                      greedy insertion over the same sampled TIN, run to exactly the vertex
                      count of every level (above 0) of the other methods' hierarchies and

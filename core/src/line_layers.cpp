@@ -76,7 +76,7 @@ void checkLineLayer(OGRLayer& layer, const std::string& path) {
                      OGR_GT_IsSubClassOf(type, wkbMultiCurve);
   if (lines) return;
   const std::string holds = flat == wkbNone ? "no geometries" : OGRGeometryTypeToName(type) + std::string(" geometries");
-  throw Error("INPUT: '" + path + "' holds " + holds + " (layer '" + layer.GetName() + "'): a line layer is needed");
+  throw Error("LINES: '" + path + "' holds " + holds + " (layer '" + layer.GetName() + "'): a line layer is needed");
 }
 
 void warnLeftOut(const LeftOut& left, const std::string& path, const ProgressRange& progress) {
@@ -140,7 +140,7 @@ std::unique_ptr<OGRCoordinateTransformation> toMetric(const OGRSpatialReference*
 }  // namespace
 
 LineSet readLines(const std::string& path, const ProgressRange& progress) {
-  const OpenLayer open = openLayer(path, "INPUT");
+  const OpenLayer open = openLayer(path, "LINES");
   OGRLayer& layer = *open.layer;
   checkLineLayer(layer, path);
   LineSet out;
@@ -148,7 +148,7 @@ LineSet readLines(const std::string& path, const ProgressRange& progress) {
   for (auto& f : layer) addParts(f->GetGeometryRef(), f->GetFID(), out, left);
   warnLeftOut(left, path, progress);
   if (out.lines.empty())
-    throw Error("INPUT: the layer of '" + path + "' has no lines (a line layer is needed)" +
+    throw Error("LINES: the layer of '" + path + "' has no lines (a line layer is needed)" +
                 (left.otherType.empty() ? std::string() : ": its features are " + left.otherType));
   const auto transform = toMetric(layer.GetSpatialRef(), out, progress);
   if (transform)
