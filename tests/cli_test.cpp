@@ -374,6 +374,8 @@ TEST(Cli, InsertKeepsTheToleranceThatAccuracyMeasuresAgain) {
   ASSERT_EQ(acc.exitCode, 0) << acc.err;
   const std::string csv = test::readFile(dir + "/i.csv");
   EXPECT_TRUE(has(csv, "max_abs_error")) << csv;
+  // A single TIN: no delete or stop percentage, no levels' times.
+  EXPECT_TRUE(has(csv, ",insert,,,0,")) << csv;
   const CliRun counted = tinlod("insert -q -max_vertices 250 -candidates samples " + defaultDem() + " " + dir + "/c.gpkg");
   ASSERT_EQ(counted.exitCode, 0) << counted.err;
   // A limit reached before the TIN is cut free of the void: the summary says so.

@@ -6,6 +6,7 @@
 
 #include <charconv>
 #include <filesystem>
+#include <limits>
 #include <functional>
 #include <memory>
 
@@ -50,6 +51,10 @@ LevelAccuracy levelRow(const Hierarchy& h, const std::string& dem, int level, co
   row.deletePct = h.options.deletePct, row.stopPct = h.options.stopPct;
   row.level = level, row.vertices = s.vertices, row.triangles = s.triangles;
   row.selectSeconds = s.selectSeconds, row.deleteSeconds = s.deleteSeconds, row.certifiedError = s.maxError;
+  if (!h.tinMethod.empty()) {  // a single TIN (sample, insert, lod): no levels were made, none of their figures apply
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    row.deletePct = row.stopPct = row.selectSeconds = row.deleteSeconds = none;
+  }
   return row;
 }
 
@@ -114,7 +119,9 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
                                                       progress.sub(measured, 0.9)));
   }
   AccuracyReport report =
-      makeReport(evaluator, "Accuracy of the TIN hierarchy of " + demName(dem.path), crsNameOf(dem.crsWkt), std::move(rows));
+      makeReport(evaluator, std::string(h.tinMethod.empty() ? "Accuracy of the TIN hierarchy of " : "Accuracy of the TIN of ") +
+                                demName(dem.path),
+                 crsNameOf(dem.crsWkt), std::move(rows));
   if (canvas) canvas->finish(progress.sub(0.9, 0.98));
   if (files.report) writeAccuracyReport(report, *files.report);
   return report;

@@ -18,10 +18,10 @@ bool sameRun(const ReportRun& run, const LevelAccuracy& row) {
          samePct(run.stopPct, row.stopPct);
 }
 
-// Four parts always, so that runs compare part by part; a missing delete percentage is "".
+// Four parts always, so that runs compare part by part; a missing percentage is "".
 std::vector<std::string> nameParts(const ReportRun& run) {
   return {run.dem, run.method, std::isnan(run.deletePct) ? "" : "delete " + formatNumber(run.deletePct) + " %",
-          "stop " + formatNumber(run.stopPct) + " %"};
+          std::isnan(run.stopPct) ? "" : "stop " + formatNumber(run.stopPct) + " %"};
 }
 
 std::string joined(const std::vector<std::string>& parts) {
