@@ -579,6 +579,32 @@ TEST(Cli, RepeatedEmptyAndUnusedOptionsAreNamed) {
   EXPECT_TRUE(has(single.err, "Warning: -compare_insert: a single TIN has no level above 0")) << single.err;
 }
 
+// A DEM without a CRS gives a TIN in no CRS: GeoPackage's undefined Cartesian CRS (srs_id
+// -1), not the undefined geographic one GDAL gives by default (0), which GDAL and QGIS read
+// back as degrees and accuracy refused as "not a projected CRS in metres".
+TEST(Cli, ADemWithoutCrsGivesATinInNoCrsThatEveryCommandReads) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(std::system(("gdal_translate -q -of AAIGrid -srcwin 0 0 300 240 " + defaultDem() + " " + dir + "/n.asc && rm -f " +
+                         dir + "/n.prj " + dir + "/n.asc.aux.xml").c_str()),
+            0);
+  ASSERT_EQ(tinlod("build -q " + dir + "/n.asc " + dir + "/h.gpkg").exitCode, 0);
+  GDALAllRegister();
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/h.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(ds);
+  OGRLayer* srs = ds->ExecuteSQL("SELECT srs_id FROM gpkg_geometry_columns WHERE table_name = 'triangles'", nullptr, nullptr);
+  ASSERT_NE(srs, nullptr);
+  OGRFeatureUniquePtr row(srs->GetNextFeature());
+  EXPECT_EQ(row->GetFieldAsInteger(0), -1);
+  ds->ReleaseResultSet(srs);
+  ds.reset();
+  EXPECT_TRUE(has(tinlod("info " + dir + "/h.gpkg").out, "tinlod hierarchy, no CRS")) << tinlod("info " + dir + "/h.gpkg").out;
+  const CliRun accuracy = tinlod("accuracy -q -report " + dir + "/r.csv " + dir + "/n.asc " + dir + "/h.gpkg");
+  EXPECT_EQ(accuracy.exitCode, 0) << accuracy.err;
+  const CliRun lod = tinlod("lod -q -max_error 5 " + dir + "/h.gpkg " + dir + "/l.gpkg");
+  EXPECT_EQ(lod.exitCode, 0) << lod.err;
+  EXPECT_TRUE(has(tinlod("info " + dir + "/l.gpkg").out, "tinlod lod, no CRS"));
+}
+
 TEST(Cli, LinesDpWritesValuesAsMAndTheSimplifiedLines) {
   const std::string dir = test::tempDir();
   // The hand-worked line of the unit test, in metres, and a line in degrees.

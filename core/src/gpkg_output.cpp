@@ -201,6 +201,7 @@ OGRLayer* GpkgOutput::createLayer(const char* name, OGRwkbGeometryType type, con
   const char* const bulkOptions[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
   OGRLayer* layer = ds_->CreateLayer(name, srsPtr, type, bulk ? const_cast<char**>(bulkOptions) : nullptr);
   if (!layer) throw Error(std::string("cannot create layer '") + name + "' in '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
+  if (bulk && type != wkbNone && !srsPtr) withoutCrs_.push_back(name);
   for (const FieldSpec& field : fields) {
     OGRFieldDefn defn(field.name, field.type);
     defn.SetSubType(field.subType);
@@ -234,6 +235,12 @@ SqliteDatabase& GpkgOutput::database() {
   closeGdal();
   db_ = std::make_unique<SqliteDatabase>(file_.staging.string(), file_.path);
   db_->execute("BEGIN");
+  // GDAL gives a layer without a CRS srs_id 0, the undefined geographic CRS, which GDAL and
+  // QGIS read back as degrees; a TIN in no CRS is Cartesian: -1. (Bulk layers only: GDAL
+  // stamps the rows it writes itself with the layer's srs_id.)
+  for (const std::string& table : withoutCrs_)
+    for (const char* registry : {"gpkg_geometry_columns", "gpkg_contents"})
+      db_->execute(std::string("UPDATE ") + registry + " SET srs_id = -1 WHERE lower(table_name) = lower(" + quoted(table) + ")");
   return *db_;
 }
 

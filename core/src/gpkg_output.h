@@ -77,6 +77,7 @@ class GpkgOutput {
   void compactIfDropped();
   void finishDatabase(const ProgressRange& progress);
   std::vector<PendingIndex> indexes_;
+  std::vector<std::string> withoutCrs_;  // bulk layers made without a CRS
   std::unique_ptr<SqliteDatabase> db_;
   bool vacuum_ = false;
   std::string said(const std::string& gdalMessage) const { return inUserTerms(file_, gdalMessage); }

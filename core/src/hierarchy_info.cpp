@@ -15,6 +15,7 @@
 #include <memory>
 #include <sstream>
 
+#include "layer_crs.h"
 #include "catalogue_info.h"
 #include "gdal_handles.h"
 #include "number_text.h"
@@ -154,8 +155,8 @@ HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
   if (!ds->GetLayerByName("triangles") || info.metadata.empty())
     throw Error("'" + path + "' was not written by tinlod (no tinlod metadata or triangles layer)");
   info.kind = info.metadata.count("kind") ? info.metadata["kind"] : "tin";
-  if (const OGRSpatialReference* srs = ds->GetLayerByName("triangles")->GetSpatialRef())
-    info.crsName = srs->GetName() ? srs->GetName() : "";
+  const OGRSpatialReference* srs = layerCrs(*ds->GetLayerByName("triangles"));
+  info.crsName = !srs ? "no CRS" : srs->GetName() ? srs->GetName() : "";
   for (int i = 0; i < ds->GetLayerCount(); ++i) info.layers.push_back(ds->GetLayer(i)->GetName());
   readLevels(*ds, info);
   info.bytes = std::filesystem::file_size(path);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "layer_crs.h"
 #include "gdal_handles.h"
 #include "stored_hierarchy.h"
 #include "tinlod/error.h"
@@ -20,7 +21,7 @@ namespace tinlod {
 namespace {
 
 std::string wktOf(OGRLayer& layer) {
-  const OGRSpatialReference* srs = layer.GetSpatialRef();
+  const OGRSpatialReference* srs = layerCrs(layer);
   return srs ? wkt2(*srs) : "";
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "layer_transform.h"
 
+#include "layer_crs.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -38,7 +39,7 @@ OGRSpatialReference srsFromText(const std::string& srs, const std::string& what)
 
 std::unique_ptr<OGRCoordinateTransformation> transformToTin(OGRLayer& layer, const std::string& targetWkt,
                                                             const std::string& what, const ProgressRange& progress) {
-  const OGRSpatialReference* src = layer.GetSpatialRef();
+  const OGRSpatialReference* src = layerCrs(layer);
   if (!src) {
     progress.warn(what + ": the layer has no CRS: taken to be in the TIN's CRS");
     return nullptr;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 
+#include "layer_crs.h"
 #include "gdal_handles.h"
 #include "gpkg_output.h"
 #include "layer_source.h"
@@ -150,7 +151,7 @@ LineSet readLines(const std::string& path, const ProgressRange& progress) {
   if (out.lines.empty())
     throw Error("LINES: the layer of '" + path + "' has no lines (a line layer is needed)" +
                 (left.otherType.empty() ? std::string() : ": its features are " + left.otherType));
-  const auto transform = toMetric(layer.GetSpatialRef(), out, progress);
+  const auto transform = toMetric(layerCrs(layer), out, progress);
   if (transform)
     for (Polyline& line : out.lines)
       for (LinePoint& p : line)

@@ -10,6 +10,7 @@
 #include <numeric>
 #include <vector>
 
+#include "layer_crs.h"
 #include "gdal_handles.h"
 #include "gpkg_output.h"
 #include "layer_source.h"
@@ -51,7 +52,7 @@ bool pointOf(const OGRFeature& f, const std::string& path, double& x, double& y)
 }
 
 OGRLayer* createPointsLayer(GpkgOutput& out, OGRLayer& source, bool tiled) {
-  const OGRSpatialReference* srs = source.GetSpatialRef();
+  const OGRSpatialReference* srs = layerCrs(source);
   const std::string wkt = srs ? wkt2(*srs) : std::string();
   OGRLayer* layer = out.createLayer("points", source.GetGeomType(), wkt, {});  // as the points are stored
   OGRFeatureDefn* defn = source.GetLayerDefn();
