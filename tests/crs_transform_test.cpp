@@ -136,7 +136,7 @@ TEST(Crs, DegreesWithoutCrsWarnAndSourceSrsFixesIt) {
   EXPECT_NE(fixed.targetName().find("32632"), std::string::npos);
   EXPECT_EQ(test::errorOf([&] { CrsTransform::forDem(dem, "", "EPSG:32632", ProgressRange(feedback, 0, 1)); }),
             "'test DEM' has no CRS, so it cannot be transformed to WGS 84 / UTM zone 32N (EPSG:32632): name its CRS "
-            "with -s_srs, e.g. -s_srs EPSG:4326");
+            "with -s_srs, e.g. -s_srs EPSG:4326 (QGIS: assign the layer's CRS)");
 }
 
 TEST(Crs, ALocalCrsIsNoPlaceToTransformFromAndTheErrorSaysSoWithoutWkt) {
