@@ -4,6 +4,7 @@
 
 #include "arguments.h"
 #include "commands.h"
+#include "terminal_feedback.h"
 #include "tinlod/error.h"
 #include "tinlod/synthetic_dem.h"
 
@@ -54,7 +55,9 @@ int makeDemCommand(std::vector<std::string> args) {
   // Larger cells would take the terrain's tilt past any real height, and huge ones past a double.
   if (!(o.cellSize > 0 && o.cellSize <= 1000))
     throw Error("-cell must be more than 0 and at most 1000 metres");
-  writeDemGeoTiff(makeSyntheticDem(o), files[0], overwrite);
+  const ProgressRange all(terminalFeedback(quiet), 0, 1);
+  writeDemGeoTiff(makeSyntheticDem(o, all.sub(0, 0.5)), files[0], overwrite, all.sub(0.5, 1));
+  all.finish("Done");
   if (!quiet)
     std::cout << "Wrote a synthetic DEM (" << o.width << " x " << o.height << " cells of " << o.cellSize
               << " m) to " << files[0] << std::endl;

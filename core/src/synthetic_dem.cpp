@@ -4,8 +4,10 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "tinlod/error.h"
 #include "tinlod/output_files.h"
@@ -49,7 +51,7 @@ double terrain(double x, double y, std::uint64_t seed) {
 
 }  // namespace
 
-Dem makeSyntheticDem(const SyntheticDemOptions& o) {
+Dem makeSyntheticDem(const SyntheticDemOptions& o, const ProgressRange& progress) {
   if (o.width < 2 || o.height < 2 || !(o.cellSize > 0))
     throw Error("a synthetic DEM needs at least 2 x 2 cells of positive size");
   Dem dem;
@@ -70,7 +72,8 @@ Dem makeSyntheticDem(const SyntheticDemOptions& o) {
   const double lakeLevel = terrain(lakeX, lakeY, o.seed) - 30;
   const double voidX = 0.72 * w, voidY = 0.6 * h, voidR = 0.07 * std::min(w, h);
   dem.z.resize(std::size_t(o.width) * o.height);
-  for (int row = 0; row < o.height; ++row)
+  for (int row = 0; row < o.height; ++row) {
+    if (row % 64 == 0) progress.report(double(row) / o.height, "Making the terrain");
     for (int col = 0; col < o.width; ++col) {
       const double x = (col + 0.5) * o.cellSize, y = (o.height - row - 0.5) * o.cellSize;
       double z = terrain(x, y, o.seed);
@@ -80,10 +83,11 @@ Dem makeSyntheticDem(const SyntheticDemOptions& o) {
       const double hole = std::hypot((x - voidX) / 1.6, y - voidY) / voidR;
       dem.z[std::size_t(row) * o.width + col] = (o.withVoid && hole < 1) ? NAN : float(z);
     }
+  }
   return dem;
 }
 
-void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite) {
+void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite, const ProgressRange& progress) {
   OutputFiles files(overwrite);
   const StagedFile& file = files.add(path, "output");
   GDALAllRegister();
@@ -100,11 +104,19 @@ void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite) {
   if (!dem.crsWkt.empty()) ds->SetProjection(dem.crsWkt.c_str());
   GDALRasterBand* band = ds->GetRasterBand(1);
   band->SetNoDataValue(kNodata);
-  std::vector<float> values(dem.z);
-  for (float& v : values)
-    if (std::isnan(v)) v = kNodata;
-  const CPLErr err = band->RasterIO(GF_Write, 0, 0, dem.width, dem.height, values.data(), dem.width,
-                                    dem.height, GDT_Float32, 0, 0);
+  // A strip of tile rows at a time: progress, and a cancel between strips.
+  constexpr int kStrip = 256;
+  std::vector<float> values;
+  CPLErr err = CE_None;
+  for (int row = 0; row < dem.height && err == CE_None; row += kStrip) {
+    progress.report(0.9 * row / dem.height, "Writing the DEM");
+    const int rows = std::min(kStrip, dem.height - row);
+    values.assign(dem.z.begin() + std::ptrdiff_t(row) * dem.width, dem.z.begin() + std::ptrdiff_t(row + rows) * dem.width);
+    for (float& v : values)
+      if (std::isnan(v)) v = kNodata;
+    err = band->RasterIO(GF_Write, 0, row, dem.width, rows, values.data(), dem.width, rows, GDT_Float32, 0, 0);
+  }
+  progress.report(0.9, "Writing the DEM");
   CPLErrorReset();
   CPLPushErrorHandler(CPLQuietErrorHandler);
   GDALClose(ds);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "tinlod/dem.h"
+#include "tinlod/feedback.h"
 
 namespace tinlod {
 
@@ -19,11 +20,12 @@ struct SyntheticDemOptions {
   bool withLake = true;    // an exactly flat area
 };
 
-Dem makeSyntheticDem(const SyntheticDemOptions& options);
+Dem makeSyntheticDem(const SyntheticDemOptions& options, const ProgressRange& progress = ProgressRange(Feedback{}, 0, 1));
 
 // Writes any in-memory DEM as a GeoTIFF (Float32, nodata -9999). Throws Error.
 // Staged and moved into place at the end, as every output; an existing file is an error
 // unless `overwrite`.
-void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite = true);
+void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite = true,
+                     const ProgressRange& progress = ProgressRange(Feedback{}, 0, 1));
 
 }  // namespace tinlod
