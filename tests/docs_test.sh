@@ -11,7 +11,8 @@
 #   Other level-3 headings (positional arguments such as ### `DEM`) do not start with "-".
 #   The options of `tinlod COMMAND --help` are the tokens -name that open a line of it or
 #   follow ": ", ", " or "[" (prose such as "below -t" is not an option). The two sets must
-#   be equal.
+#   be equal. Where an option's --help line says "(default X)" and its section says
+#   "Default: Y", the first words of X and Y must agree.
 #
 # docs/qgis/<id>.md, one per algorithm `qgis_process.bin list` shows as tinlod:<id> (and no
 #   other page there): a "## Parameters" section and an "## Outputs" section, each with a
@@ -112,6 +113,29 @@ for command in commands:
     print("ok: docs/cli/%s.md documents the %d options of tinlod %s --help" % (command, len(in_help), command))
 for page in sorted(set(pages) - set(commands)):
     fail("docs/cli/%s.md describes no command of tinlod --help" % page)
+
+# (a2) Defaults: where an option's --help line says "(default X)" and its section of the
+# page says "Default: Y", the first words of X and Y agree.
+help_default = re.compile(r"^[ \t]*(-[A-Za-z][A-Za-z0-9_]*)\b[^\n]*?\(default ([^):;]+)[):;]", re.M)
+compared = 0
+for command in commands:
+    page = os.path.join(cli_dir, command + ".md")
+    if not os.path.isfile(page):
+        continue
+    text = read(page)
+    for option, value in help_default.findall(read(os.path.join(work, "cli", command + ".txt"))):
+        body = re.search(r"^### `" + re.escape(option) + r"\b[^\n]*\n(.*?)(?=^##)", text, re.M | re.S)
+        documented = re.search(r"Default:\s+`?([^`\s;]+)", body.group(1)) if body else None
+        if not documented:
+            continue
+        first = lambda words: re.split(r"[\s,]+", words.strip())[0].rstrip(".")
+        compared += 1
+        if first(value) != first(documented.group(1)):
+            fail("docs/cli/%s.md gives %s's default as %s, tinlod %s --help as %s"
+                 % (command, option, documented.group(1).rstrip("."), command, value))
+if compared < 20:
+    fail("only %d defaults were compared between --help and docs/cli: the pattern no longer reads them" % compared)
+print("ok: %d defaults in docs/cli agree with --help" % compared)
 
 
 # (c): a page per algorithm, the same parameters and outputs as qgis_process reports.
