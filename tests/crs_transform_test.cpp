@@ -24,6 +24,18 @@ double utmNorthingOnCentralMeridian(double latDegrees) {
   return k0 * m;
 }
 
+// -s_srs EPSG:4326 for a DEM in UTM metres: its coordinates are named, and the fix, where
+// PROJ said "Invalid latitude" and tinlod advised -t_srs.
+TEST(Crs, AGeographicCrsOnCoordinatesThatAreNoLongitudesIsNamed) {
+  const Dem dem = test::makeDem(10, 10, 30, [](int, int) { return 100.0f; });  // UTM 32N, x from 500000
+  const std::string error = test::errorOf([&] { CrsTransform::forDem(dem, "EPSG:4326", "", ProgressRange(Feedback{}, 0, 1)); });
+  EXPECT_NE(error.find("that are no longitudes and latitudes, so -s_srs EPSG:4326 (WGS 84 (EPSG:4326)) does not fit them: "
+                       "leave -s_srs out to use the DEM's own CRS"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("(x 500000 to 500300, y 4.9997e+06 to 5e+06)"), std::string::npos) << error;
+}
+
 TEST(Crs, UtmZoneOfAPoint) {
   EXPECT_EQ(utmEpsgFor(9.0, 47.0), 32632);
   EXPECT_EQ(utmEpsgFor(8.99, 47.0), 32632);

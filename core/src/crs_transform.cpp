@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "gdal_handles.h"
+#include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -32,6 +33,25 @@ std::string describe(const OGRSpatialReference& srs) {
 
 bool isMetric(const OGRSpatialReference& srs) {
   return (srs.IsProjected() || srs.IsLocal()) && std::fabs(srs.GetLinearUnits() - 1.0) < 1e-9;
+}
+
+// A geographic CRS on coordinates that are no longitudes and latitudes (-s_srs EPSG:4326
+// given for a DEM in UTM metres): PROJ would fail later with "Invalid latitude" noise and
+// advice about -t_srs; the CRS that does not fit is named here.
+void requireLonLat(const Dem& dem, const OGRSpatialReference& src, const std::string& sourceSrs) {
+  if (!src.IsGeographic() || !dem.hasGeotransform) return;
+  const std::array<double, 6>& gt = dem.wholeGeotransform();
+  const double x[2] = {gt[0], gt[0] + dem.wholeWidth() * gt[1]}, y[2] = {gt[3], gt[3] + dem.wholeHeight() * gt[5]};
+  const bool lonLat = std::min(x[0], x[1]) >= -540 && std::max(x[0], x[1]) <= 540 && std::min(y[0], y[1]) >= -90.5 &&
+                      std::max(y[0], y[1]) <= 90.5;
+  if (lonLat) return;
+  const std::string extent = "x " + formatNumber(std::min(x[0], x[1])) + " to " + formatNumber(std::max(x[0], x[1])) + ", y " +
+                             formatNumber(std::min(y[0], y[1])) + " to " + formatNumber(std::max(y[0], y[1]));
+  throw Error("'" + dem.path + "' has coordinates (" + extent + ") that are no longitudes and latitudes, so " +
+              (sourceSrs.empty() ? "its CRS " + describe(src) + " is wrong: name the right one with -s_srs"
+                                 : "-s_srs " + sourceSrs + " (" + describe(src) + ") does not fit them: " +
+                                       (dem.crsWkt.empty() ? "name the CRS they are in" : "leave -s_srs out to use the DEM's own CRS")) +
+              " (QGIS: assign the layer's CRS)");
 }
 
 // The DEM's centre in longitude/latitude of its own datum, close enough to pick a UTM zone.
@@ -161,6 +181,7 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
     hasSrc = true;
   }
   src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (hasSrc) requireLonLat(dem, src, sourceSrs);
 
   OGRSpatialReference dst;
   if (!targetSrs.empty()) {
