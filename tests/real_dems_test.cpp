@@ -3,11 +3,16 @@
 // a message, where the folder is absent.
 #include <gtest/gtest.h>
 
+#include <gdal_priv.h>
+
+#include <cstdio>
 #include <filesystem>
+#include <set>
 
 #include "mesh_checks.h"
 #include "test_support.h"
 #include "tinlod/dem_reader.h"
+#include "tinlod/error.h"
 #include "tinlod/sample_job.h"
 
 namespace tinlod {
@@ -79,6 +84,38 @@ INSTANTIATE_TEST_SUITE_P(SharedData, RealDemTest, ::testing::ValuesIn(kDems),
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return name;
                          });
+
+// A raster of the folder that kDems does not list (one added since) gets the same checks
+// with the defaults: sampled into a valid TIN, or refused with a message (a DEM without
+// a CRS in degrees needs -s_srs, which only the list can give).
+TEST(RealDems, EveryRasterOfTheFolderNotListedGivesAValidTinOrAClearError) {
+  const std::string dir = test::dataDir();
+  if (dir.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";
+  std::set<std::string> listed;
+  for (const RealDem& d : kDems) listed.insert(d.file);
+  GDALAllRegister();
+  std::size_t seen = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    GDALDatasetUniquePtr raster(GDALDataset::Open(entry.path().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+    if (!raster) continue;
+    raster.reset();
+    ++seen;
+    if (listed.count(name)) continue;
+    const Feedback quiet;
+    const ProgressRange range(quiet, 0, 1);
+    try {
+      const Dem dem = readDem(entry.path().string(), 1, range);
+      const Tin tin = sampleTin(dem, SampleOptions{}, range);
+      test::expectValidTin(dem, tin, SampleOptions{}.jitter);
+      std::printf("  %s (not in kDems): %zu vertices in %s\n", name.c_str(), tin.vertices.size(), tin.crsName.c_str());
+    } catch (const Error& e) {
+      std::printf("  %s (not in kDems): refused: %s\n", name.c_str(), e.what());
+      EXPECT_GT(std::string(e.what()).size(), 20u) << name;
+    }
+  }
+  EXPECT_GE(seen, listed.size()) << "the folder holds fewer rasters than kDems lists";
+}
 
 TEST(RealDems, LidarWithTheStudysJitterWarnsAndStaysDelaunay) {
   const std::string dir = test::dataDir();
