@@ -28,6 +28,17 @@ void get(std::ifstream& in, std::vector<T>& values) {
   in.read(reinterpret_cast<char*>(values.data()), std::streamsize(values.size() * sizeof(T)));
 }
 
+// Every array of a part, in the files' order: one list for writing and reading.
+template <class Part, class Visit>
+void eachArray(Part& part, Visit visit) {
+  visit(part.lod.tin.vertices);
+  visit(part.lod.tin.triangles);
+  visit(part.lod.vertexLevel);
+  visit(part.lod.firstLevel);
+  visit(part.lod.lastLevel);
+  visit(part.onLine);
+}
+
 }  // namespace
 
 LodPartFiles::LodPartFiles(fs::path folder) : folder_(std::move(folder)) {
@@ -45,12 +56,7 @@ fs::path LodPartFiles::fileOf(std::size_t tile) const { return folder_ / ("tile_
 
 void LodPartFiles::write(std::size_t tile, const TileLodPart& part) const {
   std::ofstream out(fileOf(tile), std::ios::binary | std::ios::trunc);
-  put(out, part.lod.tin.vertices);
-  put(out, part.lod.tin.triangles);
-  put(out, part.lod.vertexLevel);
-  put(out, part.lod.firstLevel);
-  put(out, part.lod.lastLevel);
-  put(out, part.onLine);
+  eachArray(part, [&out](const auto& values) { put(out, values); });
   out.close();
   if (!out) throw Error("cannot write a tile's part of the output in '" + folder_.string() + "': is the disk full?");
 }
@@ -58,12 +64,7 @@ void LodPartFiles::write(std::size_t tile, const TileLodPart& part) const {
 TileLodPart LodPartFiles::read(std::size_t tile) const {
   std::ifstream in(fileOf(tile), std::ios::binary);
   TileLodPart part;
-  get(in, part.lod.tin.vertices);
-  get(in, part.lod.tin.triangles);
-  get(in, part.lod.vertexLevel);
-  get(in, part.lod.firstLevel);
-  get(in, part.lod.lastLevel);
-  get(in, part.onLine);
+  eachArray(part, [&in](auto& values) { get(in, values); });
   if (!in) throw Error("cannot read back a tile's part of the output from '" + folder_.string() + "'");
   return part;
 }
