@@ -301,6 +301,8 @@ ConcavitySummary runConcavityJob(const std::string& inPath, const std::string& o
   OGRLayer* parts = out.createLayer("parts", wkbLineString, set.crsWkt, {{"feature"}, {"class", OFTString}});
   out.begin();
   OGRFeature v(vertices->GetLayerDefn()), p(parts->GetLayerDefn());
+  std::size_t totalVertices = 0;
+  for (const Polyline& line : set.lines) totalVertices += line.size();
   for (std::size_t l = 0; l < set.lines.size(); ++l) {
     const Polyline& line = set.lines[l];
     const double window = options.window > 0 ? options.window : options.windowFraction * lengthOf(line);
@@ -316,8 +318,10 @@ ConcavitySummary runConcavityJob(const std::string& inPath, const std::string& o
       p.SetField("class", curvatureName(part.curvature).c_str());
       writeLineFeature(*parts, p, part.line, set.feature[l]);
     }
-    if ((l & 0xFF) == 0) all.report(0.2 + 0.5 * double(l) / set.lines.size(), "Concavity");
+    // By vertices: a few long contours may hold most of them.
+    all.report(0.2 + 0.5 * double(s.vertices) / std::max<std::size_t>(totalVertices, 1), "Concavity");
   }
+  all.report(0.7, "Writing the GeoPackage");
   out.commit();
   out.finish(all.sub(0.7, 1));
   files.commit();
