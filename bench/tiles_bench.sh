@@ -19,7 +19,8 @@
 #  6. with tinlod tiles -exact_stop: the union's coarsest level against a whole run's count
 #     (alps_2x2 as 4 and 16 tiles, patagonia_coast as 16).
 # Usage: bash bench/tiles_bench.sh [parts...]
-#   (parts: accuracy memory measure throughput bounded exact_stop; default all)
+#   (parts: accuracy memory measure throughput throughput_large bounded exact_stop; default all
+#   but throughput_large)
 # Environment: TINLOD (default build/core/tinlod), TINLOD_TILES (default build/tiles/tinlod-tiles),
 #   WORK (default build/tiles-bench: outputs go there), TINLOD_TEST_DATA (default ../shared/data),
 #   THROUGHPUT_ROUNDS (default 3: rounds of the three throughput runs, taken in turn).
@@ -182,18 +183,21 @@ for r in (both[-1], rows[-1]):
 PY
 }
 
-throughput_case() {
+throughput_case() {  # [DEM TILE_SIZE LABEL]: by default alps_2x2 as 16 tiles of 600 cells
   if ! /usr/bin/python3 -c "import distributed" 2> /dev/null || [[ ! -x $tiles ]]; then
     echo "== throughput: SKIPPED (python3-distributed or $tiles absent)"
     return 0
   fi
-  local dem=$data/alps_2x2_N46E007_N47E008.tif rounds=${THROUGHPUT_ROUNDS:-3}
-  echo "== throughput: alps_2x2 (5.76 M cells) as 16 tiles of 600 cells with tinlod-tiles, $rounds rounds"
+  local dem=${1:-$data/alps_2x2_N46E007_N47E008.tif} size=${2:-600} label=${3:-alps_2x2} rounds=${THROUGHPUT_ROUNDS:-3}
+  local w h cells
+  read -r w h < <(gdalinfo "$dem" | sed -n 's/^Size is \([0-9]*\), \([0-9]*\)/\1 \2/p')
+  cells=$((w * h))
+  echo "== throughput: $label ($cells cells) as $(tile_grid "$dem" "$size" | awk '{print $1 * $2}') tiles of $size cells with tinlod-tiles, $rounds rounds"
   run_workers() {  # N [TINLOD_THREADS]: seconds of a whole run (both passes)
     rm -rf "$work/cat.gpkg" "$work/cat_tiles" "$work/cat_levels"
     local start
     start=$(date +%s.%N)
-    TINLOD_THREADS=${2:-} "$tiles" "$dem" "$work/cat.gpkg" -tile_size 600 -workers "$1" -tinlod "$tinlod" -q
+    TINLOD_THREADS=${2:-} "$tiles" "$dem" "$work/cat.gpkg" -tile_size "$size" -workers "$1" -tinlod "$tinlod" -q
     echo "$(date +%s.%N) - $start" | bc
   }
   # What the machine itself gives: two CPU-bound processes at once against one (shared
@@ -211,10 +215,10 @@ for i in range(20_000_000): s += i * i'
       "$round" "$(echo "scale=3; 2 * $one / $two" | bc)" "${t1[-1]}"
     printf "1 worker of 1 thread (TINLOD_THREADS=1) %.2f s, 2 workers (1 thread each) %.2f s\n" "${t1single[-1]}" "${t2[-1]}"
   done
-  /usr/bin/python3 - "${t1[*]}" "${t1single[*]}" "${t2[*]}" << 'PY'
+  /usr/bin/python3 - "${t1[*]}" "${t1single[*]}" "${t2[*]}" "$cells" << 'PY'
 import statistics, sys
 t1, t1single, t2 = (statistics.median(map(float, a.split())) for a in sys.argv[1:4])
-cells = 5764801
+cells = int(sys.argv[4])
 print(f"medians: 1 worker {t1:.2f} s ({cells / t1:.0f} cells/s), 1 single-threaded worker {t1single:.2f} s "
       f"({cells / t1single:.0f} cells/s), 2 workers {t2:.2f} s ({cells / t2:.0f} cells/s)")
 print(f"speed-up of 2 workers over 1: {t1 / t2:.3f}x; over 1 single-threaded worker: {t1single / t2:.3f}x (target 1.7x)")
@@ -274,6 +278,12 @@ for part in $parts; do
       measure_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
       ;;
     throughput) throughput_case ;;
+    throughput_large)
+      # A job 4 times alps_2x2's, in tiles 4 times as large: the driver's fixed costs (Dask's
+      # start, the catalogue) weigh less, as they would in a national job.
+      [[ -f $work/synthetic_4800.tif ]] || "$tinlod" makedem "$work/synthetic_4800.tif" -size 4800 4800 -q
+      throughput_case "$work/synthetic_4800.tif" 1200 "makedem 4800 x 4800"
+      ;;
     exact_stop)
       exact_stop_case alps4 "$data/alps_2x2_N46E007_N47E008.tif" 1200
       exact_stop_case alps16 "$data/alps_2x2_N46E007_N47E008.tif" 600
