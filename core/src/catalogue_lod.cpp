@@ -235,7 +235,15 @@ ExtractedLod extractCatalogueLod(const std::string& cataloguePath,
                                  const ProgressRange& progress) {
   ExtractedLod out;
   MemorySink sink(out);
-  const CatalogueLodRun run = extractCatalogueLod(cataloguePath, optionsFor, temporaryFolder(), sink, progress);
+  const fs::path folder = temporaryFolder();
+  CatalogueLodRun run;
+  try {
+    run = extractCatalogueLod(cataloguePath, optionsFor, folder, sink, progress);
+  } catch (...) {
+    std::error_code ignored;  // a catalogue refused before its parts' folder was taken over
+    fs::remove_all(folder, ignored);
+    throw;
+  }
   out.levelZeroTriangles = run.levelZeroTriangles;
   out.coarsest = run.coarsest;
   out.seconds = run.seconds;

@@ -31,6 +31,9 @@ class GpkgFeatureRows {
   void insert(std::int64_t fid);
   // The feature count and extent GDAL and QGIS read from the GeoPackage's tables.
   void finish();
+  // Writes the rows held back for the next batched statement, so that statements of the
+  // caller's (an UPDATE) see every row inserted so far.
+  void flush() { rows_.flush(); }
   const std::string& table() const { return table_; }
 
  private:

@@ -56,6 +56,7 @@ void StreamedLodFile::add(const LodPiece& piece, const ProgressRange& progress) 
 }
 
 void StreamedLodFile::setOutline(const std::vector<VertexId>& outline) {
+  file_->vertexRows().flush();  // the last tile's vertices may be waiting in the batch
   SqliteStatement update = file_->database().prepare("UPDATE vertices SET outline = 1 WHERE fid = ?");
   for (VertexId v : outline) {
     update.bind(1, std::int64_t(v) + 1);
