@@ -190,15 +190,19 @@ TEST(OutputFiles, AReplacedRastersOldStatisticsGoWithIt) {
   const std::string dir = test::tempDir();
   write(dir + "/a.tif", "old"), write(dir + "/a.tif.aux.xml", "old stats");
   write(dir + "/b.tif", "old"), write(dir + "/b.tif.aux.xml", "old stats");
+  write(dir + "/c.tif", "old");  // no statistics yet: the new ones stay
   {
     OutputFiles files(true);
     write(files.add(dir + "/a.tif", "-accuracy").staging, "new");
-    const StagedFile& b = files.add(dir + "/b.tif", "makedem");
-    write(b.staging, "new"), write(b.staging.string() + ".aux.xml", "new stats");
+    for (const char* name : {"/b.tif", "/c.tif"}) {
+      const StagedFile& f = files.add(dir + name, "makedem");
+      write(f.staging, "new"), write(f.staging.string() + ".aux.xml", "new stats");
+    }
     files.commit();
   }
-  EXPECT_EQ(namesIn(dir), (std::set<std::string>{"a.tif", "b.tif", "b.tif.aux.xml"}));
+  EXPECT_EQ(namesIn(dir), (std::set<std::string>{"a.tif", "b.tif", "b.tif.aux.xml", "c.tif", "c.tif.aux.xml"}));
   EXPECT_EQ(test::readFile(dir + "/b.tif.aux.xml"), "new stats");
+  EXPECT_EQ(test::readFile(dir + "/c.tif.aux.xml"), "new stats");
   write(dir + "/a.tif.aux.xml", "old stats");
   {
     OutputFiles files(true);

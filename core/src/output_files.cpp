@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -81,13 +82,15 @@ void takeBack(const std::vector<Moved>& moved) {
   }
 }
 
+fs::path sidecarOf(const StagedFile& file) { return file.target.string() + ".aux.xml"; }
+
 // GDAL keeps a raster's statistics and histogram in NAME.aux.xml: left beside a replaced
-// file, it would describe the old one (gdalinfo -stats showed the old minimum). Set aside
-// as the replaced files are, so that a failed commit puts it back.
+// file that did not write one again, it would describe the old one (gdalinfo -stats showed
+// the old minimum). Set aside as the replaced files are, so that a failed commit puts it back.
 void setAsideOldSidecar(const StagedFile& file, const StagingFolder& folder, std::vector<Moved>& moved) {
-  const fs::path sidecar = file.target.string() + ".aux.xml";
+  const fs::path sidecar = sidecarOf(file);
   std::error_code ec;
-  if (fs::exists(folder.path() / sidecar.filename(), ec) || !fs::is_regular_file(sidecar, ec)) return;
+  if (!fs::is_regular_file(sidecar, ec)) return;
   const fs::path backup = folder.backupFor(sidecar.filename());
   fs::rename(sidecar, backup);
   moved.push_back({sidecar, backup});
@@ -153,14 +156,19 @@ void OutputFiles::commit() {
     try {
       for (std::size_t i = 0; i < files_.size(); ++i) {
         const StagedFile& file = *files_[i];
-        for (const fs::path& staged : folders_[i]->stagedFiles()) {
-          const fs::path target = folderOf(file.target) / staged.filename();
+        const std::vector<fs::path> staged = folders_[i]->stagedFiles();
+        // Decided before the moves, which may exchange old files into the staging folder.
+        const bool wroteSidecar = std::any_of(staged.begin(), staged.end(), [&file](const fs::path& p) {
+          return p.filename() == sidecarOf(file).filename();
+        });
+        for (const fs::path& path : staged) {
+          const fs::path target = folderOf(file.target) / path.filename();
           checkNotInput(target, file.option, shown(file, target));
           if (fs::is_directory(fs::symlink_status(target)))
             throw Error(file.option + ": '" + shown(file, target) + "' is now a folder: nothing was written");
           if (overwrite_) {
-            moved.push_back({target, replaceKeepingOld(staged, target, folders_[i]->backupFor(staged.filename()))});
-          } else if (moveWithoutReplacing(staged, target)) {
+            moved.push_back({target, replaceKeepingOld(path, target, folders_[i]->backupFor(path.filename()))});
+          } else if (moveWithoutReplacing(path, target)) {
             moved.push_back({target, {}});
           } else {
             throw Error(file.option + ": '" + shown(file, target) +
@@ -168,7 +176,7 @@ void OutputFiles::commit() {
                         "written; add -overwrite to replace it");
           }
         }
-        if (overwrite_ && !file.keepContent) setAsideOldSidecar(file, *folders_[i], moved);
+        if (overwrite_ && !file.keepContent && !wroteSidecar) setAsideOldSidecar(file, *folders_[i], moved);
       }
       committed() = true;
     } catch (const fs::filesystem_error& e) {
