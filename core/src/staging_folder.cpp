@@ -67,8 +67,12 @@ bool oldEnoughToBeAbandoned(const fs::path& folder) {
 void removeIfAbandoned(const fs::path& folder) {
   const int fd = open((folder / kLock).c_str(), O_RDWR | O_CLOEXEC);
   if (fd < 0) {
+    if (errno != ENOENT) return;
     std::error_code ec;
-    if (errno == ENOENT && (fs::is_empty(folder, ec) || oldEnoughToBeAbandoned(folder))) removeQuietly(folder);
+    if (oldEnoughToBeAbandoned(folder))
+      removeQuietly(folder);
+    else
+      fs::remove(folder, ec);  // rmdir: fails, leaving it, if a run has just made its lock there
     return;
   }
   // Removed while holding the lock, so nobody can take the folder for theirs meanwhile.
@@ -147,10 +151,11 @@ std::mutex& StagingFolder::commitMutex() {
 void StagingFolder::removeAllLive() {
   std::lock_guard<std::mutex> commit(commitMutex());
   std::lock_guard<std::mutex> lock(registryMutex());
+  std::error_code ignored;  // this runs on the signal watcher's thread: nothing may throw
   // The job's threads may still be writing: a file made while remove_all ran (a
   // database's journal) leaves the folder behind, empty once that file goes. Again, then.
   for (const fs::path& p : registry())
-    for (int attempt = 0; attempt < 5 && fs::exists(p); ++attempt) {
+    for (int attempt = 0; attempt < 5 && fs::exists(p, ignored); ++attempt) {
       if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(20));
       removeQuietly(p);
     }
