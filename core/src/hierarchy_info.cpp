@@ -106,8 +106,10 @@ void readLevels(GDALDataset& ds, HierarchyInfo& info) {
 
 HierarchyInfo catalogueInfo(GDALDataset& ds, HierarchyInfo info) {
   info.kind = "catalogue";
-  if (OGRLayer* tiles = ds.GetLayerByName("tiles"))
-    if (const OGRSpatialReference* srs = tiles->GetSpatialRef()) info.crsName = srs->GetName() ? srs->GetName() : "";
+  if (OGRLayer* tiles = ds.GetLayerByName("tiles")) {
+    const OGRSpatialReference* srs = layerCrs(*tiles);
+    info.crsName = !srs ? "no CRS" : srs->GetName() ? srs->GetName() : "";
+  }
   for (int i = 0; i < ds.GetLayerCount(); ++i) info.layers.push_back(ds.GetLayer(i)->GetName());
   info.bytes = std::filesystem::file_size(info.path);
   addCatalogueContents(info);

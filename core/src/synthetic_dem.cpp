@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "gdal_handles.h"
 #include "tinlod/error.h"
 #include "tinlod/output_files.h"
 
@@ -94,8 +95,8 @@ void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite, co
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
   const char* options[] = {"COMPRESS=DEFLATE", "TILED=YES", nullptr};
   CPLPushErrorHandler(CPLQuietErrorHandler);  // GDAL would name the staging file
-  GDALDataset* ds = driver->Create(file.staging.c_str(), dem.width, dem.height, 1, GDT_Float32,
-                                   const_cast<char**>(options));
+  DatasetPtr ds(driver->Create(file.staging.c_str(), dem.width, dem.height, 1, GDT_Float32,
+                               const_cast<char**>(options)));  // closed on a cancel too
   CPLPopErrorHandler();
   if (!ds) throw Error("cannot create '" + path + "': " + inUserTerms(file, CPLGetLastErrorMsg()));
   double gt[6];
@@ -119,7 +120,7 @@ void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite, co
   progress.report(0.9, "Writing the DEM");
   CPLErrorReset();
   CPLPushErrorHandler(CPLQuietErrorHandler);
-  GDALClose(ds);
+  ds.reset();  // closing writes the last blocks
   CPLPopErrorHandler();
   if (err != CE_None || CPLGetLastErrorType() >= CE_Failure)
     throw Error("cannot write '" + path + "': " + inUserTerms(file, CPLGetLastErrorMsg()));

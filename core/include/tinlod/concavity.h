@@ -13,7 +13,7 @@ namespace tinlod {
 // over the secant's length squared. Positive where the line bulges to its left (convex
 // seen from the left side), 0 on a straight line; NaN within `window` of an endpoint, and
 // where the secant is shorter than a tenth of `window` (the line turned back on itself:
-// the ratio would grow without bound, to |value| 32 or more).
+// the ratio would grow without bound; at a tenth it is at most about 35, a near-full circle).
 // One sweep: the window's ends move along with the vertex and the area comes from
 // prefix sums, O(n) for the whole line. A closed line (first vertex = last) has no ends:
 // it is measured around (both measures), where twice the window (radius) is shorter
