@@ -51,7 +51,7 @@ QString GreedyInsertionAlgorithm::shortHelpString() const {
              "square cells as delatin and most tools do; they differ only where cells are not square on the "
              "ground (a geographic DEM away from the equator).\n\n"
              "Output: a GeoPackage with the layers of 'Sample TIN from DEM'; each vertex also has 'insertion', "
-             "its place in the insertion order, and 'error_before': the vertices with insertion <= k form a "
+             "its place in the insertion order, and 'error_before': the vertices with insertion at most k form a "
              "coarser TIN (a progressive TIN) whose maximum error is the error_before of the next vertex.\n\n") +
          samplingHelp();
 }

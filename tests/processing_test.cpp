@@ -174,6 +174,17 @@ TEST(Processing, SampleTinMatchesTheCore) {
   EXPECT_EQ(r.outputs.value("OUTPUT").toString(), out);
 }
 
+// The help panel renders the help as HTML: a bare "<" (as in "<= k") hid the rest of a
+// paragraph there.
+TEST(Processing, HelpTextsHoldNoBareAngleBracket) {
+  const QgsProcessingProvider* provider = QgsApplication::processingRegistry()->providerById(QStringLiteral("tinlod"));
+  ASSERT_NE(provider, nullptr);
+  ASSERT_GE(provider->algorithms().size(), 8);
+  for (const QgsProcessingAlgorithm* alg : provider->algorithms())
+    EXPECT_FALSE(alg->shortHelpString().contains(QRegularExpression(QStringLiteral("<(?![a-zA-Z/!])"))))
+        << alg->id().toStdString();
+}
+
 TEST(Processing, ParametersReachTheCore) {
   const QString out = QString::fromStdString(test::tempDir() + "/tin.gpkg");
   const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
