@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "layer_placement.h"
+#include "tin_layer_style.h"
 
 namespace tinlod::qgis {
 
@@ -39,7 +40,8 @@ void AccuracyRasterLoad::remember(QgsProcessingContext& context, const QString& 
   path_.clear();
   if (path.isEmpty() || !context.willLoadLayerOnCompletion(path)) return;
   const QgsProcessingContext::LayerDetails& asked = context.layerToLoadOnCompletionDetails(path);
-  path_ = path, name_ = asked.name, outputName_ = asked.outputName, project_ = asked.project;
+  // Named after its file, as the TIN layers are: three runs gave three "Accuracy raster".
+  path_ = path, name_ = outputBaseName(path, asked.name), outputName_ = asked.outputName, project_ = asked.project;
   reRegister(context);  // styled here too: a run on this thread keeps this list
 }
 

@@ -673,6 +673,7 @@ TEST(Processing, AccuracyRasterLoadsStyledFromABackgroundRun) {
     ASSERT_TRUE(context.willLoadLayerOnCompletion(raster)) << id.toStdString() << ": the raster would not be loaded";
     QgsProcessingContext::LayerDetails& details = context.layerToLoadOnCompletionDetails(raster);
     ASSERT_NE(details.postProcessor(), nullptr);
+    EXPECT_EQ(details.name, QFileInfo(raster).completeBaseName());  // named after its file, as the TINs are
     auto* layer = new QgsRasterLayer(raster, details.name, QStringLiteral("gdal"));
     ASSERT_TRUE(layer->isValid());
     project.addMapLayer(layer);
