@@ -80,6 +80,15 @@ QVariantMap DpValuesAlgorithm::processAlgorithm(const QVariantMap& parameters, Q
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=lines"),
                                      placedLayerDetails(QStringLiteral("lines with DP values"), context.project(),
                                                         QStringLiteral("OUTPUT")));
+  // The other layers asked for come too: a threshold's simplified lines, the vertex points.
+  if (options_.threshold >= 0)
+    context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=simplified"),
+                                       placedLayerDetails(QStringLiteral("lines simplified at %1 m").arg(options_.threshold),
+                                                          context.project(), QStringLiteral("OUTPUT")));
+  if (options_.points)
+    context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=vertices"),
+                                       placedLayerDetails(QStringLiteral("vertices with DP values"), context.project(),
+                                                          QStringLiteral("OUTPUT")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("LINES"), static_cast<qlonglong>(s.lines));

@@ -893,6 +893,9 @@ TEST(Processing, DpValuesMatchTheCoreAndCountCrossings) {
   // lower peak twice.
   EXPECT_EQ(r.outputs.value("CROSSINGS").toLongLong(), 2);
   EXPECT_EQ(featureCount(out, "vertices"), 6);
+  // Every layer written is loaded: the lines, the simplified lines and the vertices.
+  for (const char* layer : {"lines", "simplified", "vertices"})
+    EXPECT_TRUE(r.context->willLoadLayerOnCompletion(out + "|layername=" + layer)) << layer;
   const Result cut = runAlgorithm(QStringLiteral("tinlod:dpvalues"), {{"INPUT", QString::fromStdString(dir + "/l.geojson")},
                                                                       {"THRESHOLD", 4.5},
                                                                       {"OUTPUT", QString::fromStdString(dir + "/dp2.gpkg")}});
