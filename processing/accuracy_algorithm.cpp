@@ -64,15 +64,13 @@ bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProce
 
 QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessingContext& context,
                                                QgsProcessingFeedback* feedback) {
-  // Not demParameterNames(): this algorithm has no sampling parameters to name.
-  const ParameterNames names{{QStringLiteral("-b"), QStringLiteral("BAND")},
-                             {QStringLiteral("-valid_range"), QStringLiteral("VALID_RANGE")},
-                             {QStringLiteral("-level"), QStringLiteral("LEVEL")},
+  // The DEM's parameters, not the sampling ones: this algorithm has none.
+  const ParameterNames names = demParameterNames({{QStringLiteral("-level"), QStringLiteral("LEVEL")},
                              {QStringLiteral("-accuracy"), QStringLiteral("ACCURACY")},
                              {QStringLiteral("-report"), QStringLiteral("REPORT")},
                              {QStringLiteral("-step"), QStringLiteral("STEP")},
                              {QStringLiteral("-reference"), QStringLiteral("REFERENCE")},
-                             {QStringLiteral("-control_spacing"), QStringLiteral("CONTROL_SPACING")}};
+                             {QStringLiteral("-control_spacing"), QStringLiteral("CONTROL_SPACING")}});
   const AccuracyReport report = translateErrors(
       [&] {
         return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback, names), validHeights_);

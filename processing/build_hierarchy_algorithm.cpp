@@ -158,7 +158,7 @@ bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Qg
 QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
                                                       QgsProcessingFeedback* feedback) {
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
-  const ParameterNames names = demParameterNames({
+  const ParameterNames names = samplingParameterNames({
       {QStringLiteral("-delete_pct"), QStringLiteral("DELETE_PCT")}, {QStringLiteral("-stop_pct"), QStringLiteral("STOP_PCT")},
       {QStringLiteral("-max_levels"), QStringLiteral("MAX_LEVELS")}, {QStringLiteral("-max_degree"), QStringLiteral("MAX_DEGREE")},
       {QStringLiteral("-max_error"), QStringLiteral("MAX_ERROR")},   {QStringLiteral("-threshold"), QStringLiteral("THRESHOLD")},

@@ -121,10 +121,14 @@ QString DemAlgorithm::samplingHelp() {
 }
 
 ParameterNames DemAlgorithm::demParameterNames(const ParameterNames& more) {
-  ParameterNames names{{QStringLiteral("-b"), QStringLiteral("BAND")},       {QStringLiteral("-valid_range"), QStringLiteral("VALID_RANGE")},
-                       {QStringLiteral("-block"), QStringLiteral("BLOCK")},  {QStringLiteral("-jitter"), QStringLiteral("JITTER")},
-                       {QStringLiteral("-seed"), QStringLiteral("SEED")},    {QStringLiteral("-t_srs"), QStringLiteral("TARGET_CRS")}};
+  const ParameterNames names{{QStringLiteral("-b"), QStringLiteral("BAND")}, {QStringLiteral("-valid_range"), QStringLiteral("VALID_RANGE")}};
   return names + more;
+}
+
+ParameterNames DemAlgorithm::samplingParameterNames(const ParameterNames& more) {
+  const ParameterNames names{{QStringLiteral("-block"), QStringLiteral("BLOCK")}, {QStringLiteral("-jitter"), QStringLiteral("JITTER")},
+                             {QStringLiteral("-seed"), QStringLiteral("SEED")}, {QStringLiteral("-t_srs"), QStringLiteral("TARGET_CRS")}};
+  return demParameterNames(names + more);
 }
 
 }  // namespace tinlod::qgis

@@ -40,9 +40,11 @@ class DemAlgorithm : public QgsProcessingAlgorithm {
   std::optional<HeightRange> validRange(const QVariantMap& parameters, QgsProcessingContext& context);
   // Flags a parameter Advanced (shown folded in the dialog) and returns it.
   static QgsProcessingParameterDefinition* advanced(QgsProcessingParameterDefinition* parameter);
-  // The DEM and sampling parameters by the command line's options, for the core's messages
-  // ("consider a smaller -jitter" comes out as JITTER), and `more` after them.
+  // The DEM parameters (BAND, VALID_RANGE) by the command line's options, for the core's
+  // messages, and `more` after them; with the sampling parameters too ("consider a smaller
+  // -jitter" comes out as JITTER) for the algorithms that sample.
   static ParameterNames demParameterNames(const ParameterNames& more = {});
+  static ParameterNames samplingParameterNames(const ParameterNames& more = {});
 
   std::string demSource_;
   SampleOptions sample_;

@@ -113,9 +113,9 @@ QVariantMap GreedyInsertionAlgorithm::processAlgorithm(const QVariantMap& parame
   // QGIS asks before overwriting a file; the core then keeps the file's other layers.
   const InsertSummary s = translateErrors(
       [&] {
-        return runInsertJob(demSource_, output.toStdString(), insert_, true, processingFeedback(feedback, demParameterNames()), vertexIndex);
+        return runInsertJob(demSource_, output.toStdString(), insert_, true, processingFeedback(feedback, samplingParameterNames()), vertexIndex);
       },
-      demParameterNames());
+      samplingParameterNames());
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3; maximum error %4 m, RMSE %5 m over %6 cells")
                          .arg(s.vertices).arg(s.triangles).arg(QString::fromStdString(s.crsName))
                          .arg(s.measuredMaxError).arg(s.rmse).arg(s.measuredCells));

@@ -63,9 +63,9 @@ QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, 
   // QGIS asks before overwriting a file; the core then keeps the file's other layers.
   const SampleSummary summary = translateErrors(
       [&] {
-        return runSampleJob(demSource_, output.toStdString(), sample_, true, processingFeedback(feedback, demParameterNames()), vertexIndex);
+        return runSampleJob(demSource_, output.toStdString(), sample_, true, processingFeedback(feedback, samplingParameterNames()), vertexIndex);
       },
-      demParameterNames());
+      samplingParameterNames());
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3")
                          .arg(summary.vertices).arg(summary.triangles).arg(QString::fromStdString(summary.crsName)));
   // The vertices load hidden: a hundred thousand dots would cover the map.
