@@ -12,6 +12,8 @@ import tempfile
 sys.path.insert(0, sys.argv[1])
 from tinlodtiles import thresholds  # noqa: E402
 from tinlodtiles.importance_bins import Bins, added  # noqa: E402
+from tinlodtiles.survey_reader import SurveyReader  # noqa: E402
+from tinlodtiles.survey_store import SurveyStore  # noqa: E402
 from tinlodtiles.surveyed_tile import SurveyedTile  # noqa: E402
 from script_checks import check, exit_code  # noqa: E402
 
@@ -189,6 +191,39 @@ check("... raised by a shift, bin 0 staying", bins.shifted(10).as_dict() == {0: 
 total = added([bins, Bins.of([[0, 1], [39, 2], [42, 1]])], [2.0, 0.5])
 check("... added up with weights over the bins they span",
       total.as_dict() == {0: 14.5, 39: 1.0, 40: 6.0, 42: 10.5}, total.as_dict())
+
+# Added one at a time (a generator, the run of bins growing both ways), the same sums.
+streamed = added(h for h in [Bins.of([[50, 1]]), bins, Bins.of([[0, 1], [39, 2], [60, 4]])])
+check("... added one at a time as they come, the run growing on both sides",
+      streamed.as_dict() == {0: 8, 39: 2, 40: 3, 42: 5, 50: 1, 60: 4}, streamed.as_dict())
+
+# The driver's surveys with their histograms in a SurveyStore (an unnamed file: the folder
+# stays empty) set the very thresholds of those held in memory, and hold no histogram.
+with tempfile.TemporaryDirectory() as folder:
+    paths = []
+    for i, tile in enumerate([smooth_tile, rough_tile, small, large]):
+        paths.append(os.path.join(folder, "survey_%d.json" % i))
+        with open(paths[-1], "w") as f:
+            json.dump({"bins_per_decade": 200, "lowest": 1e-12, "levels": tile, "line_outline": [[i, 2 * i]]}, f)
+    in_memory = [thresholds.read_survey(p) for p in paths]
+    with SurveyStore(folder) as store:
+        reader = SurveyReader(store)
+        stored = [reader.levels(i, p) for i, p in enumerate(paths)]
+        check("a SurveyStore leaves no file in the tiles' folder", sorted(os.listdir(folder)) == sorted(
+            os.path.basename(p) for p in paths), os.listdir(folder))
+        check("... the levels hold handles, not histograms", all(
+            not isinstance(r[k], (Bins, list)) for s in stored for r in s for k in ("histogram", "walk_histogram") if k in r))
+        check("... and read back every histogram as it was", all(
+            Bins.of(a[k]).as_dict() == Bins.of(b[k]).as_dict() for s, t in zip(in_memory, stored) for a, b in zip(s, t)
+            for k in ("histogram", "picked_histogram") if k in a))
+        for pcts in [(20, 5), (25, 5), (50, 30)]:
+            check("... the same thresholds with -delete_pct %d -stop_pct %d" % pcts,
+                  thresholds.level_thresholds(stored, *pcts) == thresholds.level_thresholds(in_memory, *pcts),
+                  (thresholds.level_thresholds(stored, *pcts), thresholds.level_thresholds(in_memory, *pcts)))
+        check("... and -exact_stop's", thresholds.exact_stop_thresholds(first_values, stored, 30, 2) ==
+              thresholds.exact_stop_thresholds(first_values, in_memory, 30, 2))
+        check("... the surveys' line cells gathered as they are read", reader.cells == {(0, 0), (1, 2), (2, 4), (3, 6)},
+              reader.cells)
 
 # A survey of another binning is refused.
 with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:

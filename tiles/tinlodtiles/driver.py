@@ -25,6 +25,8 @@ from .errors import TilesError
 from .grid import tile_grid
 from .levels import fewest_levels, write_level_vrts
 from .progress import Progress, n_tiles
+from .survey_reader import SurveyReader
+from .survey_store import SurveyStore
 from .tile_file import read_tile_summary
 from .tin_crs import predicted_tin_srs
 
@@ -186,28 +188,27 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     rows = catalogue.rows()
     surveyed = [t for t in tiles if rows[(t.col, t.row)]["status"] != "empty"]
     missing = [t for t in surveyed if not os.path.isfile(survey_path(folder, t))]
-    loaded = {}  # read as the tasks end, while the others still run: thousands of them
-    if missing:
-        if not arguments.quiet:
-            print("survey pass: %s" % n_tiles(len(missing)))
-        outcome = run_tiles(catalogue, missing, arguments, workers, ["-survey"], survey="survey", loaded=loaded)
-        if outcome.get("failed"):
-            raise TilesError("%s failed in the survey pass; %s"
-                             % (n_tiles(outcome["failed"]), failure_summary(catalogue.rows().values())))
-    rows = catalogue.rows()
-    surveyed = [t for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
-    paths = [survey_path(folder, t) for t in surveyed]
-    surveys = [loaded.get(t) or thresholds.load_survey(p) for t, p in zip(surveyed, paths)]
-    percents = percent(arguments, "-delete_pct", 20), percent(arguments, "-stop_pct", 5)
-    levels = [s["levels"] for s in surveys]
-    values = thresholds.level_thresholds(levels, *percents)
-    cells = set().union(*(line_outline.survey_cells(s, p) for s, p in zip(surveys, paths)))
-    write_cells(line_outline.path(folder), cells)  # before the thresholds are recorded: a rerun has both
-    catalogue.set_setting(line_outline.DIGEST, line_outline.digest(line_outline.path(folder)))
-    catalogue.set_setting(line_outline.SETTING, line_outline.NAME)
-    if arguments.exact_stop:
-        values = exact_stop(catalogue, surveyed, arguments, workers, values, levels, percents)
-        catalogue.set_setting(EXACT_STOP, "yes")
+    with SurveyStore(folder) as store:
+        # Read as the tasks end, while the others still run: thousands of them.
+        surveys = SurveyReader(store)
+        if missing:
+            if not arguments.quiet:
+                print("survey pass: %s" % n_tiles(len(missing)))
+            outcome = run_tiles(catalogue, missing, arguments, workers, ["-survey"], survey="survey", loaded=surveys)
+            if outcome.get("failed"):
+                raise TilesError("%s failed in the survey pass; %s"
+                                 % (n_tiles(outcome["failed"]), failure_summary(catalogue.rows().values())))
+        rows = catalogue.rows()
+        surveyed = [t for t in surveyed if rows[(t.col, t.row)]["status"] != "empty"]
+        levels = [surveys.levels(t, survey_path(folder, t)) for t in surveyed]
+        percents = percent(arguments, "-delete_pct", 20), percent(arguments, "-stop_pct", 5)
+        values = thresholds.level_thresholds(levels, *percents)
+        write_cells(line_outline.path(folder), surveys.cells)  # before the thresholds are recorded: a rerun has both
+        catalogue.set_setting(line_outline.DIGEST, line_outline.digest(line_outline.path(folder)))
+        catalogue.set_setting(line_outline.SETTING, line_outline.NAME)
+        if arguments.exact_stop:
+            values = exact_stop(catalogue, surveyed, arguments, workers, values, levels, percents, store)
+            catalogue.set_setting(EXACT_STOP, "yes")
     text = thresholds.as_option(values)
     catalogue.set_setting(thresholds.SHARES_SETTING, thresholds.SHARES_DELETED)
     catalogue.set_setting("TINLOD_LEVEL_THRESHOLDS", text)
@@ -244,7 +245,7 @@ SECOND_SURVEY = "survey2"
 EXACT_STOP = "TINLOD_EXACT_STOP"
 
 
-def exact_stop(catalogue, surveyed, arguments, workers, values, first, percents):
+def exact_stop(catalogue, surveyed, arguments, workers, values, first, percents, store):
     """-exact_stop: the first round's thresholds with the level that reaches the stop set
     from a second survey pass, which makes the levels below the stop level they aim at with
     them (the build pass's very state) and walks every candidate at it."""
@@ -264,7 +265,7 @@ def exact_stop(catalogue, surveyed, arguments, workers, values, first, percents)
         if outcome.get("failed"):
             raise TilesError("%s failed in the second survey pass; %s"
                              % (n_tiles(outcome["failed"]), failure_summary(catalogue.rows().values())))
-    second = [thresholds.load_survey(survey_path(folder, t, SECOND_SURVEY))["levels"] for t in surveyed]
+    second = [thresholds.load_survey(survey_path(folder, t, SECOND_SURVEY), store)["levels"] for t in surveyed]
     return thresholds.exact_stop_thresholds(values, second, percents[1], level, percents[0])
 
 
@@ -396,7 +397,7 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
     """One task per pending tile; the catalogue follows their futures. Returns the count of
     tiles per status. With `survey` (the surveys' kind, as survey_name takes it), the tasks
     write each tile's survey, and the catalogue records only the tiles found empty (or
-    failed); `loaded`, when given, gets each survey read (tile: survey) as its task ends."""
+    failed); `loaded`, when given (a SurveyReader), reads each survey as its task ends."""
     distributed, client = workers.distributed, workers.client
     outcome = {}
     progress = Progress(len(pending), arguments.quiet)
@@ -408,7 +409,7 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
             path = survey_path(tiles_folder(arguments.catalogue), tile, survey) if survey else None
             status = record_survey(catalogue, tile, future, path) if survey else record(catalogue, tile, future, arguments.catalogue)
             if loaded is not None and status == "surveyed":
-                loaded[tile] = thresholds.load_survey(path)
+                loaded.load(tile, path)
             outcome[status] = outcome.get(status, 0) + 1
             progress.tile(tile.col, tile.row, status)
     except KeyboardInterrupt:

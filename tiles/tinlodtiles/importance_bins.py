@@ -15,12 +15,6 @@ def bin_top(b):
     return LOWEST if b == 0 else 10.0 ** (b / BINS_PER_DECADE - 12)
 
 
-def bin_of_top(top):
-    """The bin whose top is `top` (a threshold from bin_top); -1 for a threshold of 0 or less,
-    below every bin."""
-    return int(round((math.log10(top) + 12) * BINS_PER_DECADE)) if top > 0 else -1
-
-
 class Bins:
     """Counts by bin: bin 0's (the ties of no importance) apart, the others over a run of
     bins from `lo` (1 or more) in one array. A driver holds every tile's survey, thousands of
@@ -35,9 +29,11 @@ class Bins:
     @staticmethod
     def of(pairs):
         """From a survey's [[bin, count], ...], in 16 bits where every count fits (float32
-        holds any count a tile can have exactly); Bins as they are."""
+        holds any count a tile can have exactly); Bins as they are, and stored ones read back."""
         if isinstance(pairs, Bins):
             return pairs
+        if hasattr(pairs, "load"):  # a SurveyStore's StoredBins
+            return pairs.load()
         flat = np.fromiter(itertools.chain.from_iterable(pairs), np.float64, 2 * len(pairs))
         bins, counts = flat[0::2].astype(np.int64), flat[1::2]
         zero = float(counts[bins == 0].sum())
@@ -82,16 +78,33 @@ class Bins:
 
 
 def added(histograms, weights=None):
-    """Bins added up (each times its weight, when given), over the run of bins they span."""
-    histograms = list(histograms)
-    weights = weights or [1.0] * len(histograms)
-    spans = [h for h in histograms if len(h.values)]
-    zero = sum(w * h.zero for h, w in zip(histograms, weights))
-    if not spans:
-        return Bins(zero, 1, np.zeros(0))
-    lo, hi = min(h.lo for h in spans), max(h.hi for h in spans)
-    total = np.zeros(hi - lo)
-    for h, w in zip(histograms, weights):
-        if len(h.values):
-            total[h.lo - lo:h.hi - lo] += w * h.values.astype(np.float64)  # as stored, w x values stays 32 bits
-    return Bins(zero, lo, total)
+    """Bins added up (each times its weight, when given), over the run of bins they span;
+    `histograms` may be a generator, read once (a driver's thousands of tiles' states need
+    not be held at once)."""
+    total = BinsSum()
+    for i, h in enumerate(histograms):
+        total.add(h, 1.0 if weights is None else weights[i])
+    return total.bins()
+
+
+class BinsSum:
+    """Bins added one at a time: the run of bins grows to span them."""
+
+    def __init__(self):
+        self.zero, self.lo, self.total = 0, 1, None
+
+    def add(self, h, weight=1.0):
+        self.zero += weight * h.zero
+        if not len(h.values):
+            return
+        if self.total is None:
+            self.lo, self.total = h.lo, np.zeros(len(h.values))
+        elif h.lo < self.lo or h.hi > self.lo + len(self.total):
+            lo, hi = min(h.lo, self.lo), max(h.hi, self.lo + len(self.total))
+            grown = np.zeros(hi - lo)
+            grown[self.lo - lo:self.lo - lo + len(self.total)] = self.total
+            self.lo, self.total = lo, grown
+        self.total[h.lo - self.lo:h.hi - self.lo] += weight * h.values.astype(np.float64)  # as stored, w x values stays 32 bits
+
+    def bins(self):
+        return Bins(self.zero, self.lo, self.total if self.total is not None else np.zeros(0))

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .importance_bins import BINS_PER_DECADE, Bins, added, bin_of_top
+from .importance_bins import BINS_PER_DECADE, Bins, added
 
 # A survey level that deleted less than this share of what the delete percentage asks
 # (the tile's own stop level) walked only its least important candidates: its blocking is
@@ -23,18 +23,19 @@ FULL_LEVEL = 0.75
 HISTOGRAMS = ("histogram", "picked_histogram", "walk_histogram")
 
 
-def compact(row):
-    """A survey level with its histograms as Bins; the tile's own picks only where the level
-    has no walk through every candidate, which alone is read then. A compact row as it is."""
-    if all(isinstance(row[k], Bins) for k in HISTOGRAMS if k in row) and not (
+def compact(row, store=None):
+    """A survey level with its histograms as Bins (or, with a SurveyStore, as its handles);
+    the tile's own picks only where the level has no walk through every candidate, which
+    alone is read then. A compact row as it is."""
+    if not any(isinstance(row[k], list) for k in HISTOGRAMS if k in row) and not (
             "walk_histogram" in row and "picked_histogram" in row):
         return row
     out = dict(row)
-    for key in HISTOGRAMS:
-        if key in out:
-            out[key] = Bins.of(out[key])
     if "walk_histogram" in out:
         out.pop("picked_histogram", None)
+    for key in HISTOGRAMS:
+        if key in out:
+            out[key] = Bins.of(out[key]) if store is None else store.put(Bins.of(out[key]))
     return out
 
 
@@ -116,12 +117,3 @@ def own_border(levels, row):
     k = levels.index(row)
     return max(0, row["vertices"] - row["picked"] - levels[k + 1]["vertices"]) if k + 1 < len(levels) else 0
 
-
-def picks_below(counts, picks, threshold, share):
-    """A state's picks under (threshold, share): every bin below the threshold's, and in
-    that bin the share of its candidates, as far as its picks go (a blocked candidate does
-    not count against the share)."""
-    top = bin_of_top(threshold)
-    if top < 0:
-        return 0.0
-    return float(picks.on(0, top).sum()) + min(picks.get(top), share * counts.get(top))

@@ -15,8 +15,8 @@ import json
 
 import numpy as np
 
-from .importance_bins import BINS_PER_DECADE, LOWEST, Bins, added, bin_top
-from .surveyed_tile import SurveyedTile, compact, picks_below
+from .importance_bins import BINS_PER_DECADE, LOWEST, Bins, BinsSum, added, bin_top
+from .surveyed_tile import SurveyedTile, compact
 
 # The catalogue's record that a threshold's share (t:s) is the share of its bin's candidates
 # deleted (tinlod build since 2026-11-28), not of those the pick went through.
@@ -24,14 +24,15 @@ SHARES_SETTING = "TINLOD_THRESHOLD_SHARES"
 SHARES_DELETED = "deleted"
 
 
-def load_survey(path):
+def load_survey(path, store=None):
     """A tile's survey (tinlod build -survey's JSON), checked to have this tinlod's bins, its
-    levels' histograms held as Bins (a driver holds thousands of surveys)."""
+    levels' histograms held as Bins, or put in `store` (a SurveyStore: a driver holds
+    thousands of surveys)."""
     with open(path) as f:
         survey = json.load(f)
     if survey.get("bins_per_decade") != BINS_PER_DECADE or survey.get("lowest") != LOWEST:
         raise ValueError("%s was written by another tinlod (bins %s): survey again" % (path, survey.get("bins_per_decade")))
-    survey["levels"] = [compact(r) for r in survey.get("levels", [])]
+    survey["levels"] = [compact(r, store) for r in survey.get("levels", [])]
     return survey
 
 
@@ -68,13 +69,36 @@ def followed_levels(surveys, delete_pct, stop_pct):
         union = sum(t.union for t in tiles)
         fraction = max(0.0, min(delete_pct / 100.0, 1 - stop / union)) if union > 0 else 0.0
         rows = [t.levels[k] if len(t.levels) > k else None for t in tiles]
-        states = [t.state() for t in tiles]
         target = fraction * union - border_picked([r for r in rows if r])
-        threshold = threshold_reaching(added(c for c, _ in states), added(p for _, p in states), target, states)
-        for t, (counts, picks), row in zip(tiles, states, rows):
-            t.delete(picks_below(counts, picks, *threshold), row)
+        threshold, deleted = tiles_threshold(tiles, target)
+        for t, picked, row in zip(tiles, deleted, rows):
+            t.delete(picked, row)
         out.append((threshold, fraction))
     return out
+
+
+def tiles_threshold(tiles, target):
+    """The (threshold, share) of a level whose deletions from the tiles (SurveyedTile) reach
+    `target`, and each tile's deletions under it. A tile's state is read twice, added up
+    and then in the threshold's bin, not held: a driver follows tens of thousands."""
+    counts, picks = BinsSum(), BinsSum()
+    for t in tiles:
+        c, p = t.state()
+        counts.add(c)
+        picks.add(p)
+    top, needed = bin_reaching(counts.bins(), picks.bins(), target)
+    # Per tile: its picks below the threshold's bin, and its picks and candidates in it.
+    figures = [in_bin(*t.state(), top) for t in tiles]
+    share = 1.0 if needed is None else share_reaching([(n, p) for _, p, n in figures], needed)
+    threshold = (bin_top(top), share) if top >= 0 else (0.0, 1.0)
+    return threshold, [below + min(p, share * n) for below, p, n in figures]
+
+
+def in_bin(counts, picks, top):
+    """A state's (picks below bin `top`, picks in it, candidates in it); none below bin -1."""
+    if top < 0:
+        return 0.0, 0.0, 0.0
+    return float(picks.on(0, top).sum()), picks.get(top), counts.get(top)
 
 
 def union_vertices(rows):
@@ -107,8 +131,10 @@ def exact_stop_thresholds(values, second, stop_pct, walked, delete_pct=100.0):
             break
     # The border rule's picks count toward the delete percentage, as in a level of followed_levels.
     target = max(0.0, min(vertices - stop, delete_pct / 100.0 * union_vertices(rows) - border_picked(rows)))
-    per_tile = [(Bins.of(r.get("histogram", [])), Bins.of(r.get("picked_histogram", []))) for r in rows]
-    stop_threshold = threshold_reaching(added(c for c, _ in per_tile), added(p for _, p in per_tile), target, per_tile)
+    def per_tile():  # each tile's (candidates, picks), read as they are needed, not held
+        return ((Bins.of(r.get("histogram", [])), Bins.of(r.get("picked_histogram", []))) for r in rows)
+    stop_threshold = threshold_reaching(added(c for c, _ in per_tile()), added(p for _, p in per_tile()), target,
+                                        per_tile())
     return values[:k] + [stop_threshold] + [(0.0, 1.0)] * (len(values) - k - 1)
 
 
@@ -118,23 +144,33 @@ def threshold_reaching(counts, picks, target, tiles=None):
     still needed (a flat area's ties share the rest). Each tile deletes at most its own
     picks of the bin, so with `tiles` (each tile's (counts, picks)) the share is the one
     whose deletions, so capped tile by tile, add up to what is needed."""
-    if target <= 0:
+    top, needed = bin_reaching(counts, picks, target)
+    if top < 0:
         return 0.0, 1.0
+    if needed is None:
+        return bin_top(top), 1.0
+    if tiles is None:
+        return bin_top(top), min(1.0, max(0.0, needed / counts.get(top)))
+    return bin_top(top), share_reaching([(c.get(top), p.get(top)) for c, p in tiles], needed)
+
+
+def bin_reaching(counts, picks, target):
+    """The bin where the picks of the bins up to it reach `target` (-1: no bin needed, or
+    none has candidates), and what is still needed from its candidates (None: all of them,
+    the picks of every bin falling short)."""
+    if target <= 0:
+        return -1, None
     lo, hi = 0 if counts.zero else counts.lo, counts.hi
     candidates = counts.on(lo, hi)
     held = np.flatnonzero(candidates)  # the bins with candidates, in order
     if not len(held):
-        return 0.0, 1.0
+        return -1, None
     taken = picks.on(lo, hi)[held]
     reached = np.flatnonzero(np.cumsum(taken) >= target)
     if not len(reached):
-        return bin_top(lo + int(held[-1])), 1.0
+        return lo + int(held[-1]), None
     k = int(reached[0])
-    b = lo + int(held[k])
-    needed = target - float(taken[:k].sum())
-    if tiles is None:
-        return bin_top(b), min(1.0, max(0.0, needed / float(candidates[held[k]])))
-    return bin_top(b), share_reaching([(c.get(b), p.get(b)) for c, p in tiles], needed)
+    return lo + int(held[k]), target - float(taken[:k].sum())
 
 
 def share_reaching(bins, needed):
