@@ -2,6 +2,7 @@
 #include "layer_placement.h"
 
 #include <qgslayertree.h>
+#include <qgslayertreeregistrybridge.h>
 #include <qgsproject.h>
 
 namespace tinlod::qgis {
@@ -17,6 +18,16 @@ QgsLayerTreeGroup* groupOfOurs(QgsLayerTreeGroup* root, const QString& name) {
     group->setCustomProperty(kOurGroup, true);
   }
   return group;
+}
+
+// The QGIS desktop makes the first layer a run adds current (a hidden level inside our group)
+// and adds the next layers beside the current one: the user's own would land in the group.
+// They go above it, until the user picks another place in the layer tree.
+void keepNewLayersOutOf(QgsLayerTreeGroup* group, QgsProject* project) {
+  QgsLayerTreeGroup* root = project->layerTreeRoot();
+  const int index = root->children().indexOf(group);
+  if (index >= 0 && project->layerTreeRegistryBridge())
+    project->layerTreeRegistryBridge()->setLayerInsertionPoint(QgsLayerTreeRegistryBridge::InsertionPoint(root, index));
 }
 
 }  // namespace
@@ -47,6 +58,7 @@ void placeLayer(QgsMapLayer* layer, QgsProject* project, const QString& group, i
   }
   placed->setCustomProperty(kOrder, order);
   placed->setItemVisibilityChecked(visible);
+  if (!group.isEmpty()) keepNewLayersOutOf(target, project);
 }
 
 QgsProcessingContext::LayerDetails placedLayerDetails(const QString& name, QgsProject* project, const QString& outputName,

@@ -30,6 +30,7 @@ from qgis.core import (
     QgsSettings,
     QgsSingleBandPseudoColorRenderer,
     QgsSingleSymbolRenderer,
+    QgsVectorLayer,
     QgsWkbTypes,
 )
 from qgis.PyQt import sip
@@ -459,6 +460,13 @@ def scenario():
     check("buildhierarchy: exactly its %d levels are new layers" % levels, len(new) == levels, describe(new))
     coarsest = project.mapLayersByName("level_%d" % (levels - 1)) if levels else []
     level0 = project.mapLayersByName("level_0")
+
+    # QGIS made a hidden level current; a layer the user adds next goes above the group, not in it.
+    mine = project.addMapLayer(QgsVectorLayer("Point?crs=EPSG:4326", "my points", "memory"))
+    check("buildhierarchy: a layer the user adds next goes at the top level, not into the levels' group",
+          mine is not None and at_root(mine), placement(mine) if mine else "not added")
+    if mine is not None:
+        project.removeMapLayer(mine)
 
     # A user who has just looked at a level has it current, and QGIS adds the next results
     # beside it, inside the hierarchy's group, where they do not belong.
