@@ -22,6 +22,21 @@ std::shared_ptr<void> stopSignalsWhileRunning() {
   return std::shared_ptr<void>(nullptr, [](void*) { releaseStopSignals(); });
 }
 
+// The fixes the core's messages give as commands, as a QGIS user makes them: with an
+// algorithm, or in QGIS itself. tinlod tiles has no algorithm: it stays a command.
+const ParameterNames& desktopTerms() {
+  static const ParameterNames terms{
+      {QStringLiteral("tinlod build"), QStringLiteral("Build TIN hierarchy from DEM")},
+      {QStringLiteral("tinlod sample"), QStringLiteral("Sample TIN from DEM")},
+      {QStringLiteral("(of tinlod lines or locate)"),
+       QStringLiteral("(of Douglas-Peucker simplification values, Polyline concavity or TIN elevation at points)")},
+      {QStringLiteral("its layers and metadata are shown by ogrinfo -so, and it opens in QGIS as it is"),
+       QStringLiteral("add it to the map as it is (Layer > Add Layer > Add Vector Layer)")},
+      {QStringLiteral("-overwrite replaces the layers of the same kind"),
+       QStringLiteral("writing into an existing GeoPackage replaces the layers of the same kind")}};
+  return terms;
+}
+
 }  // namespace
 
 Feedback processingFeedback(QgsProcessingFeedback* feedback, const ParameterNames& names) {
@@ -49,6 +64,7 @@ QString withParameterNames(const QString& message, const ParameterNames& names) 
   for (const auto& [option, parameter] : names)
     out.replace(QRegularExpression(QStringLiteral("(^|[\\s'(])") + QRegularExpression::escape(option) + QStringLiteral("\\b")),
                 QStringLiteral("\\1") + parameter);
+  for (const auto& [command, desktop] : desktopTerms()) out.replace(command, desktop);
   return out;
 }
 

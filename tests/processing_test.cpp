@@ -903,6 +903,37 @@ TEST(Processing, DpValuesMatchTheCoreAndCountCrossings) {
   EXPECT_EQ(cut.outputs.value("CROSSINGS").toLongLong(), 0);  // both chords: parallel
 }
 
+// The fixes the core's messages give as commands ("make one with tinlod build") are named as a
+// QGIS user makes them.
+TEST(Processing, MessagesGiveFixesAsAQgisUserMakesThem) {
+  const std::string dir = test::tempDir();
+  const QString tin = QString::fromStdString(dir + "/tin.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", tin}}).ok);
+  const Result lod = runAlgorithm(QStringLiteral("tinlod:extractlod"), {{"HIERARCHY", tin},
+                                                                      {"MAX_ERROR", 5},
+                                                                      {"OUTPUT", QString::fromStdString(dir + "/lod.gpkg")}});
+  ASSERT_FALSE(lod.ok);
+  EXPECT_TRUE(lod.error.contains("not a hierarchy: make one with Build TIN hierarchy from DEM")) << lod.error.toStdString();
+
+  std::ofstream(dir + "/l.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [[0, 0], [5, 4], [10, 0]]}}]})";
+  const QString dp = QString::fromStdString(dir + "/dp.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:dpvalues"), {{"INPUT", QString::fromStdString(dir + "/l.geojson")}, {"OUTPUT", dp}}).ok);
+  const Result into = runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", dp}});
+  ASSERT_FALSE(into.ok);
+  EXPECT_TRUE(into.error.contains("writing into an existing GeoPackage replaces the layers of the same kind")) << into.error.toStdString();
+  const Result locate = runAlgorithm(QStringLiteral("tinlod:locate"), {{"INPUT", QString::fromStdString(dir + "/l.geojson")},
+                                                                     {"HIERARCHY", dp},
+                                                                     {"OUTPUT", QString::fromStdString(dir + "/located.gpkg")}});
+  ASSERT_FALSE(locate.ok);
+  EXPECT_TRUE(locate.error.contains("(of Douglas-Peucker simplification values, Polyline concavity or TIN elevation at points), "
+                                    "not a TIN or a hierarchy: add it to the map as it is"))
+      << locate.error.toStdString();
+  for (const Result* r : {&lod, &into, &locate})
+    for (const char* command : {"tinlod build", "tinlod lines", "ogrinfo", "-overwrite"})
+      EXPECT_FALSE(r->error.contains(QString::fromUtf8(command))) << r->error.toStdString();
+}
+
 // Every other vector input from a memory layer, as from a file: the same results.
 TEST(Processing, MemoryLayersServeAsEveryVectorInput) {
   const std::string dir = test::tempDir();
