@@ -5,6 +5,7 @@
 #include <qgsprocessingparameters.h>
 #include <qgsvectorlayer.h>
 
+#include "concavity_parts_style.h"
 #include "group_icon.h"
 #include "help_page.h"
 #include "layer_placement.h"
@@ -93,7 +94,7 @@ QVariantMap ConcavityAlgorithm::processAlgorithm(const QVariantMap& parameters, 
                          .arg(s.vertices).arg(s.lines).arg(s.convex).arg(s.straight).arg(s.concave));
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=parts"),
                                      placedLayerDetails(QStringLiteral("concavity parts"), context.project(),
-                                                        QStringLiteral("OUTPUT")));
+                                                        QStringLiteral("OUTPUT"), new ConcavityPartsStyle));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(s.vertices));

@@ -536,6 +536,11 @@ def scenario():
             check("%s: the layer has every %s the run reported" % (alg, layer_name[:-1]),
                   expected and layer.featureCount() == expected, "%d features, reported %s" % (layer.featureCount(), expected))
             check_shown_at_root("%s: the %s are shown at the top level of the layer tree" % (alg, layer_name), layer)
+            if alg == "concavity":
+                renderer = layer.renderer()
+                check("concavity: the parts are coloured by class", renderer.type() == "categorizedSymbol"
+                      and renderer.classAttribute() == "class" and [c.value() for c in renderer.categories()]
+                      == ["convex", "straight", "concave"], renderer.type())
         check("%s: exactly %d new layer%s" % (alg, layers, "s" if layers > 1 else ""), len(new) == layers, describe(new))
 
     yield from screenshot(dem)

@@ -4,6 +4,8 @@
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
+#include <qgscategorizedsymbolrenderer.h>
+#include <qgssymbol.h>
 #include <qgsrasterlayer.h>
 #include <qgssinglebandpseudocolorrenderer.h>
 #include <qgsrasterdataprovider.h>
@@ -1004,6 +1006,27 @@ TEST(Processing, ConcavityAgreesWithTheCore) {
   EXPECT_EQ(r.outputs.value("CONCAVE").toLongLong(), static_cast<long long>(core.concave));
   EXPECT_GE(core.convex, 1u);  // the bump to the left
   EXPECT_EQ(featureCount(QString::fromStdString(dir + "/c.gpkg"), "vertices"), 7);
+
+  // The parts load coloured by class, the three classes in the legend.
+  QgsProject project;
+  loadAsQgisDoes(*r.context, project);
+  const QList<QgsMapLayer*> parts = project.mapLayersByName(QStringLiteral("concavity parts"));
+  ASSERT_EQ(parts.size(), 1);
+  auto* renderer = dynamic_cast<QgsCategorizedSymbolRenderer*>(qobject_cast<QgsVectorLayer*>(parts[0])->renderer());
+  ASSERT_NE(renderer, nullptr) << "parts in one colour";
+  EXPECT_EQ(renderer->classAttribute(), QStringLiteral("class"));
+  QStringList classes;
+  QSet<QRgb> colours;
+  for (const QgsRendererCategory& c : renderer->categories()) {
+    classes << c.value().toString();
+    colours << c.symbol()->color().rgb();
+  }
+  EXPECT_EQ(classes, QStringList({"convex", "straight", "concave"}));
+  EXPECT_EQ(colours.size(), 3);
+  QgsFeature part;
+  QgsFeatureIterator it = qobject_cast<QgsVectorLayer*>(parts[0])->getFeatures();
+  while (it.nextFeature(part))
+    EXPECT_TRUE(classes.contains(part.attribute(QStringLiteral("class")).toString())) << "a class the style does not show";
 }
 
 TEST(Processing, RealDemRuns) {
