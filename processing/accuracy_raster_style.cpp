@@ -38,6 +38,10 @@ void AccuracyRasterStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingCont
 
 void AccuracyRasterLoad::remember(QgsProcessingContext& context, const QString& path) {
   path_.clear();
+  // A batch row that leaves the raster out has QGIS register "" to load, which it then
+  // reports as a layer "not correctly generated", with no name.
+  auto layers = context.layersToLoadOnCompletion();
+  if (layers.remove(QString())) context.setLayersToLoadOnCompletion(layers);
   if (path.isEmpty() || !context.willLoadLayerOnCompletion(path)) return;
   const QgsProcessingContext::LayerDetails& asked = context.layerToLoadOnCompletionDetails(path);
   // Named after its file, as the TIN layers are: three runs gave three "Accuracy raster".

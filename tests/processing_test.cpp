@@ -637,6 +637,30 @@ TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
   EXPECT_FALSE(fs::exists(dir + "/b.tif"));
 }
 
+// A batch row that leaves the optional accuracy raster empty gives it as an output definition
+// of no path, "to load" when "Load layers on completion" is ticked: nothing to load, so
+// nothing that QGIS would report as "not correctly generated".
+TEST(Processing, AnAccuracyRasterLeftEmptyInABatchRowIsNotToLoad) {
+  const std::string dir = test::tempDir();
+  const QString hier = QString::fromStdString(dir + "/hier.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  QgsProject project;
+  const QVariant none = QVariant::fromValue(QgsProcessingOutputLayerDefinition(QString(), &project));
+  const Result measured = runAlgorithm(QStringLiteral("tinlod:accuracy"),
+                                       {{"INPUT", QString::fromStdString(defaultDem())}, {"HIERARCHY", hier}, {"ACCURACY", none},
+                                        {"REPORT", QString::fromStdString(dir + "/batch.csv")}}, nullptr, &project);
+  ASSERT_TRUE(measured.ok) << measured.error.toStdString();
+  const Result built = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                                    {{"INPUT", QString::fromStdString(defaultDem())}, {"ACCURACY", none},
+                                     {"OUTPUT", QString::fromStdString(dir + "/batch.gpkg")}}, nullptr, &project);
+  ASSERT_TRUE(built.ok) << built.error.toStdString();
+  for (const Result* r : {&measured, &built}) {
+    const QStringList toLoad = r->context->layersToLoadOnCompletion().keys();
+    for (const QString& path : toLoad) EXPECT_FALSE(path.isEmpty() || path.endsWith(".tif")) << path.toStdString();
+  }
+}
+
 // QGIS asks before replacing a destination, but an input is never one: the DEM and the
 // hierarchy stay as they were.
 // As the dialog runs an algorithm with "Open output file after running": parameters read
