@@ -5,6 +5,7 @@ argument that is not UTF-8 text, which the catalogue's metadata cannot hold, ref
 
 Usage: tiles_arguments_test.py TILES_SOURCE_DIR"""
 import os
+import re
 import sys
 import tempfile
 
@@ -60,12 +61,34 @@ for address in ("tcp://10.0.0.1:8786", "node7:8786", "[::1]:8786", "tls://node7:
     message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", "300", "-scheduler", address])
     check("-scheduler %s is an address" % address, message is None or not message.startswith("-scheduler"), message)
 
-for size, block, least in (("0", None, 6), ("3", None, 6), ("8", "4", 8), ("5", "5", 10)):
+for size, block, least in (("0", None, 6), ("3", None, 6), ("8", "4", 8), ("5", "5", 10), ("-300", None, 6),
+                           ("300.0", None, 6), ("abc", None, 6)):
     extra = ["--", "-block", block] if block else []
     message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", size] + extra)
-    check("-tile_size %s with -block %s is refused below two blocks, naming the least" % (size, block or 3),
-          message is not None and (message.startswith("-tile_size %s: a tile is at least two blocks" % size)
-                                   and ("give %d or more" % least) in message) == (int(size) < least), message)
+    refused = not re.fullmatch("[0-9]+", size) or int(size) < least
+    check("-tile_size %s with -block %s is refused below two blocks or not a whole number, naming the least"
+          % (size, block or 3), message is not None and (message.startswith("-tile_size %s: a tile is at least two blocks"
+                                                                            % size)
+                                                         and ("give a whole number, %d or more" % least) in message) == refused,
+          message)
+
+for option, values in (("-tile_size", ["300", "600"]), ("-workers", ["2", "1"]), ("-overwrite", [])):
+    given = [option] + values[:1] + [option] + values[1:]
+    message = refusal(parse_run, ["dem.tif", "c.gpkg"] + (["-tile_size", "300"] if option != "-tile_size" else []) + given)
+    check("%s given twice is refused (it took the last before)" % option,
+          message == "%s is given more than once" % option, message)
+
+for threads, refused in (("abc", True), ("0", True), ("-2", True), ("", True), ("3", False)):
+    os.environ["TINLOD_THREADS"] = threads
+    message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", "300"])
+    check("TINLOD_THREADS=%s is %s before any work" % (threads, "refused" if refused else "taken"),
+          (message is not None and message.startswith("TINLOD_THREADS=%s: give each tile's tinlod a whole number of "
+                                                      "threads" % threads)) == refused, message)
+del os.environ["TINLOD_THREADS"]
+
+message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", "300", "--", "-accuracy", "a.tif"])
+check("-accuracy after -- names the fix, tinlod accuracy on the catalogue",
+      message is not None and "tinlod accuracy DEM CATALOGUE.gpkg -accuracy RASTER.tif" in message, message)
 
 with tempfile.TemporaryDirectory() as folder:
     catalogue = os.path.join(folder, "c.gpkg")

@@ -293,15 +293,17 @@ def border_agreement(base, options, work, env):
           metadata.get("TINLOD_BORDER_KEPT"))
 
 
-def ctrl_c(dem, tiles, work, env):
+def ctrl_c(dem, tiles, work, env, stop=signal.SIGINT):
     """(i) Ctrl-C while tiles are being built: the run stops at once (exit 130), the tiles'
     tinlods end with it, and the tiles stay pending. The tinlod here sleeps, so that only
-    the stop can end the tasks."""
-    sleeper, pids = os.path.join(work, "sleeping_tinlod"), os.path.join(work, "sleeping.pids")
+    the stop can end the tasks. SIGTERM (a batch scheduler's) and SIGHUP (a closed
+    terminal) stop it alike."""
+    name = signal.Signals(stop).name
+    sleeper, pids = os.path.join(work, "sleeping_tinlod"), os.path.join(work, "sleeping_%s.pids" % name)
     with open(sleeper, "w") as f:
         f.write('#!/bin/sh\nfor a in "$@"; do [ "$a" = -check ] && exit 0; done\necho $$ >> %s\nexec sleep 120\n' % pids)
     os.chmod(sleeper, 0o755)
-    catalogue = os.path.join(work, "g.gpkg")
+    catalogue = os.path.join(work, "g_%s.gpkg" % name)
     driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-selection", "tile",
                                "-tinlod", sleeper], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     started = []
@@ -309,8 +311,8 @@ def ctrl_c(dem, tiles, work, env):
     while len(started) < 2 and time.monotonic() < deadline and driver.poll() is None:
         time.sleep(0.1)
         started = open(pids).read().split() if os.path.exists(pids) else []
-    check("(i) both workers are building a tile", len(started) == 2, started)
-    driver.send_signal(signal.SIGINT)
+    check("(i) both workers are building a tile (%s)" % name, len(started) == 2, started)
+    driver.send_signal(stop)
     stopping = time.monotonic()
     try:
         out, err = driver.communicate(timeout=30)
@@ -318,15 +320,15 @@ def ctrl_c(dem, tiles, work, env):
         driver.kill()
         out, err = driver.communicate()
     took = time.monotonic() - stopping
-    check("(i) Ctrl-C stops the run within 10 s with exit code 130", driver.returncode == 130 and took < 10,
+    check("(i) %s stops the run within 10 s with exit code 130" % name, driver.returncode == 130 and took < 10,
           (driver.returncode, took, err[-1000:]))
     time.sleep(0.5)  # the signal's delivery
     alive = [p for p in started if os.path.exists("/proc/%s" % p) and "Z" not in open("/proc/%s/stat" % p).read().split()[2]]
-    check("(i) the tiles' tinlods ended with the run", not alive, alive)
+    check("(i) the tiles' tinlods ended with the run (%s)" % name, not alive, alive)
     pending = [r["status"] for r in rows(catalogue)[0].values()]
-    check("(i) the tiles stay pending (the empty one found so) for a rerun",
+    check("(i) the tiles stay pending (the empty one found so) for a rerun (%s)" % name,
           pending.count("pending") >= 5 and "done" not in pending, pending)
-    check("(i) the message counts the tiles the catalogue has pending",
+    check("(i) the message counts the tiles the catalogue has pending (%s)" % name,
           ("%d tiles left pending in" % pending.count("pending")) in err, (pending, err[-500:]))
 
 
@@ -531,13 +533,22 @@ def main(tinlod, tiles):
           alike.stderr[-2000:])
     warning = os.path.join(work, "warning_tinlod")  # tinlod with a warning of its own
     with open(warning, "w") as f:
-        f.write('#!/bin/sh\necho "Warning: 2 of the 3 points to keep fall outside" >&2\nexec "%s" "$@"\n' % program)
+        f.write('#!/bin/sh\nt=; p=\nfor a in "$@"; do [ "$p" = -tile ] && t=$a; p=$a; done\n'
+                'echo "Warning: 2 of the 3 points to keep fall outside" >&2\n'
+                'echo "Warning: tile $t has a warning of its own" >&2\n'
+                'echo "Warning: 3 border vertices would take cells ...: TINLOD_BORDER_REFUSED lists them" >&2\n'
+                'exec "%s" "$@"\n' % program)
     os.chmod(warning, 0o755)
     warned = run(base + [os.path.join(work, "wn.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2", "-tinlod", warning],
                  env)
-    check("a warning tinlod gives on a tile is shown once per tile built, naming the tile (a worker's stderr goes "
-          "nowhere)", warned.returncode == 0 and warned.stderr.count("Warning: tile ") == 5
+    own = re.findall(r"Warning: tile (\d+,\d+): tile (\d+,\d+) has a warning of its own", warned.stderr)
+    check("a warning tinlod gives on a tile is shown, naming the tile (a worker's stderr goes nowhere): each tile's own",
+          warned.returncode == 0 and len(own) == 5 and all(a == b for a, b in own), warned.stderr[-2000:])
+    check("... one every tile gives alike, once (thousands of times in a national job)",
+          warned.stderr.count("2 of the 3 points to keep fall outside") == 1
           and "Warning: tile 0,0: 2 of the 3 points to keep fall outside\n" in warned.stderr, warned.stderr[-2000:])
+    check("... and none the driver acts on itself (the border rule's refused cells)",
+          "TINLOD_BORDER_REFUSED" not in warned.stderr, warned.stderr[-2000:])
     empty = run(base + [os.path.join(work, "e0.gpkg")] + options + ["-valid_range", "50000", "90000"], env)
     check("a job whose every tile is empty (no valid cell) is an error naming the fix, not a success",
           empty.returncode == 1 and "none of the 6 tiles has a valid cell" in empty.stderr
@@ -569,11 +580,13 @@ def main(tinlod, tiles):
     check("(b) the run with a killed tile succeeds", second.returncode == 0, second.stderr[-2000:])
     found_b, _ = check_complete(killed, "(b)")
     tile = found_b.get(KILLED_TILE, {})
-    check("(b) the killed tile took 2 attempts", tile.get("attempts") == 2, tile)
+    # attempts counts a tile's tasks, its survey's and its build's: 1 each, and 1 more for the killed try.
+    check("(b) the killed tile took 4 attempts (its survey and its build each killed on their first try)",
+          tile.get("attempts") == 4, tile)
     check("(b) it was killed mid-run (a whole attempt takes longer than the kill delay)",
           (tile.get("seconds") or 0) > KILL_AFTER, tile.get("seconds"))
-    check("(b) the other tiles took 1 attempt",
-          all(r["attempts"] == 1 for k, r in found_b.items() if k != KILLED_TILE), found_b)
+    check("(b) the other tiles took 2 attempts, a survey and a build",
+          all(r["attempts"] == 2 for k, r in found_b.items() if k != KILLED_TILE and r["status"] == "done"), found_b)
     leftovers = [n for n in os.listdir(os.path.join(work, "b_tiles")) if not re.fullmatch(r"tile_\d+_\d+\.gpkg|\.driver\.lock|line_outline\.txt", n)]
     check("(b) nothing half-written is left in the tiles folder", not leftovers, leftovers)
 
@@ -893,7 +906,8 @@ def main(tinlod, tiles):
     info_of_catalogue(tinlod, catalogue)
     lod_and_accuracy(tinlod, catalogue, dem, work)
     border_agreement(base, options, work, env)
-    ctrl_c(dem, tiles, work, env)
+    for stop in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        ctrl_c(dem, tiles, work, env, stop)
     ctrl_c_in_survey(tinlod, dem, tiles, work, env)
     ctrl_c_with_tiles_done(tinlod, dem, tiles, work, env)
 

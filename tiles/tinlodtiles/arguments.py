@@ -67,8 +67,10 @@ REFUSED_BUILD_OPTIONS = {
     "-tile": "tinlod-tiles gives each task its tile",
     "-check": "tinlod-tiles checks the build options itself before any tile runs",
     "-tile_size": "give -tile_size to tinlod-tiles itself, before --",
-    "-accuracy": "one raster per run cannot hold every tile",
-    "-report": "one report per run cannot hold every tile",
+    "-accuracy": "one raster per run cannot hold every tile; once the tiles are built, "
+                 "tinlod accuracy DEM CATALOGUE.gpkg -accuracy RASTER.tif measures them as one TIN",
+    "-report": "one report per run cannot hold every tile; once the tiles are built, "
+               "tinlod accuracy DEM CATALOGUE.gpkg -report REPORT.html measures them as one TIN",
     "-overwrite": "give -overwrite to tinlod-tiles itself, before --",
     "-q": "give -q to tinlod-tiles itself, before --",
 }
@@ -106,6 +108,13 @@ def whole_number(text, option, least):
     return int(text)
 
 
+def tile_size(text, block):
+    if not re.fullmatch(r"[0-9]+", text or "") or int(text) < 2 * block:
+        raise TilesError("-tile_size %s: a tile is at least two blocks of -block %d: give a whole number, %d or more "
+                         "(thousands of cells make fewer, larger tiles)" % (text, block, 2 * block))
+    return int(text)
+
+
 def split_options(args, valued, flags):
     """(positionals, {option: value, values or True}) of args, gdal-style; `valued` maps an
     option to the count of values it takes."""
@@ -113,6 +122,8 @@ def split_options(args, valued, flags):
     i = 0
     while i < len(args):
         arg = args[i]
+        if arg in options and (arg in valued or arg in flags):
+            raise TilesError("%s is given more than once" % arg)
         if arg in valued:
             count = valued[arg]
             if i + count >= len(args):
@@ -155,7 +166,7 @@ def parse_run(args):
     if "-workers" in options and "-scheduler" in options:
         raise TilesError("-workers sizes the local cluster; a -scheduler's workers are started with it "
                          "(dask worker ADDRESS --nworkers n): give one of them")
-    arguments = RunArguments(positionals[0], positionals[1], whole_number(options["-tile_size"], "-tile_size", 0),
+    arguments = RunArguments(positionals[0], positionals[1], tile_size(options["-tile_size"], build_block(build_options)),
                              scheduler=options.get("-scheduler"), overwrite="-overwrite" in options,
                              quiet="-q" in options, build_options=absolute_files(build_options))
     # tcp:// (Dask's default) or none; another protocol (tls://, ucx://) is the client's to read.
@@ -207,10 +218,11 @@ def check_run(arguments):
     for option in arguments.build_options:
         if option in REFUSED_BUILD_OPTIONS:
             raise TilesError("%s after --: %s" % (option, REFUSED_BUILD_OPTIONS[option]))
+    threads = os.environ.get("TINLOD_THREADS")
+    if threads is not None and (not re.fullmatch(r"[0-9]+", threads) or int(threads) < 1):
+        raise TilesError("TINLOD_THREADS=%s: give each tile's tinlod a whole number of threads, 1 or more, or unset it "
+                         "(each tinlod then gets its share of the cores)" % threads)
     block = build_block(arguments.build_options)
-    if arguments.tile_size < 2 * block:
-        raise TilesError("-tile_size %d: a tile is at least two blocks of -block %d: give %d or more (thousands of "
-                         "cells make fewer, larger tiles)" % (arguments.tile_size, block, 2 * block))
     if arguments.tile_size % block:
         lower = arguments.tile_size - arguments.tile_size % block
         raise TilesError("-tile_size %d is not a multiple of -block %d (so the tiles' samples would not meet): "

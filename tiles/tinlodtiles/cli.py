@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """tinlod-tiles' command line: parse, run, and report a failure once (exit 1, "ERROR: ...")."""
+import signal
 import subprocess
 import sys
 
@@ -19,6 +20,7 @@ def main(args):
         return version()
     gdal.UseExceptions()
     ogr.UseExceptions()
+    stop_as_ctrl_c(signal.SIGTERM, signal.SIGHUP)
     merging = args[0] == "merge"
     try:
         if merging:
@@ -35,6 +37,16 @@ def main(args):
     except RuntimeError as e:  # GDAL's own errors
         print("ERROR: %s" % e, file=sys.stderr)
         return 1
+
+
+def stop_as_ctrl_c(*signals):
+    """A batch scheduler's stop (SIGTERM) and a closed terminal (SIGHUP) stop a run as Ctrl-C
+    does, as they stop tinlod: the tiles' tinlods ended, the catalogue's level files written,
+    exit 130. By default they would end the driver alone, its tasks' tinlods left running."""
+    def stop(signum, frame):
+        raise KeyboardInterrupt
+    for s in signals:
+        signal.signal(s, stop)
 
 
 def version():

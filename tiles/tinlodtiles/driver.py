@@ -28,6 +28,7 @@ from .progress import Progress, n_tiles
 from .survey_reader import SurveyReader
 from .survey_store import SurveyStore
 from .tile_file import read_tile_summary
+from .tile_warnings import TileWarnings
 from .tin_crs import predicted_tin_srs
 
 
@@ -383,6 +384,7 @@ class Workers:
 
     def __init__(self, arguments):
         self.arguments = arguments
+        self.warnings = TileWarnings()  # what the tasks' tinlods said, over every pass
 
     def __enter__(self):
         self.distributed = import_dask()
@@ -407,7 +409,8 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
         for future in distributed.as_completed(list(futures)):
             tile = futures.pop(future)
             path = survey_path(tiles_folder(arguments.catalogue), tile, survey) if survey else None
-            status = record_survey(catalogue, tile, future, path) if survey else record(catalogue, tile, future, arguments.catalogue)
+            status = (record_survey(catalogue, tile, future, path) if survey
+                      else record(catalogue, tile, future, arguments.catalogue, workers.warnings))
             if loaded is not None and status == "surveyed":
                 loaded.load(tile, path)
             outcome[status] = outcome.get(status, 0) + 1
@@ -465,7 +468,7 @@ def worker_threads(arguments):
 def record_survey(catalogue, tile, future, path):
     """A survey task's end (its survey at `path`): only an empty or failed tile changes the
     catalogue."""
-    attempts = read_attempts(path)
+    attempts = (catalogue.value(tile.col, tile.row, "attempts") or 0) + read_attempts(path)  # a tile's tasks, every pass
     task.remove_if_present(task.attempts_path(path))
     if future.status != "finished":
         catalogue.update(tile.col, tile.row, {"status": "failed", "error": failure_message(future), "attempts": attempts})
@@ -473,6 +476,8 @@ def record_survey(catalogue, tile, future, path):
     status = future.result()["status"]
     if status == "empty":  # found by its survey: it is never built
         catalogue.update(tile.col, tile.row, {"status": "empty", "attempts": attempts})
+    else:
+        catalogue.update(tile.col, tile.row, {"attempts": attempts})
     return "surveyed" if status == "done" else status
 
 
@@ -496,8 +501,9 @@ def submit(client, pending, arguments, extra_options, survey, futures):
                                                    os.urandom(4).hex()))] = tile
 
 
-def record(catalogue, tile, future, catalogue_path):
-    """The catalogue row of a tile whose task has ended; returns its status."""
+def record(catalogue, tile, future, catalogue_path, warnings):
+    """The catalogue row of a tile whose task has ended; returns its status. Its tinlod's
+    warnings go to `warnings` (TileWarnings)."""
     folder = tiles_folder(catalogue_path)
     final = os.path.join(folder, tile.name)
     attempts = read_attempts(final)
@@ -508,8 +514,7 @@ def record(catalogue, tile, future, catalogue_path):
         result = future.result()
         values.update(status=result["status"], seconds=round(result["seconds"], 3),
                       peak_mib=round(result["peak_mib"], 1), error=None)
-        for warning in result.get("warnings", []):  # a worker's stderr goes nowhere the user sees
-            print("Warning: tile %d,%d: %s" % (tile.col, tile.row, warning), file=sys.stderr)
+        warnings.show(tile, result.get("warnings", []))
         if result["status"] == "done":
             try:
                 summary = read_tile_summary(final, "%d,%d" % (tile.col, tile.row))
