@@ -546,7 +546,8 @@ def main(tinlod, tiles):
           warned.returncode == 0 and len(own) == 5 and all(a == b for a, b in own), warned.stderr[-2000:])
     check("... one every tile gives alike, once (thousands of times in a national job)",
           warned.stderr.count("2 of the 3 points to keep fall outside") == 1
-          and "Warning: tile 0,0: 2 of the 3 points to keep fall outside\n" in warned.stderr, warned.stderr[-2000:])
+          and re.search(r"Warning: tile \d+,\d+: 2 of the 3 points to keep fall outside\n", warned.stderr),
+          warned.stderr[-2000:])
     check("... and none the driver acts on itself (the border rule's refused cells)",
           "TINLOD_BORDER_REFUSED" not in warned.stderr, warned.stderr[-2000:])
     empty = run(base + [os.path.join(work, "e0.gpkg")] + options + ["-valid_range", "50000", "90000"], env)
@@ -716,6 +717,17 @@ def main(tinlod, tiles):
           coarsest.returncode == 0 and ("level_%d," % (levels - 1)) in coarsest.stdout
           and level_count(os.path.join(work, "coarsest.gpkg"), "level_%d" % (levels - 1))
           == sum(level_count(f, "level_%d" % (levels - 1)) for f in files), coarsest.stdout + coarsest.stderr)
+    merged_0 = os.path.join(work, "merged_0.gpkg")
+    told = [run([tinlod] + args) for args in (["info", merged_0], ["lod", merged_0, os.path.join(work, "ml.gpkg"),
+                                                                  "-max_error", "5", "-q"])]
+    check("(d) tinlod info and lod on a merged level name it and the catalogue to give instead",
+          all(t.returncode == 1 and ("is level 0 of the tiles catalogue %s, merged by tinlod-tiles merge"
+                                     % os.path.abspath(catalogue)) in t.stderr for t in told),
+          [t.stderr for t in told])
+    away = run([tiles, "merge", catalogue, "-level", "1", os.path.join(work, "away.gpkg"), "-te", "0", "0", "1", "1"])
+    check("(d) merge -te of a box no tile meets names where the finished tiles are, and the CRS",
+          away.returncode == 1 and "no finished tile meets this box; the finished tiles cover" in away.stderr
+          and "xmin ymin xmax ymax, in" in away.stderr, away.stderr)
     beyond = run([tiles, "merge", catalogue, "-level", str(levels), os.path.join(work, "m.gpkg")])
     check("(d) merge refuses a level the tiles do not have", beyond.returncode == 1 and "-level" in beyond.stderr,
           beyond.stderr)

@@ -150,6 +150,10 @@ HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
     return catalogueInfo(*ds, std::move(info));
   }
   const auto kind = info.metadata.find("kind");
+  if (kind != info.metadata.end() && kind->second == "merged_level")
+    throw Error("'" + path + "' is level " + info.metadata["level"] + " of the tiles catalogue " +
+                info.metadata["catalogue"] + ", merged by tinlod-tiles merge into one layer to draw: " +
+                "tinlod info, lod, locate and accuracy take the catalogue itself");
   if (!ds->GetLayerByName("triangles") && kind != info.metadata.end() && kind->second != "tin" &&
       kind->second != "hierarchy" && kind->second != "lod")
     throw Error("'" + path + "' is a tinlod " + kind->second + " output (of tinlod lines or locate), not a TIN or a " +

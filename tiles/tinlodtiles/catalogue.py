@@ -185,6 +185,14 @@ class Catalogue:
         self.layer.SetSpatialFilter(None)
         return found
 
+    def described_extent(self):
+        """The done tiles' extent and the CRS, as a message names them."""
+        self.layer.SetAttributeFilter("status = 'done'")
+        xmin, xmax, ymin, ymax = self.layer.GetExtent()
+        self.layer.SetAttributeFilter(None)
+        crs = self.srs.GetName() if self.srs is not None else "no CRS"
+        return "%.3f %.3f %.3f %.3f (xmin ymin xmax ymax, in %s)" % (xmin, ymin, xmax, ymax, crs)
+
     def extent_in_layer_srs(self, polygon, srs):
         """A tile's extent in the catalogue's CRS (the same, unless the core chose another)."""
         polygon = polygon.Clone()

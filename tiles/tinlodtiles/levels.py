@@ -109,6 +109,9 @@ def unfinished_warning(rows):
                                       ", ".join("%d %s" % (n, s) for s, n in sorted(unfinished.items()))))
 
 
+MERGED_KIND = "merged_level"  # a merge output's TINLOD_KIND
+
+
 def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     """The tiles' level `level` (-1: the coarsest; of the tiles meeting `extent`, if given)
     merged into one layer `level_K` of a new GeoPackage; returns K and its triangle count."""
@@ -127,9 +130,11 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
                          if levels else "-level: %s has no finished tile yet; run tinlod-tiles on it first"
                          % catalogue_path)
     files = built_tile_files(catalogue, catalogue_path, extent)
+    finished = catalogue.described_extent() if not files else None
     catalogue.close()
     if not files:
-        raise TilesError("-te: no finished tile meets %s" % " ".join("%g" % v for v in extent))
+        raise TilesError("-te %s: no finished tile meets this box; the finished tiles cover %s"
+                         % (" ".join("%.3f" % v for v in extent), finished))
     for path in files:
         check_exists(path)
     refusing = [path for path in files if refuses_line_vertices(path)]
@@ -148,8 +153,13 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     partial = out_path + ".partial.gpkg"
     try:
         options = gdal.VectorTranslateOptions(format="GPKG", layerName="level_%d" % level)
-        if gdal.VectorTranslate(partial, source, options=options) is None:
+        written = gdal.VectorTranslate(partial, source, options=options)
+        if written is None:
             raise TilesError("could not write %s" % out_path)
+        # tinlod's readers name what the file is, and the catalogue they take instead.
+        written.SetMetadata({"TINLOD_KIND": MERGED_KIND, "TINLOD_LEVEL": str(level),
+                             "TINLOD_CATALOGUE": os.path.abspath(catalogue_path)})
+        written = None
         os.replace(partial, out_path)
     finally:
         gdal.Unlink(source)
