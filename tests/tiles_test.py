@@ -475,9 +475,15 @@ def main(tinlod, tiles):
     blocked = os.path.join(work, "blocked.gpkg")
     open(os.path.join(work, "blocked_tiles"), "w").close()  # a file where the tiles folder goes
     refused = run(base[:1] + [dem, blocked, "-tile_size", str(TILE_SIZE), "-tinlod", program])
-    check("a tiles folder that cannot be made is an error naming it, not a traceback",
-          refused.returncode == 1 and "cannot make the tiles folder" in refused.stderr
-          and "Traceback" not in refused.stderr, refused.stderr[-1500:])
+    check("a file where the tiles folder goes is an error naming it as in the way, not a traceback",
+          refused.returncode == 1 and ("%s is in the way" % os.path.join(work, "blocked_tiles")) in refused.stderr
+          and "Traceback" not in refused.stderr and not os.path.exists(blocked), refused.stderr[-1500:])
+    tiny = os.path.join(work, "tiny.tif")
+    gdal.Translate(tiny, dem, srcWin=[0, 0, 1, 1])
+    one_cell = run(base[:1] + [tiny, os.path.join(work, "tiny.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program])
+    check("a DEM of fewer than 3 cells is refused before a catalogue is made, naming the cause",
+          one_cell.returncode == 1 and "has 1 x 1 cells: a TIN needs at least 3" in one_cell.stderr
+          and not os.path.exists(os.path.join(work, "tiny.gpkg")), one_cell.stderr[-1500:])
     zipped = os.path.join(work, "dem.zip")
     with zipfile.ZipFile(zipped, "w") as archive:
         archive.write(dem, "dem.tif")

@@ -256,6 +256,8 @@ def check_dem(path):
             dataset = None
     if dataset is None:
         raise TilesError("DEM %s is not a raster GDAL can open" % path)
+    if dataset.RasterXSize * dataset.RasterYSize < 3:
+        raise TilesError("DEM %s has %d x %d cells: a TIN needs at least 3" % (path, dataset.RasterXSize, dataset.RasterYSize))
 
 
 class _Quiet:

@@ -48,6 +48,9 @@ def run(arguments):
     if arguments.scheduler:
         check_reachable(arguments.scheduler)  # before the catalogue records the job's settings
     folder = tiles_folder(arguments.catalogue)
+    if os.path.exists(folder) and not os.path.isdir(folder):
+        raise TilesError("%s is in the way: the catalogue's tiles go into a folder of that name; move that file, or "
+                         "name another catalogue" % folder)
     try:
         os.makedirs(folder, exist_ok=True)
     except OSError as e:
