@@ -195,7 +195,11 @@ void addAgreementMetadata(const Dem& dem, const TileBorders& borders, const Hier
   std::vector<std::uint64_t> refused = h.borderRefused;
   std::sort(refused.begin(), refused.end());
   m["TINLOD_BORDER_REFUSED"] = cellList(refused);
-  if (!refused.empty())
+  if (refused.size() == 1)
+    progress.warn("1 border vertex would take cells of this tile beyond -max_error; it stayed here, so the tile "
+                  "beside it must keep it too (tinlod tiles does so, adding it to the -border_keep file and building "
+                  "both again): TINLOD_BORDER_REFUSED lists it");
+  else if (!refused.empty())
     progress.warn(std::to_string(refused.size()) + " border vertices would take cells of this tile beyond -max_error; "
                   "they stayed here, so the tiles beside them must keep them too (tinlod tiles does so, "
                   "adding them to the -border_keep file and building both again): TINLOD_BORDER_REFUSED lists them");

@@ -22,8 +22,8 @@ Usage: tinlod-tiles DEM CATALOGUE.gpkg -tile_size N [options] [-- build options]
        tinlod-tiles --version
 
 Tiles:
-  -tile_size N     cells per tile side, a multiple of the build's -block (default 3);
-                   neighbouring tiles share a row or column of cells
+  -tile_size N     cell steps per tile side (a tile spans N + 1 cells), a multiple of the
+                   build's -block (default 3); neighbouring tiles share that row or column
   -workers n       local cluster: workers, one tile each at a time
                    (default: the number of cores)
   -scheduler ADDR  a running Dask scheduler (tcp://host:8786) instead of a local cluster;
@@ -162,7 +162,7 @@ def parse_run(args):
     if len(positionals) != 2:
         raise TilesError("give the DEM and the catalogue: tinlod-tiles DEM CATALOGUE.gpkg -tile_size N")
     if "-tile_size" not in options:
-        raise TilesError("-tile_size is required: the cells per tile side, e.g. -tile_size 3000")
+        raise TilesError("-tile_size is required: the cell steps per tile side, e.g. -tile_size 3000")
     if "-workers" in options and "-scheduler" in options:
         raise TilesError("-workers sizes the local cluster; a -scheduler's workers are started with it "
                          "(dask worker ADDRESS --nworkers n): give one of them")

@@ -642,7 +642,8 @@ def failure_summary(rows):
     alike = len(ranked) == 1 and all(row["status"] in ("failed", "empty") for row in rows)
     advice = ("every tile failed alike: if the DEM or the options are wrong, correct them and run again with "
               "-overwrite (the catalogue keeps the options it was made with)" if alike else "run again to retry them")
-    return "\n  ".join(["they say:"] + lines) + "\n" + advice
+    failed = sum(len(tiles) for tiles in messages.values())
+    return "\n  ".join(["it says:" if failed == 1 else "they say:"] + lines) + "\n" + advice
 
 
 def print_summary(catalogue_path, ran, builds, rounds, skipped, states, levels, vrts):

@@ -7,7 +7,7 @@ tile alike, thousands of times in a national job; one the driver acts on itself 
 import sys
 
 # Warnings addressed to someone building tiles by hand, whose work the driver does.
-HANDLED = ("TINLOD_BORDER_REFUSED lists them",)
+HANDLED = ("TINLOD_BORDER_REFUSED lists",)
 
 
 class TileWarnings:
