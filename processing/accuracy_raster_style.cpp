@@ -32,6 +32,7 @@ void AccuracyRasterStyle::apply(QgsRasterLayer& layer) {
 }
 
 void AccuracyRasterStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback*) {
+  if (reloadedIfLoadedBefore(layer)) return;
   if (auto* raster = qobject_cast<QgsRasterLayer*>(layer)) apply(*raster);
   placeLayer(layer, context.project());
 }

@@ -10,6 +10,7 @@
 namespace tinlod::qgis {
 
 void ConcavityPartsStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback*) {
+  if (reloadedIfLoadedBefore(layer)) return;
   if (auto* vector = qobject_cast<QgsVectorLayer*>(layer)) {
     QgsCategoryList categories;
     // ColorBrewer RdBu's ends, as the accuracy raster's: red bulges out, blue bends in.

@@ -10,6 +10,7 @@ namespace {
 
 const QString kOurGroup = QStringLiteral("tinlod/group");
 const QString kOrder = QStringLiteral("tinlod/order");
+const QString kLoaded = QStringLiteral("tinlod/loaded");  // on a layer: placed (and styled) by a run
 
 QgsLayerTreeGroup* groupOfOurs(QgsLayerTreeGroup* root, const QString& name) {
   QgsLayerTreeGroup* group = root->findGroup(name);
@@ -32,8 +33,16 @@ void keepNewLayersOutOf(QgsLayerTreeGroup* group, QgsProject* project) {
 
 }  // namespace
 
+bool reloadedIfLoadedBefore(QgsMapLayer* layer) {
+  if (!layer || !layer->customProperty(kLoaded).toBool()) return false;
+  layer->reload();
+  layer->triggerRepaint();
+  return true;
+}
+
 void placeLayer(QgsMapLayer* layer, QgsProject* project, const QString& group, int order, bool visible) {
   if (!project) return;
+  layer->setCustomProperty(kLoaded, true);
   QgsLayerTreeGroup* root = project->layerTreeRoot();
   QgsLayerTreeLayer* node = root->findLayer(layer);
   if (!node) return;

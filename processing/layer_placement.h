@@ -21,6 +21,12 @@ namespace tinlod::qgis {
 void placeLayer(QgsMapLayer* layer, QgsProject* project, const QString& group = QString(), int order = 0,
                 bool visible = true);
 
+// A layer an earlier run loaded and styled (QGIS hands a run the layer already on the map
+// for the same file, not a new one): true after reloading it, which shows the file the run
+// has just written (the layer still reads the file it replaced), keeping the user's style
+// and place. Every post-processor starts with it.
+bool reloadedIfLoadedBefore(QgsMapLayer* layer);
+
 // The details to load an output layer into `project` with: named as given (not after its
 // file, as QGIS would by default), placed by placeLayer, or by `style` (which takes over
 // placing) if given.
@@ -33,7 +39,7 @@ QgsProcessingContext::LayerDetails placedLayerDetails(
 class PlacedLayer : public QgsProcessingLayerPostProcessorInterface {
  public:
   void postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback*) override {
-    placeLayer(layer, context.project());
+    if (!reloadedIfLoadedBefore(layer)) placeLayer(layer, context.project());
   }
 };
 

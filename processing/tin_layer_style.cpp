@@ -15,6 +15,7 @@
 namespace tinlod::qgis {
 
 void TinLayerStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback*) {
+  if (reloadedIfLoadedBefore(layer)) return;
   auto* vector = qobject_cast<QgsVectorLayer*>(layer);
   if (!vector) return;
   if (vector->geometryType() == QgsWkbTypes::PolygonGeometry) {

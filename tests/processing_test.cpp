@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 #include <qgscategorizedsymbolrenderer.h>
+#include <qgssinglesymbolrenderer.h>
 #include <qgssymbol.h>
 #include <qgsrasterlayer.h>
 #include <qgssinglebandpseudocolorrenderer.h>
@@ -351,6 +352,51 @@ TEST(Processing, TemporaryOutputsAreNamedAfterTheToolVerticesHiddenAndOutOfAHier
   for (QgsLayerTreeNode* child : project.layerTreeRoot()->children())
     locatedAtTop |= child->name() == QStringLiteral("points with elevation");
   EXPECT_TRUE(locatedAtTop);
+}
+
+// Running again onto a file already on the map: QGIS hands the post-processors the layers
+// already there (mapLayerFromString finds them by source), not new ones. They show the new
+// file (they read the one it replaced until reloaded) and keep the user's style and place.
+TEST(Processing, RunningAgainOntoALoadedFileShowsTheNewFileAndKeepsTheUsersStyle) {
+  QgsProject project;
+  const QString out = QString::fromStdString(test::tempDir() + "/again.gpkg");
+  auto build = [&](int deletePct) {
+    Result r = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                            {{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", 3}, {"DELETE_PCT", deletePct},
+                             {"OUTPUT", out}}, nullptr, &project);
+    EXPECT_TRUE(r.ok) << r.error.toStdString();
+    // As QGIS's handleAlgorithmResults: the layer on the map for the same source, or a new one.
+    const auto layers = r.context->layersToLoadOnCompletion();
+    for (auto it = layers.constBegin(); it != layers.constEnd(); ++it) {
+      QgsProcessingContext loading;
+      loading.setProject(&project);
+      QgsMapLayer* layer = QgsProcessingUtils::mapLayerFromString(it.key(), loading);
+      QgsProcessingContext::LayerDetails details = it.value();
+      details.setOutputLayerName(layer);
+      if (QgsMapLayer* taken = loading.temporaryLayerStore()->takeMapLayer(layer)) project.addMapLayer(taken);
+      it.value().postProcessor()->postProcessLayer(layer, loading, nullptr);
+    }
+    return r;
+  };
+  build(20);
+  const QList<QgsMapLayer*> found = project.mapLayersByName(QStringLiteral("level_3"));
+  ASSERT_EQ(found.size(), 1);
+  auto* level3 = qobject_cast<QgsVectorLayer*>(found[0]);
+  QgsSymbol* mine = QgsSymbol::defaultSymbol(QgsWkbTypes::PolygonGeometry);
+  mine->setColor(QColor(1, 2, 3));
+  level3->setRenderer(new QgsSingleSymbolRenderer(mine));
+  project.layerTreeRoot()->findLayer(level3)->setItemVisibilityChecked(true);
+  const long long before = level3->featureCount();
+
+  build(40);
+  EXPECT_EQ(project.mapLayersByName(QStringLiteral("level_3")).size(), 1) << "the same layer, not a second";
+  const long long written = featureCount(out, QStringLiteral("level_3"));
+  EXPECT_LT(written, before);  // 40 % a level deletes more than 20 %
+  EXPECT_EQ(level3->featureCount(), written) << "the layer still reads the file the run replaced";
+  auto* kept = dynamic_cast<QgsSingleSymbolRenderer*>(level3->renderer());
+  ASSERT_NE(kept, nullptr);
+  EXPECT_EQ(kept->symbol()->color(), QColor(1, 2, 3)) << "the user's style was replaced";
+  EXPECT_TRUE(project.layerTreeRoot()->findLayer(level3)->itemVisibilityChecked());
 }
 
 // QGIS adds each loaded layer where the current one is: inside the group of levels once
