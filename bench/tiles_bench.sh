@@ -17,13 +17,17 @@
 #  5. under -method error -max_error 25, the rounds that agree the border lines, and the
 #     union against a whole run (alps_2x2 as 4 and 16 tiles, patagonia_coast as 16);
 #  6. with tinlod tiles -exact_stop: the union's coarsest level against a whole run's count
-#     (alps_2x2 as 4 and 16 tiles, patagonia_coast as 16).
+#     (alps_2x2 as 4 and 16 tiles, patagonia_coast as 16);
+#  7. (part driver) the driver's memory and time to set the thresholds of a national job:
+#     alps_2x2's 16 surveys (tiles of 600) read again and again as DRIVER_TILES tiles' (default
+#     5960), histograms in a SurveyStore as tinlod-tiles does, and held in memory as before.
 # Usage: bash bench/tiles_bench.sh [parts...]
-#   (parts: accuracy memory measure throughput throughput_large bounded exact_stop; default all
-#   but throughput_large)
+#   (parts: accuracy memory measure throughput throughput_large bounded exact_stop driver;
+#   default all but throughput_large and driver)
 # Environment: TINLOD (default build/core/tinlod), TINLOD_TILES (default build/tiles/tinlod-tiles),
 #   WORK (default build/tiles-bench: outputs go there), TINLOD_TEST_DATA (default ../shared/data),
-#   THROUGHPUT_ROUNDS (default 3: rounds of the three throughput runs, taken in turn).
+#   THROUGHPUT_ROUNDS (default 3: rounds of the three throughput runs, taken in turn),
+#   DRIVER_TILES (default 5960: the tiles of part driver).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 tinlod=${TINLOD:-$root/build/core/tinlod}
@@ -225,6 +229,23 @@ print(f"speed-up of 2 workers over 1: {t1 / t2:.3f}x; over 1 single-threaded wor
 PY
 }
 
+driver_case() {
+  local dem=$data/alps_2x2_N46E007_N47E008.tif status across down c r
+  read -r across down < <(tile_grid "$dem" 600)
+  for ((c = 0; c < across; c++)); do
+    for ((r = 0; r < down; r++)); do
+      [[ -f $work/driver.survey_${c}_${r}.json ]] && continue
+      status=0
+      "$tinlod" build "$dem" "$work/driver.survey_${c}_${r}.json" -tile_size 600 -tile "$c,$r" -q -survey 2> /dev/null || status=$?
+      (( status == 0 || status == 3 )) || { echo "tile $c,$r: the survey failed (exit $status)"; return 1; }
+    done
+  done
+  echo "== the driver's thresholds for ${DRIVER_TILES:-5960} tiles (alps_2x2's 16 surveys of 600-cell tiles, again and again)"
+  for mode in "" -in_memory; do
+    /usr/bin/python3 "$root/bench/driver_surveys.py" "$root/tiles" "${DRIVER_TILES:-5960}" "$work"/driver.survey_*.json $mode | head -1
+  done
+}
+
 # tinlod tiles -exact_stop (a second survey pass sets the level that reaches the stop): the
 # union's coarsest level against a whole run's count, and the accuracy at equal counts.
 exact_stop_case() {  # NAME DEM SIZE
@@ -294,6 +315,7 @@ for part in $parts; do
       bounded_case alps16 "$data/alps_2x2_N46E007_N47E008.tif" 600
       bounded_case patagonia16 "$data/patagonia_coast_S46W066.tif" 900
       ;;
+    driver) driver_case ;;
     *) echo "unknown part $part" >&2; exit 2 ;;
   esac
 done
