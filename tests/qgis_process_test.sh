@@ -180,15 +180,17 @@ PY
 )
 "$qp" --json run tinlod:extractlod --HIERARCHY="$work/cat.gpkg" "--CENTER=$utm_centre [EPSG:32632]" --DROPOFF=20 --OUTPUT="$work/cat_utm.gpkg" > "$work/cat_utm.json" 2> "$work/cat_utm.err" || true
 "$qp" --json run tinlod:extractlod --HIERARCHY="$work/cat.gpkg" "--CENTER=$lonlat_centre [EPSG:4326]" --DROPOFF=20 --OUTPUT="$work/cat_ll.gpkg" > "$work/cat_ll.json" 2> "$work/cat_ll.err" || true
+# Without a CRS (no project here): in the hierarchy's, as docs/qgis/extractlod.md says.
+"$qp" --json run tinlod:extractlod --HIERARCHY="$work/cat.gpkg" "--CENTER=$utm_centre" --DROPOFF=20 --OUTPUT="$work/cat_bare.gpkg" > "$work/cat_bare.json" 2> "$work/cat_bare.err" || true
 "$tinlod_cli" lod "$work/cat.gpkg" "$work/cat_coarsest.gpkg" -center 0 0 -dropoff 0 -q
-check "qgis_process --json run tinlod:extractlod on a catalogue: a CENTER in EPSG:4326 gives the TIN of the same centre in the tiles' CRS" /usr/bin/python3 - "$work/cat_utm.json" "$work/cat_ll.json" "$work/cat_coarsest.gpkg" <<'PY'
+check "qgis_process --json run tinlod:extractlod on a catalogue: a CENTER in EPSG:4326, or with no CRS, gives the TIN of the same centre in the tiles' CRS" /usr/bin/python3 - "$work/cat_utm.json" "$work/cat_ll.json" "$work/cat_bare.json" "$work/cat_coarsest.gpkg" <<'PY'
 import json, sys
 from osgeo import ogr
-utm, lonlat = (int(json.load(open(p))["results"]["TRIANGLES"]) for p in sys.argv[1:3])
-ds = ogr.Open(sys.argv[3])
+utm, lonlat, bare = (int(json.load(open(p))["results"]["TRIANGLES"]) for p in sys.argv[1:4])
+ds = ogr.Open(sys.argv[4])
 coarsest = ds.GetLayerByName("triangles").GetFeatureCount()
-assert utm == lonlat > coarsest, (utm, lonlat, coarsest)  # finer near the centre either way
-print("  %d triangles either way (the coarsest level: %d)" % (utm, coarsest))
+assert utm == lonlat == bare > coarsest, (utm, lonlat, bare, coarsest)  # finer near the centre either way
+print("  %d triangles each way (the coarsest level: %d)" % (utm, coarsest))
 PY
 "$qp" --json run tinlod:locate --INPUT="$work/cat_lod.gpkg|layername=vertices" --HIERARCHY="$work/cat.gpkg" --LEVEL=0 --OUTPUT="$work/cat_loc.gpkg" > "$work/cat_loc.json" 2> "$work/cat_loc.err" || true
 check "qgis_process --json run tinlod:locate takes a catalogue: each vertex its own height on level 0" /usr/bin/python3 - "$work/cat_loc.gpkg" <<'PY'
