@@ -103,7 +103,9 @@ void checkJitter(const Dem& dem, const CrsTransform& transform, double jitter, c
   if (jitter > 0.5 * cell) {
     std::ostringstream msg;
     msg << "jitter " << jitter << " m is more than half the cell size (" << cell
-        << " m): points may pass their neighbours; consider a smaller -jitter";
+        << " m): a vertex may lie nearer a neighbouring cell's centre than its own, with its own cell's height; "
+           "consider a smaller -jitter (e.g. "
+        << std::setprecision(2) << 0.1 * cell << ")";
     progress.warn(msg.str());
   }
 }
