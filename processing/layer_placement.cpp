@@ -25,10 +25,18 @@ QgsLayerTreeGroup* groupOfOurs(QgsLayerTreeGroup* root, const QString& name) {
 // and adds the next layers beside the current one: the user's own would land in the group.
 // They go above it, until the user picks another place in the layer tree.
 void keepNewLayersOutOf(QgsLayerTreeGroup* group, QgsProject* project) {
-  QgsLayerTreeGroup* root = project->layerTreeRoot();
-  const int index = root->children().indexOf(group);
+  // Beside the group wherever the user has put it (a folder of their own, say).
+  auto* parent = qobject_cast<QgsLayerTreeGroup*>(group->parent());
+  const int index = parent ? parent->children().indexOf(group) : -1;
   if (index >= 0 && project->layerTreeRegistryBridge())
-    project->layerTreeRegistryBridge()->setLayerInsertionPoint(QgsLayerTreeRegistryBridge::InsertionPoint(root, index));
+    project->layerTreeRegistryBridge()->setLayerInsertionPoint(QgsLayerTreeRegistryBridge::InsertionPoint(parent, index));
+}
+
+// Running again with more levels makes a new coarsest level, shown: the levels an earlier run
+// showed are hidden, so that one level shows, as after a first run.
+void showOnly(QgsLayerTreeLayer* shown, QgsLayerTreeGroup* group) {
+  for (QgsLayerTreeNode* child : group->children())
+    if (child != shown && child->customProperty(kOrder).isValid()) child->setItemVisibilityChecked(false);
 }
 
 }  // namespace
@@ -67,6 +75,7 @@ void placeLayer(QgsMapLayer* layer, QgsProject* project, const QString& group, i
   }
   placed->setCustomProperty(kOrder, order);
   placed->setItemVisibilityChecked(visible);
+  if (!group.isEmpty() && visible) showOnly(placed, target);
   if (!group.isEmpty()) keepNewLayersOutOf(target, project);
 }
 

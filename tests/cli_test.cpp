@@ -301,6 +301,19 @@ TEST(Cli, TermSignalStopsCleanlyWithNothingLeft) {
   }
 }
 
+// Under nohup (SIGHUP ignored) a closed terminal does not stop a run: it must outlive it.
+TEST(Cli, HangupIgnoredAsNohupLeavesItLetsTheRunFinish) {
+  const std::string dir = test::tempDir();
+  const std::string big = dir + "/big.tif";
+  ASSERT_EQ(tinlod("makedem -q -size 1500 1500 -cell 10 " + big).exitCode, 0);
+  const std::string cmd = "cd " + dir + " && (nohup " + std::string(TINLOD_CLI) +
+                          " sample -q -block 1 big.tif tin.gpkg > /dev/null 2> err & pid=$!; sleep 2; kill -HUP $pid; "
+                          "wait $pid; echo $? > rc)";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(test::readFile(dir + "/rc"), "0\n") << test::readFile(dir + "/err");
+  EXPECT_TRUE(fs::exists(dir + "/tin.gpkg"));
+}
+
 TEST(Cli, ExistingOutputNeedsOverwrite) {
   const std::string out = test::tempDir() + "/tin.gpkg";
   ASSERT_EQ(tinlod("sample -q " + defaultDem() + " " + out).exitCode, 0);

@@ -360,10 +360,10 @@ TEST(Processing, TemporaryOutputsAreNamedAfterTheToolVerticesHiddenAndOutOfAHier
 TEST(Processing, RunningAgainOntoALoadedFileShowsTheNewFileAndKeepsTheUsersStyle) {
   QgsProject project;
   const QString out = QString::fromStdString(test::tempDir() + "/again.gpkg");
-  auto build = [&](int deletePct) {
+  auto build = [&](int deletePct, int levels = 3) {
     Result r = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
-                            {{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", 3}, {"DELETE_PCT", deletePct},
-                             {"OUTPUT", out}}, nullptr, &project);
+                            {{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", levels},
+                             {"DELETE_PCT", deletePct}, {"OUTPUT", out}}, nullptr, &project);
     EXPECT_TRUE(r.ok) << r.error.toStdString();
     // As QGIS's handleAlgorithmResults: the layer on the map for the same source, or a new one.
     const auto layers = r.context->layersToLoadOnCompletion();
@@ -397,6 +397,13 @@ TEST(Processing, RunningAgainOntoALoadedFileShowsTheNewFileAndKeepsTheUsersStyle
   ASSERT_NE(kept, nullptr);
   EXPECT_EQ(kept->symbol()->color(), QColor(1, 2, 3)) << "the user's style was replaced";
   EXPECT_TRUE(project.layerTreeRoot()->findLayer(level3)->itemVisibilityChecked());
+
+  // With more levels, the new coarsest shows, alone, as after a first run.
+  build(40, 5);
+  QStringList shown;
+  for (QgsLayerTreeLayer* node : project.layerTreeRoot()->findLayers())
+    if (node->itemVisibilityChecked() && node->name().startsWith("level_")) shown << node->name();
+  EXPECT_EQ(shown, QStringList({"level_5"}));
 }
 
 // QGIS adds each loaded layer where the current one is: inside the group of levels once

@@ -78,7 +78,7 @@ for option, values in (("-tile_size", ["300", "600"]), ("-workers", ["2", "1"]),
     check("%s given twice is refused (it took the last before)" % option,
           message == "%s is given more than once" % option, message)
 
-for threads, refused in (("abc", True), ("0", True), ("-2", True), ("", True), ("3", False)):
+for threads, refused in (("abc", True), ("0", True), ("-2", True), ("", False), ("3", False)):
     os.environ["TINLOD_THREADS"] = threads
     message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", "300"])
     check("TINLOD_THREADS=%s is %s before any work" % (threads, "refused" if refused else "taken"),

@@ -11,6 +11,7 @@ before tiles) is stood in for by STANDIN, which cuts the tile's window itself.""
 import json
 import math
 import os
+import pty
 import re
 import shutil
 import signal
@@ -332,6 +333,47 @@ def ctrl_c(dem, tiles, work, env, stop=signal.SIGINT):
           ("%d tiles left pending in" % pending.count("pending")) in err, (pending, err[-500:]))
 
 
+def hangup_under_nohup(dem, tiles, work, env):
+    """(i) Under nohup (SIGHUP ignored) a closed terminal does not stop a run, which must
+    outlive it: SIGHUP mid-run, and the run ends as without it."""
+    catalogue = os.path.join(work, "nohup.gpkg")
+    driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-q"],
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                              preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_IGN))
+    deadline = time.monotonic() + 60
+    while not os.path.exists(catalogue) and time.monotonic() < deadline and driver.poll() is None:
+        time.sleep(0.05)
+    driver.send_signal(signal.SIGHUP)
+    out, err = driver.communicate(timeout=300)
+    statuses = [r["status"] for r in rows(catalogue)[0].values()] if driver.returncode == 0 else []
+    check("(i) under nohup, SIGHUP leaves the run to finish (exit 0, every tile built)",
+          driver.returncode == 0 and statuses and "pending" not in statuses, (driver.returncode, statuses, err[-1000:]))
+
+
+def hangup_of_the_terminal(dem, tiles, work, env):
+    """(i) The terminal closing under a run (a dropped ssh session) stops it as Ctrl-C does:
+    exit 130 and the level files over the tiles done, though writing to the terminal now
+    fails (EIO), which could happen before the hangup's signal is handled."""
+    catalogue = os.path.join(work, "hangup.gpkg")
+    folder = os.path.join(work, "hangup_tiles")
+    pid, terminal = pty.fork()
+    if pid == 0:  # the run, on the terminal
+        os.execve(tiles, [tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "1", "-selection", "tile"], env)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and not any(re.fullmatch(r"tile_\d+_\d+\.gpkg", n) for n in (
+            os.listdir(folder) if os.path.isdir(folder) else [])):
+        try:
+            os.read(terminal, 65536)  # what it shows, read as a terminal would
+        except OSError:
+            break
+    os.close(terminal)  # the terminal goes: the kernel hangs up its session
+    _, status = os.waitpid(pid, 0)
+    code = os.waitstatus_to_exitcode(status)
+    levels = os.path.join(work, "hangup_levels")
+    check("(i) a closed terminal stops the run as Ctrl-C does: exit 130, the level files over the tiles done",
+          code == 130 and os.path.isfile(os.path.join(levels, "level_0.vrt")), (code, os.listdir(work)))
+
+
 def slow_tinlod(tinlod, work, name, case):
     """A tinlod that sleeps in the runs matching a shell `case` pattern of its arguments."""
     path = os.path.join(work, name)
@@ -481,8 +523,8 @@ def main(tinlod, tiles):
     tiny = os.path.join(work, "tiny.tif")
     gdal.Translate(tiny, dem, srcWin=[0, 0, 1, 1])
     one_cell = run(base[:1] + [tiny, os.path.join(work, "tiny.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program])
-    check("a DEM of fewer than 3 cells is refused before a catalogue is made, naming the cause",
-          one_cell.returncode == 1 and "has 1 x 1 cells: a TIN needs at least 3" in one_cell.stderr
+    check("a DEM of one cell is refused before a catalogue is made, naming the cause",
+          one_cell.returncode == 1 and "has 1 x 1 cells: a TIN needs cells in two rows and two columns" in one_cell.stderr
           and not os.path.exists(os.path.join(work, "tiny.gpkg")), one_cell.stderr[-1500:])
     zipped = os.path.join(work, "dem.zip")
     with zipfile.ZipFile(zipped, "w") as archive:
@@ -731,9 +773,12 @@ def main(tinlod, tiles):
                                      % os.path.abspath(catalogue)) in t.stderr for t in told),
           [t.stderr for t in told])
     away = run([tiles, "merge", catalogue, "-level", "1", os.path.join(work, "away.gpkg"), "-te", "0", "0", "1", "1"])
-    check("(d) merge -te of a box no tile meets names where the finished tiles are, and the CRS",
-          away.returncode == 1 and "no finished tile meets this box; the finished tiles cover" in away.stderr
-          and "xmin ymin xmax ymax, in" in away.stderr, away.stderr)
+    done_boxes = [tile_box(catalogue, key, 0.0) for key, r in found.items() if r["status"] == "done"]
+    cover = "%.3f %.3f %.3f %.3f" % (min(b[0] for b in done_boxes), min(b[1] for b in done_boxes),
+                                     max(b[2] for b in done_boxes), max(b[3] for b in done_boxes))
+    check("(d) merge -te of a box no tile meets names where the finished tiles are (%s), and the CRS" % cover,
+          away.returncode == 1 and ("no finished tile meets this box; the finished tiles cover %s (xmin ymin xmax ymax, in "
+                                    % cover) in away.stderr, away.stderr)
     beyond = run([tiles, "merge", catalogue, "-level", str(levels), os.path.join(work, "m.gpkg")])
     check("(d) merge refuses a level the tiles do not have", beyond.returncode == 1 and "-level" in beyond.stderr,
           beyond.stderr)
@@ -926,6 +971,8 @@ def main(tinlod, tiles):
     border_agreement(base, options, work, env)
     for stop in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         ctrl_c(dem, tiles, work, env, stop)
+    hangup_under_nohup(dem, tiles, work, env)
+    hangup_of_the_terminal(dem, tiles, work, env)
     ctrl_c_in_survey(tinlod, dem, tiles, work, env)
     ctrl_c_with_tiles_done(tinlod, dem, tiles, work, env)
 

@@ -65,7 +65,11 @@ void catchStopSignals() {
   struct sigaction action {};
   action.sa_handler = onSignal;
   sigemptyset(&action.sa_mask);
-  for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &action, &gPrevious[i]);
+  for (int i = 0; i < 3; ++i) {
+    sigaction(kSignals[i], nullptr, &gPrevious[i]);
+    // A signal ignored stays so: nohup's SIGHUP, for a run that must outlive its terminal.
+    if (gPrevious[i].sa_handler != SIG_IGN) sigaction(kSignals[i], &action, nullptr);
+  }
 }
 
 void releaseStopSignals() {

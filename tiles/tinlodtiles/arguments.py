@@ -218,8 +218,8 @@ def check_run(arguments):
     for option in arguments.build_options:
         if option in REFUSED_BUILD_OPTIONS:
             raise TilesError("%s after --: %s" % (option, REFUSED_BUILD_OPTIONS[option]))
-    threads = os.environ.get("TINLOD_THREADS")
-    if threads is not None and (not re.fullmatch(r"[0-9]+", threads) or int(threads) < 1):
+    threads = os.environ.get("TINLOD_THREADS")  # empty is unset, as tinlod reads it
+    if threads and (not re.fullmatch(r"[0-9]+", threads) or int(threads) < 1):
         raise TilesError("TINLOD_THREADS=%s: give each tile's tinlod a whole number of threads, 1 or more, or unset it "
                          "(each tinlod then gets its share of the cores)" % threads)
     block = build_block(arguments.build_options)
@@ -256,8 +256,9 @@ def check_dem(path):
             dataset = None
     if dataset is None:
         raise TilesError("DEM %s is not a raster GDAL can open" % path)
-    if dataset.RasterXSize * dataset.RasterYSize < 3:
-        raise TilesError("DEM %s has %d x %d cells: a TIN needs at least 3" % (path, dataset.RasterXSize, dataset.RasterYSize))
+    if dataset.RasterXSize < 2 or dataset.RasterYSize < 2:
+        raise TilesError("DEM %s has %d x %d cells: a TIN needs cells in two rows and two columns at least"
+                         % (path, dataset.RasterXSize, dataset.RasterYSize))
 
 
 class _Quiet:

@@ -187,9 +187,14 @@ class Catalogue:
 
     def described_extent(self):
         """The done tiles' extent and the CRS, as a message names them."""
+        # The features' own envelopes: a GeoPackage's GetExtent is the whole layer's, filter or not.
         self.layer.SetAttributeFilter("status = 'done'")
-        xmin, xmax, ymin, ymax = self.layer.GetExtent()
+        boxes = [f.GetGeometryRef().GetEnvelope() for f in self.layer if f.GetGeometryRef() is not None]
         self.layer.SetAttributeFilter(None)
+        if not boxes:
+            return "nothing (no tile is finished)"
+        xmin, xmax = min(b[0] for b in boxes), max(b[1] for b in boxes)
+        ymin, ymax = min(b[2] for b in boxes), max(b[3] for b in boxes)
         crs = self.srs.GetName() if self.srs is not None else "no CRS"
         return "%.3f %.3f %.3f %.3f (xmin ymin xmax ymax, in %s)" % (xmin, ymin, xmax, ymax, crs)
 

@@ -8,6 +8,7 @@ from osgeo import gdal, ogr
 
 from .arguments import HELP, find_tinlod, parse_merge, parse_run
 from .errors import TilesError
+from .terminal_stream import guard_terminal_streams
 
 STOPPED_EXIT_CODE = 130  # as a shell reports a run ended by Ctrl-C
 
@@ -20,6 +21,7 @@ def main(args):
         return version()
     gdal.UseExceptions()
     ogr.UseExceptions()
+    guard_terminal_streams(sys)
     stop_as_ctrl_c(signal.SIGTERM, signal.SIGHUP)
     merging = args[0] == "merge"
     try:
@@ -42,11 +44,15 @@ def main(args):
 def stop_as_ctrl_c(*signals):
     """A batch scheduler's stop (SIGTERM) and a closed terminal (SIGHUP) stop a run as Ctrl-C
     does, as they stop tinlod: the tiles' tinlods ended, the catalogue's level files written,
-    exit 130. By default they would end the driver alone, its tasks' tinlods left running."""
+    exit 130. By default they would end the driver alone, its tasks' tinlods left running. A
+    signal already ignored stays so: nohup's SIGHUP, for a run that must outlive its terminal."""
     def stop(signum, frame):
+        for s in signals:  # one stop: a second signal (a hangup comes twice) must not cut the cleanup short
+            signal.signal(s, signal.SIG_IGN)
         raise KeyboardInterrupt
     for s in signals:
-        signal.signal(s, stop)
+        if signal.getsignal(s) == signal.SIG_DFL:
+            signal.signal(s, stop)
 
 
 def version():

@@ -469,8 +469,8 @@ def worker_threads(arguments):
 
 
 def record_survey(catalogue, tile, future, path):
-    """A survey task's end (its survey at `path`): only an empty or failed tile changes the
-    catalogue."""
+    """A survey task's end (its survey at `path`): the tile's attempts, and the status of a
+    tile found empty or failed."""
     attempts = (catalogue.value(tile.col, tile.row, "attempts") or 0) + read_attempts(path)  # a tile's tasks, every pass
     task.remove_if_present(task.attempts_path(path))
     if future.status != "finished":

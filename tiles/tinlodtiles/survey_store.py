@@ -13,6 +13,7 @@ import tempfile
 
 import numpy as np
 
+from .errors import TilesError
 from .importance_bins import Bins
 
 
@@ -30,6 +31,7 @@ class StoredBins:
 
 class SurveyStore:
     def __init__(self, folder):
+        self.folder = folder
         self._file = tempfile.TemporaryFile(dir=folder, prefix=".tinlod-surveys-")
         self._end = 0
 
@@ -50,11 +52,19 @@ class SurveyStore:
         """The handle of `bins` (Bins), written to the store."""
         data = np.ascontiguousarray(bins.values).tobytes()
         offset = self._end
-        os.pwrite(self._file.fileno(), data, offset)
+        try:
+            written = os.pwrite(self._file.fileno(), data, offset)
+        except OSError as e:
+            written = e
+        if written != len(data):  # a full disk: 117 KB a tile, 7 GB for 60,000 tiles
+            raise TilesError("cannot keep the surveys in %s (%s): the driver needs about 120 KB there a tile"
+                             % (self.folder, written.strerror if isinstance(written, OSError) else "a short write"))
         self._end += len(data)
         return StoredBins(self, bins.zero, bins.lo, len(bins.values), bins.values.dtype.str, offset)
 
     def read(self, offset, length, dtype):
         dtype = np.dtype(dtype)
         data = os.pread(self._file.fileno(), length * dtype.itemsize, offset)
+        if len(data) != length * dtype.itemsize:
+            raise TilesError("the surveys kept in %s were cut short: run again" % self.folder)
         return np.frombuffer(data, dtype)  # read-only: no Bins is changed in place
