@@ -67,8 +67,9 @@ void catchStopSignals() {
   sigemptyset(&action.sa_mask);
   for (int i = 0; i < 3; ++i) {
     sigaction(kSignals[i], nullptr, &gPrevious[i]);
-    // A signal ignored stays so: nohup's SIGHUP, for a run that must outlive its terminal.
-    if (gPrevious[i].sa_handler != SIG_IGN) sigaction(kSignals[i], &action, nullptr);
+    // nohup's SIGHUP stays ignored: the run must outlive its terminal. (SIGINT is caught even
+    // where a shell ignores it for a job it puts in the background: scripts stop those by it.)
+    if (kSignals[i] != SIGHUP || gPrevious[i].sa_handler != SIG_IGN) sigaction(kSignals[i], &action, nullptr);
   }
 }
 

@@ -44,14 +44,14 @@ def main(args):
 def stop_as_ctrl_c(*signals):
     """A batch scheduler's stop (SIGTERM) and a closed terminal (SIGHUP) stop a run as Ctrl-C
     does, as they stop tinlod: the tiles' tinlods ended, the catalogue's level files written,
-    exit 130. By default they would end the driver alone, its tasks' tinlods left running. A
-    signal already ignored stays so: nohup's SIGHUP, for a run that must outlive its terminal."""
+    exit 130. By default they would end the driver alone, its tasks' tinlods left running.
+    nohup's SIGHUP stays ignored: the run must outlive its terminal."""
     def stop(signum, frame):
         for s in signals:  # one stop: a second signal (a hangup comes twice) must not cut the cleanup short
             signal.signal(s, signal.SIG_IGN)
         raise KeyboardInterrupt
     for s in signals:
-        if signal.getsignal(s) == signal.SIG_DFL:
+        if not (s == signal.SIGHUP and signal.getsignal(s) == signal.SIG_IGN):
             signal.signal(s, stop)
 
 
