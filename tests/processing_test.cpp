@@ -97,6 +97,12 @@ Result runAlgorithm(const QString& id, const QVariantMap& parameters, RecordingF
   return r;
 }
 
+// A hierarchy of the default DEM at `out`, its levels not loaded.
+bool builtDefaultHierarchy(const QString& out) {
+  return runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                      {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", out}}).ok;
+}
+
 long long featureCount(const QString& gpkg, const QString& layer) {
   QgsVectorLayer l(gpkg + "|layername=" + layer, layer, QStringLiteral("ogr"));
   return l.isValid() ? l.featureCount() : -1;
@@ -637,8 +643,7 @@ TEST(Processing, BuildHierarchyWritesTheAccuracyRasterAndReportWhenAsked) {
   EXPECT_TRUE(fs::exists(report.toStdString()));
   // Without them, no accuracy file is made.
   const QString plain = QString::fromStdString(dir + "/plain.gpkg");
-  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
-                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", plain}}).ok);
+  ASSERT_TRUE(builtDefaultHierarchy(plain));
   int files = 0;
   for (const auto& entry : fs::directory_iterator(dir)) files += entry.path().extension() != ".gpkg";
   EXPECT_EQ(files, 2);
@@ -647,8 +652,7 @@ TEST(Processing, BuildHierarchyWritesTheAccuracyRasterAndReportWhenAsked) {
 TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
   const std::string dir = test::tempDir();
   const QString hier = QString::fromStdString(dir + "/hier.gpkg");
-  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
-                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  ASSERT_TRUE(builtDefaultHierarchy(hier));
   const QString raster = QString::fromStdString(dir + "/acc.tif"), report = QString::fromStdString(dir + "/acc.csv");
   const Result r = runAlgorithm(QStringLiteral("tinlod:accuracy"), {{"INPUT", QString::fromStdString(defaultDem())},
                                                                     {"HIERARCHY", hier},
@@ -696,8 +700,7 @@ TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
 TEST(Processing, AnAccuracyRasterLeftEmptyInABatchRowIsNotToLoad) {
   const std::string dir = test::tempDir();
   const QString hier = QString::fromStdString(dir + "/hier.gpkg");
-  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
-                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  ASSERT_TRUE(builtDefaultHierarchy(hier));
   QgsProject project;
   const QVariant none = QVariant::fromValue(QgsProcessingOutputLayerDefinition(QString(), &project));
   const Result measured = runAlgorithm(QStringLiteral("tinlod:accuracy"),
@@ -723,8 +726,7 @@ TEST(Processing, AnAccuracyRasterLeftEmptyInABatchRowIsNotToLoad) {
 TEST(Processing, AccuracyRasterLoadsStyledFromABackgroundRun) {
   const std::string dir = test::tempDir();
   const QString hier = QString::fromStdString(dir + "/bg_hier.gpkg");
-  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
-                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  ASSERT_TRUE(builtDefaultHierarchy(hier));
   for (const QString id : {QStringLiteral("tinlod:accuracy"), QStringLiteral("tinlod:buildhierarchy")}) {
     const QString raster = QString::fromStdString(dir + "/bg_" + id.mid(7).toStdString() + ".tif");
     QgsProject project;
@@ -870,8 +872,7 @@ TEST(Processing, ExtractLodMatchesTheCommandLineCoreAndNamesMissingTests) {
 TEST(Processing, HierarchyIsAFileOrALoadedLayerOfIt) {
   const std::string dir = test::tempDir();
   const QString hier = QString::fromStdString(dir + "/layer_h.gpkg");
-  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
-                           {{"INPUT", QString::fromStdString(defaultDem())}, {"LOAD_LEVELS", false}, {"OUTPUT", hier}}).ok);
+  ASSERT_TRUE(builtDefaultHierarchy(hier));
   QgsProject project;
   auto* level = new QgsVectorLayer(hier + QStringLiteral("|layername=level_2"), QStringLiteral("level_2"), QStringLiteral("ogr"));
   auto* scratch = new QgsVectorLayer(QStringLiteral("Point?crs=EPSG:32632"), QStringLiteral("scratch"), QStringLiteral("memory"));
