@@ -41,8 +41,10 @@ void showOnly(QgsLayerTreeLayer* shown, QgsLayerTreeGroup* group) {
 
 }  // namespace
 
+bool loadedByARun(const QgsMapLayer* layer) { return layer && layer->customProperty(kLoaded).toBool(); }
+
 bool reloadedIfLoadedBefore(QgsMapLayer* layer) {
-  if (!layer || !layer->customProperty(kLoaded).toBool()) return false;
+  if (!loadedByARun(layer)) return false;
   layer->reload();
   layer->triggerRepaint();
   return true;

@@ -27,6 +27,9 @@ void placeLayer(QgsMapLayer* layer, QgsProject* project, const QString& group = 
 // and place. Every post-processor starts with it.
 bool reloadedIfLoadedBefore(QgsMapLayer* layer);
 
+// Whether a run loaded (placed and styled) the layer, rather than the user.
+bool loadedByARun(const QgsMapLayer* layer);
+
 // The details to load an output layer into `project` with: named as given (not after its
 // file, as QGIS would by default), placed by placeLayer, or by `style` (which takes over
 // placing) if given.

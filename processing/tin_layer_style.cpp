@@ -11,10 +11,12 @@
 #include <QFileInfo>
 
 #include "layer_placement.h"
+#include "stale_layers.h"
 
 namespace tinlod::qgis {
 
 void TinLayerStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& context, QgsProcessingFeedback*) {
+  removeLayersOfTablesGone(layer, context.project());
   if (reloadedIfLoadedBefore(layer)) return;
   auto* vector = qobject_cast<QgsVectorLayer*>(layer);
   if (!vector) return;

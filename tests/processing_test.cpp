@@ -366,10 +366,8 @@ TEST(Processing, TemporaryOutputsAreNamedAfterTheToolVerticesHiddenAndOutOfAHier
 TEST(Processing, RunningAgainOntoALoadedFileShowsTheNewFileAndKeepsTheUsersStyle) {
   QgsProject project;
   const QString out = QString::fromStdString(test::tempDir() + "/again.gpkg");
-  auto build = [&](int deletePct, int levels = 3) {
-    Result r = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
-                            {{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", levels},
-                             {"DELETE_PCT", deletePct}, {"OUTPUT", out}}, nullptr, &project);
+  auto run = [&](const QString& algorithm, const QVariantMap& parameters) {
+    Result r = runAlgorithm(algorithm, parameters, nullptr, &project);
     EXPECT_TRUE(r.ok) << r.error.toStdString();
     // As QGIS's handleAlgorithmResults: the layer on the map for the same source, or a new one.
     const auto layers = r.context->layersToLoadOnCompletion();
@@ -383,6 +381,17 @@ TEST(Processing, RunningAgainOntoALoadedFileShowsTheNewFileAndKeepsTheUsersStyle
       it.value().postProcessor()->postProcessLayer(layer, loading, nullptr);
     }
     return r;
+  };
+  auto build = [&](int deletePct, int levels = 3) {
+    return run(QStringLiteral("tinlod:buildhierarchy"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                         {"MAX_LEVELS", levels}, {"DELETE_PCT", deletePct}, {"OUTPUT", out}});
+  };
+  auto layerNames = [&](bool shownOnly) {
+    QStringList names;
+    for (QgsLayerTreeLayer* node : project.layerTreeRoot()->findLayers())
+      if (!shownOnly || node->itemVisibilityChecked()) names << node->name();
+    names.sort();
+    return names.join(QStringLiteral(", ")).toStdString();
   };
   build(20);
   const QList<QgsMapLayer*> found = project.mapLayersByName(QStringLiteral("level_3"));
@@ -410,6 +419,22 @@ TEST(Processing, RunningAgainOntoALoadedFileShowsTheNewFileAndKeepsTheUsersStyle
   for (QgsLayerTreeLayer* node : project.layerTreeRoot()->findLayers())
     if (node->itemVisibilityChecked() && node->name().startsWith("level_")) shown << node->name();
   EXPECT_EQ(shown, QStringList({"level_5"}));
+
+  // With fewer, the levels the file no longer has go (they would be broken layers), and the
+  // new coarsest shows in place of the one shown; a layer the user loaded stays theirs.
+  auto* own = new QgsVectorLayer(out + QStringLiteral("|layername=level_4"), QStringLiteral("my level 4"), QStringLiteral("ogr"));
+  ASSERT_TRUE(own->isValid());
+  project.addMapLayer(own);
+  project.layerTreeRoot()->findLayer(own)->setItemVisibilityChecked(false);
+  build(40, 2);
+  EXPECT_EQ(layerNames(false), "level_0, level_1, level_2, my level 4");
+  EXPECT_EQ(layerNames(true), "level_2");
+  EXPECT_EQ(project.mapLayers().size(), 4);
+
+  // A TIN of another kind written over the hierarchy: its levels go too.
+  run(QStringLiteral("tinlod:sampletin"), {{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", out}});
+  EXPECT_EQ(layerNames(false), "again triangles, again vertices, my level 4");
+  EXPECT_EQ(layerNames(true), "again triangles");
 }
 
 // QGIS adds each loaded layer where the current one is: inside the group of levels once
