@@ -18,27 +18,46 @@ def check_job(tinlod, dem, catalogue, tile_size, tiles, build_options):
     ends, where a geographic DEM's cells are widest and narrowest); TilesError with tinlod's
     message if it refuses them. Returns the settings to record ("" from a tinlod that prints
     none)."""
-    for tile in dict.fromkeys((tiles[0], tiles[-1])):  # once for a single tile
-        result = run_check(tinlod, dem, catalogue, tile_size, tile, build_options)
-        if result.returncode != 0:
-            message = tinlod_error(result.stderr) or result.stderr.strip() or "exit code %d" % result.returncode
-            raise TilesError("tinlod build refuses the job (tile %d,%d): %s. Nothing was written"
-                             % (tile.col, tile.row, message))
-    return settings_of(tinlod, result)  # the options read alike on every tile
+    # At once: the run's first task waits on them.
+    checks = [(tile, start_check(tinlod, dem, catalogue, tile_size, tile, build_options))
+              for tile in dict.fromkeys((tiles[0], tiles[-1]))]  # once for a single tile
+    try:
+        for tile, check in checks:
+            result = finished(check)
+            if result.returncode != 0:
+                message = tinlod_error(result.stderr) or result.stderr.strip() or "exit code %d" % result.returncode
+                raise TilesError("tinlod build refuses the job (tile %d,%d): %s. Nothing was written"
+                                 % (tile.col, tile.row, message))
+        return settings_of(tinlod, result)  # the options read alike on every tile
+    finally:  # a refusal, or Ctrl-C
+        for _, process in checks:
+            if process.poll() is None:
+                process.kill()
+                process.wait()
 
 
 def recorded_settings(tinlod, dem, catalogue, tile_size, tile, build_options):
     """The settings of options an earlier run recorded only as given; "" if -check refuses
     them now."""
-    result = run_check(tinlod, dem, catalogue, tile_size, tile, build_options)
+    result = finished(start_check(tinlod, dem, catalogue, tile_size, tile, build_options))
     return settings_of(tinlod, result) if result.returncode == 0 else ""
 
 
-def run_check(tinlod, dem, catalogue, tile_size, tile, build_options):
+def start_check(tinlod, dem, catalogue, tile_size, tile, build_options):
     # Our options go first, so that a user's option without its value cannot take one.
     command = [tinlod, "build", dem, catalogue, "-check", "-tile_size", str(tile_size),
                "-tile", "%d,%d" % (tile.col, tile.row)]
-    return subprocess.run(command + list(build_options), capture_output=True, text=True, errors="surrogateescape")
+    return start(command + list(build_options))
+
+
+def start(command):
+    return subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            errors="surrogateescape")
+
+
+def finished(process):
+    stdout, stderr = process.communicate()
+    return subprocess.CompletedProcess(process.args, process.returncode, stdout, stderr)
 
 
 def settings_of(tinlod, result):
@@ -49,7 +68,7 @@ def settings_of(tinlod, result):
 
 
 def version(tinlod):
-    result = subprocess.run([tinlod, "--version"], capture_output=True, text=True, errors="surrogateescape")
+    result = finished(start([tinlod, "--version"]))
     return result.stdout.strip().split("\n")[0] or "tinlod of unknown version"
 
 

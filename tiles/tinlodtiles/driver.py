@@ -17,7 +17,7 @@ import threading
 
 from osgeo import gdal
 
-from . import agreement, build_check, fixed_points, line_outline, task, thresholds
+from . import agreement, build_check, dask_import, fixed_points, line_outline, task, thresholds
 from .cell_file import read_cells, write_cells
 from .arguments import build_option
 from .catalogue import BUILD_SETTINGS, FIXED_STAMP, SOURCE_STAMP, Catalogue, file_stamp, levels_folder, tiles_folder
@@ -34,6 +34,7 @@ from .tin_crs import predicted_tin_srs
 
 def run(arguments):
     """Runs the job; returns the exit code (0, or 1 when tiles failed for good)."""
+    dask_import.begin()
     dem = gdal.Open(arguments.dem)
     settings = job_settings(arguments, dem)
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
@@ -390,7 +391,7 @@ class Workers:
         self.warnings = TileWarnings()  # what the tasks' tinlods said, over every pass
 
     def __enter__(self):
-        self.distributed = import_dask()
+        self.distributed = dask_import.distributed()  # only a run with tiles to build needs Dask
         self.client, self.cluster = start_client(self.distributed, self.arguments)
         return self
 
@@ -432,15 +433,6 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
 
 class TilesStopped(Exception):
     """Ctrl-C: the tiles not yet finished stay pending in the catalogue."""
-
-
-def import_dask():
-    """Only a run with tiles to build needs Dask."""
-    try:
-        import distributed
-    except ImportError:
-        raise TilesError("Dask is not installed: apt install python3-distributed") from None
-    return distributed
 
 
 def start_client(distributed, arguments):
