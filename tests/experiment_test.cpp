@@ -16,6 +16,7 @@
 #include "tinlod/build_job.h"
 #include "tinlod/error.h"
 #include "tinlod/experiment.h"
+#include "tinlod/synthetic_dem.h"
 
 namespace tinlod {
 namespace {
@@ -144,6 +145,33 @@ TEST(Experiment, CompareInsertFillsTheSameColumnsForABuild) {
   const std::string json = test::readFile(a.reportPath);
   EXPECT_NE(json.find("\"rmse_ratio_to_insert\": "), std::string::npos);
   EXPECT_EQ(json.find("\"rmse_ratio_to_insert\": null", json.find("\"level\": 1")), std::string::npos);
+}
+
+// Greedy insertion splits triangles over holes first: where a level's count runs out before
+// the holes' outlines, its RMSE is no like-for-like comparison, and a warning says so.
+TEST(Experiment, CompareInsertWarnsWhereALevelsCountLeavesTheInsertionsHolesOpen) {
+  auto warnings = [](bool holes) {
+    // A slope with waves, and with round holes some cells wide every 30 cells: outlines to follow.
+    const Dem dem = test::makeDem(180, 180, 25, [holes](int r, int c) {
+      return holes && std::sin(r / 5.0) * std::sin(c / 5.0) > 0.8 ? NAN : float(0.5 * r + 0.3 * c + 10 * std::sin(c / 7.0));
+    });
+    const std::string path = test::tempDir() + (holes ? "/holes.tif" : "/no_holes.tif");
+    writeDemGeoTiff(dem, path);
+    AccuracyOutputs a;
+    a.compareInsert = true;
+    a.reportPath = test::tempDir() + (holes ? "/holes.csv" : "/no_holes.csv");
+    HierarchyOptions h;
+    h.stopPct = 10;
+    test::RecordingFeedback recorded;
+    const BuildSummary s = runBuildJob(path, test::tempDir() + (holes ? "/holes.gpkg" : "/no_holes.gpkg"), {}, h, false,
+                                       recorded.feedback(), a);
+    EXPECT_GE(s.levels, 5);
+    return recorded;
+  };
+  const test::RecordingFeedback withHoles = warnings(true);
+  EXPECT_TRUE(withHoles.warned("had not cut its TIN free of the nodata holes at ")) << ::testing::PrintToString(withHoles.warnings);
+  const test::RecordingFeedback without = warnings(false);
+  EXPECT_FALSE(without.warned("nodata holes")) << ::testing::PrintToString(without.warnings);
 }
 
 }  // namespace

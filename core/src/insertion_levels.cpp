@@ -22,12 +22,28 @@ std::vector<std::size_t> insertionCounts(const std::vector<LevelAccuracy>& level
   return counts;
 }
 
+namespace {
+
+// Greedy insertion splits a triangle over a hole before any other, so under a count limit
+// its vertices go to the holes' outlines first: its RMSE jumps (swiss_alps, 7 % voids: 38 m
+// at 49,073 vertices, 260 m at 40,692) where the level's count runs out before the outlines.
+void warnIfHolesOpen(const Dem& dem, std::size_t mostWithHolesOpen, const ProgressRange& progress) {
+  if (mostWithHolesOpen == 0) return;
+  progress.warn("greedy insertion over the samples of " + demName(dem.path) + " had not cut its TIN free of the " +
+                "nodata holes at " + std::to_string(mostWithHolesOpen) + " vertices or fewer: it places the holes' " +
+                "outlines first, so at those levels its RMSE is that of a TIN whose vertices went to the outlines, " +
+                "not a like-for-like comparison");
+}
+
+}  // namespace
+
 std::vector<LevelAccuracy> measureInsertionLevels(const AccuracyEvaluator& evaluator, const Dem& dem, const Tin& sampled,
                                                   const CrsTransform& toTin, const std::vector<std::size_t>& counts,
                                                   double stopPct, const ProgressRange& progress) {
   std::vector<LevelAccuracy> rows(counts.size());
   if (counts.empty()) return rows;
   GreedyInserter inserter(makeInsertGrid(dem, toTin, &sampled), progress.sub(0, 0.02));
+  std::size_t mostWithHolesOpen = 0;
   // Smallest count first: each continues the insertion of the one before.
   for (std::size_t k = counts.size(); k-- > 0;) {
     const double done = double(counts.size() - 1 - k) / counts.size();
@@ -45,6 +61,7 @@ std::vector<LevelAccuracy> measureInsertionLevels(const AccuracyEvaluator& evalu
     row.deletePct = std::nan(""), row.stopPct = stopPct;
     row.level = static_cast<int>(k) + 1;
     row.certifiedError = inserter.maxError();
+    if (std::isinf(row.certifiedError)) mostWithHolesOpen = std::max(mostWithHolesOpen, inserter.vertexCount());
     Triangulation triangulation = inserter.triangulation();
     for (Triangle& t : triangulation.triangles)
       for (VertexId& v : t) v = inserter.inserted()[v].candidate;  // the sampled TIN's vertex ids
@@ -53,6 +70,7 @@ std::vector<LevelAccuracy> measureInsertionLevels(const AccuracyEvaluator& evalu
     row.vertices = inserter.vertexCount(), row.triangles = triangles.size();
     evaluator.evaluate(triangles, row, nullptr, part.sub(0.3, 1));
   }
+  warnIfHolesOpen(dem, mostWithHolesOpen, progress);
   return rows;
 }
 
