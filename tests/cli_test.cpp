@@ -739,6 +739,26 @@ TEST(Cli, ADamagedHierarchyExitsOneWithTheRowNamed) {
   EXPECT_FALSE(fs::exists(dir + "/lod.gpkg"));
 }
 
+// tinlod-tiles draws each level across the tiles as <stem>_levels/level_K.vrt; the commands
+// name the catalogue beside it.
+TEST(Cli, ACataloguesLevelFileIsRefusedNamingTheCatalogue) {
+  const std::string dir = test::tempDir() + "/level files";
+  fs::create_directories(dir + "/c_levels");
+  std::ofstream(dir + "/c.gpkg") << "a catalogue's place";
+  std::ofstream(dir + "/c_levels/level_2.vrt") << "<OGRVRTDataSource/>";
+  std::ofstream(dir + "/points.csv") << "x,y\n1,2\n";
+  const std::string level = " '" + dir + "/c_levels/level_2.vrt'", out = " '" + dir + "/out.gpkg'";
+  for (const std::string& command : {"info" + level, "lod -max_error 5" + level + out,
+                                     "locate" + level + " '" + dir + "/points.csv'" + out,
+                                     "accuracy -report '" + dir + "/r.csv' " + defaultDem() + level}) {
+    const CliRun r = tinlod(command);
+    EXPECT_EQ(r.exitCode, 1) << command;
+    EXPECT_TRUE(has(r.err, "ERROR: '" + dir + "/c_levels/level_2.vrt' is level_2 of the tinlod-tiles catalogue '" + dir +
+                               "/c.gpkg', drawn across its tiles: give the catalogue itself"))
+        << command << ": " << r.err;
+  }
+}
+
 TEST(Cli, ExperimentWritesOneReportOfEveryRun) {
   const std::string dir = test::tempDir();
   const CliRun r = tinlod("experiment -q -methods volume,degree -delete_pcts 20 -stop_pct 30 -report " + dir +

@@ -122,11 +122,30 @@ std::string tileCounts(const HierarchyInfo& info) {
   return std::to_string(all) + (all == 1 ? " tile" : " tiles") + (all ? " (" + statusCounts(info.tileStatuses) + ")" : "");
 }
 
+// tinlod-tiles writes each level across the tiles as <stem>_levels/level_K.vrt beside the
+// catalogue <stem>.gpkg, for drawing: the commands take the catalogue, which holds the levels
+// and how the tiles meet.
+void refuseCatalogueLevel(const std::string& path) {
+  const std::filesystem::path file(path);
+  const std::string folder = file.parent_path().filename().string(), name = file.filename().string();
+  const std::string suffix = "_levels";
+  if (name.rfind("level_", 0) != 0 || file.extension() != ".vrt" || folder.size() <= suffix.size() ||
+      folder.compare(folder.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return;
+  const std::filesystem::path catalogue =
+      file.parent_path().parent_path() / (folder.substr(0, folder.size() - suffix.size()) + ".gpkg");
+  if (!std::filesystem::exists(catalogue)) return;
+  throw Error("'" + path + "' is " + file.stem().string() + " of the tinlod-tiles catalogue '" + catalogue.string() +
+              "', drawn across its tiles: give the catalogue itself (tinlod info, lod, locate and accuracy take it as " +
+              "one hierarchy)");
+}
+
 }  // namespace
 
 HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
   GDALAllRegister();
   if (!std::filesystem::exists(path)) throw Error("'" + path + "' does not exist");
+  refuseCatalogueLevel(path);
   const char* const gpkgOnly[] = {"GPKG", nullptr};
   const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR, gpkgOnly);
   if (!ds) throw Error("'" + path + "' is not a GeoPackage GDAL can read");
