@@ -70,7 +70,9 @@ QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessin
                              {QStringLiteral("-report"), QStringLiteral("REPORT")},
                              {QStringLiteral("-step"), QStringLiteral("STEP")},
                              {QStringLiteral("-reference"), QStringLiteral("REFERENCE")},
-                             {QStringLiteral("-control_spacing"), QStringLiteral("CONTROL_SPACING")}});
+                             {QStringLiteral("-control_spacing"), QStringLiteral("CONTROL_SPACING")},
+                             {kFileOf + QString::fromStdString(hierarchy_), QStringLiteral("HIERARCHY")},
+                             {kFileOf + QString::fromStdString(demSource_), QStringLiteral("INPUT")}});
   const AccuracyReport report = translateErrors(
       [&] {
         return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback, names), validHeights_);

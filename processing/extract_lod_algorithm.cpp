@@ -117,7 +117,8 @@ QVariantMap ExtractLodAlgorithm::processAlgorithm(const QVariantMap& parameters,
                              {QStringLiteral("-dropoff"), QStringLiteral("DROPOFF")},
                              {QStringLiteral("-max_error"), QStringLiteral("MAX_ERROR")},
                              {QStringLiteral("-error_growth"), QStringLiteral("ERROR_GROWTH")},
-                             {QStringLiteral("-region"), QStringLiteral("REGION")}};
+                             {QStringLiteral("-region"), QStringLiteral("REGION")},
+                             {kFileOf + QString::fromStdString(hierarchy_), QStringLiteral("HIERARCHY")}};
   const LodSummary s = translateErrors(
       [&] { return runLodJob(hierarchy_, output.toStdString(), options_, true, processingFeedback(feedback, names), vertexIndex); },
       names);

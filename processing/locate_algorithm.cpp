@@ -71,7 +71,9 @@ QVariantMap LocateAlgorithm::processAlgorithm(const QVariantMap& parameters, Qgs
   const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
   const LocateSummary s = translateErrors(
       [&] { return runLocateJob(hierarchy_, points_, output.toStdString(), level_, true, processingFeedback(feedback)); },
-      {{QStringLiteral("-level"), QStringLiteral("LEVEL")}});
+      {{QStringLiteral("-level"), QStringLiteral("LEVEL")},
+       {QStringLiteral("points:"), QStringLiteral("INPUT")},
+       {kFileOf + QString::fromStdString(hierarchy_), QStringLiteral("HIERARCHY")}});
   feedback->pushInfo(QStringLiteral("%1 of %2 points on the TIN of level %3").arg(s.located).arg(s.points).arg(s.level));
   // As small dots: thousands of QGIS's default markers would hide the map.
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=points"),

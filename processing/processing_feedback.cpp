@@ -4,6 +4,7 @@
 #include <QRegularExpression>
 
 #include <qgsapplication.h>
+#include <qgsprocessingutils.h>
 
 #include <memory>
 
@@ -61,9 +62,22 @@ Feedback processingFeedback(QgsProcessingFeedback* feedback, const ParameterName
 
 QString withParameterNames(const QString& message, const ParameterNames& names) {
   QString out = message;
-  for (const auto& [option, parameter] : names)
-    out.replace(QRegularExpression(QStringLiteral("(^|[\\s'(])") + QRegularExpression::escape(option) + QStringLiteral("\\b")),
-                QStringLiteral("\\1") + parameter);
+  static const QRegularExpression named(QStringLiteral("^[A-Z_]+: "));
+  for (const auto& [option, parameter] : names) {
+    if (option.startsWith(kFileOf)) {
+      if (!named.match(out).hasMatch() && out.contains(QLatin1Char('\'') + option.mid(kFileOf.size()) + QLatin1Char('\'')))
+        out.prepend(parameter + QStringLiteral(": "));
+    } else if (option.endsWith(QLatin1Char(':'))) {
+      out.replace(QRegularExpression(QLatin1Char('^') + QRegularExpression::escape(option)), parameter + QLatin1Char(':'));
+    } else {
+      out.replace(QRegularExpression(QStringLiteral("(^|[\\s'(])") + QRegularExpression::escape(option) + QStringLiteral("\\b")),
+                  QStringLiteral("\\1") + parameter);
+    }
+  }
+  // A layer QGIS wrote to a file for the run (sourceFile) is named after its parameter there.
+  out.replace(QRegularExpression(QLatin1Char('\'') + QRegularExpression::escape(QgsProcessingUtils::tempFolder()) +
+                                 QStringLiteral("/[^']*/([A-Z_]+)\\.gpkg(\\|layername=[^']*)?'")),
+              QStringLiteral("\\1"));
   for (const auto& [command, desktop] : desktopTerms()) out.replace(command, desktop);
   return out;
 }

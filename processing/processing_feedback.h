@@ -15,7 +15,11 @@
 namespace tinlod::qgis {
 
 // A command-line option's name, and the algorithm's parameter it is ("-level", "LEVEL").
+// A name ending in ':' is a message's prefix ("points:", "INPUT"); kFileOf + a path names
+// the parameter of that file (a message naming the file in quotes, and no parameter, gets
+// "HIERARCHY: " before it).
 using ParameterNames = QList<QPair<QString, QString>>;
+inline const QString kFileOf = QStringLiteral("file:");
 
 // The core's Feedback over a QgsProcessingFeedback: progress bar, phase text, warnings
 // (their options named as the algorithm's parameters), information, and cancellation from

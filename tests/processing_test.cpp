@@ -1037,6 +1037,31 @@ TEST(Processing, MessagesGiveFixesAsAQgisUserMakesThem) {
   for (const Result* r : {&lod, &into, &locate})
     for (const char* command : {"tinlod build", "tinlod lines", "ogrinfo", "-overwrite"})
       EXPECT_FALSE(r->error.contains(QString::fromUtf8(command))) << r->error.toStdString();
+
+  // A file tinlod did not write as the hierarchy, and points QGIS writes to a file of its own
+  // for the run (a memory layer): the messages name HIERARCHY and INPUT, not QGIS's file.
+  QgsProject project;
+  const QString region = QString::fromStdString(dir + "/l.geojson");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                {"OUTPUT", tin}}).ok);
+  ASSERT_EQ(std::system(("ogr2ogr -q -f GPKG " + dir + "/plain.gpkg " + dir + "/l.geojson").c_str()), 0);
+  const Result notOurs = runAlgorithm(QStringLiteral("tinlod:locate"),
+                                      {{"INPUT", region}, {"HIERARCHY", QString::fromStdString(dir + "/plain.gpkg")},
+                                       {"OUTPUT", QString::fromStdString(dir + "/x.gpkg")}});
+  ASSERT_FALSE(notOurs.ok);
+  EXPECT_TRUE(notOurs.error.startsWith("HIERARCHY: '" + QString::fromStdString(dir) + "/plain.gpkg' was not written by tinlod"))
+      << notOurs.error.toStdString();
+  auto* points = new QgsVectorLayer(QStringLiteral("MultiPoint?crs=EPSG:32632"), QStringLiteral("my points"), QStringLiteral("memory"));
+  QgsFeature twoPoints(points->fields());
+  twoPoints.setGeometry(QgsGeometry::fromWkt(QStringLiteral("MultiPoint((500 500), (600 600))")));
+  points->dataProvider()->addFeatures(QgsFeatureList() << twoPoints);
+  project.addMapLayer(points);
+  const Result multi = runAlgorithm(QStringLiteral("tinlod:locate"), {{"INPUT", points->id()}, {"HIERARCHY", tin},
+                                                                    {"OUTPUT", QString::fromStdString(dir + "/x.gpkg")}},
+                                    nullptr, &project);
+  ASSERT_FALSE(multi.ok);
+  EXPECT_TRUE(multi.error.startsWith("INPUT: feature 1 of INPUT is a multipoint")) << multi.error.toStdString();
+  EXPECT_FALSE(multi.error.contains(QgsProcessingUtils::tempFolder())) << multi.error.toStdString();
 }
 
 // Every other vector input from a memory layer, as from a file: the same results.
