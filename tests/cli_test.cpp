@@ -451,6 +451,7 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   ASSERT_EQ(lost.exitCode, 0) << lost.err;
   EXPECT_TRUE(has(lost.err, "1 of the 1 centres of detail lie outside the TIN")) << lost.err;
   EXPECT_TRUE(has(lost.err, "give -center_srs for another")) << lost.err;
+  EXPECT_FALSE(has(lost.err, "e+0")) << "coordinates in whole metres: " << lost.err;
   EXPECT_FALSE(has(near.err, "outside the TIN")) << near.err;
   // Given in a CRS that does not hold them (UTM numbers as lon/lat): the advice is to check it.
   const CliRun wrongSrs = tinlod("lod -center 0.5 0.5 -center_srs EPSG:4326 -dropoff 200 " + dir + "/h.gpkg " + dir + "/wrong.gpkg");

@@ -15,6 +15,7 @@
 #include "extracted_lod.h"
 #include "layer_source.h"
 #include "layer_transform.h"
+#include "number_text.h"
 #include "polygon_region.h"
 #include "streamed_lod_file.h"
 #include "text_and_paths.h"
@@ -108,6 +109,9 @@ std::string centresAdvice(const LodJobOptions& options) {
          ") and on this TIN's data?";
 }
 
+// Whole metres for map coordinates: the default six digits printed 5.09405e+06.
+std::string coordinate(double v) { return fixedNumber(v, std::fabs(v) >= 1000 ? 0 : 2); }
+
 // A centre far from the data (a longitude and latitude given for a projected TIN, say)
 // restores nothing near it: the TIN comes out at its coarsest, which deserves a word.
 void warnOfCentresOutside(const std::vector<std::array<double, 2>>& centres, const Envelope& extent,
@@ -117,8 +121,8 @@ void warnOfCentresOutside(const std::vector<std::array<double, 2>>& centres, con
   for (const auto& c : centres) outside += c[0] < extent.minX || c[0] > extent.maxX || c[1] < extent.minY || c[1] > extent.maxY;
   if (outside == 0) return;
   progress.warn(std::to_string(outside) + " of the " + std::to_string(centres.size()) + " centres of detail lie outside the TIN (x " +
-                formatNumber(extent.minX) + " to " + formatNumber(extent.maxX) + ", y " + formatNumber(extent.minY) + " to " +
-                formatNumber(extent.maxY) + " in " + crsName + "): " + centresAdvice(options));
+                coordinate(extent.minX) + " to " + coordinate(extent.maxX) + ", y " + coordinate(extent.minY) + " to " +
+                coordinate(extent.maxY) + " in " + crsName + "): " + centresAdvice(options));
 }
 
 Envelope extentOf(const Tin& tin) {
