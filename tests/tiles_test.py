@@ -579,6 +579,12 @@ def main(tinlod, tiles):
     check("... and so is it when one tile is empty and all the others fail alike",
           alike.returncode == 1 and " and 4 more)" in alike.stderr and "every tile failed alike" in alike.stderr,
           alike.stderr[-2000:])
+    for retries, said in (("0", "5 tiles failed, not retried (-retries 0); they say:"),
+                          ("2", "5 tiles failed after their 2 retries; they say:")):
+        built = run(base + [os.path.join(work, "built_f%s.gpkg" % retries), "-tile_size", str(TILE_SIZE), "-workers", "2",
+                            "-selection", "tile", "-retries", retries, "-tinlod", failing], env)
+        check("tiles that fail in the build pass: the error counts them and their retries (-retries %s)" % retries,
+              built.returncode == 1 and said in built.stderr, built.stderr[-2000:])
     warning = os.path.join(work, "warning_tinlod")  # tinlod with a warning of its own
     with open(warning, "w") as f:
         f.write('#!/bin/sh\nt=; p=\nfor a in "$@"; do [ "$p" = -tile ] && t=$a; p=$a; done\n'

@@ -627,8 +627,8 @@ def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
     if not arguments.quiet:
         print_summary(arguments.catalogue, ran, sum(outcome.values()), rounds, skipped, states, levels, vrts)
     if states.get("failed"):
-        print("ERROR: %s failed after their retries; %s" % (n_tiles(states["failed"]), failure_summary(rows)),
-              file=sys.stderr)
+        print("ERROR: %s failed%s; %s" % (n_tiles(states["failed"]), after_retries(states["failed"], arguments.retries),
+                                           failure_summary(rows)), file=sys.stderr)
         return 1
     if rows and states.get("empty") == len(rows):  # a script must not take it for a result
         print("ERROR: none of the %d tiles has a valid cell of %s as tinlod build reads it (its band, -valid_range, "
@@ -636,6 +636,12 @@ def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
               % (len(rows), arguments.dem), file=sys.stderr)
         return 1
     return 0
+
+
+def after_retries(failed, retries):
+    if not retries:
+        return ", not retried (-retries 0)"
+    return " after %s %s" % ("its" if failed == 1 else "their", "retry" if retries == 1 else "%d retries" % retries)
 
 
 def failure_summary(rows):
