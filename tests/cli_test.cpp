@@ -525,6 +525,13 @@ TEST(Cli, LocateAddsTheElevationOfTheChosenLevelToEveryPoint) {
   const CliRun r = tinlod("locate " + dir + "/h.gpkg " + dir + "/p.geojson " + dir + "/l.gpkg");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(has(r.out, "Located 1 of 2 points on level 0")) << r.out;
+  EXPECT_FALSE(has(r.err, "none of the")) << r.err;
+  // Only points off the TIN (numbers in another CRS, say): a warning, beyond the count.
+  std::ofstream(dir + "/off.geojson") << R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+ "features": [{"type": "Feature", "properties": {"name": "off"}, "geometry": {"type": "Point", "coordinates": [8.1, 46.9]}}]})";
+  const CliRun off = tinlod("locate " + dir + "/h.gpkg " + dir + "/off.geojson " + dir + "/off.gpkg");
+  ASSERT_EQ(off.exitCode, 0) << off.err;
+  EXPECT_TRUE(has(off.err, "Warning: none of the 1 points lies on the TIN of level 0 (their elevations are null)")) << off.err;
   GDALAllRegister();
   GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/l.gpkg").c_str(), GDAL_OF_VECTOR));
   ASSERT_TRUE(ds);
@@ -591,6 +598,9 @@ TEST(Cli, RepeatedEmptyAndUnusedOptionsAreNamed) {
   const CliRun single = tinlod("accuracy -q -compare_insert -report " + dir + "/b.csv " + defaultDem() + " " + dir + "/i.gpkg");
   EXPECT_EQ(single.exitCode, 0) << single.err;
   EXPECT_TRUE(has(single.err, "Warning: -compare_insert: a single TIN has no level above 0")) << single.err;
+  const CliRun silent = tinlod("accuracy -q " + defaultDem() + " " + dir + "/i.gpkg");
+  EXPECT_EQ(silent.exitCode, 1);
+  EXPECT_TRUE(has(silent.err, "ERROR: -q without -accuracy or -report would measure and show nothing")) << silent.err;
 }
 
 // A DEM without a CRS gives a TIN in no CRS: GeoPackage's undefined Cartesian CRS (srs_id

@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "sample_arguments.h"
 #include "terminal_feedback.h"
+#include "tinlod/error.h"
 
 namespace tinlod::cli {
 namespace {
@@ -51,6 +52,9 @@ int accuracyCommand(std::vector<std::string> args) {
   const std::optional<HeightRange> validHeights = validRange(a);
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(2, kUsage);
+  if (quiet && outputs.rasterPath.empty() && outputs.reportPath.empty())  // minutes of work, and nothing to show
+    throw Error("-q without -accuracy or -report would measure and show nothing: give one of them, or leave out -q "
+                "for the table");
   const AccuracyReport report = runAccuracyJob(files[0], files[1], outputs, band, sourceSrs, terminalFeedback(quiet), validHeights);
   if (!quiet) {
     std::cout << "Reference: " << (report.reference == "tin" ? "the original TIN (level 0)" : "the DEM") << "\n";

@@ -163,6 +163,12 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
     if ((++s.points & 0x3FFF) == 0) all.report(0.4 + 0.4 * double(s.points) / count, "Locating points");
   }
   flush();
+  // Every elevation null is most often the points' CRS (a CSV without one is taken as the
+  // TIN's), which a count alone does not show.
+  if (s.points > 0 && s.located == 0)
+    all.warn("none of the " + std::to_string(s.points) + " points lies on the TIN of level " + std::to_string(level) +
+             " (their elevations are null): are they in the CRS their layer says (one without a CRS is taken as the TIN's) " +
+             "and on its data?");
   out.commit();
   out.finish(all.sub(0.8, 1));
   files.commit();
