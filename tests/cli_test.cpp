@@ -859,6 +859,14 @@ TEST(Cli, ImplausibleHeightsAreNodataWithOneWarningThatCountsThem) {
   EXPECT_FALSE(hasNonFinite(accuracy.out)) << accuracy.out;
   const CliRun narrower = tinlod("accuracy -reference dem -valid_range -400 7000 " + dem + " " + dir + "/h.gpkg");
   EXPECT_TRUE(has(narrower.err, "outside -400..7000 m")) << narrower.err;
+  // Against level 0 the range changes nothing measured: said, and the same report as without it.
+  const CliRun againstTin = tinlod("accuracy -q -reference tin -valid_range -400 7000 -report " + dir + "/tin_range.csv " +
+                                   dem + " " + dir + "/h.gpkg");
+  ASSERT_EQ(againstTin.exitCode, 0) << againstTin.err;
+  EXPECT_TRUE(has(againstTin.err, "Warning: -valid_range is unused with -reference tin")) << againstTin.err;
+  EXPECT_FALSE(has(againstTin.err, "outside -400..7000 m")) << againstTin.err;
+  ASSERT_EQ(tinlod("accuracy -q -reference tin -report " + dir + "/tin.csv " + dem + " " + dir + "/h.gpkg").exitCode, 0);
+  EXPECT_EQ(test::readFile(dir + "/tin_range.csv"), test::readFile(dir + "/tin.csv"));
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
            {"sample -valid_range 5 1 ", "ERROR: -valid_range must be two finite heights in metres, the lower first (got 5 1); the default is -12000 9000"},
            {"sample -valid_range x 5 ", "-valid_range expects a number, got 'x'"},

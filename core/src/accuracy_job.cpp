@@ -176,6 +176,18 @@ void warnOfAnotherSourceSrs(const std::string& given, const HierarchyInfo& info,
                 "' was built with: the DEM is read as being elsewhere (leave -s_srs out to take the build's)");
 }
 
+// Against level 0 (-reference tin) the test points' heights are the TIN's: which DEM cells
+// are valid changes nothing measured (report and raster the same to the bit), and the DEM
+// reader's "ignored N cells (treated as nodata)" would say otherwise. Greedy insertion
+// (-compare_insert) does read the DEM's valid cells.
+std::optional<HeightRange> usedValidRange(const std::optional<HeightRange>& given, const AccuracyOutputs& outputs,
+                                          const ProgressRange& progress) {
+  if (!given || outputs.options.reference != Reference::Tin || outputs.compareInsert) return given;
+  progress.warn("-valid_range is unused with -reference tin: level 0's heights are the reference at every test point, "
+                "whichever DEM cells are valid; give -reference dem to measure against the DEM's cells within the range");
+  return std::nullopt;
+}
+
 }  // namespace
 
 AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hierarchyPath, const AccuracyOutputs& outputs,
@@ -197,8 +209,8 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     const auto demCrsWkt = [&] {
       return readDemWindow(demPath, band, CellWindow{0, 0, 1, 1}, ProgressRange(Feedback{}, 0, 1)).crsWkt;
     };
-    AccuracyReport report = measureCatalogue(demPath, hierarchyPath, band,
-                                             validHeights ? *validHeights : recordedRange(first.metadata),
+    const std::optional<HeightRange> used = usedValidRange(validHeights, outputs, all);
+    AccuracyReport report = measureCatalogue(demPath, hierarchyPath, band, used ? *used : recordedRange(first.metadata),
                                              sourceSrsOf(sourceSrs, first, demPath, demCrsWkt), outputs, staged, all);
     files.commit();
     all.finish("Done");
@@ -207,7 +219,10 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
   const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.15));
   if (band == 0) band = sampledBand(stored.info);
   warnOfAnotherSourceSrs(sourceSrs, stored.info, all);
-  const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), validHeights ? *validHeights : recordedRange(stored.info.metadata));
+  // A single TIN is measured against the DEM (below), where the range counts.
+  const std::optional<HeightRange> used =
+      stored.info.kind == "hierarchy" ? usedValidRange(validHeights, outputs, all) : validHeights;
+  const Dem dem = readDem(demPath, band, all.sub(0.15, 0.2), used ? *used : recordedRange(stored.info.metadata));
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
   const CrsTransform toTin =
       CrsTransform::forDem(dem, sourceSrsOf(sourceSrs, stored.info, demPath, [&] { return dem.crsWkt; }),
