@@ -550,6 +550,11 @@ def main(tinlod, tiles):
           in wrong.stderr and "Nothing was written" in wrong.stderr and "tiles failed" not in wrong.stderr
           and not os.path.exists(os.path.join(work, "w.gpkg")) and not os.path.exists(os.path.join(work, "w_tiles")),
           wrong.stderr[-2000:])
+    tiny = run(base + [os.path.join(work, "w.gpkg"), "-tile_size", "6", "-tinlod", program, "--", "-delete_pct", "200"],
+               env)
+    check("thousands of tiny tiles are warned of with their fixed costs (here before the options are refused)",
+          tiny.returncode == 1 and "Warning: 3350 tiles of 6 x 6 cells: each is a task and a GeoPackage of its own"
+          in tiny.stderr and "(-tile_size)" in tiny.stderr and "tiles of" not in wrong.stderr, tiny.stderr[-2000:])
     wkt = run(base + [os.path.join(work, "w.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program,
                       "--", "-t_srs", 'PROJCS["a",\nGEOGCS["b"]]'], env)
     check("a refusal whose message spans lines (a WKT quoted) keeps tinlod's advice after the line break",

@@ -38,6 +38,7 @@ def run(arguments):
     dem = gdal.Open(arguments.dem)
     settings = job_settings(arguments, dem)
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
+    warn_of_small_tiles(tiles, arguments.tile_size)
     settings[BUILD_SETTINGS] = build_check.check_job(arguments.tinlod, dem_path(arguments.dem), arguments.catalogue,
                                                      arguments.tile_size, tiles, arguments.build_options)
     fixed = build_option(arguments.build_options, "-fixed")  # there: -check opened it
@@ -79,6 +80,22 @@ def run(arguments):
             raise
         ran = len(started | built)
         return finish(catalogue, arguments, len(tiles) - ran, outcome, ran, rounds)
+
+
+# A tile's fixed costs, measured on tiles of 30 cells: about 0.15 s of tinlod (both passes)
+# and a 0.7 MB GeoPackage before its first triangle.
+TILE_SECONDS, TILE_BYTES = 0.15, 0.7e6
+
+
+def warn_of_small_tiles(tiles, tile_size):
+    """Thousands of small tiles cost more in tasks and files than in triangles: said before
+    they start (-tile_size 6 on a 1201 x 1201 DEM made 40,000 tasks without a word)."""
+    if len(tiles) < 1000 or tile_size >= 256:
+        return
+    print("Warning: %d tiles of %d x %d cells: each is a task and a GeoPackage of its own (about %.2f s and %.1f MB "
+          "before its first triangle: %.0f min of tasks and %.0f GB in all); tiles of 1024 to 4096 cells suit most "
+          "DEMs (-tile_size)" % (len(tiles), tile_size, tile_size, TILE_SECONDS, TILE_BYTES / 1e6,
+                                 len(tiles) * TILE_SECONDS / 60, len(tiles) * TILE_BYTES / 1e9), file=sys.stderr)
 
 
 def warn_of_points_outside(fixed, dem):
