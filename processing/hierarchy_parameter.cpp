@@ -8,6 +8,8 @@
 #include <QDir>
 #include <QFileInfo>
 
+#include "tinlod/hierarchy_info.h"
+
 namespace tinlod::qgis {
 
 QgsProcessingParameterDefinition* hierarchyParameter(const QString& description) {
@@ -24,12 +26,11 @@ std::string hierarchyFile(const QgsProcessingParameterDefinition* definition, co
   const QString path = parts.value(QStringLiteral("path")).toString();
   const QFileInfo file(path);
   // A level of a tinlod tiles catalogue (<stem>_levels/level_K.vrt): the catalogue is the input.
-  if (file.suffix().compare(QLatin1String("vrt"), Qt::CaseInsensitive) == 0 && file.dir().dirName().endsWith(QLatin1String("_levels"))) {
-    const QString stem = file.dir().dirName().chopped(int(qstrlen("_levels")));
+  const std::string catalogue = catalogueOfLevelFile(QDir::cleanPath(file.absoluteFilePath()).toStdString());
+  if (!catalogue.empty())
     throw QgsProcessingException(QStringLiteral("HIERARCHY: '%1' is one level of a tinlod tiles catalogue: choose the catalogue "
                                                 "itself, %2")
-                                     .arg(layer->name(), QDir::cleanPath(file.dir().absoluteFilePath(QStringLiteral("../%1.gpkg").arg(stem)))));
-  }
+                                     .arg(layer->name(), QString::fromStdString(catalogue)));
   if (layer->providerType() != QLatin1String("ogr") || file.suffix().compare(QLatin1String("gpkg"), Qt::CaseInsensitive) != 0)
     throw QgsProcessingException(QStringLiteral("HIERARCHY: '%1' is not stored in a GeoPackage: %2").arg(layer->name(), wanted));
   return path.toStdString();

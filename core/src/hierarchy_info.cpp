@@ -122,25 +122,27 @@ std::string tileCounts(const HierarchyInfo& info) {
   return std::to_string(all) + (all == 1 ? " tile" : " tiles") + (all ? " (" + statusCounts(info.tileStatuses) + ")" : "");
 }
 
-// tinlod-tiles writes each level across the tiles as <stem>_levels/level_K.vrt beside the
-// catalogue <stem>.gpkg, for drawing: the commands take the catalogue, which holds the levels
-// and how the tiles meet.
+// The commands take the catalogue, which holds the levels and how the tiles meet.
 void refuseCatalogueLevel(const std::string& path) {
-  const std::filesystem::path file(path);
-  const std::string folder = file.parent_path().filename().string(), name = file.filename().string();
-  const std::string suffix = "_levels";
-  if (name.rfind("level_", 0) != 0 || file.extension() != ".vrt" || folder.size() <= suffix.size() ||
-      folder.compare(folder.size() - suffix.size(), suffix.size(), suffix) != 0)
-    return;
-  const std::filesystem::path catalogue =
-      file.parent_path().parent_path() / (folder.substr(0, folder.size() - suffix.size()) + ".gpkg");
-  if (!std::filesystem::exists(catalogue)) return;
-  throw Error("'" + path + "' is " + file.stem().string() + " of the tinlod-tiles catalogue '" + catalogue.string() +
-              "', drawn across its tiles: give the catalogue itself (tinlod info, lod, locate and accuracy take it as " +
-              "one hierarchy)");
+  const std::string catalogue = catalogueOfLevelFile(path);
+  if (catalogue.empty() || !std::filesystem::exists(catalogue)) return;
+  throw Error("'" + path + "' is " + std::filesystem::path(path).stem().string() + " of the tinlod-tiles catalogue '" +
+              catalogue + "', drawn across its tiles: give the catalogue itself (tinlod info, lod, locate and accuracy " +
+              "take it as one hierarchy)");
 }
 
 }  // namespace
+
+std::string catalogueOfLevelFile(const std::string& path) {
+  const std::filesystem::path file(path);
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string folder = file.parent_path().filename().string(), suffix = "_levels";
+  if (extension != ".vrt" || folder.size() <= suffix.size() ||
+      folder.compare(folder.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return "";
+  return (file.parent_path().parent_path() / (folder.substr(0, folder.size() - suffix.size()) + ".gpkg")).string();
+}
 
 HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
   GDALAllRegister();

@@ -38,6 +38,11 @@ struct HierarchyInfo {
 // refuses catalogues, or takes a file for a tile, needs.
 HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles = true);
 
+// tinlod-tiles draws each level across the tiles as <stem>_levels/level_K.vrt beside the
+// catalogue <stem>.gpkg: for such a path (any .vrt in a <stem>_levels folder), the
+// catalogue's path, whether it exists or not; "" for any other.
+std::string catalogueOfLevelFile(const std::string& path);
+
 std::string toJson(const HierarchyInfo& info);
 std::string toText(const HierarchyInfo& info);
 
