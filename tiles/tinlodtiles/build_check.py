@@ -68,7 +68,7 @@ def settings_of(tinlod, result):
 
 
 def version(tinlod):
-    result = finished(start([tinlod, "--version"]))
+    result = subprocess.run([tinlod, "--version"], capture_output=True, text=True, errors="surrogateescape")
     return result.stdout.strip().split("\n")[0] or "tinlod of unknown version"
 
 
