@@ -74,7 +74,11 @@ QVariantMap LocateAlgorithm::processAlgorithm(const QVariantMap& parameters, Qgs
       {{QStringLiteral("-level"), QStringLiteral("LEVEL")},
        {QStringLiteral("points:"), QStringLiteral("INPUT")},
        {kFileOf + QString::fromStdString(hierarchy_), QStringLiteral("HIERARCHY")}});
-  feedback->pushInfo(QStringLiteral("%1 of %2 points on the TIN of level %3").arg(s.located).arg(s.points).arg(s.level));
+  feedback->pushInfo(QStringLiteral("%1 of %2 points on the %3TIN of level %4")
+                         .arg(s.located)
+                         .arg(s.points)
+                         .arg(s.unfinishedTiles.empty() ? QString() : QStringLiteral("finished tiles' "))
+                         .arg(s.level));
   // As small dots: thousands of QGIS's default markers would hide the map.
   context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=points"),
                                      placedLayerDetails(QStringLiteral("points with elevation"), context.project(),

@@ -943,6 +943,16 @@ def main(tinlod, tiles):
           via_catalogue.returncode == 0 and all(r.returncode == 0 for r in via_tiles)
           and heights[0] == (one[0][0][0], "0,0") and heights[1] == (one[1][1][0], "1,0")
           and heights[0][0] is not None, (heights, one, via_catalogue.stderr))
+    # A point in a tile not finished is not called outside the TIN: the summary says whose.
+    partial = run([tinlod, "locate", stopped, points, os.path.join(work, "at_stopped.gpkg")])
+    check("(e) locate on a catalogue with a pending tile counts its point outside the finished tiles' TIN",
+          partial.returncode == 0 and "Located 1 of 2 points on level 0 (1 outside the finished tiles' TIN or in holes;"
+          in partial.stdout and "1 of the catalogue's 6 tiles are not finished (1 pending)" in partial.stderr
+          and point_values(os.path.join(work, "at_stopped.gpkg"))[0][0] is None,
+          partial.stdout + partial.stderr[-500:])
+    whole_points = run([tinlod, "locate", catalogue, points, os.path.join(work, "at_whole.gpkg")])
+    check("(e) ... and with every tile finished, outside the TIN",
+          whole_points.returncode == 0 and "(0 outside the TIN or in holes;" in whole_points.stdout, whole_points.stdout)
 
     # A point a few ULP either side of a shared line is in one tile or the other, never
     # between: the catalogue's boxes are the tiles' extents rounded to 15 digits (a DEM whose

@@ -48,7 +48,9 @@ int locateCommand(std::vector<std::string> args) {
   const LocateSummary s = runLocateJob(files[0], files[1], files[2], level, overwrite, terminalFeedback(quiet));
   if (!quiet)
     std::cout << "Located " << s.located << " of " << s.points << " points on level " << s.level << " ("
-              << s.points - s.located << " outside the TIN or in holes; " << s.seconds << " s"
+              << s.points - s.located
+              << (s.unfinishedTiles.empty() ? " outside the TIN or in holes; " : " outside the finished tiles' TIN or in holes; ")
+              << s.seconds << " s"
               << (s.tilesRead ? "; " + std::to_string(s.tilesRead) + " tile reads" : "") << ") in " << files[2] << std::endl;
   return 0;
 }

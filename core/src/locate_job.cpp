@@ -126,7 +126,11 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   const StagedFile& staged = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   PointSurface surface(hierarchyPath, all.sub(0, 0.4));
-  if (surface.tiled()) addUnfinishedTiles(hierarchyPath, writeOptions.metadata);
+  LocateSummary s;
+  if (surface.tiled()) {
+    s.unfinishedTiles = unfinishedTiles(hierarchyPath);
+    addUnfinishedTiles(hierarchyPath, writeOptions.metadata);
+  }
   if (level == -1) level = surface.coarsest(), writeOptions.metadata["TINLOD_LEVEL"] = std::to_string(level);  // as accuracy's -level
   if (level < 0 || level > surface.coarsest())
     throw Error("-level " + std::to_string(level) + " does not exist: '" + hierarchyPath + "' has levels 0 to " +
@@ -142,7 +146,6 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   const OutputFields fields{defn.GetFieldIndex("elevation"), defn.GetFieldIndex("triangle"),
                             defn.GetFieldIndex("tile")};
   out.begin();
-  LocateSummary s;
   s.level = level;
   const GIntBig count = std::max<GIntBig>(1, source.GetFeatureCount());
   std::vector<PendingPoint> chunk;

@@ -13,6 +13,9 @@ struct LocateSummary {
   int level = 0;
   double seconds = 0;                   // the point location itself
   std::size_t tilesRead = 0;            // a catalogue's tile hierarchies read (a tile again once dropped)
+  // A catalogue's tiles not finished, as unfinishedTiles says them ("" when none): a point
+  // there is not located though it may lie on the job's TIN.
+  std::string unfinishedTiles;
 };
 
 // `tinlod locate`: every point feature of the first layer of `pointsPath` with its
