@@ -95,9 +95,15 @@ with tempfile.TemporaryDirectory() as folder:
     open(catalogue, "w").close()
     message = refusal(parse_merge, [catalogue, os.path.join(folder, "out.gpkg")])
     check("merge without -level names it", message is not None and message.startswith("merge needs -level K"), message)
-    for level in ("-2", "x", "1.5"):
+    for level in ("-2", "x", "1.5", "+1", " 1"):
         message = refusal(parse_merge, [catalogue, "-level", level, os.path.join(folder, "out.gpkg")])
         check("merge -level %s is refused, naming -1 for the coarsest" % level,
               message == "-level %s: give a level number, 0 or more, or -1 for the coarsest" % level, message)
+    message = refusal(parse_run, [catalogue, os.path.join(folder, "c2.gpkg"), "-tile_size", "3000000000"])
+    check("-tile_size beyond tinlod's whole numbers is refused by tinlod-tiles, naming the most",
+          message is not None and message.startswith("-tile_size 3000000000: give at most 2147483647"), message)
+    # As tinlod reads -level (std::from_chars): -0 is level 0, as locate, lod and accuracy take it.
+    check("merge -level -0 is level 0, as tinlod's commands read it",
+          parse_merge([catalogue, "-level", "-0", os.path.join(folder, "out.gpkg")]).level == 0)
 
 sys.exit(exit_code("tiles arguments"))

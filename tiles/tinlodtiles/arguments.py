@@ -108,10 +108,16 @@ def whole_number(text, option, least):
     return int(text)
 
 
+TILE_SIZE_MOST = 2**31 - 1  # tinlod's whole numbers are C++ ints
+
+
 def tile_size(text, block):
     if not re.fullmatch(r"[0-9]+", text or "") or int(text) < 2 * block:
         raise TilesError("-tile_size %s: a tile is at least two blocks of -block %d: give a whole number, %d or more "
                          "(thousands of cells make fewer, larger tiles)" % (text, block, 2 * block))
+    if int(text) > TILE_SIZE_MOST:
+        raise TilesError("-tile_size %s: give at most %d (a tile as large as the DEM's longer side makes one tile of "
+                         "the whole DEM)" % (text, TILE_SIZE_MOST))
     return int(text)
 
 
@@ -309,7 +315,8 @@ def parse_merge(args):
     check_output(out, "OUT")
     if os.path.abspath(out) == os.path.abspath(catalogue):
         raise TilesError("OUT %s is the catalogue itself: name another file" % out)
-    if options["-level"] != "-1" and not re.fullmatch(r"[0-9]+", options["-level"]):
+    # As tinlod reads a whole number (-0 is 0), so that a script's level goes to both alike.
+    if not re.fullmatch(r"-?[0-9]+", options["-level"]) or int(options["-level"]) < -1:
         raise TilesError("-level %s: give a level number, 0 or more, or -1 for the coarsest" % options["-level"])
     level = int(options["-level"])
     return MergeArguments(catalogue, level, out,
