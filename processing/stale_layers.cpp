@@ -7,6 +7,7 @@
 #include <qgsproviderregistry.h>
 #include <qgsprovidersublayerdetails.h>
 
+#include <QDateTime>
 #include <QFileInfo>
 #include <QRegularExpression>
 #include <QSet>
@@ -27,10 +28,22 @@ Table tableOf(const QgsMapLayer* layer) {
   return {file.exists() ? file.canonicalFilePath() : file.absoluteFilePath(), parts.value(QStringLiteral("layerName")).toString()};
 }
 
+// A run loads a layer per level, each asking for its file's tables: the file is read once
+// while it stays as it is (the same size and time), not once per layer.
 QSet<QString> tablesIn(const QString& file) {
+  struct Read {
+    QString file;
+    QDateTime modified;
+    qint64 size = -1;
+    QSet<QString> names;
+  };
+  static Read last;
+  const QFileInfo info(file);
+  if (last.file == file && last.modified == info.lastModified() && last.size == info.size()) return last.names;
   QSet<QString> names;
   for (const QgsProviderSublayerDetails& sublayer : QgsProviderRegistry::instance()->querySublayers(file))
     names.insert(sublayer.name());
+  last = {file, info.lastModified(), info.size(), names};
   return names;
 }
 
