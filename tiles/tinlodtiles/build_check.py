@@ -18,9 +18,10 @@ def check_job(tinlod, dem, catalogue, tile_size, tiles, build_options):
     ends, where a geographic DEM's cells are widest and narrowest); TilesError with tinlod's
     message if it refuses them. Returns the settings to record ("" from a tinlod that prints
     none)."""
-    # At once: the run's first task waits on them.
+    # At once, with the version the settings name: the run's first task waits on them.
     checks = [(tile, start_check(tinlod, dem, catalogue, tile_size, tile, build_options))
               for tile in dict.fromkeys((tiles[0], tiles[-1]))]  # once for a single tile
+    asked_version = start_version(tinlod)
     try:
         for tile, check in checks:
             result = finished(check)
@@ -28,9 +29,9 @@ def check_job(tinlod, dem, catalogue, tile_size, tiles, build_options):
                 message = tinlod_error(result.stderr) or result.stderr.strip() or "exit code %d" % result.returncode
                 raise TilesError("tinlod build refuses the job (tile %d,%d): %s. Nothing was written"
                                  % (tile.col, tile.row, message))
-        return settings_of(tinlod, result)  # the options read alike on every tile
+        return settings_of(version_of(finished(asked_version)), result)  # the options read alike on every tile
     finally:  # a refusal, or Ctrl-C
-        for _, process in checks:
+        for process in [process for _, process in checks] + [asked_version]:
             if process.poll() is None:
                 process.kill()
                 process.wait()
@@ -40,7 +41,7 @@ def recorded_settings(tinlod, dem, catalogue, tile_size, tile, build_options):
     """The settings of options an earlier run recorded only as given; "" if -check refuses
     them now."""
     result = finished(start_check(tinlod, dem, catalogue, tile_size, tile, build_options))
-    return settings_of(tinlod, result) if result.returncode == 0 else ""
+    return settings_of(version_of(finished(start_version(tinlod))), result) if result.returncode == 0 else ""
 
 
 def start_check(tinlod, dem, catalogue, tile_size, tile, build_options):
@@ -60,15 +61,20 @@ def finished(process):
     return subprocess.CompletedProcess(process.args, process.returncode, stdout, stderr)
 
 
-def settings_of(tinlod, result):
-    """"VERSION: OPTIONS": a default means what that tinlod says it means, so settings
-    recorded by another version are not compared (same_version)."""
+def settings_of(version, result):
+    """"VERSION: OPTIONS" (`version` as version_of gives it): a default means what that
+    tinlod says it means, so settings recorded by another version are not compared
+    (same_version)."""
     in_effect = next((line[len(IN_EFFECT):] for line in result.stdout.split("\n") if line.startswith(IN_EFFECT)), "")
-    return "%s: %s" % (version(tinlod), in_effect) if in_effect else ""
+    return "%s: %s" % (version, in_effect) if in_effect else ""
 
 
-def version(tinlod):
-    result = subprocess.run([tinlod, "--version"], capture_output=True, text=True, errors="surrogateescape")
+def start_version(tinlod):
+    return start([tinlod, "--version"])
+
+
+def version_of(result):
+    """The first line of tinlod --version's answer (`result`, as finished gives it)."""
     return result.stdout.strip().split("\n")[0] or "tinlod of unknown version"
 
 
