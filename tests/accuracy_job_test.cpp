@@ -198,6 +198,32 @@ TEST(AccuracyJob, ADemWithoutCrsIsReadWithTheSourceSrsTheBuildWasGiven) {
   EXPECT_TRUE(fb.warned("-s_srs EPSG:32612 is not the EPSG:4326 '" + gpkg + "' was built with")) << "no such warning";
 }
 
+// A DEM in degrees is sampled in its UTM zone: the accuracy reads each vertex back onto the
+// DEM's grid, where those on the raster's edge came back a rounding outside it and the
+// cells on the edge outside every triangle (112 of zion_srtm3's 212,505 cells in a trial).
+TEST(AccuracyJob, ADemInDegreesIsMeasuredAtEveryCellTheLevelsTableCounts) {
+  Dem dem = test::makeGeographicDem(150, 120, 7.0123, 46.0456);
+  for (int r = 0; r < dem.height; ++r)
+    for (int c = 0; c < dem.width; ++c)
+      dem.z[std::size_t(r) * dem.width + c] = float(500 + 40 * std::sin(c / 9.0) * std::cos(r / 7.0) + 0.3 * c);
+  const std::string path = test::tempDir() + "/degrees_edges.tif", gpkg = test::tempDir() + "/degrees_edges.gpkg";
+  writeDemGeoTiff(dem, path);
+  runBuildJob(path, gpkg, {}, {}, true, {});
+  const StoredHierarchy stored = readHierarchy(gpkg, ProgressRange(Feedback{}, 0, 1));
+  AccuracyOutputs a;
+  a.options.reference = Reference::Dem;
+  a.reportPath = test::tempDir() + "/degrees_edges.csv";
+  a.overwrite = true;
+  const AccuracyReport r = runAccuracyJob(path, gpkg, a, 0, "", {});
+  ASSERT_EQ(r.rows.size(), stored.hierarchy.levels.size());
+  EXPECT_EQ(stored.hierarchy.levels.front().cells, 150 * 120) << "level 0 covers every cell, the edges' included";
+  for (std::size_t L = 0; L < r.rows.size(); ++L) {
+    EXPECT_EQ(r.rows[L].testPoints, std::size_t(stored.hierarchy.levels[L].cells)) << "level " << L;
+    EXPECT_NEAR(r.rows[L].rmse, stored.hierarchy.levels[L].rmse, 1e-6) << "level " << L;
+    EXPECT_NEAR(r.rows[L].maxAbsError, stored.hierarchy.levels[L].maxError, 1e-6) << "level " << L;
+  }
+}
+
 TEST(AccuracyJob, TooFewTestPointsOnTheTinAreRefusedWithNothingWritten) {
   AccuracyOutputs a;
   a.reportPath = test::tempDir() + "/few.csv";
