@@ -302,7 +302,9 @@ def ctrl_c(dem, tiles, work, env, stop=signal.SIGINT):
     name = signal.Signals(stop).name
     sleeper, pids = os.path.join(work, "sleeping_tinlod"), os.path.join(work, "sleeping_%s.pids" % name)
     with open(sleeper, "w") as f:
-        f.write('#!/bin/sh\nfor a in "$@"; do [ "$a" = -check ] && exit 0; done\necho $$ >> %s\nexec sleep 120\n' % pids)
+        # -check and --version (which the driver asks beside the checks) answer at once.
+        f.write('#!/bin/sh\nfor a in "$@"; do case "$a" in -check|--version) exit 0;; esac; done\n'
+                'echo $$ >> %s\nexec sleep 120\n' % pids)
     os.chmod(sleeper, 0o755)
     catalogue = os.path.join(work, "g_%s.gpkg" % name)
     driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-selection", "tile",
