@@ -3,12 +3,18 @@
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <memory>
+#include <set>
 
 #include "mesh_checks.h"
 #include "test_support.h"
+#include "tinlod/build_job.h"
 #include "tinlod/error.h"
+#include "tinlod/hierarchy_info.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/synthetic_dem.h"
 
@@ -63,6 +69,41 @@ TEST(SampleJob, WritesVerticesAndTrianglesLayersWithCrs) {
   EXPECT_EQ(layerInfo(out, "triangles").geometry, "3D Polygon");
   EXPECT_EQ(layerInfo(out, "vertices").geometry, "3D Point");
   EXPECT_EQ(layerInfo(out, "triangles").crs, "WGS 84 / UTM zone 32N");
+}
+
+// A hole's diagonal edge is a stair of cells on the valid area's outline, all sampled, many
+// of which end inside the TIN: the TIN's outline is its triangles', as a hierarchy's level
+// 0 counts it (info showed 2856 for mandakini's sample and 1086 for its build's level 0).
+TEST(SampleJob, OutlineVerticesAreTheTinsOutlineAsTheHierarchysLevelZeroCountsThem) {
+  Dem dem = test::makeDem(120, 90, 30, [](int r, int c) {
+    const bool hole = std::abs(r - c + 10) < 12 && r > 20 && r < 70;
+    return hole ? std::nanf("") : float(300 + 2 * r + std::sin(c / 5.0) * 10);
+  });
+  const std::string dir = test::tempDir(), demPath = dir + "/stairs.tif";
+  writeDemGeoTiff(dem, demPath);
+  const SampleSummary s = runSampleJob(demPath, dir + "/stairs_tin.gpkg", {}, true, {});
+  runBuildJob(demPath, dir + "/stairs_h.gpkg", {}, {}, true, {});
+  const HierarchyInfo tin = readHierarchyInfo(dir + "/stairs_tin.gpkg");
+  const HierarchyInfo built = readHierarchyInfo(dir + "/stairs_h.gpkg");
+  // The brute force: vertices on an edge that one triangle has.
+  std::map<std::pair<long long, long long>, int> edges;
+  {
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open((dir + "/stairs_tin.gpkg").c_str(), GDAL_OF_VECTOR));
+    for (auto& f : *ds->GetLayerByName("triangles")) {
+      const long long v[3] = {f->GetFieldAsInteger64("v0"), f->GetFieldAsInteger64("v1"), f->GetFieldAsInteger64("v2")};
+      for (int k = 0; k < 3; ++k) ++edges[std::minmax(v[k], v[(k + 1) % 3])];
+    }
+  }
+  std::set<long long> on;
+  for (const auto& [edge, count] : edges)
+    if (count == 1) on.insert(edge.first), on.insert(edge.second);
+  EXPECT_EQ(s.outlineVertices, on.size());
+  EXPECT_EQ(tin.levels.front().outlineVertices, on.size());
+  EXPECT_EQ(built.levels.front().outlineVertices, on.size());
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open((dir + "/stairs_tin.gpkg").c_str(), GDAL_OF_VECTOR));
+  OGRLayer* vertices = ds->GetLayerByName("vertices");
+  vertices->SetAttributeFilter("outline = 1");
+  EXPECT_LT(on.size(), std::size_t(vertices->GetFeatureCount())) << "the stairs' inner cells are flagged, not on the outline";
 }
 
 TEST(SampleJob, SameSeedSameTinOtherSeedOtherTin) {

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "tile_catalogue.h"
+#include "tin_outline.h"
 #include "vertex_place.h"
 #include "tinlod/error.h"
 
@@ -87,20 +88,8 @@ void TileMerger::add(const CatalogueTile& tile, const Hierarchy& h) {
   first_ = false;
 }
 
-// On the outline: on an edge of level 0 that only one triangle has (tiles' shared lines
-// are no longer outline once the tiles are put together).
-std::vector<bool> outlineVertices(const Tin& tin) {
-  std::unordered_map<std::uint64_t, int> edges;
-  const auto key = [](VertexId a, VertexId b) { return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b); };
-  for (const Triangle& t : tin.triangles)
-    for (int k = 0; k < 3; ++k) ++edges[key(t[k], t[(k + 1) % 3])];
-  std::vector<bool> outline(tin.vertices.size(), false);
-  for (const auto& [edge, count] : edges)
-    if (count == 1) outline[edge >> 32] = outline[edge & 0xffffffffu] = true;
-  return outline;
-}
-
 Hierarchy TileMerger::finish() {
+  // Tiles' shared lines are no longer outline once the tiles are put together.
   const std::vector<bool> outline = outlineVertices(all_.base);
   for (std::size_t v = 0; v < outline.size(); ++v) all_.base.vertices[v].outline = outline[v];
   all_.levels = levels_.finish();

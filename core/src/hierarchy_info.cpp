@@ -86,7 +86,12 @@ LevelStats singleLevel(GDALDataset& ds, const HierarchyInfo& info) {
   if (const auto e = info.metadata.find("max_error"); e != info.metadata.end()) l.maxError = std::strtod(e->second.c_str(), nullptr);
   if (const auto e = info.metadata.find("rmse"); e != info.metadata.end()) l.rmse = std::strtod(e->second.c_str(), nullptr);
   OGRLayer* vertices = ds.GetLayerByName("vertices");
-  if (vertices && vertices->GetLayerDefn()->GetFieldIndex("outline") >= 0 && vertices->SetAttributeFilter("outline = 1") == OGRERR_NONE) {
+  // The TIN's outline as its writer counted it; a file of an older tinlod has only the
+  // sampler's flags, a count of the cells on the valid area's outline.
+  if (const auto o = info.metadata.find("outline_vertices"); o != info.metadata.end()) {
+    l.outlineVertices = static_cast<std::size_t>(std::strtoull(o->second.c_str(), nullptr, 10));
+  } else if (vertices && vertices->GetLayerDefn()->GetFieldIndex("outline") >= 0 &&
+             vertices->SetAttributeFilter("outline = 1") == OGRERR_NONE) {
     l.outlineVertices = static_cast<std::size_t>(std::max<GIntBig>(0, vertices->GetFeatureCount()));
     vertices->SetAttributeFilter(nullptr);
   }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "text_and_paths.h"
+#include "tin_outline.h"
 #include "tinlod/cell_hash.h"
 #include "tinlod/crs_transform.h"
 #include "tinlod/dem_reader.h"
@@ -162,7 +163,7 @@ SampleSummary summarize(const Tin& tin, std::size_t validCells) {
   s.validCells = validCells;
   s.vertices = tin.vertices.size();
   s.triangles = tin.triangles.size();
-  for (const TinVertex& v : tin.vertices) s.outlineVertices += v.outline;
+  s.outlineVertices = countOutlineVertices(tin);
   s.area = totalArea(tin);
   s.crsName = tin.crsName;
   return s;

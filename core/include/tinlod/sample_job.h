@@ -17,7 +17,7 @@ struct SampleSummary {
   std::size_t validCells = 0;
   std::size_t vertices = 0;
   std::size_t triangles = 0;
-  std::size_t outlineVertices = 0;
+  std::size_t outlineVertices = 0;  // on an edge of one triangle: the TIN's outline (a level 0's count)
   double area = 0;  // square metres covered by the TIN
   std::string crsName;
 };
