@@ -246,6 +246,25 @@ TEST(Cli, BuildWritesAHierarchyThatInfoDescribes) {
     EXPECT_TRUE(has(help.out, option)) << option;
 }
 
+// The jitter moves some vertices beside the void outward, their cells' centres just outside
+// level 0: the summary says how many valid cells level 0 covers when that is not all, and a
+// coarsest level that reaches more of them than level 0 is not said to give up a negative count.
+TEST(Cli, BuildSaysHowManyValidCellsLevelZeroCoversWhenNotAll) {
+  const std::string dir = test::tempDir();
+  const CliRun build = tinlod("build " + defaultDem() + " " + dir + "/cover.gpkg");
+  ASSERT_EQ(build.exitCode, 0) << build.err;
+  EXPECT_TRUE(has(build.out, "Level 0 covers 105752 of the DEM's 105778 valid cells: the others' centres are beside nodata"))
+      << build.out;
+  EXPECT_TRUE(has(build.out, ", 7 valid cells more than level 0 covers)")) << build.out;
+  EXPECT_FALSE(has(build.out, "-7")) << build.out;
+  const CliRun json = tinlod("info -json " + dir + "/cover.gpkg");
+  EXPECT_TRUE(has(json.out, "\"cells\": 105752,")) << json.out.substr(0, 1500);
+  ASSERT_EQ(tinlod("makedem -q -no_void -size 120 100 -cell 25 " + dir + "/full.tif").exitCode, 0);
+  const CliRun full = tinlod("build " + dir + "/full.tif " + dir + "/full.gpkg");
+  ASSERT_EQ(full.exitCode, 0) << full.err;
+  EXPECT_FALSE(has(full.out, "Level 0 covers")) << full.out;
+}
+
 // A survey writes no hierarchy and measures only level 0: it says what it wrote, not a
 // coarsest level's errors it never measured.
 TEST(Cli, SurveyOfATileSaysWhatItWrote) {

@@ -331,6 +331,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,
                                tile.size > 0 ? &borders : nullptr);
   if (tile.size == 0) warnIfStoppedEarly(h, all);
+  const std::size_t validCells = tile.size > 0 ? 0 : dem.validCount();  // a tile's window holds its halo's too
   // Only the accuracy outputs read the heights and level 0's TIN again; freed, they leave
   // the writing room (68 and 45 MB for a 4096 x 4096 tile). The DEM's size and window stay
   // for the metadata.
@@ -367,6 +368,8 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   s.coarsestError = h.levels.back().maxError;
   s.coarsestRmse = h.levels.back().rmse;
   s.cellsGivenUp = h.levels.front().cells - h.levels.back().cells;
+  s.validCells = validCells;
+  s.levelZeroCells = h.levels.front().cells;
   s.fileBytes = std::filesystem::file_size(outPath);
   s.crsName = h.base.crsName;
   return s;
