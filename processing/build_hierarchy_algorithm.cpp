@@ -15,6 +15,7 @@
 #include "source_file.h"
 #include "tin_layer_style.h"
 #include "tinlod/build_job.h"
+#include "tinlod/build_summary_text.h"
 #include "vertex_index_parameter.h"
 
 namespace tinlod::qgis {
@@ -173,10 +174,11 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
       },
       names);
   feedback->pushInfo(QStringLiteral("%1 levels (0 to %7): %2 -> %3 vertices (%4 fixed); the coarsest level against the DEM: "
-                                    "maximum error %5 m, RMSE %8 m, %9 valid cells given up by its outline; %6 MB")
+                                    "maximum error %5 m, RMSE %8 m, %9; %6 MB")
                          .arg(s.levels + 1).arg(s.originalVertices).arg(s.coarsestVertices).arg(s.fixedVertices)
                          .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1).arg(s.levels)
-                         .arg(s.coarsestRmse, 0, 'f', 2).arg(s.cellsGivenUp));
+                         .arg(s.coarsestRmse, 0, 'f', 2).arg(QString::fromStdString(coarsestCellsText(s))));
+  if (const std::string cover = levelZeroCoverText(s); !cover.empty()) feedback->pushInfo(QString::fromStdString(cover));
   if (loadLevels_) {
     const QString base = outputBaseName(output, QStringLiteral("TIN hierarchy"));
     for (const std::int32_t level : s.levelViews)

@@ -9,6 +9,7 @@
 #include "sample_arguments.h"
 #include "terminal_feedback.h"
 #include "tinlod/build_job.h"
+#include "tinlod/build_summary_text.h"
 #include "tinlod/error.h"
 
 namespace tinlod::cli {
@@ -235,17 +236,9 @@ int buildCommand(std::vector<std::string> args) {
     std::cout << "Wrote " << s.levels + 1 << (s.levels ? " levels (0 to " + std::to_string(s.levels) + ", " : " level (")
               << s.originalVertices << " -> " << s.coarsestVertices
               << " vertices, " << s.fixedVertices << " fixed; the coarsest level against the DEM: maximum error "
-              << s.coarsestError << " m, RMSE " << s.coarsestRmse << " m, "
-              // A coarser outline may also reach cells beside nodata that level 0's missed.
-              << (s.cellsGivenUp >= 0 ? std::to_string(s.cellsGivenUp) + " valid cells given up by its outline"
-                                      : std::to_string(-s.cellsGivenUp) + " valid cells more than level 0 covers")
-              << ") in " << s.crsName << " to " << files[1] << " (" << s.fileBytes / 1000000
+              << s.coarsestError << " m, RMSE " << s.coarsestRmse << " m, " << coarsestCellsText(s) << ") in " << s.crsName << " to " << files[1] << " (" << s.fileBytes / 1000000
               << " MB)" << std::endl;
-  if (!quiet && !o.survey && s.validCells > std::size_t(s.levelZeroCells))
-    std::cout << "Level 0 covers " << s.levelZeroCells << " of the DEM's " << s.validCells
-              << " valid cells: the others' centres are beside nodata, just outside the TIN where the jitter moved "
-                 "their vertex (by less than -jitter metres), or in valid areas too thin for a triangle"
-              << std::endl;
+  if (!quiet && !o.survey && !levelZeroCoverText(s).empty()) std::cout << levelZeroCoverText(s) << std::endl;
   if (!quiet && !s.accuracy.empty()) printAccuracy(s.accuracy, std::cout);
   return 0;
 }
