@@ -228,7 +228,9 @@ class Simplifier {
     for (VertexId v : nearestVerticesOnData(h_.base, mine, off, progress_.sub(0, 0.1), onLines)) h_.fixed[v] = 1;
     if (off > 0)
       progress_.warn(std::to_string(off) + " of the " + std::to_string(mine.size()) + " points to keep" +
-                     (tile_ ? " within the tile's extent" : "") + " fall outside the TIN's data and were ignored");
+                     (tile_ ? " within the tile's extent" : "") +
+                     " fall outside the TIN and were ignored: over nodata, or between the raster's edge and its "
+                     "outermost cell centres, where the TIN's outline runs");
   }
 
   bool eligible(VertexId v) const {
