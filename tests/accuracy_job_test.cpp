@@ -224,6 +224,26 @@ TEST(AccuracyJob, ADemInDegreesIsMeasuredAtEveryCellTheLevelsTableCounts) {
   }
 }
 
+TEST(AccuracyJob, RealDemsInDegreesAreMeasuredAtEveryCellTheLevelsTableCounts) {
+  const std::string data = test::dataDir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent (set TINLOD_TEST_DATA): real-DEM test skipped";
+  for (const std::string name : {"zion_srtm3.tif", "mandakini_90m.tif"}) {  // the second with nodata holes
+    const std::string gpkg = test::tempDir() + "/" + name + ".gpkg";
+    runBuildJob(data + "/" + name, gpkg, {}, {}, true, {});
+    const StoredHierarchy stored = readHierarchy(gpkg, ProgressRange(Feedback{}, 0, 1));
+    AccuracyOutputs a;
+    a.options.reference = Reference::Dem;
+    a.reportPath = test::tempDir() + "/" + name + ".csv";
+    a.overwrite = true;
+    const AccuracyReport r = runAccuracyJob(data + "/" + name, gpkg, a, 0, "", {});
+    ASSERT_EQ(r.rows.size(), stored.hierarchy.levels.size()) << name;
+    for (std::size_t L = 0; L < r.rows.size(); ++L) {
+      EXPECT_EQ(r.rows[L].testPoints, std::size_t(stored.hierarchy.levels[L].cells)) << name << " level " << L;
+      EXPECT_NEAR(r.rows[L].rmse, stored.hierarchy.levels[L].rmse, 1e-6) << name << " level " << L;
+    }
+  }
+}
+
 TEST(AccuracyJob, TooFewTestPointsOnTheTinAreRefusedWithNothingWritten) {
   AccuracyOutputs a;
   a.reportPath = test::tempDir() + "/few.csv";
