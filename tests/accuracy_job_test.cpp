@@ -174,11 +174,21 @@ TEST(AccuracyJob, ADemWithoutCrsIsReadWithTheSourceSrsTheBuildWasGiven) {
   runBuildJob(path, gpkg, sample, {}, true, {}, AccuracyOutputs());
   AccuracyOutputs a;
   a.reportPath = test::tempDir() + "/degrees.csv";
+  a.rasterPath = test::tempDir() + "/degrees_accuracy.tif";
   a.overwrite = true;
   const AccuracyReport r = runAccuracyJob(path, gpkg, a, 0, "", {});
   ASSERT_FALSE(r.rows.empty());
   EXPECT_GT(r.rows.size(), 2u);
   EXPECT_TRUE(std::isfinite(r.rows.back().rmse)) << "every level measured at the DEM's test points";
+  // The raster and the report are in the CRS the DEM was read in, not in none as its file.
+  EXPECT_EQ(r.crsName, "WGS 84");
+  {
+    GDALDatasetUniquePtr raster(GDALDataset::Open(a.rasterPath.c_str(), GDAL_OF_RASTER));
+    ASSERT_TRUE(raster);
+    ASSERT_NE(raster->GetSpatialRef(), nullptr) << "the accuracy raster has no CRS";
+    EXPECT_STREQ(raster->GetSpatialRef()->GetAuthorityCode(nullptr), "4326");
+  }
+  a.rasterPath.clear();
 
   // Another DEM with a CRS of its own keeps it: the same heights on the TIN's UTM grid would
   // lie nowhere near the TIN read as degrees.

@@ -59,6 +59,7 @@ TEST(Experiment, InsertionRunsToExactlyEveryLevelsVertexCount) {
   }
   ASSERT_GE(levelCounts.size(), 6u);  // 10 % and 20 % steps down to 20 %: several levels each
   EXPECT_EQ(insertCounts, levelCounts);
+  EXPECT_EQ(r.crsName, "WGS 84 / UTM zone 32N") << "the CRS of the rows' positions (max_error_x, max_error_y)";
 }
 
 TEST(Experiment, EveryLevelHasInsertsRmseAtItsSizeAndTheirRatio) {

@@ -121,7 +121,7 @@ AccuracyReport measureAndWrite(const Dem& dem, const Hierarchy& h, const CrsTran
   AccuracyReport report =
       makeReport(evaluator, std::string(h.tinMethod.empty() ? "Accuracy of the TIN hierarchy of " : "Accuracy of the TIN of ") +
                                 demName(dem.path),
-                 crsNameOf(dem.crsWkt), std::move(rows));
+                 crsNameOf(evaluator.grid().crsWkt), std::move(rows));
   if (canvas) canvas->finish(progress.sub(0.9, 0.98));
   if (files.report) writeAccuracyReport(report, *files.report);
   return report;

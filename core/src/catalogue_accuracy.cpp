@@ -609,7 +609,7 @@ AccuracyReport measureCatalogue(const std::string& demPath, const std::string& c
   AccuracyReport report = makeReport(outputs.options,
                                      "Accuracy of the TIN hierarchy of " + demName(demPath) +
                                          (unfinished.empty() ? "" : " (" + unfinished + ": the finished tiles alone)"),
-                                     crsNameOf(g->header.crsWkt), std::move(rows));
+                                     crsNameOf(g->grid.crsWkt), std::move(rows));
   if (canvas) canvas->finish(progress.sub(0.95, 0.99));
   if (files.report) writeAccuracyReport(report, *files.report);
   return report;

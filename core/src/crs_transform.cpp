@@ -19,6 +19,7 @@ struct CrsTransform::Impl {
   std::unique_ptr<OGRCoordinateTransformation> inverse;
   std::string wkt;
   std::string name;
+  std::string sourceWkt;
 };
 
 namespace {
@@ -170,6 +171,7 @@ CrsTransform::~CrsTransform() = default;
 bool CrsTransform::isIdentity() const { return !impl_->transform; }
 const std::string& CrsTransform::targetWkt() const { return impl_->wkt; }
 const std::string& CrsTransform::targetName() const { return impl_->name; }
+const std::string& CrsTransform::sourceWkt() const { return impl_->sourceWkt; }
 
 CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, const std::string& targetSrs,
                                   const ProgressRange& progress) {
@@ -182,6 +184,7 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
   }
   src.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   if (hasSrc) requireLonLat(dem, src, sourceSrs);
+  if (hasSrc) impl->sourceWkt = sourceSrs.empty() ? dem.crsWkt : wkt2(src);
 
   OGRSpatialReference dst;
   if (!targetSrs.empty()) {

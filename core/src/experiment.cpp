@@ -2,6 +2,9 @@
 #include "dataset_files.h"
 #include "tinlod/experiment.h"
 
+#include <set>
+#include <string>
+
 #include "insertion_levels.h"
 #include "tinlod/accuracy_job.h"
 #include "tinlod/dem_reader.h"
@@ -31,9 +34,10 @@ void ExperimentOptions::validate() const {
 namespace {
 
 // One DEM: the reference is made once and serves every run. Greedy insertion is run to
-// every level's vertex count, and each level compared with it at its size.
-void runDem(const std::string& path, const ExperimentOptions& options, std::vector<LevelAccuracy>& rows,
-            const ProgressRange& progress) {
+// every level's vertex count, and each level compared with it at its size. Returns the
+// name of the CRS its rows' positions are in (the DEM's as read).
+std::string runDem(const std::string& path, const ExperimentOptions& options, std::vector<LevelAccuracy>& rows,
+                   const ProgressRange& progress) {
   const Dem dem = readDem(path, options.sample.band, progress.sub(0, 0.02), options.sample.validHeights);
   const Tin tin = sampleTin(dem, options.sample, progress.sub(0.02, 0.05));
   const CrsTransform toTin = CrsTransform::forDem(dem, options.sample.sourceSrs, options.sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
@@ -63,6 +67,7 @@ void runDem(const std::string& path, const ExperimentOptions& options, std::vect
   }
   for (std::vector<LevelAccuracy>* part : {&levels, &inserted})
     for (LevelAccuracy& row : *part) rows.push_back(std::move(row));
+  return crsNameOf(evaluator.grid().crsWkt);
 }
 
 // Each DEM read and sampled once before the work: one that cannot be (not a raster, too
@@ -93,9 +98,12 @@ AccuracyReport runExperiment(const std::vector<std::string>& dems, const Experim
   if (dems.size() > 1) checkDems(dems, options, all.sub(0, 0.05));
   const ProgressRange runs = dems.size() > 1 ? all.sub(0.05, 1) : all;
   std::vector<LevelAccuracy> rows;
+  std::set<std::string> crsNames;
   for (std::size_t i = 0; i < dems.size(); ++i)
-    runDem(dems[i], options, rows, runs.sub(double(i) / dems.size(), double(i + 1) / dems.size()));
+    crsNames.insert(runDem(dems[i], options, rows, runs.sub(double(i) / dems.size(), double(i + 1) / dems.size())));
   AccuracyReport report;
+  // The rows' positions (max_error_x, max_error_y) are each in its DEM's CRS.
+  report.crsName = crsNames.size() == 1 ? *crsNames.begin() : "each DEM's own";
   report.title = "The study's experiment over " + std::to_string(dems.size()) + (dems.size() == 1 ? " DEM" : " DEMs");
   report.reference = referenceName(options.accuracy.reference);
   report.step = options.accuracy.step;

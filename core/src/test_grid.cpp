@@ -16,7 +16,7 @@ TestGrid makeTestGrid(const Dem& dem, int step, const CrsTransform& toTin) {
   // Test point (c, r) is the centre of DEM cell (r step, c step): a raster cell of step
   // DEM cells centred there.
   g.geotransform = {gt[0] + 0.5 * (1 - step) * gt[1], step * gt[1], 0, gt[3] + 0.5 * (1 - step) * gt[5], 0, step * gt[5]};
-  g.crsWkt = dem.crsWkt;
+  g.crsWkt = toTin.sourceWkt();  // -s_srs's when given: the DEM's file may have none
   const double midX = g.x(g.cols / 2);
   g.cellHeight = toTin.groundDistance(midX, g.y(g.rows / 2), midX, g.y(g.rows / 2) + g.geotransform[5]);
   g.cellWidth.resize(g.rows);

@@ -28,6 +28,8 @@ class CrsTransform {
 
   bool isIdentity() const;
   const std::string& targetWkt() const;   // empty when the DEM had no CRS
+  // The DEM's CRS as read: -s_srs when given, else the file's own; empty when it has none.
+  const std::string& sourceWkt() const;
   const std::string& targetName() const;  // "WGS 84 / UTM zone 32N", for messages
 
   // Transforms in place; throws Error if PROJ cannot transform a point.

@@ -18,7 +18,7 @@ namespace tinlod {
 struct TestGrid {
   int cols = 0, rows = 0, step = 1;
   std::array<double, 6> geotransform{};  // the test points as raster cells, in the DEM's CRS
-  std::string crsWkt;                    // the DEM's (empty when it has none)
+  std::string crsWkt;                    // the DEM's as read (-s_srs's when given; empty when none)
   std::vector<double> cellWidth;         // metres between neighbouring points of each row
   double cellHeight = 0;                 // metres between neighbouring rows
   // Georeferenced centre of a test point, in the DEM's CRS.
