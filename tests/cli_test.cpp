@@ -418,6 +418,14 @@ TEST(Cli, InsertKeepsTheToleranceThatAccuracyMeasuresAgain) {
   const CliRun countedInfo = tinlod("info -json " + dir + "/c.gpkg");
   // Exactly 250 inserted; one beside the void may end in no triangle and is left out.
   EXPECT_TRUE(has(countedInfo.out, "\"vertices\": 250,") || has(countedInfo.out, "\"vertices\": 249,")) << countedInfo.out;
+  // Its row's maximum is over every valid cell, as its RMSE: the file's measured_max_error,
+  // not max_error, the maximum over the samples alone.
+  const auto item = [&](const std::string& key) {
+    const std::size_t at = countedInfo.out.find("\"" + key + "\": \"");
+    return at == std::string::npos ? std::string("none") : countedInfo.out.substr(at + key.size() + 5, countedInfo.out.find('"', at + key.size() + 5) - at - key.size() - 5);
+  };
+  EXPECT_NE(item("measured_max_error"), item("max_error")) << countedInfo.out;
+  EXPECT_TRUE(has(countedInfo.out, "\"max_error\": " + item("measured_max_error") + ",")) << countedInfo.out;
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
            {"insert -max_error -1 ", "max_error must be"},
            {"insert -max_vertices 2 ", "max_vertices must be"},
