@@ -473,6 +473,15 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
                                    dir + "/lonlat.gpkg");
   ASSERT_EQ(geographic.exitCode, 0) << geographic.err;
   EXPECT_EQ(geographic.out.substr(0, geographic.out.find(" in ")), near.out.substr(0, near.out.find(" in ")));
+  // The centre as the output records it runs the same extraction again (to 3 decimals, a
+  // centre in degrees moved by up to 100 m).
+  const std::string recorded = tinlod("info -json " + dir + "/lonlat.gpkg").out;
+  const std::size_t centres = recorded.find("\"centers\": \"");
+  ASSERT_NE(centres, std::string::npos) << recorded;
+  const std::string centre = recorded.substr(centres + 12, recorded.find('"', centres + 12) - centres - 12);
+  EXPECT_GT(centre.size(), 20u) << centre;
+  const CliRun again = tinlod("lod -center " + centre + " -center_srs EPSG:4326 -dropoff 200 " + dir + "/h.gpkg " + dir + "/again.gpkg");
+  EXPECT_EQ(again.out.substr(0, again.out.find(" in ")), geographic.out.substr(0, geographic.out.find(" in "))) << centre;
   // The same numbers without -center_srs lie far outside the TIN: said, not silently coarse.
   const CliRun lost = tinlod("lod -center " + std::string(lonLat) + " -dropoff 200 " + dir + "/h.gpkg " + dir + "/lost.gpkg");
   ASSERT_EQ(lost.exitCode, 0) << lost.err;

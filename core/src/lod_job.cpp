@@ -6,7 +6,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <memory>
 
@@ -46,12 +45,11 @@ void checkOptions(const LodJobOptions& o) {
 
 std::map<std::string, std::string> jobMetadata(const std::string& source, const LodJobOptions& o) {
   std::map<std::string, std::string> m{{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "lod"}, {"TINLOD_SOURCE", source}};
+  // As given, to the last digit: in degrees (-center_srs) three decimals were 100 m, and a
+  // rerun from the recorded centres extracted another TIN.
   std::string centres;
-  char text[64];
-  for (const auto& c : o.lod.centres) {
-    std::snprintf(text, sizeof text, "%.3f %.3f", c[0], c[1]);  // map coordinates to the millimetre
-    centres += (centres.empty() ? "" : "; ") + std::string(text);
-  }
+  for (const auto& c : o.lod.centres)
+    centres += (centres.empty() ? "" : "; ") + roundTripNumber(c[0]) + " " + roundTripNumber(c[1]);
   if (!centres.empty()) m["TINLOD_CENTERS"] = centres;
   if (!centres.empty() && !o.centresSrs.empty()) m["TINLOD_CENTERS_SRS"] = o.centresSrs;
   if (!o.centresPath.empty()) m["TINLOD_CENTERS_FILE"] = o.centresPath;
