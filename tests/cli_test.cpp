@@ -452,7 +452,7 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   ASSERT_EQ(tinlod("build -q " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
   const CliRun near = tinlod("lod -center 404500 5203750 -dropoff 200 " + dir + "/h.gpkg " + dir + "/near.gpkg");
   ASSERT_EQ(near.exitCode, 0) << near.err;
-  EXPECT_TRUE(has(near.out, "Triangles by level: 0: ")) << near.out;
+  EXPECT_TRUE(has(near.out, "Triangles by the finest level they are in (first_level): 0: ")) << near.out;
   EXPECT_TRUE(has(near.out, " s, reading and writing aside)")) << near.out;  // the study's figure, said as such
   const std::string points = geojson(dir + "/c.geojson", R"({"type": "Point", "coordinates": [404500, 5203750]})");
   const CliRun fromFile = tinlod("lod -centers " + points + " -dropoff 200 " + dir + "/h.gpkg " + dir + "/file.gpkg");
@@ -496,9 +496,16 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   const std::string disc = geojson(dir + "/r.geojson", R"({"type": "Polygon", "coordinates": [[[401000, 5203000], [403000, 5203000], [403000, 5205000], [401000, 5205000], [401000, 5203000]]]})");
   const CliRun region = tinlod("lod -region " + disc + " " + dir + "/h.gpkg " + dir + "/region.gpkg");
   ASSERT_EQ(region.exitCode, 0) << region.err;
-  const std::size_t at = region.out.find("Triangles by level: 0: ");
+  const std::string levelZero = "Triangles by the finest level they are in (first_level): 0: ";
+  const std::size_t at = region.out.find(levelZero);
   ASSERT_NE(at, std::string::npos) << region.out;
-  EXPECT_GT(std::stoi(region.out.substr(at + 23)), 1000) << region.out;
+  EXPECT_GT(std::stoi(region.out.substr(at + levelZero.size())), 1000) << region.out;
+  EXPECT_FALSE(has(region.err, "lie outside the TIN")) << region.err;
+  // A region far from the data restores nothing: said, not silently coarse.
+  const std::string away = geojson(dir + "/away.geojson", R"({"type": "Polygon", "coordinates": [[[1000, 1000], [2000, 1000], [2000, 2000], [1000, 2000], [1000, 1000]]]})");
+  const CliRun far = tinlod("lod -region " + away + " " + dir + "/h.gpkg " + dir + "/away.gpkg");
+  ASSERT_EQ(far.exitCode, 0) << far.err;
+  EXPECT_TRUE(has(far.err, "-region: the polygons of '" + away + "' lie outside the TIN (x ")) << far.err;
   EXPECT_TRUE(has(tinlod("info " + dir + "/region.gpkg").out, "kind = lod"));
   // A single TIN's errors against the DEM are not recorded: unknown, not zero.
   const CliRun lodInfo = tinlod("info -json " + dir + "/region.gpkg");

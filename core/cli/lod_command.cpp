@@ -34,8 +34,8 @@ Tests (a deleted vertex is restored when any given test accepts it):
                      more than E metres (vertically) from the DEM at a valid cell centre
                      under them (level 0's own triangles are as fine as it gets) ...
   -error_growth G    ... plus G metres per metre of distance to the nearest centre
-  -region POLYGONS   every vertex inside the polygons of this vector file is restored:
-                     full detail there, coarse outside
+  -region POLYGONS   every vertex whose replacing triangles meet the polygons of this
+                     vector file is restored: full detail there, coarse outside
 
 Centres of detail (in the hierarchy's CRS; other CRSs of a file are transformed):
   -center X Y        a centre; repeat it for several
@@ -81,7 +81,7 @@ int lodCommand(std::vector<std::string> args) {
     std::cout << "Wrote " << s.triangles << " triangles and " << s.vertices << " vertices (level 0 has "
               << s.levelZeroTriangles << " triangles; extraction alone in " << s.seconds
               << " s, reading and writing aside) in " << s.crsName << " to "
-              << files[1] << "\nTriangles by level:";
+              << files[1] << "\nTriangles by the finest level they are in (first_level):";
     for (std::size_t L = 0; L < s.trianglesPerLevel.size(); ++L)
       if (s.trianglesPerLevel[L]) std::cout << " " << L << ": " << s.trianglesPerLevel[L];
     std::cout << std::endl;

@@ -123,6 +123,18 @@ void warnOfCentresOutside(const std::vector<std::array<double, 2>>& centres, con
                 coordinate(extent.maxY) + " in " + crsName + "): " + centresAdvice(options));
 }
 
+// A region that misses the data (another area's polygons, say) restores nothing: as for
+// centres, the TIN comes out at its coarsest, which deserves a word.
+void warnOfRegionOutside(const PolygonRegion* region, const Envelope& extent, const std::string& crsName,
+                         const std::string& regionPath, const ProgressRange& progress) {
+  if (!region || extent.isEmpty()) return;
+  const std::array<double, 4>& r = region->envelope();
+  if (r[2] >= extent.minX && r[0] <= extent.maxX && r[3] >= extent.minY && r[1] <= extent.maxY) return;
+  progress.warn("-region: the polygons of '" + regionPath + "' lie outside the TIN (x " + coordinate(extent.minX) + " to " +
+                coordinate(extent.maxX) + ", y " + coordinate(extent.minY) + " to " + coordinate(extent.maxY) + " in " +
+                crsName + "): nothing is restored for them; are they in the CRS their layer says?");
+}
+
 Envelope extentOf(const Tin& tin) {
   Envelope e = Envelope::empty();
   for (const TinVertex& v : tin.vertices) e.extend(v.x, v.y);
@@ -136,6 +148,7 @@ LodSummary writeFileLod(const std::string& path, const StagedFile& out, const Lo
   std::vector<std::array<double, 2>> centres;  // in the hierarchy's CRS, once read
   const ExtractedLod lod = extractFileLod(path, options, region, centres, progress.sub(0, 0.6));
   warnOfCentresOutside(centres, extentOf(lod.tin), lod.tin.crsName, options, progress);
+  warnOfRegionOutside(region.get(), extentOf(lod.tin), lod.tin.crsName, options.regionPath, progress);
   writeOptions.metadata["TINLOD_CRS"] = lod.tin.crsName;
   writeTinGpkg(lod.tin, out, writeOptions, progress.sub(0.6, 1), {{"level", lod.vertexLevel, true}},
                {{"first_level", lod.firstLevel, true}, {"last_level", lod.lastLevel, true}});
@@ -161,6 +174,7 @@ LodSummary writeCatalogueLod(const std::string& path, const StagedFile& out, con
       path, [&](const std::string& crs) { return resolvedOptions(options, crs, region, centres, progress); },
       out.staging.parent_path() / "lod_parts", file, progress.sub(0, 0.95));
   warnOfCentresOutside(centres, file.extent(), file.crsName(), options, progress);
+  warnOfRegionOutside(region.get(), file.extent(), file.crsName(), options.regionPath, progress);
   file.finish(progress.sub(0.95, 1));
   LodSummary s;
   s.seconds = run.seconds;

@@ -71,6 +71,8 @@ PolygonRegion::PolygonRegion(const std::string& path, const std::string& targetW
 
 PolygonRegion::~PolygonRegion() = default;
 
+const std::array<double, 4>& PolygonRegion::envelope() const { return impl_->envelope; }
+
 bool PolygonRegion::meets(const std::array<std::array<double, 2>, 3>& t) const {
   // Most triangles are far from the region: its envelope rejects them without GEOS.
   const double x0 = std::min({t[0][0], t[1][0], t[2][0]}), x1 = std::max({t[0][0], t[1][0], t[2][0]});

@@ -22,6 +22,8 @@ class PolygonRegion {
 
   // Whether the closed triangle meets the region. Not thread-safe (one GEOS context).
   bool meets(const std::array<std::array<double, 2>, 3>& triangle) const;
+  // xmin, ymin, xmax, ymax in the TIN's CRS.
+  const std::array<double, 4>& envelope() const;
 
  private:
   struct Impl;
