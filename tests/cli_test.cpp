@@ -969,6 +969,7 @@ TEST(Cli, OptionsOutOfRangeAreRefusedNamingTheOption) {
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
            {"lines dp -threshold -1 " + lines, "-threshold must be 0 or more metres (got -1)"},
            {"lines concavity -window -5 -window_fraction 0.1 " + lines, "-window and -window_fraction must be more than 0 (got -5)"},
+           {"lines concavity -window -5 " + lines, "-window and -window_fraction must be more than 0 (got -5)"},
            {"build -method volume -max_degree 8 " + defaultDem(), "-max_degree applies only to -method degree"},
            {"build -max_degree 11 " + defaultDem(), "-max_degree applies only to -method degree"},
            {"insert -max_vertices 1e30 " + defaultDem(), "-max_vertices and -max_triangles take whole numbers from 0 to 2^53"},

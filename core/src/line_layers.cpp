@@ -275,10 +275,11 @@ DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const 
 }
 
 void ConcavityOptions::validate() const {
-  if (!(window > 0) && !(windowFraction > 0))
-    throw Error("give the window: -window d (metres along the line) or -window_fraction f (of each line's length)");
+  // A negative window is named as such before a missing one is asked for.
   if (window < 0 || windowFraction < 0 || !std::isfinite(window))
     throw Error("-window and -window_fraction must be more than 0 (got " + formatNumber(window < 0 ? window : windowFraction) + ")");
+  if (!(window > 0) && !(windowFraction > 0))
+    throw Error("give the window: -window d (metres along the line) or -window_fraction f (of each line's length)");
   if (window > 0 && windowFraction > 0) throw Error("give -window or -window_fraction, not both");
   if (windowFraction >= 0.5) throw Error("-window_fraction must be below 0.5: the window reaches both ways");
   if (radius < 0 || !std::isfinite(radius)) throw Error("-radius must be 0 (the window) or more metres");
