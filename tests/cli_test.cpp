@@ -1019,6 +1019,8 @@ TEST(Cli, LinesDpSkipsVerticesThatAreNotFiniteAndRefusesOtherGeometries) {
   EXPECT_TRUE(has(r.err, "Warning: skipped 2 vertices with coordinates that are not finite numbers (NaN or infinity) in '" +
                              path + "', and skipped 1 line this left with fewer than 2 vertices"))
       << r.err;
+  // Its feature has no row in the outputs: counted, as a feature without geometry would be.
+  EXPECT_TRUE(has(r.err, "Warning: 1 feature of '" + path + "' gave no line (no geometry, an empty one")) << r.err;
   EXPECT_TRUE(has(r.out, "values of 5 vertices of 1 lines")) << r.out;
   GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/dp.gpkg").c_str(), GDAL_OF_VECTOR));
   ASSERT_TRUE(ds);

@@ -27,6 +27,7 @@ constexpr double kEndpointM = 1e300;
 // values (every distance to it is NaN), so it goes, and a line it leaves too short goes too.
 struct LeftOut {
   std::size_t vertices = 0, lines = 0;
+  std::size_t features = 0;  // that gave no line at all: their ids have no row in the outputs
   std::string otherType;  // a geometry that is no line, as GDAL names it
 };
 
@@ -81,6 +82,9 @@ void checkLineLayer(OGRLayer& layer, const std::string& path) {
 }
 
 void warnLeftOut(const LeftOut& left, const std::string& path, const ProgressRange& progress) {
+  if (left.features > 0)
+    progress.warn(std::to_string(left.features) + (left.features == 1 ? " feature" : " features") + " of '" + path +
+                  "' gave no line (no geometry, an empty one, fewer than 2 points, or no line in it): left out");
   if (left.vertices == 0) return;
   std::string message = "skipped " + std::to_string(left.vertices) + (left.vertices == 1 ? " vertex" : " vertices") +
                         " with coordinates that are not finite numbers (NaN or infinity) in '" + path + "'";
@@ -146,7 +150,11 @@ LineSet readLines(const std::string& path, const ProgressRange& progress) {
   checkLineLayer(layer, path);
   LineSet out;
   LeftOut left;
-  for (auto& f : layer) addParts(f->GetGeometryRef(), f->GetFID(), out, left);
+  for (auto& f : layer) {
+    const std::size_t before = out.lines.size();
+    addParts(f->GetGeometryRef(), f->GetFID(), out, left);
+    left.features += out.lines.size() == before;
+  }
   warnLeftOut(left, path, progress);
   if (out.lines.empty())
     throw Error("LINES: the layer of '" + path + "' has no lines (a line layer is needed)" +
