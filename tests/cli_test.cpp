@@ -506,6 +506,11 @@ TEST(Cli, LodExtractsAVaryingLevelOfDetailTin) {
   const CliRun far = tinlod("lod -region " + away + " " + dir + "/h.gpkg " + dir + "/away.gpkg");
   ASSERT_EQ(far.exitCode, 0) << far.err;
   EXPECT_TRUE(has(far.err, "-region: the polygons of '" + away + "' lie outside the TIN (x ")) << far.err;
+  // A centre with only the error test, which does not measure from it, is named as unused.
+  const CliRun unused = tinlod("lod -center 404500 5203750 -max_error 5 " + dir + "/h.gpkg " + dir + "/unused.gpkg");
+  ASSERT_EQ(unused.exitCode, 0) << unused.err;
+  EXPECT_TRUE(has(unused.err, "-center does nothing without a test that measures from the centres")) << unused.err;
+  EXPECT_FALSE(has(region.err, "does nothing")) << region.err;
   EXPECT_TRUE(has(tinlod("info " + dir + "/region.gpkg").out, "kind = lod"));
   // A single TIN's errors against the DEM are not recorded: unknown, not zero.
   const CliRun lodInfo = tinlod("info -json " + dir + "/region.gpkg");

@@ -199,6 +199,9 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   OutputFiles files(overwrite, datasetFiles(inputs));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
+  if (!options.lod.centres.empty() && std::isnan(options.lod.dropoff) && !(options.lod.errorGrowth > 0))
+    all.warn(std::string(options.centresPath.empty() ? "-center" : "-centers") +
+             " does nothing without a test that measures from the centres: -dropoff D, or -error_growth G with -max_error");
   const LodSummary s = isCatalogue(hierarchyPath) ? writeCatalogueLod(hierarchyPath, out, options, writeOptions, all)
                                                   : writeFileLod(hierarchyPath, out, options, writeOptions, all);
   files.commit();
