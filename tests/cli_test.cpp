@@ -1048,6 +1048,19 @@ TEST(Cli, LinesDpSkipsVerticesThatAreNotFiniteAndRefusesOtherGeometries) {
   EXPECT_FALSE(fs::exists(dir + "/x.gpkg"));
 }
 
+TEST(Cli, LodRegionWithoutPolygonsSaysWhetherItsLayerIsEmptyOrNotOfPolygons) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const std::string empty = vectorFile(dir + "/empty.gpkg", wkbPolygon, {});
+  const CliRun e = tinlod("lod -region " + empty + " " + dir + "/h.gpkg " + dir + "/e.gpkg");
+  EXPECT_EQ(e.exitCode, 1);
+  EXPECT_TRUE(has(e.err, "-region: the first layer of '" + empty + "' has no polygons (its polygon layer 'features' is empty)"))
+      << e.err;
+  const std::string points = vectorFile(dir + "/points.gpkg", wkbPoint, {new OGRPoint(404500, 5203750)});
+  const CliRun p = tinlod("lod -region " + points + " " + dir + "/h.gpkg " + dir + "/p.gpkg");
+  EXPECT_TRUE(has(p.err, "has no polygons (a polygon layer is needed)")) << p.err;
+}
+
 TEST(Cli, LevelMinusOneIsTheCoarsestInLocateAsInAccuracy) {
   const std::string dir = test::tempDir();
   ASSERT_EQ(tinlod("build -q -max_levels 3 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);

@@ -53,7 +53,12 @@ PolygonRegion::PolygonRegion(const std::string& path, const std::string& targetW
   OGRLayer& layer = *open.layer;
   const auto transform = transformToTin(layer, targetWkt, what + " ('" + path + "')", progress);
   const OGRGeometryCollection polygons = polygonsOf(layer, transform.get(), what);
-  if (polygons.IsEmpty()) throw Error(what + ": the first layer of '" + path + "' has no polygons (a polygon layer is needed)");
+  if (polygons.IsEmpty()) {
+    const bool polygonLayer = OGR_GT_IsSubClassOf(wkbFlatten(layer.GetGeomType()), wkbCurvePolygon) ||
+                              OGR_GT_IsSubClassOf(wkbFlatten(layer.GetGeomType()), wkbMultiSurface);
+    throw Error(what + ": the first layer of '" + path + "' has no polygons" +
+                (polygonLayer ? " (its polygon layer '" + std::string(layer.GetName()) + "' is empty)" : " (a polygon layer is needed)"));
+  }
   GEOSGeometry* collection = polygons.exportToGEOS(impl_->context);
   if (!collection) throw Error(what + ": the polygons of '" + path + "' are not valid geometries");
   // Overlapping polygons become one area; invalid rings are mended rather than refused.
