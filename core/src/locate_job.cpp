@@ -127,10 +127,7 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   const ProgressRange all(feedback, 0, 1);
   PointSurface surface(hierarchyPath, all.sub(0, 0.4));
   LocateSummary s;
-  if (surface.tiled()) {
-    s.unfinishedTiles = unfinishedTiles(hierarchyPath);
-    addUnfinishedTiles(hierarchyPath, writeOptions.metadata);
-  }
+  if (surface.tiled()) s.unfinishedTiles = addUnfinishedTiles(hierarchyPath, writeOptions.metadata);
   if (level == -1) level = surface.coarsest(), writeOptions.metadata["TINLOD_LEVEL"] = std::to_string(level);  // as accuracy's -level
   if (level < 0 || level > surface.coarsest())
     throw Error("-level " + std::to_string(level) + " does not exist: '" + hierarchyPath + "' has levels 0 to " +

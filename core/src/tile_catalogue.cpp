@@ -120,9 +120,10 @@ std::string unfinishedTiles(const std::string& path) {
          statusCounts(unfinished) + ")";
 }
 
-void addUnfinishedTiles(const std::string& path, std::map<std::string, std::string>& metadata) {
-  if (const std::string unfinished = unfinishedTiles(path); !unfinished.empty())
-    metadata["TINLOD_UNFINISHED_TILES"] = unfinished + ": the finished tiles alone";
+std::string addUnfinishedTiles(const std::string& path, std::map<std::string, std::string>& metadata) {
+  const std::string unfinished = unfinishedTiles(path);
+  if (!unfinished.empty()) metadata["TINLOD_UNFINISHED_TILES"] = unfinished + ": the finished tiles alone";
+  return unfinished;
 }
 
 std::string unfinishedTilesWarning(const std::string& path) {

@@ -50,8 +50,8 @@ std::string unfinishedTilesWarning(const std::string& path);
 // "N of the catalogue's M tiles are not finished (by status)", or "": what an output made
 // from the finished tiles alone records (TINLOD_UNFINISHED_TILES, a report's title).
 std::string unfinishedTiles(const std::string& path);
-// Records unfinishedTiles, if any, as an output's TINLOD_UNFINISHED_TILES.
-void addUnfinishedTiles(const std::string& path, std::map<std::string, std::string>& metadata);
+// Records unfinishedTiles, if any, as an output's TINLOD_UNFINISHED_TILES; returns them.
+std::string addUnfinishedTiles(const std::string& path, std::map<std::string, std::string>& metadata);
 // Warns of them through `progress`, if there are any.
 void warnOfUnfinishedTiles(const std::string& path, const ProgressRange& progress);
 
