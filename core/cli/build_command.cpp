@@ -238,7 +238,7 @@ int buildCommand(std::vector<std::string> args) {
               << " vertices, " << s.fixedVertices << " fixed; the coarsest level against the DEM: maximum error "
               << s.coarsestError << " m, RMSE " << s.coarsestRmse << " m, " << coarsestCellsText(s) << ") in " << s.crsName << " to " << files[1] << " (" << s.fileBytes / 1000000
               << " MB)" << std::endl;
-  if (!quiet && !o.survey && !levelZeroCoverText(s).empty()) std::cout << levelZeroCoverText(s) << std::endl;
+  if (const std::string cover = levelZeroCoverText(s); !quiet && !o.survey && !cover.empty()) std::cout << cover << std::endl;
   if (!quiet && !s.accuracy.empty()) printAccuracy(s.accuracy, std::cout);
   return 0;
 }

@@ -81,14 +81,13 @@ LevelStats singleLevel(GDALDataset& ds, const HierarchyInfo& info) {
   LevelStats l;
   l.vertices = rows("vertices"), l.triangles = rows("triangles");
   // A single TIN is not measured against the DEM when written (tinlod accuracy does that):
-  // unknown, not zero. Greedy insertion records its maximum error over the candidates.
+  // unknown, not zero. Greedy insertion records its maximum over its candidates (max_error),
+  // which with -candidates samples are not every cell, and both figures over every valid
+  // cell beside it: the row shows those, as a hierarchy's levels do.
   l.maxError = l.rmse = std::nan("");
-  // Greedy insertion records its maximum over its candidates (max_error), which with
-  // -candidates samples are not every cell, and both figures over every valid cell beside it:
-  // the row shows those, as a hierarchy's levels do.
-  if (const auto e = info.metadata.find("max_error"); e != info.metadata.end()) l.maxError = std::strtod(e->second.c_str(), nullptr);
-  if (const auto e = info.metadata.find("measured_max_error"); e != info.metadata.end())
-    l.maxError = std::strtod(e->second.c_str(), nullptr);
+  auto maxError = info.metadata.find("measured_max_error");
+  if (maxError == info.metadata.end()) maxError = info.metadata.find("max_error");
+  if (maxError != info.metadata.end()) l.maxError = std::strtod(maxError->second.c_str(), nullptr);
   if (const auto e = info.metadata.find("rmse"); e != info.metadata.end()) l.rmse = std::strtod(e->second.c_str(), nullptr);
   OGRLayer* vertices = ds.GetLayerByName("vertices");
   // The TIN's outline as its writer counted it; a file of an older tinlod has only the
