@@ -12,6 +12,7 @@
 
 #include "test_support.h"
 #include "tinlod/build_job.h"
+#include "tinlod/build_summary_text.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_info.h"
@@ -261,6 +262,20 @@ TEST(BuildJob, TilesKeepPeaksAndPitsOnTheirSharedLines) {
     EXPECT_GT(gone, 3) << "tile " << t;  // the line still thins elsewhere
   }
   expectTheSameLine(tiles, lineX, top);
+}
+
+// A coarsest level whose outline reaches valid cells level 0 missed (beside nodata) gives up
+// a negative count: said as cells more than level 0 covers, not as "-7 valid cells given up".
+TEST(BuildJob, SummaryTextSaysCellsGainedAndLevelZerosCover) {
+  BuildSummary s;
+  s.cellsGivenUp = 12;
+  EXPECT_EQ(coarsestCellsText(s), "12 valid cells given up by its outline");
+  s.cellsGivenUp = -7;
+  EXPECT_EQ(coarsestCellsText(s), "7 valid cells more than level 0 covers");
+  s.validCells = 1610, s.levelZeroCells = 1610;
+  EXPECT_EQ(levelZeroCoverText(s), "");
+  s.levelZeroCells = 1600;
+  EXPECT_EQ(levelZeroCoverText(s).rfind("Level 0 covers 1600 of the DEM's 1610 valid cells: ", 0), 0u) << levelZeroCoverText(s);
 }
 
 TEST(BuildJob, BadOptionsFailBeforeAnyWork) {

@@ -107,8 +107,12 @@ void printSummary(const InsertSummary& s, const InsertOptions& o, const std::str
   if (s.uncoveredCells)
     std::cout << " (" << s.uncoveredCells << (s.uncoveredCells == 1 ? " valid cell" : " valid cells")
               << (s.holesOpen ? " in no triangle: the limit came before the TIN was cut free of the holes)"
-                  : o.candidates == InsertCandidates::Cells ? " in no triangle: data one cell wide beside nodata)"
-                                                            : " outside the sampled TIN, as in tinlod sample)");
+                  : o.candidates == InsertCandidates::Cells
+                      ? " in no triangle: data one cell wide beside nodata)"
+                      // The sampled TIN covers every valid cell but thin data's: the rest is the
+                      // limit's, with triangles beside a hole still spanning it, dropped.
+                      : " in no triangle: data too thin for one beside nodata, or beside a hole whose outline the limit "
+                        "left unfinished)");
   std::cout << std::endl;
 }
 

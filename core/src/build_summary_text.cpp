@@ -11,8 +11,8 @@ std::string coarsestCellsText(const BuildSummary& s) {
 std::string levelZeroCoverText(const BuildSummary& s) {
   if (s.validCells <= std::size_t(s.levelZeroCells)) return "";
   return "Level 0 covers " + std::to_string(s.levelZeroCells) + " of the DEM's " + std::to_string(s.validCells) +
-         " valid cells: the others' centres are beside nodata, just outside the TIN where the jitter moved their vertex "
-         "(by less than the jitter), or in valid areas too thin for a triangle";
+         " valid cells: the others are beside nodata, in valid areas too thin for a triangle (one cell wide) or at "
+         "their tips, within the jitter of the TIN";
 }
 
 }  // namespace tinlod

@@ -14,24 +14,43 @@
 #include "tinlod/error.h"
 #include "tinlod/nodata_filter.h"
 #include "tinlod/sampler.h"
+#include "tinlod/tile_borders.h"
 #include "tinlod/triangulation.h"
 #include "tinlod/version.h"
 
 namespace tinlod {
 namespace {
 
+// The side (-1, 0 or +1 along rows and along columns) where most of a cell's missing
+// 8-neighbours are.
+std::pair<int, int> towardsNodata(const Dem& dem, int row, int col) {
+  int rows = 0, cols = 0;
+  for (int dr = -1; dr <= 1; ++dr)
+    for (int dc = -1; dc <= 1; ++dc)
+      if ((dr || dc) && !dem.valid(row + dr, col + dc)) rows += dr, cols += dc;
+  return {(rows > 0) - (rows < 0), (cols > 0) - (cols < 0)};
+}
+
 // The jitter moves each point within its cell, in the DEM's grid (so that the simplifier
 // knows where each vertex lies among the cells), by up to `jitter` metres along x and y.
 // Cells on the raster's edge move only along it, and its corners not at all: the edge of a
 // projected DEM is then a straight line at every level, whose vertices can go without
 // changing it.
+// An outline cell moves towards the nodata beside it, not away: moved away, its own centre
+// would lie in the hole, outside the TIN. A cell on a tile's shared line does not know the
+// other tile's cells beside it and moves by the hash alone, as that tile's copy of it does.
 struct CellJitter {
   double colPerMetre, rowPerMetre;  // signed: towards +x and +y of the TIN
   int lastRow, lastCol;
 
-  std::pair<double, double> operator()(const SampleCell& c, double ux, double uy) const {
-    const double dc = c.col == 0 || c.col == lastCol ? 0 : ux * colPerMetre;
-    const double dr = c.row == 0 || c.row == lastRow ? 0 : uy * rowPerMetre;
+  std::pair<double, double> operator()(const Dem& dem, const SampleCell& c, double ux, double uy) const {
+    const bool colEdge = c.col == 0 || c.col == lastCol, rowEdge = c.row == 0 || c.row == lastRow;
+    double dc = colEdge ? 0 : ux * colPerMetre, dr = rowEdge ? 0 : uy * rowPerMetre;
+    if (c.outline && !onSharedLine(dem, c.row, c.col)) {
+      const auto [towardsRow, towardsCol] = towardsNodata(dem, c.row, c.col);
+      if (towardsCol && !colEdge) dc = towardsCol * ux * std::abs(colPerMetre);
+      if (towardsRow && !rowEdge) dr = towardsRow * uy * std::abs(rowPerMetre);
+    }
     return {dc, dr};
   }
 };
@@ -65,7 +84,7 @@ std::vector<TinVertex> toVertices(const Dem& dem, const std::vector<SampleCell>&
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const std::int64_t row = dem.globalRow(cells[i].row), col = dem.globalCol(cells[i].col);
     const double ux = unitFromHash(cellHash(seed, row, col, 1)), uy = unitFromHash(cellHash(seed, row, col, 2));
-    const auto [dc, dr] = move(cells[i], ux, uy);
+    const auto [dc, dr] = move(dem, cells[i], ux, uy);
     TinVertex& v = vertices[i];
     v.dcol = static_cast<float>(dc), v.drow = static_cast<float>(dr);
     x[i] = gt[0] + (double(col) + 0.5 + double(v.dcol)) * gt[1];

@@ -22,8 +22,8 @@ struct BuildSummary {
   double coarsestError = 0;      // against the DEM at every valid cell centre it covers
   double coarsestRmse = 0;
   std::int64_t cellsGivenUp = 0;  // valid cells level 0 covers and the coarsest level does not
-  // The DEM's valid cells (0 for a tile), and those level 0 covers: all but some beside a
-  // hole, whose vertex the jitter moved off its cell's centre to just outside the TIN.
+  // The DEM's valid cells (0 for a tile), and those level 0 covers: all but data one cell
+  // wide beside nodata, which holds no triangle.
   std::size_t validCells = 0;
   std::int64_t levelZeroCells = 0;
   std::uintmax_t fileBytes = 0;

@@ -10,11 +10,11 @@
 namespace tinlod {
 
 // "N valid cells given up by its outline", or, when the coarsest level's outline reaches
-// cells beside nodata that level 0's missed, "N valid cells more than level 0 covers".
+// cells beside nodata that level 0's missed (a tip of data one cell wide), "N valid cells more than level 0 covers".
 std::string coarsestCellsText(const BuildSummary& s);
 
-// "Level 0 covers N of the DEM's M valid cells: ..." when it does not cover them all (the
-// jitter moved some vertices beside nodata outward); "" otherwise, and for a tile.
+// "Level 0 covers N of the DEM's M valid cells: ..." when it does not cover them all (data
+// one cell wide beside nodata); "" otherwise, and for a tile.
 std::string levelZeroCoverText(const BuildSummary& s);
 
 }  // namespace tinlod
