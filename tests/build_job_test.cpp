@@ -376,6 +376,15 @@ TEST(BuildJob, StoppingAboveTheTargetForFixedVerticesIsSaidAndNoTinyLevelsAreMad
   runBuildJob(smallDem(), out, {}, keep, false, fb.feedback());
   EXPECT_TRUE(fb.warned("are fixed")) << (fb.warnings.empty() ? "" : fb.warnings[0]);
   EXPECT_TRUE(fb.warned("-keep_outline")) << (fb.warnings.empty() ? "" : fb.warnings[0]);
+  // Its outline vertices are fixed: not said to go while the outline moves little.
+  EXPECT_FALSE(fb.warned("-outline_tolerance")) << (fb.warnings.empty() ? "" : fb.warnings[0]);
+  // The threshold mode, stopped above the target, says so too.
+  test::RecordingFeedback thresholded;
+  HierarchyOptions threshold;
+  threshold.thresholdMode = true;
+  threshold.threshold = 1e5;
+  runBuildJob(smallDem(), test::tempDir() + "/t.gpkg", {}, threshold, false, thresholded.feedback());
+  EXPECT_TRUE(thresholded.warned("is not below -threshold")) << (thresholded.warnings.empty() ? "" : thresholded.warnings[0]);
   // The error method stopped by its bound says so too.
   test::RecordingFeedback bounded;
   HierarchyOptions error;

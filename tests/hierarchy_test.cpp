@@ -302,6 +302,22 @@ TEST(Hierarchy, ThresholdModeDeletesOnlyBelowTheThreshold) {
   expectValidHierarchy(dem, h);
 }
 
+// The threshold mode stops, as the percentage mode does, before a level that would delete
+// under 1 % of its vertices (it went on with levels of 50, 29, 22, ... 2 vertices), and says why.
+TEST(Hierarchy, ThresholdModeMakesNoLevelUnderOnePercentAndSaysWhyItStopped) {
+  const Dem dem = test::smallSyntheticDem();
+  HierarchyOptions o;
+  o.thresholdMode = true;
+  o.threshold = 1e5;
+  const Hierarchy h = buildHierarchy(sampleTin(dem, {}, kQuiet), dem, {}, o, kQuiet);
+  ASSERT_EQ(h.coarsest(), 12);
+  EXPECT_EQ(h.levels.back().vertices, 1893u);
+  for (std::int32_t L = 1; L <= h.coarsest(); ++L)
+    EXPECT_GE(h.levels[L].deleted, h.levels[L - 1].vertices / 100) << "level " << L;
+  EXPECT_EQ(h.stopReason, "the next level would delete only 13 vertices, under 1 % of them: the others' importance is not "
+                          "below -threshold");
+}
+
 TEST(Hierarchy, FlatDemSimplifiesDeterministically) {
   const Dem dem = test::makeDem(90, 80, 10, [](int, int) { return 250.0f; });
   const Hierarchy a = build(dem, Measure::Volume), b = build(dem, Measure::Volume);

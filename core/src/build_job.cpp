@@ -54,7 +54,7 @@ std::map<std::string, std::string> buildMetadata(const std::string& demPath, con
 // The stop percentage may be out of reach (fixed vertices, an error bound, an outline that
 // may not move further): say why rather than leave the user guessing.
 void warnIfStoppedEarly(const Hierarchy& h, const ProgressRange& progress) {
-  if (h.stopReason.empty() || h.options.thresholdMode) return;
+  if (h.stopReason.empty()) return;
   const std::size_t target = static_cast<std::size_t>(std::ceil(h.options.stopPct / 100.0 * h.levels.front().vertices));
   progress.warn("stopped at " + std::to_string(h.levels.back().vertices) + " vertices, above the " +
                 formatNumber(h.options.stopPct) + " % asked for (" + std::to_string(target) + "): " + h.stopReason);

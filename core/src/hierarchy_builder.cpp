@@ -94,9 +94,10 @@ class Simplifier {
       const Clock::time_point t0 = Clock::now();
       std::vector<Pick> picks = select(level);
       const Clock::time_point t1 = Clock::now();
-      // A level that deletes almost nothing only adds a layer: the rest is fixed. A tile
-      // makes every level, as its neighbours do.
-      if (!tile_ && (picks.empty() || (!options_.thresholdMode && picks.size() * kMinLevelShare < current_))) {
+      // A level that deletes almost nothing only adds a layer: the rest is fixed, or (threshold
+      // mode) above the threshold. 1 % is rounded down, so that a TIN of under 200 vertices
+      // may still lose one. A tile makes every level, as its neighbours do.
+      if (!tile_ && (picks.empty() || picks.size() < current_ / kMinLevelShare)) {
         h_.stopReason = whyStopped(picks.size());
         break;
       }
@@ -756,8 +757,9 @@ class Simplifier {
     if (options_.thresholdMode) return why + ": the others' importance is not below -threshold";
     if (options_.measure == Measure::Degree) return why + ": the others have a degree above -max_degree " + std::to_string(options_.maxDegree);
     return why + ": " + std::to_string(fixed) + " vertices are fixed (raster corners, outline vertices where two parts of "
-           "the TIN touch, points to keep" + (options_.keepOutline ? ", the outline with -keep_outline" : "") + ") and " + std::to_string(outlineLeft_) +
-           " are on the outline, where they go only while it moves less than -outline_tolerance";
+           "the TIN touch, points to keep" + (options_.keepOutline ? ", the outline with -keep_outline)"
+                                          : ") and " + std::to_string(outlineLeft_) +
+                                                " are on the outline, where they go only while it moves less than -outline_tolerance");
   }
 
   // `within` of the way through deleting `deleting` vertices to make `level`.
