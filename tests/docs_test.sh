@@ -43,6 +43,11 @@ for command in $(sed -n 's/^  \([a-z][a-z]*\)  .*/\1/p' "$work/commands.txt"); d
   "$tinlod_cli" "$command" --help > "$work/cli/$command.txt"
 done
 
+# The default DEM's hierarchy, whose `tinlod info` docs/cli/info.md shows.
+"$tinlod_cli" makedem -q "$work/dem.tif"
+"$tinlod_cli" build -q "$work/dem.tif" "$work/h.gpkg"
+"$tinlod_cli" info "$work/h.gpkg" > "$work/info.txt"
+
 # shellcheck source-path=SCRIPTDIR source=script_support.sh
 source "$root/tests/script_support.sh"
 isolated_qgis "$work" "$plugin_dir"
@@ -237,6 +242,26 @@ for path in sorted(markdown):
         elif anchor and resolved.endswith(".md") and anchor not in anchors(resolved):
             fail("%s links to %s, but %s has no heading '#%s'" % (name, target, file_part or name, anchor))
 print("ok: %d relative links in %d pages checked" % (links, len(markdown)))
+
+# (e): the default DEM's rows of info.md's example are those tinlod info prints now (but
+# for the seconds, which vary), and so is its size.
+example = re.search(r"default DEM's hierarchy:\n\n```\n(.*?)```", read(os.path.join(root, "docs/cli/info.md")), re.S)
+if not example:
+    fail("docs/cli/info.md has no example of the default DEM's hierarchy")
+else:
+    before = len(failures)
+    actual = read(os.path.join(work, "info.txt"))
+    def rows(text):
+        return {f[0]: f[:4] + f[6:] for f in (line.split() for line in text.splitlines()) if len(f) == 10 and f[0].isdigit()}
+    shown, now = rows(example.group(1)), rows(actual)
+    for level, fields in sorted(shown.items()):
+        if now.get(level) != fields:
+            fail("docs/cli/info.md shows level %s of the default DEM as %s; tinlod info says %s" % (level, fields, now.get(level)))
+    size = re.search(r"[\d.]+ MB", example.group(1))
+    if not shown or not size or size.group(0) not in actual.splitlines()[0]:
+        fail("docs/cli/info.md's example does not start as tinlod info does: %s" % actual.splitlines()[0])
+    if len(failures) == before:
+        print("ok: docs/cli/info.md's %d rows of the default DEM are tinlod info's" % len(shown))
 
 if failures:
     print("%d failures" % len(failures))
