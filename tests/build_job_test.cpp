@@ -147,6 +147,18 @@ TEST(BuildJob, PeaksPitsAndPointsToKeepAreFixed) {
   const long long top = s.levels;
   EXPECT_EQ(count(out, "SELECT COUNT(*) FROM vertices WHERE fixed = 1 AND level < " + std::to_string(top)), 0);
   EXPECT_GT(count(out, "SELECT COUNT(*) FROM vertices WHERE fixed = 1 AND outline = 0"), 10);
+  // Every peak and pit of the DEM is sampled, and so at the top level; not only those the
+  // blocks' random cells hit (60 of the 170 here).
+  const Dem dem = readDem(smallDem(), 1, ProgressRange(Feedback{}, 0, 1));
+  std::set<std::pair<int, int>> peaks, atTop;
+  for (int r = 0; r < dem.height; ++r)
+    for (int c = 0; c < dem.width; ++c)
+      if (strictPeakOrPit(dem, r, c)) peaks.insert({r, c});
+  GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_VECTOR));
+  for (auto& f : *ds->GetLayerByName("vertices"))
+    if (f->GetFieldAsInteger("level") == top) atTop.insert({f->GetFieldAsInteger("row"), f->GetFieldAsInteger("col")});
+  EXPECT_EQ(peaks.size(), 170u);
+  for (const auto& [r, c] : peaks) EXPECT_EQ(atTop.count({r, c}), 1u) << "peak or pit at row " << r << ", col " << c;
 }
 
 // Every vertex of a tile's file: where it is, whether it is fixed, the highest level it is in.

@@ -160,7 +160,7 @@ CrsTransform samplingTransform(const Dem& dem, const SampleOptions& options, con
 
 Tin sampleTin(const Dem& dem, const SampleOptions& options, const ProgressRange& progress) {
   const CrsTransform transform = samplingTransform(dem, options, progress);
-  const std::vector<SampleCell> cells = sampleCells(dem, options.block, options.seed, progress.sub(0, 0.2));
+  const std::vector<SampleCell> cells = sampleCells(dem, options.block, options.seed, progress.sub(0, 0.2), options.peaksAndPits);
   Tin tin;
   tin.crsWkt = transform.targetWkt();
   tin.crsName = transform.targetName();

@@ -9,7 +9,7 @@
 namespace tinlod {
 namespace {
 
-enum : unsigned char { kNone = 0, kRandom = 1, kOutline = 2 };
+enum : unsigned char { kNone = 0, kRandom = 1, kOutline = 2, kPeakOrPit = 4 };
 
 // A window starts on a block line (a tile's offset is a multiple of the block); a DEM
 // that is its own whole raster starts at 0.
@@ -25,14 +25,20 @@ bool isOutline(const Dem& dem, int row, int col) {
 }
 
 // A tile's shared lines are sampled by their own rule (lineCellSampled), the same in both
-// tiles, not as the raster's edge is (every cell).
-void markOutline(const Dem& dem, int block, std::uint64_t seed, std::vector<unsigned char>& marks,
+// tiles, not as the raster's edge is (every cell); their peaks and pits are those of the
+// whole raster, which both tiles read beyond their edge.
+void markOutline(const Dem& dem, int block, std::uint64_t seed, bool peaksAndPits, std::vector<unsigned char>& marks,
                  const ProgressRange& progress) {
   for (int row = 0; row < dem.height; ++row) {
-    for (int col = 0; col < dem.width; ++col)
-      if (dem.valid(row, col) && (onSharedLine(dem, row, col) ? lineCellSampled(dem, row, col, block, seed)
-                                                              : isOutline(dem, row, col)))
-        marks[static_cast<std::size_t>(row) * dem.width + col] |= kOutline;
+    for (int col = 0; col < dem.width; ++col) {
+      if (!dem.valid(row, col)) continue;
+      const bool line = onSharedLine(dem, row, col);
+      unsigned char& mark = marks[static_cast<std::size_t>(row) * dem.width + col];
+      if (line ? lineCellSampled(dem, row, col, block, seed) : isOutline(dem, row, col))
+        mark |= kOutline;
+      else if (peaksAndPits && (line ? dem.edgePeakOrPitAt(row, col) : strictPeakOrPit(dem, row, col)))
+        mark |= kPeakOrPit;
+    }
     if (row % 256 == 0) progress.report(double(row) / dem.height, "Finding the outline");
   }
 }
@@ -69,9 +75,9 @@ void markRandom(const Dem& dem, int block, std::uint64_t seed, std::vector<unsig
 }  // namespace
 
 std::vector<SampleCell> sampleCells(const Dem& dem, int block, std::uint64_t seed,
-                                    const ProgressRange& progress) {
+                                    const ProgressRange& progress, bool peaksAndPits) {
   std::vector<unsigned char> marks(static_cast<std::size_t>(dem.width) * dem.height, kNone);
-  markOutline(dem, block, seed, marks, progress.sub(0, 0.5));
+  markOutline(dem, block, seed, peaksAndPits, marks, progress.sub(0, 0.5));
   markRandom(dem, block, seed, marks, progress.sub(0.5, 1));
   std::vector<SampleCell> cells;
   for (int row = 0; row < dem.height; ++row)

@@ -18,6 +18,7 @@ struct SampleOptions {
   std::string sourceSrs;      // CRS of the DEM when its file has none or a wrong one; empty: the file's
   std::string targetSrs;      // output CRS (any GDAL/PROJ definition); empty: automatic
   HeightRange validHeights;   // heights outside it are undeclared nodata
+  bool peaksAndPits = false;  // every strict 3 x 3 peak and pit a vertex too (build -fix_peaks_pits)
 
   // Throws Error naming the option when a value is out of range.
   void validate() const;
