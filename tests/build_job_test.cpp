@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -404,6 +405,14 @@ TEST(BuildJob, StoppingAboveTheTargetForFixedVerticesIsSaidAndNoTinyLevelsAreMad
   error.maxError = 1;
   runBuildJob(smallDem(), test::tempDir() + "/e.gpkg", {}, error, false, bounded.feedback());
   EXPECT_TRUE(bounded.warned("-max_error 1 m")) << (bounded.warnings.empty() ? "" : bounded.warnings[0]);
+  // Its sample is already further than 1 m from the DEM: said, with the way to a finer one.
+  const auto said = [](const test::RecordingFeedback& fb, const std::string& text) {
+    return std::any_of(fb.infos.begin(), fb.infos.end(), [&](const std::string& i) { return i.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(said(bounded, "level 0, the sample of one cell per 3 x 3 block, is already up to ")) << bounded.infos.size();
+  EXPECT_TRUE(said(bounded, " m from the DEM, more than -max_error 1 m: there the bound is level 0's own distance; -block 1 "
+                            "samples every cell"));
+  EXPECT_FALSE(said(thresholded, "more than -max_error"));
   const HierarchyInfo info = readHierarchyInfo(out);
   for (std::size_t L = 1; L < info.levels.size(); ++L)
     EXPECT_GE(info.levels[L].deleted * 100, info.levels[L - 1].vertices) << "level " << L;
