@@ -58,6 +58,17 @@ std::string defaultDem() {
   return path;
 }
 
+// The default DEM's hierarchy of levels 0 to 2, built once for the tests that read it (a
+// test that changes it changes a copy).
+std::string smallHierarchy() {
+  static const std::string path = [] {
+    const std::string p = test::tempDir() + "/small_hierarchy.gpkg";
+    EXPECT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + p).exitCode, 0);
+    return p;
+  }();
+  return path;
+}
+
 TEST(Cli, HelpAndVersion) {
   const CliRun top = tinlod("--help");
   EXPECT_EQ(top.exitCode, 0);
@@ -391,14 +402,14 @@ TEST(Cli, BuildWithAccuracyThenAccuracyAgreeAndPrintTheTable) {
 
 TEST(Cli, AccuracyErrorsNameTheOption) {
   const std::string dir = test::tempDir();
-  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
-  const CliRun ext = tinlod("accuracy -report " + dir + "/r.txt " + defaultDem() + " " + dir + "/h.gpkg");
+  const std::string h = smallHierarchy();  // read only
+  const CliRun ext = tinlod("accuracy -report " + dir + "/r.txt " + defaultDem() + " " + h);
   EXPECT_EQ(ext.exitCode, 1);
   EXPECT_TRUE(has(ext.err, "-report")) << ext.err;
-  const CliRun of = tinlod("accuracy -of NoSuchFormat -accuracy " + dir + "/a.x " + defaultDem() + " " + dir + "/h.gpkg");
+  const CliRun of = tinlod("accuracy -of NoSuchFormat -accuracy " + dir + "/a.x " + defaultDem() + " " + h);
   EXPECT_EQ(of.exitCode, 1);
   EXPECT_TRUE(has(of.err, "-of")) << of.err;
-  const CliRun level = tinlod("accuracy -level 7 -accuracy " + dir + "/a.tif " + defaultDem() + " " + dir + "/h.gpkg");
+  const CliRun level = tinlod("accuracy -level 7 -accuracy " + dir + "/a.tif " + defaultDem() + " " + h);
   EXPECT_EQ(level.exitCode, 1);
   EXPECT_TRUE(has(level.err, "levels 0 to 2")) << level.err;
   EXPECT_FALSE(fs::exists(dir + "/a.tif"));
@@ -1068,14 +1079,14 @@ TEST(Cli, LinesDpSkipsVerticesThatAreNotFiniteAndRefusesOtherGeometries) {
 
 TEST(Cli, LodRegionWithoutPolygonsSaysWhetherItsLayerIsEmptyOrNotOfPolygons) {
   const std::string dir = test::tempDir();
-  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const std::string h = smallHierarchy();  // read only
   const std::string empty = vectorFile(dir + "/empty.gpkg", wkbPolygon, {});
-  const CliRun e = tinlod("lod -region " + empty + " " + dir + "/h.gpkg " + dir + "/e.gpkg");
+  const CliRun e = tinlod("lod -region " + empty + " " + h + " " + dir + "/e.gpkg");
   EXPECT_EQ(e.exitCode, 1);
   EXPECT_TRUE(has(e.err, "-region: the first layer of '" + empty + "' has no polygons (its polygon layer 'features' is empty)"))
       << e.err;
   const std::string points = vectorFile(dir + "/points.gpkg", wkbPoint, {new OGRPoint(404500, 5203750)});
-  const CliRun p = tinlod("lod -region " + points + " " + dir + "/h.gpkg " + dir + "/p.gpkg");
+  const CliRun p = tinlod("lod -region " + points + " " + h + " " + dir + "/p.gpkg");
   EXPECT_TRUE(has(p.err, "has no polygons (a polygon layer is needed)")) << p.err;
 }
 
@@ -1103,19 +1114,19 @@ TEST(Cli, LevelMinusOneIsTheCoarsestInLocateAsInAccuracy) {
 
 TEST(Cli, AMissingLayerOfAnExistingFileIsNamedWithTheFilesLayers) {
   const std::string dir = test::tempDir();
-  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const std::string h = smallHierarchy();  // read only
   const std::string region = vectorFile(dir + "/r.gpkg", wkbPolygon, {});
-  const CliRun lod = tinlod("lod -region \"" + region + "|layername=parks\" " + dir + "/h.gpkg " + dir + "/x.gpkg");
+  const CliRun lod = tinlod("lod -region \"" + region + "|layername=parks\" " + h + " " + dir + "/x.gpkg");
   EXPECT_EQ(lod.exitCode, 1);
   EXPECT_TRUE(has(lod.err, "ERROR: -region: '" + region + "' has no layer 'parks' (its layers: features)")) << lod.err;
-  const CliRun locate = tinlod("locate " + dir + "/h.gpkg \"" + region + "|layername=wells\" " + dir + "/x.gpkg");
+  const CliRun locate = tinlod("locate " + h + " \"" + region + "|layername=wells\" " + dir + "/x.gpkg");
   EXPECT_TRUE(has(locate.err, "'" + region + "' has no layer 'wells' (its layers: features)")) << locate.err;
   EXPECT_FALSE(has(lod.err + locate.err, "does not exist"));
 }
 
 TEST(Cli, InfoKeepsHugeFiguresInTheirColumns) {
   const std::string dir = test::tempDir();
-  ASSERT_EQ(tinlod("build -q -max_levels 2 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  fs::copy_file(smallHierarchy(), dir + "/h.gpkg");  // changed below
   ASSERT_EQ(std::system(("ogrinfo -q " + dir + "/h.gpkg -sql \"UPDATE levels SET max_error = 1e30, rmse = 123456789.5, "
                          "select_seconds = 1e12\" > /dev/null")
                             .c_str()),
