@@ -56,7 +56,10 @@ Feedback processingFeedback(QgsProcessingFeedback* feedback, const ParameterName
   out.warning = [feedback, names](const std::string& m) {
     feedback->pushWarning(withParameterNames(QString::fromStdString(m), names));
   };
-  out.info = [feedback](const std::string& m) { feedback->pushInfo(QString::fromStdString(m)); };
+  // Notes name options too ("-block 1 samples every cell"): the dialog's names, as in warnings.
+  out.info = [feedback, names](const std::string& m) {
+    feedback->pushInfo(withParameterNames(QString::fromStdString(m), names));
+  };
   return out;
 }
 

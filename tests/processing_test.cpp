@@ -66,7 +66,12 @@ class RecordingFeedback : public QgsProcessingFeedback {
     errors += error;
     QgsProcessingFeedback::reportError(error, fatal);
   }
+  void pushInfo(const QString& info) override {
+    infos += info;
+    QgsProcessingFeedback::pushInfo(info);
+  }
   QString errors;
+  QStringList infos;
 };
 
 struct Result {
@@ -545,6 +550,21 @@ TEST(Processing, BuildHierarchyRefusesMaxErrorWithAnotherMethod) {
   EXPECT_FALSE(r.ok);
   EXPECT_TRUE(r.error.contains("MAX_ERROR applies to the error method only")) << r.error.toStdString();
   EXPECT_FALSE(fs::exists(out.toStdString()));
+}
+
+// The core's notes name options as warnings do: the dialog's parameters, not -max_error.
+TEST(Processing, BuildHierarchyNotesNameTheParameters) {
+  const QString out = QString::fromStdString(test::tempDir() + "/hier.gpkg");
+  RecordingFeedback feedback;
+  const Result r = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                                {{"INPUT", QString::fromStdString(defaultDem())}, {"METHOD", 3}, {"MAX_ERROR", 1},
+                                 {"MAX_LEVELS", 1}, {"OUTPUT", out}},
+                                &feedback);
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  const QString all = feedback.infos.join('\n');
+  EXPECT_TRUE(all.contains("more than MAX_ERROR 1 m: there the bound is level 0's own distance; BLOCK 1 samples every cell"))
+      << all.toStdString();
+  EXPECT_FALSE(all.contains("-max_error")) << all.toStdString();
 }
 
 // The first value of `sql`, run by SQLite on the GeoPackage (through GDAL).
