@@ -20,6 +20,7 @@ import struct
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import zipfile
 
@@ -516,6 +517,26 @@ def main(tinlod, tiles):
     check("an unreachable -scheduler is an error, and no catalogue is made",
           away.returncode == 1 and "cannot reach the Dask scheduler tcp://127.0.0.1:9" in away.stderr
           and not os.path.exists(os.path.join(work, "away.gpkg")), away.stderr[-1500:])
+    # A port that takes connections but is no scheduler (another server; a proxy taking them all).
+    impostor = socket.socket()
+    impostor.bind(("127.0.0.1", 0))
+    impostor.listen(8)
+
+    def hang_up():
+        while True:
+            try:
+                impostor.accept()[0].close()
+            except OSError:  # closed below
+                return
+    threading.Thread(target=hang_up, daemon=True).start()
+    address = "tcp://127.0.0.1:%d" % impostor.getsockname()[1]
+    silent = run(base + [os.path.join(work, "silent.gpkg"), "-tile_size", str(TILE_SIZE), "-scheduler", address,
+                         "-tinlod", program])
+    impostor.close()
+    check("a -scheduler port that answers but not as Dask is an error before anything is written",
+          silent.returncode == 1 and ("no Dask scheduler answers at %s" % address) in silent.stderr
+          and "Nothing was written" in silent.stderr and not os.path.exists(os.path.join(work, "silent.gpkg"))
+          and not os.path.exists(os.path.join(work, "silent_tiles")), silent.stderr[-1500:])
     blocked = os.path.join(work, "blocked.gpkg")
     open(os.path.join(work, "blocked_tiles"), "w").close()  # a file where the tiles folder goes
     refused = run(base[:1] + [dem, blocked, "-tile_size", str(TILE_SIZE), "-tinlod", program])

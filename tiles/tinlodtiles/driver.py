@@ -14,6 +14,7 @@ import signal
 import socket
 import sys
 import threading
+import time
 
 from osgeo import gdal
 
@@ -47,8 +48,9 @@ def run(arguments):
         warn_of_points_outside(fixed, dem)
     if os.path.exists(arguments.catalogue) and not arguments.overwrite:
         Catalogue.open(arguments.catalogue).close()  # refused before anything is written
-    if arguments.scheduler:
-        check_reachable(arguments.scheduler)  # before the catalogue records the job's settings
+    if arguments.scheduler:  # before the catalogue records the job's settings
+        check_reachable(arguments.scheduler)
+        check_scheduler_answers(arguments.scheduler)
     folder = tiles_folder(arguments.catalogue)
     if os.path.exists(folder) and not os.path.isdir(folder):
         raise TilesError("%s is in the way: the catalogue's tiles go into a folder of that name; move that file, or "
@@ -185,6 +187,20 @@ def check_reachable(address):
     except OSError as e:
         raise TilesError("cannot reach the Dask scheduler %s (%s): is `dask scheduler` running there? "
                          "Nothing was written" % (address, e.strerror or e)) from None
+
+
+def check_scheduler_answers(address):
+    """Dask's own handshake, or TilesError: what takes a TCP connection may be no scheduler
+    (another server, a proxy that takes them all), which left a catalogue and a lock behind
+    when only the run's client found out."""
+    distributed = dask_import.distributed()
+    started = time.monotonic()
+    try:
+        distributed.Client(address, timeout="20s").close()
+    except (OSError, ValueError) as e:  # Dask's timeout says 20 s, however long it tried
+        why = "tried for %.1f s" % (time.monotonic() - started) if isinstance(e, OSError) else str(e)
+        raise TilesError("no Dask scheduler answers at %s (%s): is `dask scheduler` running there, on that port? "
+                         "Nothing was written" % (address, why)) from None
 
 
 def dem_path(path):
