@@ -778,6 +778,12 @@ def main(tinlod, tiles):
         merged = run([tiles, "merge", catalogue, "-level", str(level), out])
         check("(d) merge -level %d gives one layer of the %d triangles" % (level, expected),
               merged.returncode == 0 and level_count(out, "level_%d" % level) == expected, merged.stderr)
+    # /proc: root may write its folder, but GDAL cannot make a file there.
+    unwritable = run([tiles, "merge", catalogue, "-level", "0", "/proc/merged.gpkg"])
+    check("(d) merge to where no file can be made names the output, not its staging file, and the fix",
+          unwritable.returncode == 1 and "/proc/merged.gpkg" in unwritable.stderr and ".partial" not in unwritable.stderr
+          and ("name an output where you can write" in unwritable.stderr or "not writable" in unwritable.stderr),
+          unwritable.stderr)
     some = os.path.join(work, "some.gpkg")
     only = run(base + [some] + options + ["-levels", "0,last"], env)
     written = sorted(os.listdir(os.path.join(work, "some_levels"))) if only.returncode == 0 else []

@@ -150,12 +150,16 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
         raise TilesError("%s exists: add -overwrite to replace it" % out_path)
     source = "/vsimem/tinlod_tiles_merge_%d.vrt" % os.getpid()
     gdal.FileFromMemBuffer(source, union_vrt(level, files).encode("utf-8"))
-    partial = out_path + ".partial.gpkg"
+    partial, failure = out_path + ".partial.gpkg", ""
     try:
         options = gdal.VectorTranslateOptions(format="GPKG", layerName="level_%d" % level)
-        written = gdal.VectorTranslate(partial, source, options=options)
+        try:
+            written = gdal.VectorTranslate(partial, source, options=options)
+        except RuntimeError as e:  # a folder root may write but GDAL may not (/proc), a full disk
+            written, failure = None, str(e).replace(partial, out_path)
         if written is None:
-            raise TilesError("could not write %s" % out_path)
+            raise TilesError("cannot write %s%s: name an output where you can write"
+                             % (out_path, " (%s)" % failure if failure else ""))
         # tinlod's readers name what the file is, and the catalogue they take instead.
         written.SetMetadata({"TINLOD_KIND": MERGED_KIND, "TINLOD_LEVEL": str(level),
                              "TINLOD_CATALOGUE": os.path.abspath(catalogue_path)})
