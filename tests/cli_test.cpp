@@ -1112,6 +1112,23 @@ TEST(Cli, LevelMinusOneIsTheCoarsestInLocateAsInAccuracy) {
   EXPECT_TRUE(has(tinlod("accuracy --help").out, wording));
 }
 
+// An output that -overwrite would not make right is refused as such, not with a hint to add
+// -overwrite that the next run refuses: the input itself, a tinlod file of another kind.
+TEST(Cli, LodIntoItsInputOrAnotherKindOfFileSaysSoBeforeAskingForOverwrite) {
+  const std::string dir = test::tempDir();
+  fs::copy_file(smallHierarchy(), dir + "/h.gpkg");
+  const CliRun self = tinlod("lod -center 404500 5203750 -dropoff 300 " + dir + "/h.gpkg " + dir + "/h.gpkg");
+  EXPECT_EQ(self.exitCode, 1);
+  EXPECT_TRUE(has(self.err, "is an input of this run")) << self.err;
+  EXPECT_FALSE(has(self.err, "-overwrite")) << self.err;
+  const std::string points = geojson(dir + "/p.geojson", R"({"type": "Point", "coordinates": [404500, 5203750]})");
+  ASSERT_EQ(tinlod("locate -q " + dir + "/h.gpkg " + points + " " + dir + "/located.gpkg").exitCode, 0);
+  const CliRun other = tinlod("lod -center 404500 5203750 -dropoff 300 " + dir + "/h.gpkg " + dir + "/located.gpkg");
+  EXPECT_EQ(other.exitCode, 1);
+  EXPECT_TRUE(has(other.err, "holds a tinlod points output")) << other.err;
+  EXPECT_FALSE(has(other.err, "add -overwrite")) << other.err;
+}
+
 TEST(Cli, AMissingLayerOfAnExistingFileIsNamedWithTheFilesLayers) {
   const std::string dir = test::tempDir();
   const std::string h = smallHierarchy();  // read only

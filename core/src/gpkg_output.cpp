@@ -85,10 +85,10 @@ void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
   if (!fs::is_directory(dir)) throw Error("the folder of output '" + path + "' does not exist");
   if (access(dir.c_str(), W_OK) != 0) throw Error("the folder of output '" + path + "' is not writable");
   if (fs::is_directory(out)) throw Error("output '" + path + "' is a folder: name a .gpkg file");
-  if (fs::exists(out) && !options.overwrite)
-    throw Error("output '" + path +
-                "' exists: add -overwrite to replace its tinlod layers (its other layers are kept)");
-  if (fs::exists(out)) refuseAnotherKind(path, options);
+  if (!fs::exists(out)) return;
+  refuseAnotherKind(path, options);  // first: -overwrite would not help
+  if (!options.overwrite)
+    throw Error("output '" + path + "' exists: add -overwrite to replace its tinlod layers (its other layers are kept)");
 }
 
 bool isTinlodLayer(const std::string& name) {

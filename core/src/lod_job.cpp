@@ -193,10 +193,11 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   checkOptions(options);
   GpkgWriteOptions writeOptions{overwrite, jobMetadata(hierarchyPath, options)};
   writeOptions.vertexIndex = vertexIndex;
-  checkOutputPath(outPath, writeOptions);
   std::vector<std::string> inputs = hierarchyInputs(hierarchyPath);
   inputs.insert(inputs.end(), {options.centresPath, options.regionPath});
   OutputFiles files(overwrite, datasetFiles(inputs));
+  files.refuseInput(outPath, "output");
+  checkOutputPath(outPath, writeOptions);
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   if (!options.lod.centres.empty() && std::isnan(options.lod.dropoff) && !(options.lod.errorGrowth > 0))

@@ -120,6 +120,10 @@ void OutputFiles::checkNotInput(const fs::path& target, const std::string& optio
                   "an input of this run ('" + input + "'): writing it would destroy the input; choose another name");
 }
 
+void OutputFiles::refuseInput(const std::string& path, const std::string& option) const {
+  checkNotInput(resolved(path), option, path);
+}
+
 const StagedFile& OutputFiles::add(const std::string& path, const std::string& option, bool keepContent) {
   if (path.empty()) throw Error(option + ": no file named");
   const fs::path target = resolved(path);

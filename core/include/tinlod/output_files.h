@@ -39,6 +39,9 @@ class OutputFiles {
   // GeoPackage's other layers): it copies the file into the staging folder when it has
   // such content (copyForUpdate), and starts a new file when it has none.
   const StagedFile& add(const std::string& path, const std::string& option, bool keepContent = false);
+  // add's first refusal alone: an output that is an input of the job, which -overwrite
+  // would not make right (for a check that would otherwise ask for -overwrite first).
+  void refuseInput(const std::string& path, const std::string& option) const;
   // Moves every staged file (and its sidecars) into place. Without overwrite a file that
   // appeared meanwhile is not replaced: the error names it and every output moved so far
   // is taken back, as are replaced ones with overwrite.
