@@ -62,7 +62,7 @@ for address in ("tcp://10.0.0.1:8786", "node7:8786", "[::1]:8786", "tls://node7:
     check("-scheduler %s is an address" % address, message is None or not message.startswith("-scheduler"), message)
 
 for size, block, least in (("0", None, 6), ("3", None, 6), ("8", "4", 8), ("5", "5", 10), ("-300", None, 6),
-                           ("300.0", None, 6), ("abc", None, 6)):
+                           ("300.0", None, 6)):
     extra = ["--", "-block", block] if block else []
     message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", size] + extra)
     refused = not re.fullmatch("[0-9]+", size) or int(size) < least
@@ -71,6 +71,9 @@ for size, block, least in (("0", None, 6), ("3", None, 6), ("8", "4", 8), ("5", 
                                                                             % size)
                                                          and ("give a whole number, %d or more" % least) in message) == refused,
           message)
+message = refusal(parse_run, ["dem.tif", "c.gpkg", "-tile_size", "abc"])
+check("-tile_size abc is said to be no number", message == "-tile_size abc is not a number of cells: give a whole number, "
+      "6 or more (thousands of cells make fewer, larger tiles)", message)
 
 for option, values in (("-tile_size", ["300", "600"]), ("-workers", ["2", "1"]), ("-overwrite", [])):
     given = [option] + values[:1] + [option] + values[1:]

@@ -112,7 +112,10 @@ TILE_SIZE_MOST = 2**31 - 1  # tinlod's whole numbers are C++ ints
 
 
 def tile_size(text, block):
-    if not re.fullmatch(r"[0-9]+", text or "") or int(text) < 2 * block:
+    if not re.fullmatch(r"-?[0-9]+(\.[0-9]*)?", text or ""):
+        raise TilesError("-tile_size %s is not a number of cells: give a whole number, %d or more (thousands of cells "
+                         "make fewer, larger tiles)" % (text, 2 * block))
+    if not re.fullmatch(r"[0-9]+", text) or int(text) < 2 * block:
         raise TilesError("-tile_size %s: a tile is at least two blocks of -block %d: give a whole number, %d or more "
                          "(thousands of cells make fewer, larger tiles)" % (text, block, 2 * block))
     if int(text) > TILE_SIZE_MOST:
