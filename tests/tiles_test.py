@@ -429,6 +429,12 @@ def ctrl_c_in_survey(tinlod, dem, tiles, work, env):
     left = statuses.count("pending")
     check("(i) Ctrl-C in the survey pass counts every tile still to build (%d), not the surveys left" % left,
           code == 130 and left >= 5 and ("%d tiles left pending in" % left) in err, (code, statuses, err[-500:]))
+    # The rerun reuses the surveys that ended and counts them: a survey and a build each
+    # (the stopped survey of tile 1,0 is not a try; it was 1 for the reused ones).
+    rerun = run([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-tinlod", tinlod], env)
+    attempts = {k: r["attempts"] for k, r in rows(catalogue)[0].items() if r["status"] == "done"}
+    check("(i) after the rerun, every tile counts its survey and its build (%s)" % sorted(set(attempts.values())),
+          rerun.returncode == 0 and len(attempts) >= 5 and set(attempts.values()) == {2}, (attempts, rerun.stderr[-500:]))
 
 
 def union_counts(files):

@@ -65,7 +65,7 @@ def run(arguments):
             remove_job(arguments.catalogue)
         catalogue = open_catalogue(arguments, settings, predicted_tin_srs(dem, arguments.build_options), tiles)
         dem = None
-        remove_leftovers(folder)
+        remove_leftovers(folder, catalogue)
         pending = pending_tiles(catalogue, tiles, arguments.catalogue)
         agreeing = agreement.needed(arguments.build_options)
         if agreeing:  # a run stopped between two rounds of agreement left tiles to build again
@@ -381,8 +381,19 @@ def open_catalogue(arguments, settings, srs, tiles):
     return catalogue
 
 
-def remove_leftovers(folder):
-    """What a run killed outright left: half-written tiles, logs, attempt counts."""
+FINISHED_SURVEY_ATTEMPTS = re.compile(r"tile_(\d+)_(\d+)\.survey2?\.json\.attempts")
+
+
+def remove_leftovers(folder, catalogue):
+    """What a run killed outright left: half-written tiles, logs, attempt counts. A survey
+    that ended as the run stopped is reused: its attempts go into the catalogue first (the
+    stopped driver had not recorded them)."""
+    for name in os.listdir(folder):
+        match = FINISHED_SURVEY_ATTEMPTS.fullmatch(name)
+        survey = os.path.join(folder, name[: -len(".attempts")])
+        if match and os.path.isfile(survey):
+            col, row = int(match.group(1)), int(match.group(2))
+            catalogue.update(col, row, {"attempts": (catalogue.value(col, row, "attempts") or 0) + read_attempts(survey)})
     remove_matching(folder, LEFTOVER_FILES.fullmatch)
 
 
