@@ -24,7 +24,7 @@ import threading
 import time
 import zipfile
 
-from osgeo import gdal, ogr
+from osgeo import gdal, ogr, osr
 
 from script_checks import check, exit_code, failures
 
@@ -437,6 +437,40 @@ def ctrl_c_in_survey(tinlod, dem, tiles, work, env):
           rerun.returncode == 0 and len(attempts) >= 5 and set(attempts.values()) == {2}, (attempts, rerun.stderr[-500:]))
 
 
+def holed_dem(path):
+    """300 x 300 cells of 30 m with a one-cell hole every 10 cells each way: 900 holes, whose
+    outlines' vertices stay, 20 % of the vertices."""
+    size, values = 300, []
+    for r in range(size):
+        for c in range(size):
+            hole = r % 10 == 5 and c % 10 == 5
+            values.append(float("nan") if hole else 500 + 3 * r + 2 * c + 20 * math.sin(0.1 * r) * math.cos(0.07 * c))
+    dataset = gdal.GetDriverByName("GTiff").Create(path, size, size, 1, gdal.GDT_Float32)
+    dataset.SetGeoTransform([500000, 30, 0, 5000000, 0, -30])
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(32632)
+    dataset.SetProjection(srs.ExportToWkt())
+    dataset.GetRasterBand(1).SetNoDataValue(float("nan"))
+    dataset.GetRasterBand(1).WriteRaster(0, 0, size, size, struct.pack("%df" % len(values), *values),
+                                         buf_type=gdal.GDT_Float32)
+    dataset = None
+
+
+def stop_warning(tiles, tinlod, work, env):
+    """The union's coarsest level well above -stop_pct is said, as a whole run says it, with
+    why; not when -max_levels stops the levels on purpose."""
+    dem = os.path.join(work, "holed.tif")
+    holed_dem(dem)
+    held = run([tiles, dem, os.path.join(work, "holed.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", tinlod], env)
+    check("a tiled run whose outlines stay says its coarsest level keeps more than -stop_pct, and why",
+          held.returncode == 0 and "the tiles' coarsest level (14) keeps about 20.7 % of level 0's vertices" in held.stderr
+          and "the last levels deleted almost nothing" in held.stderr, held.stderr[-1000:])
+    capped = run([tiles, dem, os.path.join(work, "capped.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", tinlod,
+                  "--", "-max_levels", "3"], env)
+    check("with -max_levels the tiled run does not warn of the stop", capped.returncode == 0
+          and "coarsest level" not in capped.stderr, capped.stderr[-1000:])
+
+
 def union_counts(files):
     """Each level's vertex count of the tiles' union (tile_union.py)."""
     with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
@@ -647,6 +681,8 @@ def main(tinlod, tiles):
     catalogue = os.path.join(work, "a.gpkg")
     first = run(base + [catalogue] + options, env)
     check("(a) the run succeeds", first.returncode == 0, first.stderr[-2000:])
+    check("(a) its coarsest level is near -stop_pct: no warning of it", "coarsest level" not in first.stderr,
+          first.stderr[-2000:])
     check("(a) its summary counts every tile run, none skipped (the one its survey found empty included)",
           "6 tiles run, 0 skipped" in first.stdout, first.stdout)
     found, metadata = check_complete(catalogue, "(a)")
@@ -1031,6 +1067,7 @@ def main(tinlod, tiles):
     hangup_of_the_terminal(dem, tiles, work, env)
     ctrl_c_in_survey(tinlod, dem, tiles, work, env)
     ctrl_c_with_tiles_done(tinlod, dem, tiles, work, env)
+    stop_warning(tiles, program, work, env)
 
     if not failures:
         subprocess.run(["rm", "-rf", work])

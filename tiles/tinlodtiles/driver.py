@@ -18,7 +18,7 @@ import time
 
 from osgeo import gdal
 
-from . import agreement, build_check, dask_import, fixed_points, line_outline, task, thresholds
+from . import agreement, build_check, dask_import, fixed_points, line_outline, stop_check, task, thresholds
 from .cell_file import read_cells, write_cells
 from .arguments import build_option
 from .catalogue import BUILD_SETTINGS, FIXED_STAMP, SOURCE_STAMP, Catalogue, file_stamp, levels_folder, tiles_folder
@@ -662,6 +662,7 @@ def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
         print("Warning: the tiles have from %d to %d levels; the level files stop at the fewest"
               % (counts[0], counts[-1]), file=sys.stderr)
     levels = counts[0] if counts else 0
+    stop_check.warn_if_above_stop(rows, arguments.catalogue, arguments.build_options, levels)
     catalogue.set_setting("TINLOD_LEVELS", str(levels))
     vrts = write_level_vrts(catalogue, arguments.catalogue, levels)
     states = {}
