@@ -35,7 +35,10 @@ def warn_if_above_stop(rows, catalogue_path, build_options, levels):
     first = before = last = 0
     for row in rows:
         if row["status"] == "done" and row["file"]:
-            counts = level_counts(os.path.join(base, row["file"]))
+            try:
+                counts = level_counts(os.path.join(base, row["file"]))
+            except sqlite3.Error:  # moved or damaged since: a warning's figures need not stop the run
+                continue
             if len(counts) >= levels:
                 first, before, last = first + counts[0], before + counts[levels - 2], last + counts[levels - 1]
     if not first or last <= SLACK * stop / 100.0 * first:
