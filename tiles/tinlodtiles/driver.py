@@ -662,7 +662,8 @@ def finish(catalogue, arguments, skipped, outcome, ran, rounds=1):
         print("Warning: the tiles have from %d to %d levels; the level files stop at the fewest"
               % (counts[0], counts[-1]), file=sys.stderr)
     levels = counts[0] if counts else 0
-    stop_check.warn_if_above_stop(rows, arguments.catalogue, arguments.build_options, levels)
+    stop_check.warn_if_above_stop(rows, arguments.catalogue, arguments.build_options,
+                                  percent(arguments, "-stop_pct", 5), levels)
     catalogue.set_setting("TINLOD_LEVELS", str(levels))
     vrts = write_level_vrts(catalogue, arguments.catalogue, levels)
     states = {}

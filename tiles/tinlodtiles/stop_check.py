@@ -3,11 +3,11 @@
 levels as -delete_pct takes to -stop_pct, and where its levels delete less (the outlines of
 voids, which stay), a whole run goes on to more levels by itself but the tiles do not."""
 import os
-import sqlite3
 import sys
-import urllib.parse
 
 from .arguments import build_option
+from .errors import TilesError
+from .tile_file import level_vertices
 
 # Above the stop by a fifth of it: not the few per cent that the lines' vertices add (their
 # rows added up count a line's vertices in both tiles: 5.6 % for 6 tiles of 150 cells of a
@@ -15,29 +15,19 @@ from .arguments import build_option
 SLACK = 1.2
 
 
-def level_counts(path):
-    """A tile's vertices per level, from its levels table."""
-    db = sqlite3.connect("file:%s?mode=ro" % urllib.parse.quote(path), uri=True)
-    try:
-        return [count for (count,) in db.execute("SELECT vertices FROM levels ORDER BY level")]
-    finally:
-        db.close()
-
-
-def warn_if_above_stop(rows, catalogue_path, build_options, levels):
+def warn_if_above_stop(rows, catalogue_path, build_options, stop, levels):
     """Says so on stderr when the done tiles' coarsest level holds more than SLACK times the
-    -stop_pct share of their level 0 (their rows added up, as tinlod info does). Not under a
+    `stop` per cent (-stop_pct) of their level 0 (their rows added up, as tinlod info does). Not under a
     bound, a threshold or -max_levels, which stop the levels on purpose."""
     if levels < 2 or any(build_option(build_options, o) is not None for o in ("-max_error", "-threshold", "-max_levels")):
         return
-    stop = float(build_option(build_options, "-stop_pct") or 5)
     base = os.path.dirname(os.path.abspath(catalogue_path))
     first = before = last = 0
     for row in rows:
         if row["status"] == "done" and row["file"]:
             try:
-                counts = level_counts(os.path.join(base, row["file"]))
-            except sqlite3.Error:  # moved or damaged since: a warning's figures need not stop the run
+                counts = level_vertices(os.path.join(base, row["file"]))
+            except (TilesError, RuntimeError):  # moved or damaged since: a warning's figures need not stop the run
                 continue
             if len(counts) >= levels:
                 first, before, last = first + counts[0], before + counts[levels - 2], last + counts[levels - 1]

@@ -34,11 +34,27 @@ def summary_of(path, expected_tile):
     triangles = dataset.GetLayerByName("triangles")
     if levels is None or triangles is None:
         raise TilesError("%s is no tinlod hierarchy (no levels or triangles layer)" % path)
-    counts = {f.GetField("level"): (f.GetField("vertices"), f.GetField("triangles")) for f in levels}
+    counts = level_rows(levels)
     vertices, triangle_count = counts.get(0, (0, 0))
     srs = triangles.GetSpatialRef()
     return TileSummary(len(counts), vertices, triangle_count, extent_polygon(triangles.GetExtent()),
                        srs.Clone() if srs is not None else None)
+
+
+def level_rows(levels):
+    """A tile's levels table (its layer): {level: (vertices, triangles)}."""
+    return {f.GetField("level"): (f.GetField("vertices"), f.GetField("triangles")) for f in levels}
+
+
+def level_vertices(path):
+    """A tile's vertices per level, level 0 first; TilesError when its file holds no levels
+    table (GDAL's RuntimeError when it is damaged)."""
+    dataset = ogr.Open(path)
+    levels = dataset.GetLayerByName("levels") if dataset is not None else None
+    if levels is None:
+        raise TilesError("%s holds no levels table" % path)
+    rows = level_rows(levels)
+    return [rows[k][0] for k in sorted(rows)]
 
 
 def extent_polygon(extent):
