@@ -27,8 +27,8 @@ bool isOutline(const Dem& dem, int row, int col) {
 // A tile's shared lines are sampled by their own rule (lineCellSampled), the same in both
 // tiles, not as the raster's edge is (every cell); their peaks and pits are those of the
 // whole raster, which both tiles read beyond their edge.
-void markOutline(const Dem& dem, int block, std::uint64_t seed, bool peaksAndPits, std::vector<unsigned char>& marks,
-                 const ProgressRange& progress) {
+void markOutlineAndPeaks(const Dem& dem, int block, std::uint64_t seed, bool peaksAndPits,
+                         std::vector<unsigned char>& marks, const ProgressRange& progress) {
   for (int row = 0; row < dem.height; ++row) {
     for (int col = 0; col < dem.width; ++col) {
       if (!dem.valid(row, col)) continue;
@@ -77,7 +77,7 @@ void markRandom(const Dem& dem, int block, std::uint64_t seed, std::vector<unsig
 std::vector<SampleCell> sampleCells(const Dem& dem, int block, std::uint64_t seed,
                                     const ProgressRange& progress, bool peaksAndPits) {
   std::vector<unsigned char> marks(static_cast<std::size_t>(dem.width) * dem.height, kNone);
-  markOutline(dem, block, seed, peaksAndPits, marks, progress.sub(0, 0.5));
+  markOutlineAndPeaks(dem, block, seed, peaksAndPits, marks, progress.sub(0, 0.5));
   markRandom(dem, block, seed, marks, progress.sub(0.5, 1));
   std::vector<SampleCell> cells;
   for (int row = 0; row < dem.height; ++row)
