@@ -224,7 +224,7 @@ TEST(Cli, BuildCheckSaysWhetherTheOptionsAreGoodAndWritesNothing) {
   EXPECT_TRUE(has(all.out, "Options in effect: (the defaults)\n")) << all.out << all.err;
   const CliRun bad = tinlod("build " + defaultDem() + " " + out + " -check -delete_pct 200");
   EXPECT_EQ(bad.exitCode, 1);
-  EXPECT_TRUE(has(bad.err, "ERROR: delete_pct must be more than 0 and at most 100 (got 200)")) << bad.err;
+  EXPECT_TRUE(has(bad.err, "ERROR: -delete_pct must be more than 0 and at most 100 (got 200)")) << bad.err;
   EXPECT_FALSE(fs::exists(out));
   // Numbers are decimal: strtod would read 0x2 as 2, which tinlod tiles, reading the options
   // itself, would not (it then took a bounded job for an unbounded one).
@@ -413,6 +413,71 @@ TEST(Cli, AccuracyErrorsNameTheOption) {
   EXPECT_EQ(level.exitCode, 1);
   EXPECT_TRUE(has(level.err, "levels 0 to 2")) << level.err;
   EXPECT_FALSE(fs::exists(dir + "/a.tif"));
+}
+
+// As gdal_translate, the raster's format is the one its extension names; a format that
+// would keep less than the four bands of floats (PNG's bytes, XYZ's one band) is refused
+// before the work, with nothing written (a user trial's .png kept values 0 to 3).
+TEST(Cli, AccuracyRasterFormatComesFromItsExtensionAndMustKeepItsBands) {
+  const std::string dir = test::tempDir();
+  const std::string h = smallHierarchy();  // read only
+  for (const std::string& name : {"a.png", "a.xyz", "a.asc"}) {
+    const CliRun r = tinlod("accuracy -accuracy " + dir + "/" + name + " " + defaultDem() + " " + h);
+    EXPECT_EQ(r.exitCode, 1) << name;
+    EXPECT_TRUE(has(r.err, "cannot hold the accuracy raster (4 bands of 32-bit floats)")) << r.err;
+    EXPECT_FALSE(has(r.err, "10...20")) << name << ": refused after the work started";
+    EXPECT_FALSE(fs::exists(dir + "/" + name)) << name;
+  }
+  const CliRun unknown = tinlod("accuracy -accuracy " + dir + "/a.foo " + defaultDem() + " " + h);
+  EXPECT_EQ(unknown.exitCode, 1);
+  EXPECT_TRUE(has(unknown.err, "no GDAL raster format writes files named '.foo': name the file .tif, or give the format with -of"))
+      << unknown.err;
+  ASSERT_EQ(tinlod("accuracy -q -accuracy " + dir + "/a.img " + defaultDem() + " " + h).exitCode, 0);
+  ASSERT_EQ(tinlod("accuracy -q -of GTiff -accuracy " + dir + "/tiff.png " + defaultDem() + " " + h).exitCode, 0);
+  GDALAllRegister();
+  for (const auto& [name, driver] : {std::pair<std::string, std::string>{"a.img", "HFA"}, {"tiff.png", "GTiff"}}) {
+    GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/" + name).c_str(), GDAL_OF_RASTER));
+    ASSERT_TRUE(ds) << name;
+    EXPECT_EQ(std::string(ds->GetDriver()->GetDescription()), driver);
+    EXPECT_EQ(ds->GetRasterCount(), 4);
+    EXPECT_EQ(ds->GetRasterBand(1)->GetRasterDataType(), GDT_Float32);
+  }
+}
+
+// Another band than the one sampled measures the TIN against heights it was not made from
+// (488 m of "error" in a user trial): said, and the sampled band is the default.
+TEST(Cli, AccuracyOfAnotherBandThanTheSampledOneWarns) {
+  const std::string dir = test::tempDir();
+  // Band 2 is band 1 raised by 100 m.
+  GDALAllRegister();
+  {
+    GDALDatasetUniquePtr one(GDALDataset::Open(defaultDem().c_str(), GDAL_OF_RASTER));
+    ASSERT_TRUE(one);
+    const int w = one->GetRasterXSize(), h = one->GetRasterYSize();
+    std::vector<float> z(std::size_t(w) * h);
+    ASSERT_EQ(one->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, z.data(), w, h, GDT_Float32, 0, 0), CE_None);
+    GDALDatasetUniquePtr two(GetGDALDriverManager()->GetDriverByName("GTiff")->Create((dir + "/two.tif").c_str(), w, h, 2,
+                                                                                       GDT_Float32, nullptr));
+    double gt[6];
+    one->GetGeoTransform(gt);
+    two->SetGeoTransform(gt);
+    two->SetProjection(one->GetProjectionRef());
+    for (int b = 1; b <= 2; ++b) {
+      two->GetRasterBand(b)->SetNoDataValue(one->GetRasterBand(1)->GetNoDataValue());
+      ASSERT_EQ(two->GetRasterBand(b)->RasterIO(GF_Write, 0, 0, w, h, z.data(), w, h, GDT_Float32, 0, 0), CE_None);
+      for (float& v : z)
+        if (std::isfinite(v) && v != float(one->GetRasterBand(1)->GetNoDataValue())) v += 100;
+    }
+  }
+  ASSERT_EQ(tinlod("build -q -max_levels 1 -b 2 " + dir + "/two.tif " + dir + "/h.gpkg").exitCode, 0);
+  const CliRun sampled = tinlod("accuracy -reference dem " + dir + "/two.tif " + dir + "/h.gpkg");
+  ASSERT_EQ(sampled.exitCode, 0) << sampled.err;
+  EXPECT_FALSE(has(sampled.err, "was sampled from band")) << sampled.err;
+  const CliRun other = tinlod("accuracy -reference dem -b 1 " + dir + "/two.tif " + dir + "/h.gpkg");
+  ASSERT_EQ(other.exitCode, 0) << other.err;
+  EXPECT_TRUE(has(other.err, "Warning: -b 1: '" + dir + "/h.gpkg' was sampled from band 2 of its DEM, so it is measured "
+                                "against heights it was not made from; leave -b out to measure band 2"))
+      << other.err;
 }
 
 TEST(Cli, InsertKeepsTheToleranceThatAccuracyMeasuresAgain) {
@@ -647,9 +712,19 @@ TEST(Cli, OverwriteRefusesATinlodFileOfAnotherKind) {
   const CliRun info = tinlod("info " + dir + "/dp.gpkg");
   EXPECT_EQ(info.exitCode, 1);
   EXPECT_TRUE(has(info.err, "is a tinlod dp_values output (of tinlod lines or locate), not a TIN")) << info.err;
-  const CliRun intoLines = tinlod("build -q -overwrite " + defaultDem() + " " + dir + "/dp.gpkg");
+  const CliRun intoLines = tinlod("build -overwrite " + defaultDem() + " " + dir + "/dp.gpkg");
   EXPECT_EQ(intoLines.exitCode, 1);
   EXPECT_TRUE(has(intoLines.err, "holds a tinlod dp_values output")) << intoLines.err;
+  EXPECT_FALSE(has(intoLines.err, "10...20")) << "refused after the work started";
+  // Nor does a file GDAL cannot open as a GeoPackage wait for the work to be done.
+  std::ofstream(dir + "/text.gpkg") << "hello";
+  for (const char* job : {"build", "insert -max_vertices 500"}) {
+    const CliRun intoText = tinlod(std::string(job) + " -overwrite " + defaultDem() + " " + dir + "/text.gpkg");
+    EXPECT_EQ(intoText.exitCode, 1) << job;
+    EXPECT_TRUE(has(intoText.err, "output '" + dir + "/text.gpkg' exists but is not a GeoPackage GDAL can update")) << intoText.err;
+    EXPECT_FALSE(has(intoText.err, "10...20")) << job << ": refused after the work started";
+  }
+  EXPECT_EQ(test::readFile(dir + "/text.gpkg"), "hello");
   // A TIN, a hierarchy and a level-of-detail TIN replace one another.
   EXPECT_EQ(tinlod("build -q -overwrite " + defaultDem() + " " + dir + "/tin.gpkg").exitCode, 0);
 }
@@ -966,6 +1041,21 @@ TEST(Cli, ComplexBandsAreRefused) {
   const CliRun r = tinlod("sample " + path + " " + test::tempDir() + "/t.gpkg");
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_TRUE(has(r.err, "ERROR: '" + path + "' band 1 holds complex numbers (CFloat32), not heights")) << r.err;
+}
+
+// An image's band reads as numbers like any other: an RGB photo made a "hierarchy" of red
+// values without a word in a user trial.
+TEST(Cli, AnImageBandIsSaidNotToBeHeights) {
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(std::system(("gdal_translate -q -ot Byte -scale -b 1 -b 1 -b 1 -co PHOTOMETRIC=RGB " + defaultDem() + " " + dir +
+                         "/rgb.tif").c_str()),
+            0);
+  const CliRun r = tinlod("sample " + dir + "/rgb.tif " + dir + "/t.gpkg");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "Warning: '" + dir + "/rgb.tif' band 1 is an image's Red band (its colour interpretation), not "
+                            "heights: its values are taken as metres; give a DEM, or -b for a band of heights"))
+      << r.err;
+  EXPECT_FALSE(has(tinlod("sample " + defaultDem() + " " + dir + "/d.gpkg").err, "colour interpretation"));
 }
 
 TEST(Cli, WholeNumberOptionsRefuseOverflowAndGarbage) {

@@ -21,7 +21,8 @@ const char* const kAccuracyHelp = R"(Accuracy (the study's measure, and more):
                      level's vertex count and measure it the same way: the report and the
                      table gain its RMSE and the ratio level RMSE / insert RMSE (1: as good
                      as greedy insertion at equal size, 2: twice its error)
-  -of format         GDAL raster format of the raster (default GTiff)
+  -of format         GDAL raster format of the raster (default: the one its extension
+                     names, GTiff for .tif)
   -co NAME=VALUE     creation option of the raster format (repeatable)
 )";
 
@@ -34,7 +35,9 @@ AccuracyOutputs accuracyOutputs(Arguments& a) {
   o.options.step = a.integer("-step", o.options.step);
   o.options.controlSpacing = a.integer("-control", o.options.controlSpacing);
   o.compareInsert = a.flag("-compare_insert");
-  o.raster.format = a.text("-of", o.raster.format);
+  // As gdal_translate: the format the file's extension names, unless -of says another.
+  o.raster.format = a.text("-of", "");
+  if (o.raster.format.empty()) o.raster.format = o.rasterPath.empty() ? "GTiff" : rasterFormatFor(o.rasterPath);
   o.raster.creationOptions = a.repeated("-co");
   return o;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "arguments.h"
+#include "tinlod/accuracy_raster.h"
 #include "tinlod/accuracy_job.h"
 
 namespace tinlod::cli {

@@ -31,7 +31,10 @@ void AccuracyOutputs::validate() const {
 
 AccuracyFiles stageAccuracyFiles(const AccuracyOutputs& outputs, OutputFiles& files) {
   AccuracyFiles staged;
-  if (!outputs.rasterPath.empty()) staged.raster = &files.add(outputs.rasterPath, "-accuracy");
+  if (!outputs.rasterPath.empty()) {
+    staged.raster = &files.add(outputs.rasterPath, "-accuracy");  // an input is refused as such first
+    checkRasterKeepsItsBands(outputs.raster);
+  }
   if (!outputs.reportPath.empty()) staged.report = &files.add(outputs.reportPath, "-report");
   return staged;
 }
@@ -141,6 +144,19 @@ int sampledBand(const HierarchyInfo& info) {
   return band;
 }
 
+// The band to measure: -b, or the one the TIN was sampled from. Another band than that
+// measures the TIN against heights it was not made from (488 m of "error" on a DEM whose
+// band 2 was sampled, measured against its band 1): said, not refused.
+int bandToMeasure(int band, const HierarchyInfo& info, const ProgressRange& progress) {
+  const int sampled = sampledBand(info);
+  if (band == 0) return sampled;
+  if (band != sampled)
+    progress.warn("-b " + std::to_string(band) + ": '" + info.path + "' was sampled from band " + std::to_string(sampled) +
+                  " of its DEM, so it is measured against heights it was not made from; leave -b out to measure band " +
+                  std::to_string(sampled));
+  return band;
+}
+
 // The -s_srs the file was sampled with (TINLOD_SOURCE_SRS); empty when it took the DEM's own.
 std::string recordedSourceSrs(const HierarchyInfo& info) {
   const auto item = info.metadata.find("source_srs");
@@ -204,7 +220,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     const CatalogueTile tile = readCatalogue(hierarchyPath).front();
     requireTileFile(tile.name, tile.file);  // a tiles folder moved away: say where it must be
     const HierarchyInfo first = readHierarchyInfo(tile.file);
-    if (band == 0) band = sampledBand(first);
+    band = bandToMeasure(band, first, all);
     warnOfAnotherSourceSrs(sourceSrs, first, all);
     const auto demCrsWkt = [&] {
       return readDemWindow(demPath, band, CellWindow{0, 0, 1, 1}, ProgressRange(Feedback{}, 0, 1)).crsWkt;
@@ -217,7 +233,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     return report;
   }
   const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.15));
-  if (band == 0) band = sampledBand(stored.info);
+  band = bandToMeasure(band, stored.info, all);
   warnOfAnotherSourceSrs(sourceSrs, stored.info, all);
   // A single TIN is measured against the DEM (below), where the range counts.
   const std::optional<HeightRange> used =

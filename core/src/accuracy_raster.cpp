@@ -3,9 +3,12 @@
 
 #include <gdal_priv.h>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <memory>
+
+#include <unistd.h>
 
 #include "accuracy_raster_canvas.h"
 #include "gdal_handles.h"
@@ -28,9 +31,83 @@ GDALDriver& driverFor(const RasterWriteOptions& options) {
   return *driver;
 }
 
+// What the driver makes of a raster like the accuracy raster (four bands of 32-bit floats,
+// a fraction and the nodata value), written to memory and read back: some drivers take any
+// raster and keep less (PNG bytes, XYZ one band) without an error.
+std::string whatItKeeps(GDALDriver& driver, const RasterWriteOptions& options) {
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  DatasetPtr probe(mem->Create("", 2, 2, kAccuracyBandCount, GDT_Float32, nullptr));
+  const double gt[6] = {0, 1, 0, 2, 0, -1};
+  probe->SetGeoTransform(const_cast<double*>(gt));
+  float values[4] = {0.25f, -1.5f, 1e-4f, float(kAccuracyNodata)};
+  for (int b = 1; b <= kAccuracyBandCount; ++b) {
+    probe->GetRasterBand(b)->SetNoDataValue(kAccuracyNodata);
+    if (probe->GetRasterBand(b)->RasterIO(GF_Write, 0, 0, 2, 2, values, 2, 2, GDT_Float32, 0, 0) != CE_None) return "";
+  }
+  const char* ext = driver.GetMetadataItem(GDAL_DMD_EXTENSION);
+  // In a folder of its own on disk: some drivers (netCDF) write no virtual files, others
+  // write sidecar files beside theirs.
+  std::error_code ignored;
+  const std::filesystem::path folder = std::filesystem::temp_directory_path(ignored) /
+                                       ("tinlod_format_probe_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder, ignored);
+  const std::string path = (folder / (std::string("probe.") + (ext && *ext ? ext : "bin"))).string();
+  CPLStringList co;
+  for (const std::string& o : options.creationOptions) co.AddString(o.c_str());
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  DatasetPtr copy(driver.CreateCopy(path.c_str(), probe.get(), FALSE, co.List(), nullptr, nullptr));
+  copy.reset();
+  DatasetPtr back(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  std::string kept;
+  if (!back) {
+    kept = "GDAL wrote no such file";
+  } else if (back->GetRasterCount() != kAccuracyBandCount) {
+    kept = "its file reads back as " + std::to_string(back->GetRasterCount()) + " band" + (back->GetRasterCount() == 1 ? "" : "s");
+  } else {
+    float read[4] = {0, 0, 0, 0};
+    GDALRasterBand* band = back->GetRasterBand(1);
+    const GDALDataType type = band->GetRasterDataType();
+    if (band->RasterIO(GF_Read, 0, 0, 2, 2, read, 2, 2, GDT_Float32, 0, 0) != CE_None || read[0] != values[0] ||
+        read[1] != values[1] || read[2] != values[2])
+      kept = std::string("its file keeps ") + GDALGetDataTypeName(type) + " pixels";
+  }
+  back.reset();
+  CPLPopErrorHandler();
+  std::filesystem::remove_all(folder, ignored);
+  return kept;
+}
+
 }  // namespace
 
 void checkRasterFormat(const RasterWriteOptions& options) { driverFor(options); }
+
+void checkRasterKeepsItsBands(const RasterWriteOptions& options) {
+  GDALDriver& driver = driverFor(options);
+  const std::string kept = whatItKeeps(driver, options);
+  if (!kept.empty())
+    throw Error("-of: " + std::string(driver.GetDescription()) + " cannot hold the accuracy raster (" +
+                std::to_string(kAccuracyBandCount) + " bands of 32-bit floats): " + kept + "; use e.g. GTiff (.tif)");
+}
+
+std::string rasterFormatFor(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == "tif" || ext == "tiff") return "GTiff";
+  GDALAllRegister();
+  GDALDriverManager& drivers = *GetGDALDriverManager();
+  for (int i = 0; !ext.empty() && i < drivers.GetDriverCount(); ++i) {
+    GDALDriver* d = drivers.GetDriver(i);
+    if (!d->GetMetadataItem(GDAL_DCAP_RASTER) || (!d->GetMetadataItem(GDAL_DCAP_CREATE) && !d->GetMetadataItem(GDAL_DCAP_CREATECOPY)))
+      continue;
+    const char* list = d->GetMetadataItem(GDAL_DMD_EXTENSIONS);
+    const CPLStringList extensions(CSLTokenizeString(list ? list : ""));
+    for (int k = 0; k < extensions.size(); ++k)
+      if (EQUAL(extensions[k], ext.c_str())) return d->GetDescription();
+  }
+  throw Error("-accuracy '" + path + "': no GDAL raster format writes files named '." + ext +
+              "': name the file .tif, or give the format with -of");
+}
 
 const char* const kAccuracyBandNames[kAccuracyBandCount] = {
     "elevation difference (simplified - reference), m", "mean curvature difference (simplified - reference), 1/m",

@@ -329,7 +329,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   if (options.survey) return runSurvey(demPath, outPath, sample, options, overwrite, feedback, tile);
   // Bad files fail before the long work.
   std::optional<std::unordered_set<std::uint64_t>> kept = keptCellsOf(options), outline = outlineCellsOf(options);
-  GpkgWriteOptions writeOptions{overwrite, {}};
+  GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_KIND", "hierarchy"}}};  // the kind: refuse another's file now
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints, kFixedName);
   // The hierarchy and the accuracy files go into place together, or none of them.

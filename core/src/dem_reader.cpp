@@ -136,6 +136,16 @@ void refuseComplex(GDALRasterBand& band, const Dem& dem) {
                 GDALGetDataTypeName(type) + "), not heights: choose a band of heights with -b");
 }
 
+// A band of an image (red, a palette index...) reads as numbers like any other: an RGB
+// photo made a 15-level "hierarchy" of red values without a word.
+void warnOfImageBand(GDALRasterBand& band, const Dem& dem, const ProgressRange& progress) {
+  const GDALColorInterp colour = band.GetColorInterpretation();
+  if (colour == GCI_Undefined || colour == GCI_GrayIndex) return;
+  progress.warn("'" + dem.path + "' band " + std::to_string(dem.band) + " is an image's " +
+                GDALGetColorInterpretationName(colour) + " band (its colour interpretation), not heights: its values "
+                "are taken as metres; give a DEM, or -b for a band of heights");
+}
+
 void dropImplausibleHeights(Dem& dem, const HeightRange& valid, const ProgressRange& progress) {
   const std::size_t dropped = dropHeightsOutside(dem.z, valid);
   if (dropped == 0) return;
@@ -218,6 +228,7 @@ Dem readBand(const std::string& path, int bandNumber, const CellWindow* window, 
   dem.window.fullWidth = dem.width, dem.window.fullHeight = dem.height;
   GDALRasterBand* band = ds->GetRasterBand(bandNumber);
   refuseComplex(*band, dem);
+  warnOfImageBand(*band, dem, progress);
   readGeoreferencing(*ds, dem, progress);
   dem.window.fullGeotransform = dem.geotransform;
   if (window) {

@@ -75,6 +75,17 @@ void refuseAnotherKind(const std::string& path, const GpkgWriteOptions& options)
               "neither reads; name another file, or remove this one first");
 }
 
+// An existing output is updated (its other layers kept): one GDAL cannot open as a
+// GeoPackage would fail only when the job writes, after the long work.
+void refuseNonGeoPackage(const std::string& path) {
+  GDALAllRegister();
+  const char* const gpkgOnly[] = {"GPKG", nullptr};
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, gpkgOnly));
+  CPLPopErrorHandler();
+  if (!ds) throw Error("output '" + path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name");
+}
+
 }  // namespace
 
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
@@ -86,6 +97,7 @@ void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
   if (access(dir.c_str(), W_OK) != 0) throw Error("the folder of output '" + path + "' is not writable");
   if (fs::is_directory(out)) throw Error("output '" + path + "' is a folder: name a .gpkg file");
   if (!fs::exists(out)) return;
+  refuseNonGeoPackage(path);
   refuseAnotherKind(path, options);  // first: -overwrite would not help
   if (!options.overwrite)
     throw Error("output '" + path + "' exists: add -overwrite to replace its tinlod layers (its other layers are kept)");

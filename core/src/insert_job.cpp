@@ -271,7 +271,7 @@ void finishFile(InsertedVertexRows& rows, const InsertedTin& result, const std::
 InsertSummary runInsertJob(const std::string& demPath, const std::string& outPath, const InsertOptions& options,
                            bool overwrite, const Feedback& feedback, bool vertexIndex) {
   options.validate();
-  GpkgWriteOptions writeOptions{overwrite, {}};
+  GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_KIND", "tin"}}};  // the kind: refuse another's file now
   writeOptions.vertexIndex = vertexIndex;
   checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   OutputFiles files(overwrite, datasetFiles(demPath));

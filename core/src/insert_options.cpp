@@ -21,11 +21,11 @@ InsertCandidates parseCandidates(const std::string& name) {
 
 void InsertOptions::validate() const {
   if (!std::isfinite(maxError) || maxError < 0)
-    throw Error("max_error must be 0 or more metres (got " + formatNumber(maxError) + "); 0 inserts until the TIN is exact");
+    throw Error("-max_error must be 0 or more metres (got " + formatNumber(maxError) + "); 0 inserts until the TIN is exact");
   if (maxVertices != 0 && maxVertices < 3)
-    throw Error("max_vertices must be 3 or more (got " + std::to_string(maxVertices) + "), or 0 for no limit");
+    throw Error("-max_vertices must be 3 or more (got " + std::to_string(maxVertices) + "), or 0 for no limit");
   if (maxTriangles != 0 && maxTriangles < 1)
-    throw Error("max_triangles must be 1 or more, or 0 for no limit");
+    throw Error("-max_triangles must be 1 or more, or 0 for no limit");
   sample.validate();
 }
 

@@ -21,5 +21,12 @@ constexpr double kAccuracyNodata = -9999;
 // Throws Error, naming -of, unless GDAL can write rasters in options.format: for checks
 // before long work.
 void checkRasterFormat(const RasterWriteOptions& options);
+// As above, and unless the format keeps the accuracy raster's four bands of 32-bit floats
+// (a small raster is written to a temporary folder and read back).
+void checkRasterKeepsItsBands(const RasterWriteOptions& options);
+
+// The GDAL raster format that writes files named as `path` (GTiff for .tif), as gdal_translate
+// picks it without -of; throws Error, naming -accuracy, when no format writes such files.
+std::string rasterFormatFor(const std::string& path);
 
 }  // namespace tinlod
