@@ -65,17 +65,12 @@ bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProce
 QVariantMap AccuracyAlgorithm::processAlgorithm(const QVariantMap&, QgsProcessingContext& context,
                                                QgsProcessingFeedback* feedback) {
   // The DEM's parameters, not the sampling ones: this algorithm has none.
-  const ParameterNames names = demParameterNames({{QStringLiteral("-level"), QStringLiteral("LEVEL")},
-                             {QStringLiteral("-accuracy"), QStringLiteral("ACCURACY")},
-                             {QStringLiteral("-report"), QStringLiteral("REPORT")},
-                             {QStringLiteral("-step"), QStringLiteral("STEP")},
-                             {QStringLiteral("-reference"), QStringLiteral("REFERENCE")},
-                             {QStringLiteral("-control_spacing"), QStringLiteral("CONTROL_SPACING")},
-                             {kFileOf + QString::fromStdString(hierarchy_), QStringLiteral("HIERARCHY")},
-                             {kFileOf + QString::fromStdString(demSource_), QStringLiteral("INPUT")}});
+  const ParameterNames names = demParameterNames(accuracyParameterNames() +
+                                                 ParameterNames{{kFileOf + QString::fromStdString(hierarchy_), QStringLiteral("HIERARCHY")},
+                                                                {kFileOf + QString::fromStdString(demSource_), QStringLiteral("INPUT")}});
   const AccuracyReport report = translateErrors(
       [&] {
-        return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, "", processingFeedback(feedback, names), validHeights_);
+        return runAccuracyJob(demSource_, hierarchy_, accuracy_, sample_.band, sample_.sourceSrs, processingFeedback(feedback, names), validHeights_);
       },
       names);
   const int level = accuracy_.rasterLevel < 0 ? static_cast<int>(report.rows.size()) - 1 : accuracy_.rasterLevel;

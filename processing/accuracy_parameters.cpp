@@ -49,11 +49,27 @@ void DemAlgorithm::readAccuracyParameters(const QVariantMap& parameters, QgsProc
   accuracy_.rasterPath = raster.toStdString();
   accuracyLoad_.remember(context, raster);
   if (!raster.isEmpty()) {
-    const QString driver = QgsRasterFileWriter::driverForExtension(QFileInfo(raster).suffix());
-    accuracy_.raster.format = driver.isEmpty() ? QStringLiteral("GTiff").toStdString() : driver.toStdString();
+    const QString suffix = QFileInfo(raster).suffix();
+    const QString driver = QgsRasterFileWriter::driverForExtension(suffix);
+    // A name GDAL knows no format for was written as a GeoTIFF under that name.
+    if (driver.isEmpty())
+      throw QgsProcessingException(QStringLiteral("ACCURACY: no GDAL raster format is named by the extension '.%1' of '%2': "
+                                                  "name the file .tif")
+                                       .arg(suffix, raster));
+    accuracy_.raster.format = driver.toStdString();
   }
   accuracy_.reportPath = optionalPath(parameterAsFileOutput(parameters, QStringLiteral("REPORT"), context)).toStdString();
-  translateErrors([&] { accuracy_.validate(); });
+  translateErrors([&] { accuracy_.validate(); }, accuracyParameterNames());
+}
+
+ParameterNames DemAlgorithm::accuracyParameterNames() {
+  return {{QStringLiteral("-level"), QStringLiteral("LEVEL")},
+          {QStringLiteral("-accuracy"), QStringLiteral("ACCURACY")},
+          {QStringLiteral("-of"), QStringLiteral("ACCURACY")},
+          {QStringLiteral("-report"), QStringLiteral("REPORT")},
+          {QStringLiteral("-step"), QStringLiteral("STEP")},
+          {QStringLiteral("-reference"), QStringLiteral("REFERENCE")},
+          {QStringLiteral("-control_spacing"), QStringLiteral("CONTROL_SPACING")}};
 }
 
 QString DemAlgorithm::accuracyHelp() {

@@ -152,21 +152,25 @@ bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, Qg
   readAccuracyParameters(parameters, context);
   options_.fixedPoints = sourceFile(parameterDefinition(QStringLiteral("FIXED_POINTS")), parameters, context, feedback,
                                     QStringLiteral("a point layer"));
-  translateErrors([&] { options_.validate(); });
+  translateErrors([&] { options_.validate(); }, parameterNames());
   return true;
 }
 
-QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
-                                                      QgsProcessingFeedback* feedback) {
-  const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
-  const ParameterNames names = samplingParameterNames({
+ParameterNames BuildHierarchyAlgorithm::parameterNames() {
+  return samplingParameterNames(ParameterNames{
       {QStringLiteral("-delete_pct"), QStringLiteral("DELETE_PCT")}, {QStringLiteral("-stop_pct"), QStringLiteral("STOP_PCT")},
       {QStringLiteral("-max_levels"), QStringLiteral("MAX_LEVELS")}, {QStringLiteral("-max_degree"), QStringLiteral("MAX_DEGREE")},
       {QStringLiteral("-max_error"), QStringLiteral("MAX_ERROR")},   {QStringLiteral("-threshold"), QStringLiteral("THRESHOLD")},
       {QStringLiteral("-outline_tolerance"), QStringLiteral("OUTLINE_TOLERANCE")},
       {QStringLiteral("-keep_outline"), QStringLiteral("KEEP_OUTLINE")}, {QStringLiteral("-fixed"), QStringLiteral("FIXED_POINTS")},
       {QStringLiteral("-fix_peaks_pits"), QStringLiteral("FIX_PEAKS_PITS")}, {QStringLiteral("-levels"), QStringLiteral("LEVEL_VIEWS")},
-      {QStringLiteral("-accuracy"), QStringLiteral("ACCURACY")},       {QStringLiteral("-report"), QStringLiteral("REPORT")}});
+      {QStringLiteral("-method"), QStringLiteral("METHOD")}} + accuracyParameterNames());
+}
+
+QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
+                                                      QgsProcessingFeedback* feedback) {
+  const QString output = parameterAsFileOutput(parameters, QStringLiteral("OUTPUT"), context);
+  const ParameterNames names = parameterNames();
   const BuildSummary s = translateErrors(
       [&] {
         return runBuildJob(demSource_, output.toStdString(), sample_, options_, true, processingFeedback(feedback, names),

@@ -29,6 +29,8 @@ class BuildHierarchyAlgorithm : public DemAlgorithm {
                                QgsProcessingFeedback* feedback) override;
 
  private:
+  // The core's options by the dialog's parameters, for its messages.
+  static ParameterNames parameterNames();
   HierarchyOptions options_;
   HierarchyLayers layers_;
   bool loadLevels_ = true;

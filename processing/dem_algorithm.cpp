@@ -14,12 +14,25 @@ namespace {
 
 // The definition handed to the core: the authority id where there is one (short in
 // messages), WKT otherwise. Geographic or non-metre CRSs are refused before the run.
+std::string srsText(const QgsCoordinateReferenceSystem& crs) {
+  return (crs.authid().isEmpty() ? crs.toWkt(QgsCoordinateReferenceSystem::WKT_PREFERRED) : crs.authid()).toStdString();
+}
+
 std::string targetSrs(const QgsCoordinateReferenceSystem& crs) {
   if (!crs.isValid()) return {};
   if (crs.isGeographic() || crs.mapUnits() != QgsUnitTypes::DistanceMeters)
     throw QgsProcessingException(QStringLiteral("TARGET_CRS must be a projected CRS in metres, such as a UTM zone; "
                                                 "%1 is not").arg(crs.userFriendlyIdentifier()));
-  return (crs.authid().isEmpty() ? crs.toWkt(QgsCoordinateReferenceSystem::WKT_PREFERRED) : crs.authid()).toStdString();
+  return srsText(crs);
+}
+
+// A CRS the user gave the layer in QGIS (Layer Properties, or QGIS's question for a file
+// without one) where its file has none or another: the DEM's, as -s_srs on the command line.
+std::string assignedSrs(QgsRasterLayer& layer) {
+  const QgsCoordinateReferenceSystem crs = layer.crs();
+  if (!crs.isValid() || !layer.dataProvider()) return {};
+  const QgsCoordinateReferenceSystem file = layer.dataProvider()->crs();
+  return file.isValid() && file == crs ? std::string() : srsText(crs);
 }
 
 }  // namespace
@@ -33,7 +46,9 @@ void DemAlgorithm::addDemParameters(bool rangeOfTheGeoPackage) {
   addParameter(new QgsProcessingParameterRasterLayer(QStringLiteral("INPUT"), QStringLiteral("DEM")));
   // Optional with a default: qgis_process 3.22 reports a mandatory band as missing
   // even when it has a default value.
-  addParameter(new QgsProcessingParameterBand(QStringLiteral("BAND"), QStringLiteral("Band"), SampleOptions().band,
+  // Against a GeoPackage an empty band means the one it was sampled from: no default.
+  addParameter(new QgsProcessingParameterBand(QStringLiteral("BAND"), QStringLiteral("Band"),
+                                              rangeOfTheGeoPackage ? QVariant() : QVariant(SampleOptions().band),
                                               QStringLiteral("INPUT"), true));
   const HeightRange defaults;
   const QVariant range = rangeOfTheGeoPackage ? QVariant() : QVariant(QStringLiteral("%1,%2").arg(defaults.min).arg(defaults.max));
@@ -81,6 +96,7 @@ void DemAlgorithm::readDemParameters(const QVariantMap& parameters, QgsProcessin
     throw QgsProcessingException(QStringLiteral("Invalid band number for BAND (%1): valid values for input raster are 1 to %2")
                                      .arg(band).arg(layer->bandCount()));
   demSource_ = layer->source().toStdString();
+  sample_.sourceSrs = assignedSrs(*layer);
   sample_.band = band;
   validHeights_ = validRange(parameters, context);
   sample_.validHeights = validHeights_.value_or(HeightRange{});

@@ -34,6 +34,8 @@ class DemAlgorithm : public QgsProcessingAlgorithm {
   // Fills accuracy_ on the main thread, or throws QgsProcessingException naming the parameter.
   void readAccuracyParameters(const QVariantMap& parameters, QgsProcessingContext& context);
   static QString accuracyHelp();
+  // The accuracy parameters by the command line's options (-of is ACCURACY's extension).
+  static ParameterNames accuracyParameterNames();
   // The help text's paragraphs on sampling, holes and units, shared by the algorithms.
   static QString samplingHelp();
   // VALID_RANGE, or none when it is empty; throws QgsProcessingException for a bad range.

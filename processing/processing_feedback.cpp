@@ -34,7 +34,18 @@ const ParameterNames& desktopTerms() {
       {QStringLiteral("its layers and metadata are shown by ogrinfo -so, and it opens in QGIS as it is"),
        QStringLiteral("add it to the map as it is (Layer > Add Layer > Add Vector Layer)")},
       {QStringLiteral("-overwrite replaces the layers of the same kind"),
-       QStringLiteral("writing into an existing GeoPackage replaces the layers of the same kind")}};
+       QStringLiteral("writing into an existing GeoPackage replaces the layers of the same kind")},
+      // The DEM's CRS is the layer's (DemAlgorithm passes a CRS assigned in QGIS on).
+      {QStringLiteral("name its CRS with -s_srs EPSG:4326 (QGIS: assign the layer's CRS)"),
+       QStringLiteral("assign the layer's CRS, EPSG:4326 (Layer Properties > Source)")},
+      {QStringLiteral("name its CRS with -s_srs, e.g. -s_srs EPSG:4326 (QGIS: assign the layer's CRS)"),
+       QStringLiteral("assign the layer's CRS (Layer Properties > Source), e.g. EPSG:4326")},
+      {QStringLiteral("CRS with -s_srs (e.g. -s_srs EPSG:4326 for degrees; QGIS: assign the layer's CRS), or a projected one with -t_srs"),
+       QStringLiteral("CRS: assign the layer's CRS (Layer Properties > Source; EPSG:4326 for degrees), or choose a projected TARGET_CRS")},
+      {QStringLiteral("name the right one with -s_srs"), QStringLiteral("assign the right one to the layer (Layer Properties > Source)")},
+      {QStringLiteral("leave -s_srs out to use the DEM's own CRS"),
+       QStringLiteral("assign the layer the CRS of its file (Layer Properties > Source)")},
+      {QStringLiteral("-s_srs "), QStringLiteral("the layer's CRS ")}};
   return terms;
 }
 
@@ -66,6 +77,9 @@ Feedback processingFeedback(QgsProcessingFeedback* feedback, const ParameterName
 QString withParameterNames(const QString& message, const ParameterNames& names) {
   QString out = message;
   static const QRegularExpression named(QStringLiteral("^[A-Z_]+: "));
+  // The core calls the file it writes "output": every algorithm that has one names it OUTPUT.
+  static const QRegularExpression output(QStringLiteral("^output:? '"));
+  out.replace(output, QStringLiteral("OUTPUT: '"));
   for (const auto& [option, parameter] : names) {
     if (option.startsWith(kFileOf)) {
       if (!named.match(out).hasMatch() && out.contains(QLatin1Char('\'') + option.mid(kFileOf.size()) + QLatin1Char('\'')))

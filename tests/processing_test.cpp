@@ -735,7 +735,7 @@ TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
                                                                       {"REPORT", QString::fromStdString(dir + "/r.txt")},
                                                                       {"ACCURACY", QString::fromStdString(dir + "/b.tif")}});
   EXPECT_FALSE(bad.ok);
-  EXPECT_TRUE(bad.error.contains("-report")) << bad.error.toStdString();
+  EXPECT_TRUE(bad.error.contains("REPORT: unknown report format '.txt'")) << bad.error.toStdString();
   EXPECT_FALSE(fs::exists(dir + "/b.tif"));
 }
 
@@ -1082,6 +1082,72 @@ TEST(Processing, MessagesGiveFixesAsAQgisUserMakesThem) {
   ASSERT_FALSE(multi.ok);
   EXPECT_TRUE(multi.error.startsWith("INPUT: feature 1 of INPUT is a multipoint")) << multi.error.toStdString();
   EXPECT_FALSE(multi.error.contains(QgsProcessingUtils::tempFolder())) << multi.error.toStdString();
+}
+
+// An ASCII grid in degrees without a .prj: a file with no CRS, as SRTM's .asc often are.
+std::string degreesWithoutCrs(const std::string& dir) {
+  const std::string path = dir + "/nocrs.asc";
+  std::ofstream out(path);
+  out << "ncols 60\nnrows 50\nxllcorner -105.3\nyllcorner 40.0\ncellsize 0.000833333333\nNODATA_value -9999\n";
+  for (int r = 0; r < 50; ++r) {
+    for (int c = 0; c < 60; ++c) out << 1600 + r + 2 * c + 3 * std::sin(0.4 * r) * std::cos(0.3 * c) << ' ';
+    out << '\n';
+  }
+  return path;
+}
+
+// QGIS asks a CRS for a file without one, or the user assigns it in Layer Properties: that
+// CRS is the DEM's, as -s_srs is on the command line (a user trial found it ignored, while
+// the errors told them to assign it).
+TEST(Processing, TheCrsAssignedToTheLayerIsTheDems) {
+  const std::string dir = test::tempDir();
+  const QString dem = QString::fromStdString(degreesWithoutCrs(dir));
+  const Result asFile = runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", dem}, {"OUTPUT", QString::fromStdString(dir + "/a.gpkg")}});
+  ASSERT_FALSE(asFile.ok);
+  EXPECT_TRUE(asFile.error.contains("assign the layer's CRS, EPSG:4326 (Layer Properties > Source)")) << asFile.error.toStdString();
+  EXPECT_FALSE(asFile.error.contains("-s_srs")) << asFile.error.toStdString();
+  QgsProject project;
+  auto* layer = new QgsRasterLayer(dem, QStringLiteral("no crs"), QStringLiteral("gdal"));
+  ASSERT_TRUE(layer->isValid());
+  EXPECT_FALSE(layer->dataProvider()->crs().isValid());
+  layer->setCrs(QgsCoordinateReferenceSystem(QStringLiteral("EPSG:4326")));
+  project.addMapLayer(layer);
+  const QString tin = QString::fromStdString(dir + "/tin.gpkg");
+  const Result assigned = runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", layer->id()}, {"OUTPUT", tin}}, nullptr, &project);
+  ASSERT_TRUE(assigned.ok) << assigned.error.toStdString();
+  QgsVectorLayer triangles(tin + QStringLiteral("|layername=triangles"), QStringLiteral("t"), QStringLiteral("ogr"));
+  EXPECT_EQ(triangles.crs().authid(), QStringLiteral("EPSG:32613"));  // UTM zone 13N, at 105.3 W
+}
+
+// The core's messages in the dialog's terms: its options are the parameters (a user trial
+// found -report, -of and threshold in QGIS's log).
+TEST(Processing, ErrorsNameTheDialogsParameters) {
+  const std::string dir = test::tempDir();
+  const QString dem = QString::fromStdString(defaultDem());
+  const auto build = [&](const QVariantMap& more) {
+    QVariantMap p{{"INPUT", dem}, {"LOAD_LEVELS", false}, {"OUTPUT", QString::fromStdString(dir + "/h.gpkg")}};
+    for (auto it = more.begin(); it != more.end(); ++it) p[it.key()] = it.value();
+    return runAlgorithm(QStringLiteral("tinlod:buildhierarchy"), p);
+  };
+  const std::vector<std::pair<QVariantMap, QString>> cases{
+      {{{"THRESHOLD", -5}}, "THRESHOLD must be more than 0 (got -5)"},
+      {{{"REPORT", QString::fromStdString(dir + "/r.txt")}}, "REPORT: unknown report format '.txt'"},
+      {{{"ACCURACY", QString::fromStdString(dir + "/a.png")}}, "ACCURACY: PNG cannot hold the accuracy raster (4 bands of 32-bit floats)"},
+      {{{"ACCURACY", QString::fromStdString(dir + "/a.foo")}}, "ACCURACY: no GDAL raster format is named by the extension '.foo'"},
+      {{{"OUTPUT", dem}}, "OUTPUT: '"}};
+  for (const auto& [more, said] : cases) {
+    const Result r = build(more);
+    EXPECT_FALSE(r.ok);
+    EXPECT_TRUE(r.error.contains(said)) << r.error.toStdString();
+    for (const char* option : {"-report", "-of", "-threshold", "-accuracy"})
+      EXPECT_FALSE(r.error.contains(QString::fromUtf8(option) + QLatin1Char(' '))) << r.error.toStdString();
+  }
+  EXPECT_FALSE(fs::exists(dir + "/h.gpkg"));
+  EXPECT_FALSE(fs::exists(dir + "/a.png"));
+  // Against a GeoPackage, an empty BAND is the band it was sampled from: it has no default.
+  std::unique_ptr<QgsProcessingAlgorithm> accuracy(
+      QgsApplication::processingRegistry()->createAlgorithmById(QStringLiteral("tinlod:accuracy")));
+  EXPECT_FALSE(accuracy->parameterDefinition(QStringLiteral("BAND"))->defaultValue().isValid());
 }
 
 // Every other vector input from a memory layer, as from a file: the same results.
