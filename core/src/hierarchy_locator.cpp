@@ -201,6 +201,25 @@ std::vector<FanEntry> makeFans(const Hierarchy& h, const std::vector<Point>& poi
   return fans;
 }
 
+constexpr double kDiagonal = 0.70710678118654752;
+constexpr double kDirections[8][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1},
+                                      {kDiagonal, kDiagonal}, {-kDiagonal, kDiagonal}, {-kDiagonal, -kDiagonal}, {kDiagonal, -kDiagonal}};
+
+// A DEM cell's size in the TIN's CRS: the median over neighbouring vertices of their
+// distance over their distance in the DEM's grid (where the sampler placed them).
+double cellSize(const Tin& tin) {
+  std::vector<double> ratios;
+  const std::size_t n = tin.vertices.size();
+  for (std::size_t i = 1; i < n && ratios.size() < 257; ++i) {
+    const TinVertex &a = tin.vertices[i - 1], &b = tin.vertices[i];
+    const double cells = std::hypot(double(b.col) + b.dcol - a.col - a.dcol, double(b.row) + b.drow - a.row - a.drow);
+    if (cells >= 0.5) ratios.push_back(std::hypot(b.x - a.x, b.y - a.y) / cells);
+  }
+  if (ratios.empty()) return 0;
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  return ratios[ratios.size() / 2];
+}
+
 }  // namespace
 
 struct HierarchyLocator::Impl {
@@ -210,8 +229,13 @@ struct HierarchyLocator::Impl {
   std::vector<FanEntry> fans;  // every group's block
   std::vector<std::uint32_t> cuts;  // the blocks of outline vertices, whose ground was given up
   BoxGrid cutGrid;
+  // How far off the TIN a point may lie and still take its nearest triangle: the centres
+  // of the edge cells of a DEM in degrees lie on curves in the TIN's CRS, a fraction of a
+  // millimetre outside the straight edges between its vertices at level 0 (and up to a few
+  // per cent of a cell at coarse levels, whose edge vertices are far apart).
+  double reach = 0;
 
-  explicit Impl(const Hierarchy& hierarchy) : h(hierarchy) {
+  explicit Impl(const Hierarchy& hierarchy) : h(hierarchy), reach(0.05 * cellSize(hierarchy.base)) {
     if (!h.linked()) throw Error("internal error: locating in a hierarchy whose groups are not linked (linkGroups)");
     const std::vector<Point> points = pointsOf(h.base);
     std::vector<std::uint32_t> fanStart;  // by group: where its block begins in `fans`
@@ -292,6 +316,13 @@ struct HierarchyLocator::Impl {
     return t;
   }
 
+  std::uint32_t triangleAt(const Point& p, int level) const {
+    std::uint32_t t = kNone;
+    if (const TopTriangle* top = start(p)) t = descend(top->id, top->fan, p, level);
+    if (t == kNone) t = fromGivenUp(p, level);  // on ground the outline gave up at a coarser level
+    return t;
+  }
+
   // Linear in the triangle, from the areas opposite each vertex. Normalising each by
   // their sum, rather than by the triangle's area, gives a vertex exactly its own
   // height: the other two areas are then exactly zero and its weight exactly one.
@@ -314,15 +345,19 @@ HierarchyLocator::~HierarchyLocator() = default;
 HierarchyLocator::HierarchyLocator(HierarchyLocator&&) noexcept = default;
 HierarchyLocator& HierarchyLocator::operator=(HierarchyLocator&&) noexcept = default;
 
+double HierarchyLocator::reach() const { return impl_->reach; }
+
 LocatedPoint HierarchyLocator::locate(double x, double y, int level) const {
   const std::int32_t coarsest = impl_->h.coarsest();
   if (level < 0 || level > coarsest)
     throw Error("cannot locate a point at level " + std::to_string(level) + ": the hierarchy has levels 0 to " +
                 std::to_string(coarsest));
   const Point p(x, y);
-  std::uint32_t t = kNone;
-  if (const TopTriangle* top = impl_->start(p)) t = impl_->descend(top->id, top->fan, p, level);
-  if (t == kNone) t = impl_->fromGivenUp(p, level);  // on ground the outline gave up at a coarser level
+  std::uint32_t t = impl_->triangleAt(p, level);
+  // Just off the TIN: the triangle a little way towards it, nearest first, its plane's height at p.
+  for (double d = impl_->reach / 64; t == kNone && d <= impl_->reach && d > 0; d *= 8)
+    for (int k = 0; k < 8 && t == kNone; ++k)
+      t = impl_->triangleAt(Point(x + d * kDirections[k][0], y + d * kDirections[k][1]), level);
   if (t == kNone) return {};  // off the TIN or in a hole at that level
   return {static_cast<std::int64_t>(t), impl_->height(t, p)};
 }
