@@ -106,7 +106,7 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(advanced(new QgsProcessingParameterBoolean(QStringLiteral("GROUP_OUTLINES"),
                                                          QStringLiteral("Write the groups' outline polygons"), true)));
   addParameter(vertexIndexParameter());
-  addParameter(new QgsProcessingParameterBoolean(QStringLiteral("LOAD_LEVELS"), QStringLiteral("Load the level layers as a group"), true));
+  addParameter(new QgsProcessingParameterBoolean(QStringLiteral("LOAD_LEVELS"), QStringLiteral("Open the levels in the map (as a group)"), true));
   addParameter(new QgsProcessingParameterFileDestination(QStringLiteral("OUTPUT"), QStringLiteral("Hierarchy GeoPackage"),
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("LEVELS"), QStringLiteral("Levels (level 0 included)")));

@@ -43,7 +43,7 @@ QString ExtractLodAlgorithm::shortHelpString() const {
       "L x dropoff metres to a centre of detail (the centre point, or every point of the centres layer).\n"
       "- Maximum error: while the triangles that replaced it are more than this many metres from the DEM at a "
       "valid cell centre under them (level 0's own triangles are as fine as it gets), plus the error growth (metres per metre) times its distance to the nearest centre.\n"
-      "- Region: every vertex inside the polygons comes back: full detail there.\n"
+      "- Region: every vertex whose replacing triangles meet the polygons comes back: full detail there.\n"
       "A vertex that a restored vertex needs comes back as well, so the tests hold everywhere.\n\n"
       "Hierarchy: a GeoPackage of 'Build TIN hierarchy from DEM', or the catalogue GeoPackage of tinlod tiles: "
       "its finished tiles are then one hierarchy and the output one TIN across them, without a crack "
