@@ -50,6 +50,7 @@ void AccuracyAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("R_ELEVATION"), QStringLiteral("Elevation correlation of the raster's level")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("R_MEAN_CURVATURE"),
                                           QStringLiteral("Mean curvature correlation of the raster's level")));
+  addParameterHelp(*this);
 }
 
 bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {

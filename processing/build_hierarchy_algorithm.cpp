@@ -115,6 +115,7 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error of the coarsest level against the DEM (metres)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("RMSE"), QStringLiteral("RMSE of the coarsest level against the DEM (metres)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("CELLS_GIVEN_UP"), QStringLiteral("Valid cells the coarsest level's outline gave up")));
+  addParameterHelp(*this);
 }
 
 bool BuildHierarchyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

@@ -67,6 +67,7 @@ void ConcavityAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("CONVEX"), QStringLiteral("Convex parts")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("STRAIGHT"), QStringLiteral("Straight parts")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("CONCAVE"), QStringLiteral("Concave parts")));
+  addParameterHelp(*this);
 }
 
 bool ConcavityAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

@@ -54,6 +54,7 @@ void DpValuesAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("LINES"), QStringLiteral("Lines")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("CROSSINGS"), QStringLiteral("Crossings at the threshold")));
+  addParameterHelp(*this);
 }
 
 bool DpValuesAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

@@ -78,6 +78,7 @@ void GreedyInsertionAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("TRIANGLES"), QStringLiteral("Triangles")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error (m), measured at every cell")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("RMSE"), QStringLiteral("RMSE (m)")));
+  addParameterHelp(*this);
 }
 
 bool GreedyInsertionAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

@@ -57,6 +57,7 @@ void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("POINTS"), QStringLiteral("Points")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("LOCATED"), QStringLiteral("Points on the TIN")));
+  addParameterHelp(*this);
 }
 
 bool LocateAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

@@ -48,6 +48,7 @@ void SampleTinAlgorithm::initAlgorithm(const QVariantMap&) {
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("TRIANGLES"), QStringLiteral("Triangles")));
+  addParameterHelp(*this);
 }
 
 bool SampleTinAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

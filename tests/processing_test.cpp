@@ -176,6 +176,28 @@ TEST(Processing, AlgorithmsHaveShortDescriptionsAndDrawnIcons) {
   EXPECT_EQ(groups.size(), 4);
 }
 
+// Every parameter's tooltip is its row of the reference page, as plain text (a user trial
+// found all 86 empty).
+TEST(Processing, EveryParameterHasItsPagesDescriptionAsHelp) {
+  const QgsProcessingProvider* provider = QgsApplication::processingRegistry()->providerById(QStringLiteral("tinlod"));
+  ASSERT_NE(provider, nullptr);
+  std::size_t parameters = 0;
+  for (const QgsProcessingAlgorithm* listed : provider->algorithms()) {
+    std::unique_ptr<QgsProcessingAlgorithm> alg(listed->create());  // as the dialog makes it
+    for (const QgsProcessingParameterDefinition* p : alg->parameterDefinitions()) {
+      ++parameters;
+      const std::string where = alg->id().toStdString() + " " + p->name().toStdString();
+      EXPECT_GT(p->help().size(), 20) << where;
+      EXPECT_FALSE(p->help().contains('`') || p->help().contains("](")) << where << ": " << p->help().toStdString();
+    }
+  }
+  EXPECT_GT(parameters, 80u);
+  std::unique_ptr<QgsProcessingAlgorithm> build(
+      QgsApplication::processingRegistry()->createAlgorithmById(QStringLiteral("tinlod:buildhierarchy")));
+  EXPECT_TRUE(build->parameterDefinition(QStringLiteral("LOAD_LEVELS"))->help().startsWith("Open the level layers in the map"))
+      << build->parameterDefinition(QStringLiteral("LOAD_LEVELS"))->help().toStdString();
+}
+
 TEST(Processing, SampleTinMatchesTheCore) {
   const QString out = QString::fromStdString(test::tempDir() + "/tin.gpkg");
   const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
