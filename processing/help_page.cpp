@@ -56,7 +56,11 @@ QMap<QString, QString> parameterRows(const QString& path) {
 
 QString helpPageUrl(const QString& algorithmName) {
   const QString page = pagePath(algorithmName);
-  return !page.isEmpty() && QFileInfo::exists(page) ? QUrl::fromLocalFile(page).toString() : QString();
+  if (page.isEmpty()) return {};
+  // The HTML page where it was made (its links lead on to the rest of the reference).
+  const QString html = QFileInfo(page).absolutePath() + QStringLiteral("/html/qgis/%1.html").arg(algorithmName);
+  if (QFileInfo::exists(html)) return QUrl::fromLocalFile(html).toString();
+  return QFileInfo::exists(page) ? QUrl::fromLocalFile(page).toString() : QString();
 }
 
 void addParameterHelp(QgsProcessingAlgorithm& algorithm) {

@@ -8,8 +8,9 @@
 namespace tinlod::qgis {
 
 // The URL of an algorithm's reference page (docs/qgis/<name>.md), shipped in the help/
-// folder beside the provider's library (the plugin folder, the package's); empty when it
-// is not there. The dialog's Help button opens it.
+// folder beside the provider's library (the plugin folder, the package's), as HTML
+// (help/html/qgis/<name>.html, with the rest of the reference) or else as Markdown; empty
+// when it is not there. The dialog's Help button opens it.
 QString helpPageUrl(const QString& algorithmName);
 
 // Gives each parameter of `algorithm` its row's description in the Parameters table of its

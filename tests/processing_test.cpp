@@ -162,11 +162,24 @@ TEST(Processing, AlgorithmsHaveShortDescriptionsAndDrawnIcons) {
     const std::string id = alg->id().toStdString();
     EXPECT_GT(alg->shortDescription().size(), 30) << id;
     EXPECT_TRUE(alg->shortDescription().endsWith('.')) << id;
-    // Help opens the algorithm's reference page, shipped beside the library.
+    // Help opens the algorithm's reference page, shipped beside the library as HTML whose
+    // links lead to the other pages, which are there too.
     const QUrl help(alg->helpUrl());
-    EXPECT_TRUE(help.isLocalFile() && help.toLocalFile().endsWith("/help/" + alg->name() + ".md") &&
+    EXPECT_TRUE(help.isLocalFile() && help.toLocalFile().endsWith("/help/html/qgis/" + alg->name() + ".html") &&
                 QFileInfo::exists(help.toLocalFile()))
         << id << ": " << alg->helpUrl().toStdString();
+    QFile html(help.toLocalFile());
+    ASSERT_TRUE(html.open(QIODevice::ReadOnly)) << id;
+    const QString text = QString::fromUtf8(html.readAll());
+    EXPECT_TRUE(text.contains("<table")) << id << ": no parameter table";
+    static const QRegularExpression link(QStringLiteral("href=\"([^\"#:]+)(#[^\"]*)?\""));
+    int links = 0;
+    for (auto m = link.globalMatch(text); m.hasNext(); ++links) {
+      const QString target = m.next().captured(1);
+      EXPECT_TRUE(target.endsWith(".html") || target.endsWith(".png")) << id << ": " << target.toStdString();
+      EXPECT_TRUE(QFileInfo::exists(QFileInfo(help.toLocalFile()).absolutePath() + "/" + target)) << id << ": " << target.toStdString();
+    }
+    EXPECT_GT(links, 0) << id;
     EXPECT_TRUE(QFile::exists(QStringLiteral(":/tinlod/%1.svg").arg(alg->groupId()))) << id;
     const QPixmap pixmap = alg->icon().pixmap(32);
     ASSERT_FALSE(pixmap.isNull()) << id;
