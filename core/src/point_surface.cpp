@@ -57,23 +57,35 @@ bool PointSurface::holds(std::size_t tile, double x, double y) const {
 }
 
 std::size_t PointSurface::firstTileAt(double x, double y) const {
-  std::size_t t = 0;
-  while (t < tiles_.size() && !holds(t, x, y)) ++t;
-  return t;
+  // The boxes of a DEM in degrees overlap in the TIN's CRS (its tiles' edges are curves
+  // there): the point is likeliest in the tile whose box it lies deepest in. The first box
+  // that held it read 24 tiles for 3,000 points on alps_2x2 as 16 tiles, this 22.
+  std::size_t best = tiles_.size();
+  double deepest = -INFINITY;
+  for (std::size_t t = 0; t < tiles_.size(); ++t) {
+    if (!holds(t, x, y)) continue;
+    const auto& b = tiles_[t].box;
+    const double depth = std::min({x - b[0], b[2] - x, y - b[1], b[3] - y});
+    if (depth > deepest) deepest = depth, best = t;
+  }
+  return tiles_.empty() ? 0 : best;
 }
 
 LocatedPoint PointSurface::locate(double x, double y, int level, std::size_t first, std::string& tile) {
   tile.clear();
   if (!tiled()) return loaded_.front().locator->locate(x, y, level);
   // Tiles share their border lines: a point there is in either, with the same height.
-  for (std::size_t t = first; t < tiles_.size(); ++t) {
-    if (!holds(t, x, y)) continue;
+  // `first` is likeliest; the other tiles whose boxes hold the point follow.
+  const auto in = [&](std::size_t t) {
+    if (t >= tiles_.size() || !holds(t, x, y)) return LocatedPoint{};
     const LocatedPoint p = load(t).locator->locate(x, y, level);
-    if (p.found()) {
-      tile = tiles_[t].name;
-      return p;
-    }
-  }
+    if (p.found()) tile = tiles_[t].name;
+    return p;
+  };
+  if (const LocatedPoint p = in(first); p.found()) return p;
+  for (std::size_t t = 0; t < tiles_.size(); ++t)
+    if (t != first)
+      if (const LocatedPoint p = in(t); p.found()) return p;
   return {};
 }
 

@@ -22,12 +22,13 @@ class PointSurface {
   bool tiled() const { return !tiles_.empty(); }
   int coarsest() const { return coarsest_; }
   const std::string& crsWkt() const { return crsWkt_; }
-  // The first tile whose extent holds the point, or the tile count when none does (and 0
-  // for one hierarchy): points located in this order read each tile once, where points in
-  // any order would read a tile again and again.
+  // The tile whose extent holds the point deepest inside it (likeliest its TIN's where the
+  // extents overlap, as a DEM in degrees' do in the TIN's CRS), or the tile count when none
+  // does (and 0 for one hierarchy): points located in this order read each tile about once,
+  // where points in any order would read a tile again and again.
   std::size_t firstTileAt(double x, double y) const;
-  // The point at `level`, looked for from tile `first` (firstTileAt); `tile` is set to the
-  // tile's name ("" for one hierarchy).
+  // The point at `level`, looked for in tile `first` (firstTileAt), then in the other tiles
+  // whose extents hold it; `tile` is set to the tile's name ("" for one hierarchy).
   LocatedPoint locate(double x, double y, int level, std::size_t first, std::string& tile);
   // The tile hierarchies read so far.
   std::size_t tilesRead() const { return tilesRead_; }
