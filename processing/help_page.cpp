@@ -26,6 +26,8 @@ QString plainText(QString cell) {
   cell.replace(link, QStringLiteral("\\1"));
   cell.remove(QLatin1Char('`'));
   cell.remove(QStringLiteral("**"));
+  static const QRegularExpression emphasis(QStringLiteral("\\*([^*]+)\\*"));
+  cell.replace(emphasis, QStringLiteral("\\1"));
   cell.replace(QStringLiteral("\\|"), QStringLiteral("|"));
   return cell.trimmed();
 }

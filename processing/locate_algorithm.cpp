@@ -40,8 +40,8 @@ QString LocateAlgorithm::shortHelpString() const {
       "Level: 0, the default, is the original TIN.\n\n"
       "Output: layer 'points' of a GeoPackage: every point with its attributes, in its own CRS, plus "
       "'elevation' and 'triangle' (the id in the hierarchy's 'triangles' layer); both are null for a point "
-      "outside the TIN or in a hole (one off it by at most 5 % of a DEM cell, as the edge cells' centres of a "
-      "DEM in degrees are, takes the nearest triangle's plane). From a catalogue, also 'tile' (the tile as column,row, whose "
+      "outside the TIN or in a hole (one beyond the raster's edge by at most 5 % of a DEM cell, as the edge "
+      "cells' centres of a DEM in degrees are, takes the nearest triangle's plane; not one beside a hole). From a catalogue, also 'tile' (the tile as column,row, whose "
       "'triangles' layer the id is in).");
 }
 

@@ -80,6 +80,8 @@ QString withParameterNames(const QString& message, const ParameterNames& names) 
   // The core calls the file it writes "output": every algorithm that has one names it OUTPUT.
   static const QRegularExpression output(QStringLiteral("^output:? '"));
   out.replace(output, QStringLiteral("OUTPUT: '"));
+  static const QRegularExpression outputFolder(QStringLiteral("^the folder of output '"));
+  out.replace(outputFolder, QStringLiteral("OUTPUT: the folder of '"));
   for (const auto& [option, parameter] : names) {
     if (option.startsWith(kFileOf)) {
       if (!named.match(out).hasMatch() && out.contains(QLatin1Char('\'') + option.mid(kFileOf.size()) + QLatin1Char('\'')))

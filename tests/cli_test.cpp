@@ -478,6 +478,10 @@ TEST(Cli, AccuracyOfAnotherBandThanTheSampledOneWarns) {
   EXPECT_TRUE(has(other.err, "Warning: -b 1: '" + dir + "/h.gpkg' was sampled from band 2 of its DEM, so it is measured "
                                 "against heights it was not made from; leave -b out to measure band 2"))
       << other.err;
+  // Against level 0 the DEM's heights are not the reference: no warning.
+  const CliRun againstTin = tinlod("accuracy -b 1 " + dir + "/two.tif " + dir + "/h.gpkg");
+  ASSERT_EQ(againstTin.exitCode, 0) << againstTin.err;
+  EXPECT_FALSE(has(againstTin.err, "was sampled from band")) << againstTin.err;
 }
 
 TEST(Cli, InsertKeepsTheToleranceThatAccuracyMeasuresAgain) {
@@ -725,6 +729,14 @@ TEST(Cli, OverwriteRefusesATinlodFileOfAnotherKind) {
     EXPECT_FALSE(has(intoText.err, "10...20")) << job << ": refused after the work started";
   }
   EXPECT_EQ(test::readFile(dir + "/text.gpkg"), "hello");
+  // A GeoPackage of rasters is one: named as the output, a DEM in one is refused as the
+  // run's input, not as "not a GeoPackage" with the advice to remove it (a user trial).
+  ASSERT_EQ(std::system(("gdal_translate -q -of GPKG " + defaultDem() + " " + dir + "/dem.gpkg").c_str()), 0);
+  const std::string demBytes = test::readFile(dir + "/dem.gpkg");
+  const CliRun intoDem = tinlod("build -overwrite " + dir + "/dem.gpkg " + dir + "/dem.gpkg");
+  EXPECT_EQ(intoDem.exitCode, 1);
+  EXPECT_TRUE(has(intoDem.err, "is an input of this run")) << intoDem.err;
+  EXPECT_EQ(test::readFile(dir + "/dem.gpkg"), demBytes);
   // A TIN, a hierarchy and a level-of-detail TIN replace one another.
   EXPECT_EQ(tinlod("build -q -overwrite " + defaultDem() + " " + dir + "/tin.gpkg").exitCode, 0);
 }

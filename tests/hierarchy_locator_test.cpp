@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <string>
 #include <thread>
@@ -219,6 +220,37 @@ TEST(HierarchyLocator, EdgeCellCentresOfADemInDegreesAreOnTheTin) {
     for (std::size_t i = 0; i < outX.size(); ++i) beyond += locator.locate(outX[i], outY[i], level).found();
     EXPECT_EQ(missed, 0u) << "level " << level;
     EXPECT_EQ(beyond, 0u) << "level " << level;
+  }
+}
+
+// The reach is the raster edge's alone: just outside a hole's outline (1 % of a cell, within
+// the reach) a point stays off the TIN, where nodata cells are (a user trial found a nodata
+// cell's centre given a height 3 m off a coarse level's outline).
+TEST(HierarchyLocator, PointsJustOutsideAHoleAreNotFound) {
+  const Dem dem = test::smallSyntheticDem();
+  const Hierarchy h = buildFrom(dem);
+  const HierarchyLocator locator(h);
+  const double cell = dem.geotransform[1];
+  ASSERT_GT(locator.reach(), 0.01 * cell);
+  for (std::int32_t level : {0, h.coarsest()}) {
+    const std::vector<FlatTriangle> flat = flatten(h, level);
+    std::map<std::pair<VertexId, VertexId>, int> edges;  // directed edge -> its triangle's count
+    for (std::uint32_t t : h.levelTriangles(level))
+      for (int k = 0; k < 3; ++k) ++edges[{h.triangles[t].v[k], h.triangles[t].v[(k + 1) % 3]}];
+    std::size_t tested = 0;
+    for (const auto& [e, n] : edges) {
+      if (edges.count({e.second, e.first})) continue;  // inside: a triangle on both sides
+      const TinVertex &a = h.base.vertices[e.first], &b = h.base.vertices[e.second];
+      if ((a.row == b.row && (a.row == 0 || a.row == dem.height - 1)) || (a.col == b.col && (a.col == 0 || a.col == dem.width - 1)))
+        continue;  // the raster's edge
+      const double len = std::hypot(b.x - a.x, b.y - a.y);
+      // Outside a counter-clockwise triangle's edge is to its right.
+      const double x = 0.5 * (a.x + b.x) + 0.01 * cell * (b.y - a.y) / len, y = 0.5 * (a.y + b.y) - 0.01 * cell * (b.x - a.x) / len;
+      if (!bruteForce(flat, x, y).triangles.empty()) continue;
+      EXPECT_FALSE(locator.locate(x, y, level).found()) << "level " << level << " (" << x << ", " << y << ")";
+      ++tested;
+    }
+    EXPECT_GT(tested, 20u) << "level " << level;
   }
 }
 

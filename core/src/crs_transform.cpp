@@ -82,15 +82,18 @@ OGRSpatialReference parseSrs(const std::string& definition, const std::string& r
   return srs;
 }
 
+// Cells of under a tenth of a unit, all within longitudes and latitudes.
+bool coordinatesLookLikeDegrees(const Dem& dem) {
+  const double x0 = dem.geotransform[0], x1 = x0 + dem.width * dem.geotransform[1];
+  const double y0 = dem.geotransform[3], y1 = y0 + dem.height * dem.geotransform[5];
+  return dem.hasGeotransform && std::fabs(dem.geotransform[1]) < 0.1 && std::min(x0, x1) >= -180 &&
+         std::max(x0, x1) <= 360 && std::min(y0, y1) >= -90 && std::max(y0, y1) <= 90;
+}
+
 // Degrees stored without a CRS (an .asc without .prj) would give a TIN a millionth of
 // the right size: say so plainly.
 void warnAboutMissingCrs(const Dem& dem, const ProgressRange& progress) {
-  const double x0 = dem.geotransform[0], x1 = x0 + dem.width * dem.geotransform[1];
-  const double y0 = dem.geotransform[3], y1 = y0 + dem.height * dem.geotransform[5];
-  const bool looksGeographic = dem.hasGeotransform && std::fabs(dem.geotransform[1]) < 0.1 &&
-                               std::min(x0, x1) >= -180 && std::max(x0, x1) <= 360 &&
-                               std::min(y0, y1) >= -90 && std::max(y0, y1) <= 90;
-  if (looksGeographic)
+  if (coordinatesLookLikeDegrees(dem))
     progress.warn("'" + dem.path + "' has no CRS and its coordinates look like degrees: name its CRS with -s_srs EPSG:4326 (QGIS: assign the layer's CRS), or the TIN will be in degrees");
   else
     progress.warn("'" + dem.path + "' has no CRS: its x and y units are taken as metres");
@@ -199,6 +202,13 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
     impl->name = "no CRS";
     return CrsTransform(std::move(impl));
   } else if (isMetric(src)) {
+    // Degrees under a CRS in metres (a layer given the wrong CRS in QGIS) made a TIN 0.12 m
+    // wide without a word.
+    if (coordinatesLookLikeDegrees(dem))
+      progress.warn("'" + dem.path + "' is taken as in " + describe(src) + ", a CRS in metres, but its cells are " +
+                    formatNumber(std::fabs(dem.geotransform[1])) + " m and its coordinates look like degrees: if they "
+                    "are, name its CRS with -s_srs EPSG:4326 (QGIS: assign the layer's CRS), or the TIN will span "
+                    "as many metres as the DEM spans degrees");
     dst = src;
   } else {
     double lon = 0, lat = 0;

@@ -81,7 +81,9 @@ void refuseNonGeoPackage(const std::string& path) {
   GDALAllRegister();
   const char* const gpkgOnly[] = {"GPKG", nullptr};
   CPLPushErrorHandler(CPLQuietErrorHandler);
-  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, gpkgOnly));
+  // A GeoPackage of rasters only is one too (the DEM itself, named as the output, is then
+  // refused as an input of the run).
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_RASTER | GDAL_OF_READONLY, gpkgOnly));
   CPLPopErrorHandler();
   if (!ds) throw Error("output '" + path + "' exists but is not a GeoPackage GDAL can update: remove it or choose another name");
 }

@@ -234,8 +234,16 @@ struct HierarchyLocator::Impl {
   // millimetre outside the straight edges between its vertices at level 0 (and up to a few
   // per cent of a cell at coarse levels, whose edge vertices are far apart).
   double reach = 0;
+  std::array<std::int32_t, 2> rows{0, 0}, cols{0, 0};  // the first and last of the TIN's cells
 
   explicit Impl(const Hierarchy& hierarchy) : h(hierarchy), reach(0.05 * cellSize(hierarchy.base)) {
+    if (!h.base.vertices.empty()) {
+      rows = {h.base.vertices[0].row, h.base.vertices[0].row}, cols = {h.base.vertices[0].col, h.base.vertices[0].col};
+      for (const TinVertex& v : h.base.vertices) {
+        rows = {std::min(rows[0], std::int32_t(v.row)), std::max(rows[1], std::int32_t(v.row))};
+        cols = {std::min(cols[0], std::int32_t(v.col)), std::max(cols[1], std::int32_t(v.col))};
+      }
+    }
     if (!h.linked()) throw Error("internal error: locating in a hierarchy whose groups are not linked (linkGroups)");
     const std::vector<Point> points = pointsOf(h.base);
     std::vector<std::uint32_t> fanStart;  // by group: where its block begins in `fans`
@@ -316,6 +324,22 @@ struct HierarchyLocator::Impl {
     return t;
   }
 
+  // Whether p lies within reach of an edge of triangle t that runs along the raster's edge:
+  // the first or last row or column of the TIN's cells (a tile's, for a tile).
+  bool beyondRasterEdge(std::uint32_t t, const Point& p) const {
+    const Triangle& v = h.triangles[t].v;
+    for (int k = 0; k < 3; ++k) {
+      const TinVertex &a = h.base.vertices[v[k]], &b = h.base.vertices[v[(k + 1) % 3]];
+      const bool alongRow = a.row == b.row && (a.row == rows[0] || a.row == rows[1]);
+      const bool alongCol = a.col == b.col && (a.col == cols[0] || a.col == cols[1]);
+      if (!alongRow && !alongCol) continue;
+      const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
+      const double s = len2 > 0 ? std::clamp(((p.x() - a.x) * dx + (p.y() - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
+      if (std::hypot(p.x() - a.x - s * dx, p.y() - a.y - s * dy) <= reach) return true;
+    }
+    return false;
+  }
+
   std::uint32_t triangleAt(const Point& p, int level) const {
     std::uint32_t t = kNone;
     if (const TopTriangle* top = start(p)) t = descend(top->id, top->fan, p, level);
@@ -354,10 +378,13 @@ LocatedPoint HierarchyLocator::locate(double x, double y, int level) const {
                 std::to_string(coarsest));
   const Point p(x, y);
   std::uint32_t t = impl_->triangleAt(p, level);
-  // Just off the TIN: the triangle a little way towards it, nearest first, its plane's height at p.
+  // Just beyond the raster's edge: the triangle a little way towards it, nearest first, its
+  // plane's height at p. Not beside a hole: the nodata cells there stay off the TIN.
   for (double d = impl_->reach / 64; t == kNone && d <= impl_->reach && d > 0; d *= 8)
-    for (int k = 0; k < 8 && t == kNone; ++k)
-      t = impl_->triangleAt(Point(x + d * kDirections[k][0], y + d * kDirections[k][1]), level);
+    for (int k = 0; k < 8 && t == kNone; ++k) {
+      const std::uint32_t near = impl_->triangleAt(Point(x + d * kDirections[k][0], y + d * kDirections[k][1]), level);
+      if (near != kNone && impl_->beyondRasterEdge(near, p)) t = near;
+    }
   if (t == kNone) return {};  // off the TIN or in a hole at that level
   return {static_cast<std::int64_t>(t), impl_->height(t, p)};
 }

@@ -113,7 +113,7 @@ void checkJitter(const Dem& dem, const CrsTransform& transform, double jitter, c
   const double cell = cellSizeMetres(dem, transform);
   if (jitter >= cell) {
     std::ostringstream msg;
-    msg << "jitter " << jitter << " m is not smaller than the cell size (" << cell << " m): points would leave their cells; ";
+    msg << "-jitter " << jitter << " m is not smaller than the cell size (" << cell << " m): points would leave their cells; ";
     // Cells under a centimetre are degrees read as metres (no CRS, or a local one).
     if (transform.targetWkt().empty() || cell < 0.01)
       msg << "if the DEM is in degrees, name its CRS with -s_srs EPSG:4326 (QGIS: assign the layer's CRS); otherwise ";
@@ -122,7 +122,7 @@ void checkJitter(const Dem& dem, const CrsTransform& transform, double jitter, c
   }
   if (jitter > 0.5 * cell) {
     std::ostringstream msg;
-    msg << "jitter " << jitter << " m is more than half the cell size (" << cell
+    msg << "-jitter " << jitter << " m is more than half the cell size (" << cell
         << " m): a vertex may lie nearer a neighbouring cell's centre than its own, with its own cell's height; "
            "consider a smaller -jitter (e.g. "
         << std::setprecision(2) << 0.1 * cell << ")";

@@ -21,10 +21,10 @@ struct LocatedPoint {
 // bucket grid, then among the finer triangles it replaced, level by level, down to the
 // level asked for: O(log n) per point. Triangles are closed, so a point on an edge or a
 // vertex is found; it takes the first containing triangle in a fixed order, so the
-// answer is deterministic. A point off the TIN by at most reach() (5 % of a DEM cell) takes
-// a triangle within that distance, nearest first, and the height of its plane: the edge
-// cells' centres of a DEM in degrees lie on curves in the TIN's CRS, just outside the
-// straight edges between its vertices. The hierarchy must outlive the locator, which keeps a
+// answer is deterministic. A point beyond the raster's edge by at most reach() (5 % of a
+// DEM cell) takes a triangle with an edge along the raster's that near, nearest first, and
+// the height of its plane: the edge cells' centres of a DEM in degrees lie on curves in the
+// TIN's CRS, just outside the straight edges between its vertices. Not beside a hole. The hierarchy must outlive the locator, which keeps a
 // reference to it. locate() is const and keeps no state: threads may share a locator.
 // Construction takes a fraction of a second and about 24 bytes per triangle of the
 // hierarchy (a copy of each star packed for the search); it throws Error when the
