@@ -205,19 +205,23 @@ constexpr double kDiagonal = 0.70710678118654752;
 constexpr double kDirections[8][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1},
                                       {kDiagonal, kDiagonal}, {-kDiagonal, kDiagonal}, {-kDiagonal, -kDiagonal}, {kDiagonal, -kDiagonal}};
 
-// A DEM cell's size in the TIN's CRS: the median over neighbouring vertices of their
-// distance over their distance in the DEM's grid (where the sampler placed them).
-double cellSize(const Tin& tin) {
+// A DEM cell's size in the TIN's CRS, as the simplifier takes it (the square root of a
+// cell's area): the median over some of the first triangles of their area over their area
+// in the DEM's grid (where the sampler placed the vertices).
+double cellSize(const Hierarchy& h) {
   std::vector<double> ratios;
-  const std::size_t n = tin.vertices.size();
-  for (std::size_t i = 1; i < n && ratios.size() < 257; ++i) {
-    const TinVertex &a = tin.vertices[i - 1], &b = tin.vertices[i];
-    const double cells = std::hypot(double(b.col) + b.dcol - a.col - a.dcol, double(b.row) + b.drow - a.row - a.drow);
-    if (cells >= 0.5) ratios.push_back(std::hypot(b.x - a.x, b.y - a.y) / cells);
+  for (std::size_t t = 0; t < h.triangles.size() && ratios.size() < 257; ++t) {
+    const Triangle& v = h.triangles[t].v;
+    const TinVertex &a = h.base.vertices[v[0]], &b = h.base.vertices[v[1]], &c = h.base.vertices[v[2]];
+    const auto gx = [](const TinVertex& p) { return double(p.col) + p.dcol; };
+    const auto gy = [](const TinVertex& p) { return double(p.row) + p.drow; };
+    const double grid = std::fabs((gx(b) - gx(a)) * (gy(c) - gy(a)) - (gy(b) - gy(a)) * (gx(c) - gx(a)));
+    const double area = std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    if (grid > 0.25 && area > 0) ratios.push_back(area / grid);
   }
   if (ratios.empty()) return 0;
   std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-  return ratios[ratios.size() / 2];
+  return std::sqrt(ratios[ratios.size() / 2]);
 }
 
 }  // namespace
@@ -236,7 +240,7 @@ struct HierarchyLocator::Impl {
   double reach = 0;
   std::array<std::int32_t, 2> rows{0, 0}, cols{0, 0};  // the first and last of the TIN's cells
 
-  explicit Impl(const Hierarchy& hierarchy) : h(hierarchy), reach(0.05 * cellSize(hierarchy.base)) {
+  explicit Impl(const Hierarchy& hierarchy) : h(hierarchy), reach(0.05 * cellSize(hierarchy)) {
     if (!h.base.vertices.empty()) {
       rows = {h.base.vertices[0].row, h.base.vertices[0].row}, cols = {h.base.vertices[0].col, h.base.vertices[0].col};
       for (const TinVertex& v : h.base.vertices) {
@@ -324,15 +328,17 @@ struct HierarchyLocator::Impl {
     return t;
   }
 
-  // Whether p lies within reach of an edge of triangle t that runs along the raster's edge:
-  // the first or last row or column of the TIN's cells (a tile's, for a tile).
+  // Whether p lies within reach of an edge of triangle t between two vertices on the
+  // raster's edge: the first or last row or column of the TIN's cells (a tile's, for a tile).
   bool beyondRasterEdge(std::uint32_t t, const Point& p) const {
     const Triangle& v = h.triangles[t].v;
     for (int k = 0; k < 3; ++k) {
       const TinVertex &a = h.base.vertices[v[k]], &b = h.base.vertices[v[(k + 1) % 3]];
-      const bool alongRow = a.row == b.row && (a.row == rows[0] || a.row == rows[1]);
-      const bool alongCol = a.col == b.col && (a.col == cols[0] || a.col == cols[1]);
-      if (!alongRow && !alongCol) continue;
+      // Both ends on the raster's edge: along one of its lines, or across a corner.
+      const auto onEdge = [&](const TinVertex& u) {
+        return u.row == rows[0] || u.row == rows[1] || u.col == cols[0] || u.col == cols[1];
+      };
+      if (!onEdge(a) || !onEdge(b)) continue;
       const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
       const double s = len2 > 0 ? std::clamp(((p.x() - a.x) * dx + (p.y() - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
       if (std::hypot(p.x() - a.x - s * dx, p.y() - a.y - s * dy) <= reach) return true;
@@ -380,7 +386,8 @@ LocatedPoint HierarchyLocator::locate(double x, double y, int level) const {
   std::uint32_t t = impl_->triangleAt(p, level);
   // Just beyond the raster's edge: the triangle a little way towards it, nearest first, its
   // plane's height at p. Not beside a hole: the nodata cells there stay off the TIN.
-  for (double d = impl_->reach / 64; t == kNone && d <= impl_->reach && d > 0; d *= 8)
+  // From a 4096th of the reach: the triangles along a curved edge can be slivers centimetres thin.
+  for (double d = impl_->reach / 4096; t == kNone && d <= impl_->reach && d > 0; d *= 8)
     for (int k = 0; k < 8 && t == kNone; ++k) {
       const std::uint32_t near = impl_->triangleAt(Point(x + d * kDirections[k][0], y + d * kDirections[k][1]), level);
       if (near != kNone && impl_->beyondRasterEdge(near, p)) t = near;

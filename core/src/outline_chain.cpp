@@ -63,6 +63,16 @@ bool OutlineChain::onOneRasterEdge(VertexId v, VertexId after, VertexId before) 
   return true;
 }
 
+bool OutlineChain::alongOneRasterEdge(VertexId v, VertexId after, VertexId before) const {
+  const int edge = rasterEdge(v);
+  const int last = dem_->height - 1, right = dem_->width - 1;
+  const auto onLine = [&](VertexId u) {
+    const TinVertex& p = tin_->vertices[u];
+    return edge == 0 ? p.row == 0 : edge == 1 ? p.row == last : edge == 2 ? p.col == 0 : p.col == right;
+  };
+  return edge >= 0 && onLine(after) && onLine(before);
+}
+
 // Every lattice point of the grid in the closed triangle, with its corners where the
 // jitter put them and at their cells' centres: a missing or off-raster cell there would
 // be covered.

@@ -42,7 +42,7 @@ class OutlineChain {
     if (sideOfNewEdge(star) > 0) {
       if (!addsOnlyData(mesh, v, after, before, gone)) return false;
       if (onOneRasterEdge(v, after, before)) tolerance = std::min(tolerance, halfCell);
-    } else if (onOneRasterEdge(v, after, before)) {
+    } else if (alongOneRasterEdge(v, after, before)) {
       // The edge of a DEM in degrees is a curve in the TIN's CRS: a long straight edge would
       // cut its cells' centres off by metres (6 m on swiss_alps' coarsest level). Within
       // 5 % of a cell, tinlod locate still finds them (HierarchyLocator's reach).
@@ -56,6 +56,9 @@ class OutlineChain {
 
  private:
   bool onOneRasterEdge(VertexId v, VertexId after, VertexId before) const;
+  // Whether the vertex and its two outline neighbours lie on one raster edge's line, a
+  // corner of it included (the last stretch of an edge ends at its corner).
+  bool alongOneRasterEdge(VertexId v, VertexId after, VertexId before) const;
   // The ground between the vertex and the new edge: no nodata or off-raster centre, no
   // other vertex still there, and the neighbours not joined already.
   template <class Gone>
