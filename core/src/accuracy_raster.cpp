@@ -3,6 +3,7 @@
 
 #include <gdal_priv.h>
 
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -47,9 +48,11 @@ std::string whatItKeeps(GDALDriver& driver, const RasterWriteOptions& options) {
   const char* ext = driver.GetMetadataItem(GDAL_DMD_EXTENSION);
   // In a folder of its own on disk: some drivers (netCDF) write no virtual files, others
   // write sidecar files beside theirs.
+  // One folder per probe: QGIS may run two algorithms at once in one process.
+  static std::atomic<unsigned> probes{0};
   std::error_code ignored;
   const std::filesystem::path folder = std::filesystem::temp_directory_path(ignored) /
-                                       ("tinlod_format_probe_" + std::to_string(::getpid()));
+                                       ("tinlod_format_probe_" + std::to_string(::getpid()) + "_" + std::to_string(probes++));
   std::filesystem::create_directories(folder, ignored);
   const std::string path = (folder / (std::string("probe.") + (ext && *ext ? ext : "bin"))).string();
   CPLStringList co;
