@@ -1092,6 +1092,19 @@ TEST(Cli, DegreesUnderACrsInMetresWarn) {
   EXPECT_FALSE(has(right.err, "look like degrees")) << right.err;
 }
 
+// The hierarchy named as locate's output is refused as the run's input (a user trial was
+// told it held "a tinlod hierarchy output", which QGIS then put on HIERARCHY).
+TEST(Cli, LocateIntoItsOwnHierarchyIsRefusedAsAnInput) {
+  const std::string dir = test::tempDir();
+  fs::copy_file(smallHierarchy(), dir + "/h.gpkg");
+  std::ofstream(dir + "/p.csv") << "x,y\n505000,4995000\n";
+  const std::string before = test::readFile(dir + "/h.gpkg");
+  const CliRun r = tinlod("locate -overwrite " + dir + "/h.gpkg " + dir + "/p.csv " + dir + "/h.gpkg");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_TRUE(has(r.err, "ERROR: output: '" + dir + "/h.gpkg' is an input of this run")) << r.err;
+  EXPECT_EQ(test::readFile(dir + "/h.gpkg"), before);
+}
+
 TEST(Cli, WholeNumberOptionsRefuseOverflowAndGarbage) {
   const std::string dir = test::tempDir();
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{

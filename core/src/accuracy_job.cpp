@@ -147,12 +147,13 @@ int sampledBand(const HierarchyInfo& info) {
 // The band to measure: -b, or the one the TIN was sampled from. Another band than that
 // measures the TIN against heights it was not made from (488 m of "error" on a DEM whose
 // band 2 was sampled, measured against its band 1): said, not refused.
-int bandToMeasure(int band, const HierarchyInfo& info, const AccuracyOutputs& outputs, const ProgressRange& progress) {
+int bandToMeasure(int band, const HierarchyInfo& info, const std::string& named, const AccuracyOutputs& outputs,
+                  const ProgressRange& progress) {
   const int sampled = sampledBand(info);
   if (band == 0) return sampled;
   // Against level 0 (-reference tin) the DEM's heights are not the reference: no harm.
   if (band != sampled && outputs.options.reference == Reference::Dem)
-    progress.warn("-b " + std::to_string(band) + ": '" + info.path + "' was sampled from band " + std::to_string(sampled) +
+    progress.warn("-b " + std::to_string(band) + ": '" + named + "' was sampled from band " + std::to_string(sampled) +
                   " of its DEM, so it is measured against heights it was not made from; leave -b out to measure band " +
                   std::to_string(sampled));
   return band;
@@ -221,7 +222,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     const CatalogueTile tile = readCatalogue(hierarchyPath).front();
     requireTileFile(tile.name, tile.file);  // a tiles folder moved away: say where it must be
     const HierarchyInfo first = readHierarchyInfo(tile.file);
-    band = bandToMeasure(band, first, outputs, all);
+    band = bandToMeasure(band, first, hierarchyPath, outputs, all);  // the catalogue, not its first tile
     warnOfAnotherSourceSrs(sourceSrs, first, all);
     const auto demCrsWkt = [&] {
       return readDemWindow(demPath, band, CellWindow{0, 0, 1, 1}, ProgressRange(Feedback{}, 0, 1)).crsWkt;
@@ -234,7 +235,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     return report;
   }
   const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.15));
-  band = bandToMeasure(band, stored.info, outputs, all);
+  band = bandToMeasure(band, stored.info, hierarchyPath, outputs, all);
   warnOfAnotherSourceSrs(sourceSrs, stored.info, all);
   // A single TIN is measured against the DEM (below), where the range counts.
   const std::optional<HeightRange> used =

@@ -118,11 +118,13 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
     throw Error("points: '" + pointsPath + "' does not exist");
   GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "points"},
                                             {"TINLOD_SOURCE", hierarchyPath}, {"TINLOD_LEVEL", std::to_string(level)}}};
+  // An input named as the output is refused as such first (not as a file of another kind).
+  OutputFiles files(overwrite, datasetFiles({hierarchyPath, pointsPath}));
+  files.refuseInput(outPath, "output");
   checkOutputPath(outPath, writeOptions);
   // Its metadata would replace the file's own: a hierarchy would stop being one.
   if (std::filesystem::exists(outPath) && isTinlodFile(outPath))
     throw Error("'" + outPath + "' is a tinlod GeoPackage: write the points to another file");
-  OutputFiles files(overwrite, datasetFiles({hierarchyPath, pointsPath}));
   const StagedFile& staged = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
   PointSurface surface(hierarchyPath, all.sub(0, 0.4));
