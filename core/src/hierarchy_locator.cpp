@@ -240,7 +240,7 @@ struct HierarchyLocator::Impl {
   double reach = 0;
   std::array<std::int32_t, 2> rows{0, 0}, cols{0, 0};  // the first and last of the TIN's cells
 
-  explicit Impl(const Hierarchy& hierarchy) : h(hierarchy), reach(0.05 * cellSize(hierarchy)) {
+  explicit Impl(const Hierarchy& hierarchy) : h(hierarchy), reach(kRasterEdgeReach * cellSize(hierarchy)) {
     if (!h.base.vertices.empty()) {
       rows = {h.base.vertices[0].row, h.base.vertices[0].row}, cols = {h.base.vertices[0].col, h.base.vertices[0].col};
       for (const TinVertex& v : h.base.vertices) {

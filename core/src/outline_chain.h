@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "simplification_mesh.h"
+#include "tinlod/hierarchy_locator.h"
 #include "tinlod/dem.h"
 #include "tinlod/tin.h"
 
@@ -45,8 +46,8 @@ class OutlineChain {
     } else if (alongOneRasterEdge(v, after, before)) {
       // The edge of a DEM in degrees is a curve in the TIN's CRS: a long straight edge would
       // cut its cells' centres off by metres (6 m on swiss_alps' coarsest level). Within
-      // 5 % of a cell, tinlod locate still finds them (HierarchyLocator's reach).
-      tolerance = std::min(tolerance, 0.1 * halfCell);
+      // the locator's reach, tinlod locate still finds them.
+      tolerance = std::min(tolerance, kRasterEdgeReach * 2 * halfCell);
     }
     bool within = distance(v, after, before) <= tolerance;
     for (VertexId u = before_[v]; within && u != before; u = before_[u]) within = distance(u, after, before) <= tolerance;

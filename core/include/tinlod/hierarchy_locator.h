@@ -17,6 +17,11 @@ struct LocatedPoint {
   bool found() const { return triangle >= 0; }
 };
 
+// How far beyond the raster's edge a point is still located, as a share of a DEM cell
+// (HierarchyLocator::reach); the simplifier cuts a raster edge inside by no more
+// (OutlineChain), so that every edge cell's centre stays within it.
+constexpr double kRasterEdgeReach = 0.05;
+
 // Kirkpatrick's point location: the containing triangle at the coarsest level, from a
 // bucket grid, then among the finer triangles it replaced, level by level, down to the
 // level asked for: O(log n) per point. Triangles are closed, so a point on an edge or a
