@@ -1074,20 +1074,13 @@ TEST(Cli, AnImageBandIsSaidNotToBeHeights) {
 // wide without a word in a user trial: said.
 TEST(Cli, DegreesUnderACrsInMetresWarn) {
   const std::string dir = test::tempDir();
-  {
-    std::ofstream out(dir + "/deg.asc");
-    out << "ncols 60\nnrows 50\nxllcorner -105.3\nyllcorner 40.0\ncellsize 0.000833333333\nNODATA_value -9999\n";
-    for (int r = 0; r < 50; ++r) {
-      for (int c = 0; c < 60; ++c) out << 1600 + r + 2 * c << ' ';
-      out << '\n';
-    }
-  }
-  const CliRun r = tinlod("insert -max_vertices 50 -s_srs EPSG:32613 " + dir + "/deg.asc " + dir + "/t.gpkg");
+  const std::string degrees = test::degreesWithoutCrs(dir);
+  const CliRun r = tinlod("insert -max_vertices 50 -s_srs EPSG:32613 " + degrees + " " + dir + "/t.gpkg");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(has(r.err, "' is taken as in WGS 84 / UTM zone 13N (EPSG:32613), a CRS in metres, but its cells are 0.000833333 m and its "
                             "coordinates look like degrees: if they are, name its CRS with -s_srs EPSG:4326"))
       << r.err;
-  const CliRun right = tinlod("insert -max_vertices 50 -s_srs EPSG:4326 " + dir + "/deg.asc " + dir + "/u.gpkg");
+  const CliRun right = tinlod("insert -max_vertices 50 -s_srs EPSG:4326 " + degrees + " " + dir + "/u.gpkg");
   EXPECT_EQ(right.exitCode, 0) << right.err;
   EXPECT_FALSE(has(right.err, "look like degrees")) << right.err;
 }

@@ -1119,24 +1119,12 @@ TEST(Processing, MessagesGiveFixesAsAQgisUserMakesThem) {
   EXPECT_FALSE(multi.error.contains(QgsProcessingUtils::tempFolder())) << multi.error.toStdString();
 }
 
-// An ASCII grid in degrees without a .prj: a file with no CRS, as SRTM's .asc often are.
-std::string degreesWithoutCrs(const std::string& dir) {
-  const std::string path = dir + "/nocrs.asc";
-  std::ofstream out(path);
-  out << "ncols 60\nnrows 50\nxllcorner -105.3\nyllcorner 40.0\ncellsize 0.000833333333\nNODATA_value -9999\n";
-  for (int r = 0; r < 50; ++r) {
-    for (int c = 0; c < 60; ++c) out << 1600 + r + 2 * c + 3 * std::sin(0.4 * r) * std::cos(0.3 * c) << ' ';
-    out << '\n';
-  }
-  return path;
-}
-
 // QGIS asks a CRS for a file without one, or the user assigns it in Layer Properties: that
 // CRS is the DEM's, as -s_srs is on the command line (a user trial found it ignored, while
 // the errors told them to assign it).
 TEST(Processing, TheCrsAssignedToTheLayerIsTheDems) {
   const std::string dir = test::tempDir();
-  const QString dem = QString::fromStdString(degreesWithoutCrs(dir));
+  const QString dem = QString::fromStdString(test::degreesWithoutCrs(dir));
   const Result asFile = runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", dem}, {"OUTPUT", QString::fromStdString(dir + "/a.gpkg")}});
   ASSERT_FALSE(asFile.ok);
   EXPECT_TRUE(asFile.error.contains("assign the layer's CRS, EPSG:4326 (Layer Properties > Source)")) << asFile.error.toStdString();

@@ -131,6 +131,17 @@ std::string smallSyntheticDemFile() {
   return path;
 }
 
+std::string degreesWithoutCrs(const std::string& dir) {
+  const std::string path = dir + "/nocrs.asc";
+  std::ofstream out(path);
+  out << "ncols 60\nnrows 50\nxllcorner -105.3\nyllcorner 40.0\ncellsize 0.000833333333\nNODATA_value -9999\n";
+  for (int r = 0; r < 50; ++r) {
+    for (int c = 0; c < 60; ++c) out << 1600 + r + 2 * c + 3 * std::sin(0.4 * r) * std::cos(0.3 * c) << ' ';
+    out << '\n';
+  }
+  return path;
+}
+
 Dem demUnder(Tin& tin, double cell) {
   double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
   for (const TinVertex& v : tin.vertices) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);

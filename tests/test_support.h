@@ -59,6 +59,10 @@ Dem smallSyntheticDem();
 // The same DEM as a GeoTIFF, written once per test binary.
 std::string smallSyntheticDemFile();
 
+// A 60 x 50 ASCII grid of 1/1200 degree near Boulder, written into `dir` without a .prj: a
+// file in degrees with no CRS, as SRTM's .asc often are. Returns its path.
+std::string degreesWithoutCrs(const std::string& dir);
+
 // The WKT of an EPSG CRS.
 std::string wktOf(int epsg);
 
