@@ -3,8 +3,10 @@
 # Idempotent: packages already present are skipped, so a ready machine costs nothing.
 set -euo pipefail
 
+# `file`: CPack's .deb generator needs it to run dpkg-shlibdeps; a minimal Debian 12 lacks it
+# (found by running .ci/run in a debootstrapped bookworm).
 packages=(
-  build-essential cmake pkg-config git zip ca-certificates
+  build-essential cmake pkg-config git zip ca-certificates file
   libcgal-dev libgmp-dev libmpfr-dev
   libgdal-dev gdal-bin libproj-dev libgeos-dev libsqlite3-dev
   qtbase5-dev libqgis-dev qgis qgis-providers python3-qgis python3-gdal python3-numpy

@@ -127,12 +127,14 @@ void OutputFiles::refuseInput(const std::string& path, const std::string& option
 const StagedFile& OutputFiles::add(const std::string& path, const std::string& option, bool keepContent) {
   if (path.empty()) throw Error(option + ": no file named");
   const fs::path target = resolved(path);
+  // First: an input's folder is often read-only (a data share), and "not writable" would
+  // hide that the name itself is the mistake.
+  checkNotInput(target, option, path);
   std::error_code ec;
   if (fs::is_directory(target, ec)) throw Error(option + ": '" + path + "' is a folder: name a file");
   const fs::path dir = folderOf(target);
   if (!fs::is_directory(dir, ec)) throw Error(option + ": the folder of '" + path + "' does not exist");
   if (access(dir.c_str(), W_OK) != 0) throw Error(option + ": the folder of '" + path + "' is not writable");
-  checkNotInput(target, option, path);
   for (const auto& other : files_)
     if (sameFile(other->target, target))
       throw Error(option + ": '" + path + "' is also given as " + other->option + ": name two different files");
