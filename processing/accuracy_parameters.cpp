@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The accuracy parameters of DemAlgorithm, shared by tinlod:accuracy and tinlod:buildhierarchy.
 #include <qgsprocessingparameters.h>
-#include <qgsrasterfilewriter.h>
 
 #include <QFileInfo>
 
 #include "dem_algorithm.h"
 #include "processing_feedback.h"
+#include "tinlod/accuracy_raster.h"
 
 namespace tinlod::qgis {
 namespace {
@@ -49,14 +49,12 @@ void DemAlgorithm::readAccuracyParameters(const QVariantMap& parameters, QgsProc
   accuracy_.rasterPath = raster.toStdString();
   accuracyLoad_.remember(context, raster);
   if (!raster.isEmpty()) {
-    const QString suffix = QFileInfo(raster).suffix();
-    const QString driver = QgsRasterFileWriter::driverForExtension(suffix);
+    accuracy_.raster.format = rasterFormatFor(accuracy_.rasterPath);
     // A name GDAL knows no format for was written as a GeoTIFF under that name.
-    if (driver.isEmpty())
+    if (accuracy_.raster.format.empty())
       throw QgsProcessingException(QStringLiteral("ACCURACY: no GDAL raster format is named by the extension '.%1' of '%2': "
                                                   "name the file .tif")
-                                       .arg(suffix, raster));
-    accuracy_.raster.format = driver.toStdString();
+                                       .arg(QFileInfo(raster).suffix(), raster));
   }
   accuracy_.reportPath = optionalPath(parameterAsFileOutput(parameters, QStringLiteral("REPORT"), context)).toStdString();
   translateErrors([&] { accuracy_.validate(); }, accuracyParameterNames());

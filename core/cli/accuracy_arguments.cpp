@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
+
+#include "tinlod/error.h"
 
 namespace tinlod::cli {
 
@@ -38,6 +41,9 @@ AccuracyOutputs accuracyOutputs(Arguments& a) {
   // As gdal_translate: the format the file's extension names, unless -of says another.
   o.raster.format = a.text("-of", "");
   if (o.raster.format.empty()) o.raster.format = o.rasterPath.empty() ? "GTiff" : rasterFormatFor(o.rasterPath);
+  if (o.raster.format.empty())
+    throw Error("-accuracy '" + o.rasterPath + "': no GDAL raster format writes files named '" +
+                std::filesystem::path(o.rasterPath).extension().string() + "': name the file .tif, or give the format with -of");
   o.raster.creationOptions = a.repeated("-co");
   return o;
 }

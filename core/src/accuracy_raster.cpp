@@ -108,8 +108,7 @@ std::string rasterFormatFor(const std::string& path) {
     for (int k = 0; k < extensions.size(); ++k)
       if (EQUAL(extensions[k], ext.c_str())) return d->GetDescription();
   }
-  throw Error("-accuracy '" + path + "': no GDAL raster format writes files named '." + ext +
-              "': name the file .tif, or give the format with -of");
+  return {};
 }
 
 const char* const kAccuracyBandNames[kAccuracyBandCount] = {

@@ -26,7 +26,8 @@ void checkRasterFormat(const RasterWriteOptions& options);
 void checkRasterKeepsItsBands(const RasterWriteOptions& options);
 
 // The GDAL raster format that writes files named as `path` (GTiff for .tif), as gdal_translate
-// picks it without -of; throws Error, naming -accuracy, when no format writes such files.
+// picks it without -of; empty when no format writes such files. The command line and QGIS
+// both call it, so one name gives one format whichever the user runs.
 std::string rasterFormatFor(const std::string& path);
 
 }  // namespace tinlod
