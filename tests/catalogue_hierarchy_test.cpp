@@ -21,6 +21,7 @@
 #include "catalogue_hierarchy.h"
 #include "catalogue_lod.h"
 #include "tile_ownership.h"
+#include "tin_outline.h"
 #include "mesh_checks.h"
 #include "test_support.h"
 #include "tinlod/accuracy_job.h"
@@ -346,6 +347,10 @@ int expectTheJobWritesWhatTheExtractionHolds(const std::string& catalogue, const
     outline += p.outline;
   }
   EXPECT_GT(outline, 0u);
+  // info shows the union's own outline, as it does for a single TIN's file (the flags above
+  // are the sampler's, off the shared lines).
+  const HierarchyInfo info = readHierarchyInfo(dir + "/lod.gpkg");
+  EXPECT_EQ(info.levels.at(0).outlineVertices, countOutlineVertices(whole.tin));
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const Triangle& c = whole.tin.triangles[t];
     std::vector<double> expected{double(t + 1), double(t + 1), double(c[0] + 1), double(c[1] + 1), double(c[2] + 1),

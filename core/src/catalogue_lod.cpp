@@ -11,6 +11,7 @@
 #include "catalogue_hierarchy.h"
 #include "lod_part_files.h"
 #include "tile_catalogue.h"
+#include "tin_outline.h"
 #include "tinlod/error.h"
 #include "vertex_place.h"
 
@@ -147,6 +148,9 @@ class Assembler {
     for (const Triangle& t : part.lod.tin.triangles)
       for (int k = 0; k < 3; ++k)
         if (part.onLine[t[k]] || part.onLine[t[(k + 1) % 3]]) edges_.insert(key(id[t[k]], id[t[(k + 1) % 3]]));
+    // A vertex off the shared lines has all its triangles in this tile: its outline is the part's.
+    const std::vector<bool> outline = outlineVertices(part.lod.tin);
+    for (std::size_t v = 0; v < vertices.size(); ++v) outlineVertices_ += outline[v] && !part.onLine[v];
     sink_.add({part.lod, id, isNew}, progress);
   }
 
@@ -162,7 +166,7 @@ class Assembler {
     }
     std::sort(outline.begin(), outline.end());
     outline.erase(std::unique(outline.begin(), outline.end()), outline.end());
-    sink_.setOutline(outline);
+    sink_.setOutline(outline, outlineVertices_ + outline.size());
   }
 
  private:
@@ -175,6 +179,7 @@ class Assembler {
   std::unordered_map<Place, Shared, PlaceHash> shared_;
   std::unordered_set<std::uint64_t> edges_;  // directed, of triangles with a shared corner
   VertexId next_ = 0;
+  std::size_t outlineVertices_ = 0;  // off the shared lines
 };
 
 // The output held whole.
@@ -192,8 +197,8 @@ class MemorySink : public CatalogueLodSink {
     out_.firstLevel.insert(out_.firstLevel.end(), part.firstLevel.begin(), part.firstLevel.end());
     out_.lastLevel.insert(out_.lastLevel.end(), part.lastLevel.begin(), part.lastLevel.end());
   }
-  void setOutline(const std::vector<VertexId>& outline) override {
-    for (VertexId v : outline) out_.tin.vertices[v].outline = true;
+  void setOutline(const std::vector<VertexId>& sharedOutline, std::size_t) override {
+    for (VertexId v : sharedOutline) out_.tin.vertices[v].outline = true;
   }
 
  private:

@@ -35,8 +35,9 @@ class CatalogueLodSink {
   virtual void start(const std::string& crsWkt, const std::string& crsName) = 0;
   virtual void add(const LodPiece& piece, const ProgressRange& progress) = 0;
   // After the last: the output ids of the shared lines' vertices that are on the union's
-  // outline (an edge of theirs has a triangle on one side alone).
-  virtual void setOutline(const std::vector<VertexId>& outline) = 0;
+  // outline (an edge of theirs has a triangle on one side alone), and how many vertices
+  // the union's outline has in all, as a single TIN's file records it.
+  virtual void setOutline(const std::vector<VertexId>& sharedOutline, std::size_t outlineVertices) = 0;
 };
 
 // What an extraction did, beside its output.

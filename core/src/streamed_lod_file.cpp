@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "streamed_lod_file.h"
 
+#include <map>
+#include <string>
 #include <utility>
 
 #include "tin_layers.h"
@@ -22,6 +24,8 @@ StreamedLodFile::StreamedLodFile(const StagedFile& file, GpkgWriteOptions option
 void StreamedLodFile::start(const std::string& crsWkt, const std::string& crsName) {
   crsName_ = crsName;
   options_.metadata["TINLOD_CRS"] = crsName;
+  // Known only after the last tile: written with the indexes, as a single TIN's file has it.
+  options_.lateMetadata = [this] { return std::map<std::string, std::string>{{"TINLOD_OUTLINE_VERTICES", std::to_string(outlineVertices_)}}; };
   file_ = std::make_unique<TinGpkgFile>(stagedFile_, options_, crsWkt, vertexExtra(), triangleExtra());
 }
 
@@ -55,10 +59,11 @@ void StreamedLodFile::add(const LodPiece& piece, const ProgressRange& progress) 
   triangles_ += part.tin.triangles.size();
 }
 
-void StreamedLodFile::setOutline(const std::vector<VertexId>& outline) {
+void StreamedLodFile::setOutline(const std::vector<VertexId>& sharedOutline, std::size_t outlineVertices) {
+  outlineVertices_ = outlineVertices;
   file_->vertexRows().flush();  // the last tile's vertices may be waiting in the batch
   SqliteStatement update = file_->database().prepare("UPDATE vertices SET outline = 1 WHERE fid = ?");
-  for (VertexId v : outline) {
+  for (VertexId v : sharedOutline) {
     update.bind(1, std::int64_t(v) + 1);
     update.step();
     update.reset();

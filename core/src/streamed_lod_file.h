@@ -20,12 +20,13 @@ namespace tinlod {
 
 class StreamedLodFile : public CatalogueLodSink {
  public:
-  // The layers are made when the tiles' CRS is known (start); `options.metadata` gets TINLOD_CRS.
+  // The layers are made when the tiles' CRS is known (start); `options.metadata` gets TINLOD_CRS,
+  // and TINLOD_OUTLINE_VERTICES once setOutline has counted them.
   StreamedLodFile(const StagedFile& file, GpkgWriteOptions options);
 
   void start(const std::string& crsWkt, const std::string& crsName) override;
   void add(const LodPiece& piece, const ProgressRange& progress) override;
-  void setOutline(const std::vector<VertexId>& outline) override;
+  void setOutline(const std::vector<VertexId>& sharedOutline, std::size_t outlineVertices) override;
   // The indexes and the commit, after the last piece.
   void finish(const ProgressRange& progress);
 
@@ -41,7 +42,7 @@ class StreamedLodFile : public CatalogueLodSink {
   GpkgWriteOptions options_;
   std::unique_ptr<TinGpkgFile> file_;
   std::vector<RtreeBox> vertexBoxes_, triangleBoxes_;
-  std::size_t vertices_ = 0, triangles_ = 0;
+  std::size_t vertices_ = 0, triangles_ = 0, outlineVertices_ = 0;
   std::vector<std::size_t> byFirstLevel_;
   Envelope extent_ = Envelope::empty();
   std::string crsName_;
