@@ -10,6 +10,7 @@
 #include <unordered_set>
 
 #include "dataset_files.h"
+#include "interior_share.h"
 #include "release_memory.h"
 #include "text_and_paths.h"
 #include "tinlod/crs_transform.h"
@@ -58,6 +59,15 @@ void warnIfStoppedEarly(const Hierarchy& h, const ProgressRange& progress) {
   const std::size_t target = static_cast<std::size_t>(std::ceil(h.options.stopPct / 100.0 * h.levels.front().vertices));
   progress.warn("stopped at " + std::to_string(h.levels.back().vertices) + " vertices, above the " +
                 formatNumber(h.options.stopPct) + " % asked for (" + std::to_string(target) + "): " + h.stopReason);
+}
+
+// Only where the target was out of reach: a build that reached it stopped where it was told
+// (the -stop_pct this warning names, taken, warns no more). An error bound keeps the inside's
+// surface whatever it keeps of its vertices.
+void warnIfInteriorStarved(const Hierarchy& h, const ProgressRange& progress) {
+  if (h.stopReason.empty() || (h.options.measure == Measure::Error && std::isfinite(h.options.maxError))) return;
+  const std::string warning = starvedInteriorWarning(h.levels, h.options.stopPct);
+  if (!warning.empty()) progress.warn(warning);
 }
 
 // The error method bounds each cell by max(-max_error, level 0's distance there): where the
@@ -348,7 +358,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const double write = accuracy.wanted() ? 0.6 : 0.75, measure = accuracy.wanted() ? 0.75 : 1;
   Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,
                                tile.size > 0 ? &borders : nullptr);
-  if (tile.size == 0) warnIfStoppedEarly(h, all), noteSampleAboveMaxError(h, sample, all);
+  if (tile.size == 0) warnIfStoppedEarly(h, all), warnIfInteriorStarved(h, all), noteSampleAboveMaxError(h, sample, all);
   const std::size_t validCells = tile.size > 0 ? 0 : dem.validCount();  // a tile's window holds its halo's too
   // Only the accuracy outputs read the heights and level 0's TIN again; freed, they leave
   // the writing room (68 and 45 MB for a 4096 x 4096 tile). The DEM's size and window stay
