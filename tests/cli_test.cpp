@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -1294,6 +1295,30 @@ TEST(Cli, InfoKeepsHugeFiguresInTheirColumns) {
     EXPECT_EQ(row[7], "1.23e+08") << line;
   }
   EXPECT_EQ(rows, 3) << info.out;
+}
+
+// A DEM larger than the machine failed with "std::bad_alloc" (or, less large, filled the
+// memory until the system killed the run): refused at once, before a height is read.
+TEST(Cli, ADemTooLargeForTheMachinesMemoryIsRefusedBeforeItIsRead) {
+  const std::string dir = test::tempDir();
+  std::ofstream(dir + "/huge.vrt") << "<VRTDataset rasterXSize=\"2000000\" rasterYSize=\"2000000\"><SRS>EPSG:32632</SRS>"
+                                      "<GeoTransform>400000, 1, 0, 5300000, 0, -1</GeoTransform><VRTRasterBand "
+                                      "dataType=\"Float32\" band=\"1\"><NoDataValue>-9999</NoDataValue></VRTRasterBand>"
+                                      "</VRTDataset>";
+  const std::string cells = "'" + dir + "/huge.vrt' has 4000000000000 cells (2000000 x 2000000): ";
+  const std::pair<const char*, std::string> runs[] = {
+      {"build", cells + "building its hierarchy holds about 230 TB for them (57 bytes a cell), more than this machine's "},
+      {"sample -block 5", cells + "sampling it holds about 98.4 TB for them (25 bytes a cell), more than this machine's "},
+      {"insert", cells + "greedy insertion holds about 224 TB for them (56 bytes a cell), more than this machine's "}};
+  for (const auto& [command, said] : runs) {
+    const auto start = std::chrono::steady_clock::now();
+    const CliRun r = tinlod(std::string(command) + " " + dir + "/huge.vrt " + dir + "/out.gpkg");
+    EXPECT_EQ(r.exitCode, 1) << command;
+    EXPECT_TRUE(has(r.err, said)) << r.err;
+    EXPECT_TRUE(has(r.err, " of memory and swap: ")) << r.err;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10) << command;
+    EXPECT_FALSE(fs::exists(dir + "/out.gpkg")) << command;
+  }
 }
 
 }  // namespace

@@ -1157,12 +1157,17 @@ TEST(Processing, ErrorsNameTheDialogsParameters) {
       {{{"REPORT", QString::fromStdString(dir + "/r.txt")}}, "REPORT: unknown report format '.txt'"},
       {{{"ACCURACY", QString::fromStdString(dir + "/a.png")}}, "ACCURACY: PNG cannot hold the accuracy raster (4 bands of 32-bit floats)"},
       {{{"ACCURACY", QString::fromStdString(dir + "/a.foo")}}, "ACCURACY: no GDAL raster format is named by the extension '.foo'"},
-      {{{"OUTPUT", dem}}, "OUTPUT: '"}};
+      {{{"OUTPUT", dem}}, "OUTPUT: '"},
+      {{{"INPUT", QString::fromStdString(dir + "/huge.vrt")}}, "of memory and swap: cut it into tiles with tinlod tiles "
+                                                               "(memory bounded by the tile), or sample fewer cells with a larger BLOCK"}};
+  std::ofstream(dir + "/huge.vrt") << "<VRTDataset rasterXSize=\"2000000\" rasterYSize=\"2000000\"><SRS>EPSG:32632</SRS>"
+                                      "<GeoTransform>400000, 1, 0, 5300000, 0, -1</GeoTransform><VRTRasterBand "
+                                      "dataType=\"Float32\" band=\"1\"/></VRTDataset>";
   for (const auto& [more, said] : cases) {
     const Result r = build(more);
     EXPECT_FALSE(r.ok);
     EXPECT_TRUE(r.error.contains(said)) << r.error.toStdString();
-    for (const char* option : {"-report", "-of", "-threshold", "-accuracy"})
+    for (const char* option : {"-report", "-of", "-threshold", "-accuracy", "-block"})
       EXPECT_FALSE(r.error.contains(QString::fromUtf8(option) + QLatin1Char(' '))) << r.error.toStdString();
   }
   EXPECT_FALSE(fs::exists(dir + "/h.gpkg"));

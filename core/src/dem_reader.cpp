@@ -214,7 +214,7 @@ void readHeightsBesideCrs(GDALDataset& ds, int bandNumber, Dem& dem, const Progr
 }
 
 Dem readBand(const std::string& path, int bandNumber, const CellWindow* window, const ProgressRange& progress,
-             const HeightRange& valid) {
+             const HeightRange& valid, const MemoryUse* use = nullptr) {
   valid.validate();
   DatasetPtr ds = openRaster(path);
   if (bandNumber < 1 || bandNumber > ds->GetRasterCount())
@@ -243,6 +243,7 @@ Dem readBand(const std::string& path, int bandNumber, const CellWindow* window, 
     dem.geotransform[0] += window->xoff * dem.geotransform[1];
     dem.geotransform[3] += window->yoff * dem.geotransform[5];
   }
+  if (use) checkMemory(path, dem.width, dem.height, *use, progress);
   readHeightsBesideCrs(*ds, bandNumber, dem, progress);
   applyMask(*band, dem);  // on the stored values, where declared nodata applies
   toMetres(*band, dem, progress);
@@ -252,8 +253,9 @@ Dem readBand(const std::string& path, int bandNumber, const CellWindow* window, 
 
 }  // namespace
 
-Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progress, const HeightRange& valid) {
-  Dem dem = readBand(path, bandNumber, nullptr, progress, valid);
+Dem readDem(const std::string& path, int bandNumber, const ProgressRange& progress, const HeightRange& valid,
+            const MemoryUse* use) {
+  Dem dem = readBand(path, bandNumber, nullptr, progress, valid, use);
   checkValidCells(dem, valid);
   return dem;
 }

@@ -6,6 +6,7 @@
 #include "tinlod/dem.h"
 #include "tinlod/feedback.h"
 #include "tinlod/height_range.h"
+#include "tinlod/memory_check.h"
 
 namespace tinlod {
 
@@ -13,8 +14,10 @@ namespace tinlod {
 // bands become missing cells, and so do heights outside `valid` (infinity included),
 // with one warning that counts them. Throws Error for a file that is not a raster, a band
 // that does not exist or holds complex numbers, a rotated geotransform, or fewer than 3
-// valid cells.
-Dem readDem(const std::string& path, int band, const ProgressRange& progress, const HeightRange& valid = HeightRange{});
+// valid cells. With `use`, a DEM too large for the machine's memory is refused (or warned
+// of) before a height is read (checkMemory).
+Dem readDem(const std::string& path, int band, const ProgressRange& progress, const HeightRange& valid = HeightRange{},
+            const MemoryUse* use = nullptr);
 
 // A window of a raster's cells: columns xoff .. xoff + xsize - 1, rows likewise.
 struct CellWindow {
