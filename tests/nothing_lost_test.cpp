@@ -142,14 +142,34 @@ TEST(NothingLost, AFullDiskLeavesTheOldOutput) {
   const std::string dir = test::tempDir() + "/small_disk";
   fs::create_directories(dir);
   if (mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=3m") != 0) GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
-  std::ofstream(dir + "/t.gpkg") << "the old output";
+  // The old output, a small TIN: a file of another kind would be refused before any write.
+  ASSERT_EQ(tinlod("sample -q -block 15 " + smallDem() + " " + dir + "/t.gpkg").exitCode, 0);
+  const auto before = snapshot(dir);
   const CliRun run = tinlod("sample -q -overwrite -block 1 " + smallDem() + " " + dir + "/t.gpkg");
   const auto left = snapshot(dir);
   umount(dir.c_str());
   EXPECT_EQ(run.exitCode, 1);
   EXPECT_FALSE(has(run.err, ".tinlod-")) << run.err;  // the user's file is named, not the staging one
   EXPECT_TRUE(has(run.err, "t.gpkg")) << run.err;
-  EXPECT_EQ(left, (std::map<std::string, std::string>{{"t.gpkg", "the old output"}}));
+  EXPECT_TRUE(has(run.err, "the disk is full")) << run.err;
+  ASSERT_EQ(before.size(), 1u);
+  EXPECT_TRUE(left == before) << "the old output was changed, or something was left beside it";
+}
+
+// The accuracy raster on a full disk: said as such in one line (GDAL said
+// "WriteEncodedTile/Strip() failed" of a scratch file, twice), nothing left.
+TEST(NothingLost, AFullDiskIsSaidOfTheAccuracyRaster) {
+  const std::string built = builtFolder(), dir = test::tempDir() + "/small_disk";
+  fs::create_directories(dir);
+  if (mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=3m") != 0) GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
+  std::ofstream(dir + "/fill") << std::string(3 * 1024 * 1024 - 64 * 1024, 'x');
+  const CliRun run = tinlod("accuracy -q -step 1 " + built + "/d.tif " + built + "/h.gpkg -accuracy " + dir + "/a.tif");
+  fs::remove(dir + "/fill");
+  const auto left = snapshot(dir);
+  umount(dir.c_str());
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_EQ(run.err, "ERROR: -accuracy: cannot write the accuracy raster '" + dir + "/a.tif': the disk is full\n");
+  EXPECT_TRUE(left.empty()) << left.begin()->first;
 }
 
 // Ctrl-C is answered within a second or two whatever the run is doing (reading, sampling,

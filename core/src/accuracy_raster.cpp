@@ -162,8 +162,8 @@ void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& r
 }
 
 Error rasterWriteError(const StagedFile& file) {
-  return Error(file.option + ": cannot write the accuracy raster '" + file.path +
-               "': " + inUserTerms(file, CPLGetLastErrorMsg()));
+  const std::string why = diskFull(file.staging.parent_path()) ? "the disk is full" : inUserTerms(file, CPLGetLastErrorMsg());
+  return Error(file.option + ": cannot write the accuracy raster '" + file.path + "': " + why);
 }
 
 void closeRaster(DatasetPtr& out, const StagedFile& file) {

@@ -52,11 +52,13 @@ void AccuracyRasterCanvas::write(const AccuracyBands& bands, const TestRect& rec
   CPLErrorReset();
   const Grid* grids[] = {&bands.elevationDifference, &bands.meanCurvatureDifference, &bands.meanCurvatureReference,
                          &bands.meanCurvatureSimplified};
+  // GDAL's messages name the scratch file: kept quiet, and said in the user's terms (fail).
+  const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);
   try {
     for (int b = 0; b < kAccuracyBandCount; ++b)
       writeRasterWindow(*ds_->GetRasterBand(b + 1), *grids[b], rect, col0, row0, &statistics_[b]);
   } catch (const Error&) {
-    fail();  // in the user's terms: GDAL's message names the scratch file
+    fail();
   }
   // To disk at once: GDAL's block cache would otherwise hold up to GDAL_CACHEMAX of it.
   ds_->FlushCache();

@@ -212,6 +212,14 @@ std::string inUserTerms(const StagedFile& file, std::string message) {
   return message;
 }
 
+bool diskFull(const fs::path& folder) {
+  std::error_code ec;
+  const fs::space_info space = fs::space(folder, ec);
+  if (ec) return false;
+  // Root may write into the blocks a file system keeps back from the others.
+  return (geteuid() == 0 ? space.free : space.available) < (1u << 20);
+}
+
 bool abandonStagedOutputs() {
   StagingFolder::removeAllLive();
   return committedOnce();

@@ -68,6 +68,10 @@ bool abandonStagedOutputs();
 // the staging folder's by the output's folder (for sidecar files).
 std::string inUserTerms(const StagedFile& file, std::string message);
 
+// Whether the disk that holds `folder` is full (under 1 MB left to this process): a failed
+// write says so, as GDAL's drivers do not ("WriteEncodedTile/Strip() failed").
+bool diskFull(const std::filesystem::path& folder);
+
 // Whether `a` and `b` name the same file (hard links, symbolic links, ./ and ../ alike).
 bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b);
 
