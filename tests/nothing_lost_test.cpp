@@ -156,19 +156,28 @@ TEST(NothingLost, AFullDiskLeavesTheOldOutput) {
   EXPECT_TRUE(left == before) << "the old output was changed, or something was left beside it";
 }
 
-// The accuracy raster on a full disk: said as such in one line (GDAL said
-// "WriteEncodedTile/Strip() failed" of a scratch file, twice), nothing left.
-TEST(NothingLost, AFullDiskIsSaidOfTheAccuracyRaster) {
+// A disk with almost no room: said as such in one line, where GDAL said "WriteEncodedTile/
+// Strip() failed" of the accuracy raster's scratch file, twice, and a new GeoPackage's
+// "no such table: gpkg_spatial_ref_sys" a dozen times; nothing left.
+TEST(NothingLost, AFullDiskIsSaidInOneLine) {
   const std::string built = builtFolder(), dir = test::tempDir() + "/small_disk";
   fs::create_directories(dir);
   if (mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=3m") != 0) GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
   std::ofstream(dir + "/fill") << std::string(3 * 1024 * 1024 - 64 * 1024, 'x');
-  const CliRun run = tinlod("accuracy -q -step 1 " + built + "/d.tif " + built + "/h.gpkg -accuracy " + dir + "/a.tif");
+  const CliRun raster = tinlod("accuracy -q -step 1 " + built + "/d.tif " + built + "/h.gpkg -accuracy " + dir + "/a.tif");
+  const CliRun tin = tinlod("sample -q " + built + "/d.tif " + dir + "/t.gpkg");
+  const CliRun lod = tinlod("lod -q -max_error 5 " + built + "/h.gpkg " + dir + "/l.gpkg");
   fs::remove(dir + "/fill");
   const auto left = snapshot(dir);
   umount(dir.c_str());
-  EXPECT_EQ(run.exitCode, 1);
-  EXPECT_EQ(run.err, "ERROR: -accuracy: cannot write the accuracy raster '" + dir + "/a.tif': the disk is full\n");
+  EXPECT_EQ(raster.exitCode, 1);
+  EXPECT_EQ(raster.err, "ERROR: -accuracy: cannot write the accuracy raster '" + dir + "/a.tif': the disk is full\n");
+  for (const CliRun& r : {tin, lod}) {
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(r.err.rfind("ERROR: ", 0), 0u) << r.err;
+    EXPECT_TRUE(has(r.err, "': the disk is full\n")) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
   EXPECT_TRUE(left.empty()) << left.begin()->first;
 }
 

@@ -213,8 +213,13 @@ OGRLayer* GpkgOutput::createLayer(const char* name, OGRwkbGeometryType type, con
   if (type != wkbNone && !crsWkt.empty() && srs.importFromWkt(crsWkt.c_str()) == OGRERR_NONE) srsPtr = &srs;
   // The bulk writer names the columns fid and geom itself: GDAL's defaults, made explicit.
   const char* const bulkOptions[] = {"SPATIAL_INDEX=NO", "FID=fid", "GEOMETRY_NAME=geom", nullptr};
-  OGRLayer* layer = ds_->CreateLayer(name, srsPtr, type, bulk ? const_cast<char**>(bulkOptions) : nullptr);
-  if (!layer) throw Error(std::string("cannot create layer '") + name + "' in '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
+  CPLErrorReset();
+  OGRLayer* layer = nullptr;
+  {
+    const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);  // said below, in the user's terms
+    layer = ds_->CreateLayer(name, srsPtr, type, bulk ? const_cast<char**>(bulkOptions) : nullptr);
+  }
+  if (!layer || CPLGetLastErrorType() >= CE_Failure) throw Error(std::string("cannot create layer '") + name + "' in '" + file_.path + "': " + said(CPLGetLastErrorMsg()));
   if (bulk && type != wkbNone && !srsPtr) withoutCrs_.push_back(name);
   for (const FieldSpec& field : fields) {
     OGRFieldDefn defn(field.name, field.type);
