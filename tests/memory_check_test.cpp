@@ -35,7 +35,18 @@ TEST(MemoryCheck, TheMessagesGiveTheCellsTheEstimateTheMachineAndTheFix) {
                             "stopped by the system; cut it into tiles");
   EXPECT_EQ(test::errorOf([&] { checkMemory("dem.tif", 20000, 10000, kUse, range, {7e9, 6e9}); }),
             "'dem.tif' has 200000000 cells (20000 x 10000): building its hierarchy holds about 10 GB for them (50 bytes "
-            "a cell), more than this machine's 7 GB of memory and swap: cut it into tiles");
+            "a cell), more than the 7 GB of memory and swap this run may use: cut it into tiles");
+}
+
+// Where even the DEM's own cells do not fit, a larger -block cannot help: not offered.
+TEST(MemoryCheck, ALargerBlockIsOfferedOnlyWhereItCouldFit) {
+  const MemoryUse use{"building its hierarchy", 57, "tiles, or a larger -block", 13, "tiles"};
+  const auto said = [&](std::int64_t side) {
+    return test::errorOf([&] { checkMemory("d.tif", side, side, use, ProgressRange(Feedback{}, 0, 1), {16e9, 8e9}); });
+  };
+  EXPECT_NE(said(20000).find("this run may use: tiles, or a larger -block"), std::string::npos) << said(20000);
+  EXPECT_NE(said(60000).find("this run may use: tiles"), std::string::npos) << said(60000);
+  EXPECT_EQ(said(60000).find("-block"), std::string::npos) << said(60000);
 }
 
 TEST(MemoryCheck, ThisMachinesMemoryIsRead) {

@@ -156,6 +156,25 @@ TEST(NothingLost, AFullDiskLeavesTheOldOutput) {
   EXPECT_TRUE(left == before) << "the old output was changed, or something was left beside it";
 }
 
+// An input named as the output, in a read-only folder (a data share): said to be an input,
+// not that the folder is read-only; a link to an input is the input, not "beside it".
+TEST(NothingLost, AnInputAsOutputIsSaidToBeOneInAReadOnlyFolderOrThroughALink) {
+  const std::string built = builtFolder(), dir = test::tempDir() + "/read_only";
+  fs::create_directories(dir);
+  if (mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=8m") != 0) GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
+  fs::copy_file(built + "/d.tif", dir + "/d.tif");
+  ASSERT_EQ(tinlod("sample -q -block 15 " + dir + "/d.tif " + dir + "/p.gpkg").exitCode, 0);
+  mount(nullptr, dir.c_str(), nullptr, MS_REMOUNT | MS_RDONLY, nullptr);
+  const CliRun fixed = tinlod("build -q -overwrite " + dir + "/d.tif " + dir + "/p.gpkg -fixed " + dir + "/p.gpkg");
+  const CliRun raster = tinlod("accuracy -q -overwrite " + dir + "/d.tif " + built + "/h.gpkg -accuracy " + dir + "/d.tif");
+  umount(dir.c_str());
+  EXPECT_TRUE(has(fixed.err, "output: '" + dir + "/p.gpkg' is an input of this run")) << fixed.err;
+  EXPECT_TRUE(has(raster.err, "-accuracy: '" + dir + "/d.tif' is an input of this run")) << raster.err;
+  fs::create_symlink(built + "/h.gpkg", built + "/link.gpkg");
+  const CliRun link = tinlod("lod -q -overwrite -max_error 5 " + built + "/link.gpkg " + built + "/link.gpkg");
+  EXPECT_TRUE(has(link.err, "output: '" + built + "/link.gpkg' is an input of this run")) << link.err;
+}
+
 // A disk with almost no room: said as such in one line, where GDAL said "WriteEncodedTile/
 // Strip() failed" of the accuracy raster's scratch file, twice, and a new GeoPackage's
 // "no such table: gpkg_spatial_ref_sys" a dozen times; nothing left.

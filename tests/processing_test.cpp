@@ -1158,8 +1158,8 @@ TEST(Processing, ErrorsNameTheDialogsParameters) {
       {{{"ACCURACY", QString::fromStdString(dir + "/a.png")}}, "ACCURACY: PNG cannot hold the accuracy raster (4 bands of 32-bit floats)"},
       {{{"ACCURACY", QString::fromStdString(dir + "/a.foo")}}, "ACCURACY: no GDAL raster format is named by the extension '.foo'"},
       {{{"OUTPUT", dem}}, "OUTPUT: '"},
-      {{{"INPUT", QString::fromStdString(dir + "/huge.vrt")}}, "of memory and swap: cut it into tiles with tinlod tiles "
-                                                               "(memory bounded by the tile), or sample fewer cells with a larger BLOCK"}};
+      {{{"INPUT", QString::fromStdString(dir + "/huge.vrt")}}, "of memory and swap this run may use: cut it into tiles with tinlod tiles "
+                                                               "(memory bounded by the tile)"}};
   std::ofstream(dir + "/huge.vrt") << "<VRTDataset rasterXSize=\"2000000\" rasterYSize=\"2000000\"><SRS>EPSG:32632</SRS>"
                                       "<GeoTransform>400000, 1, 0, 5300000, 0, -1</GeoTransform><VRTRasterBand "
                                       "dataType=\"Float32\" band=\"1\"/></VRTDataset>";

@@ -61,6 +61,15 @@ int main(int argc, char** argv) {
     std::cout << "tinlod " << tinlod::kVersion << " (GDAL " << GDALVersionInfo("RELEASE_NAME") << ")\n";
     return 0;
   }
+  // `tinlod help` and `tinlod help build`, as git and gdal users type them.
+  if (name == "help") {
+    const auto asked = argc > 2 ? commands.find(argv[2]) : commands.end();
+    if (asked == commands.end()) {
+      std::cout << kHelp;
+      return argc > 2 ? 1 : 0;
+    }
+    return asked->second({"--help"});
+  }
   const auto command = commands.find(name);
   if (command == commands.end()) {
     std::cerr << "ERROR: unknown command '" << name << "'\n" << kHelp;

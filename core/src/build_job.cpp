@@ -263,8 +263,9 @@ void validateBuildOptions(const SampleOptions& sample, const HierarchyOptions& o
 // Measured on alps_2x2 with -block 1, 3 and 5 (306 MiB at 3): the DEM and its cells'
 // records, and each sampled vertex through the levels.
 MemoryUse buildMemory(const SampleOptions& sample) {
+  const std::string tiles = "cut it into tiles with tinlod tiles (memory bounded by the tile)";
   return {"building its hierarchy", 13 + 400.0 / (double(sample.block) * sample.block),
-          "cut it into tiles with tinlod tiles (memory bounded by the tile), or sample fewer cells with a larger -block"};
+          tiles + ", or sample fewer cells with a larger -block", 13, tiles};
 }
 
 Dem readInput(const std::string& demPath, const SampleOptions& sample, const TileSpec& tile, const ProgressRange& progress) {
@@ -338,6 +339,7 @@ void checkBuildJob(const std::string& demPath, const SampleOptions& sample, cons
   middle.yoff = std::min(area.yoff + area.ysize / 2, raster[1] - middle.ysize);
   const Dem two = readDemWindow(demPath, sample.band, middle, ProgressRange(Feedback{}, 0, 1), sample.validHeights);
   samplingTransform(two, sample, ProgressRange(feedback, 0, 1));  // its warnings and notes are the build's
+  if (tile.size == 0) checkMemory(demPath, raster[0], raster[1], buildMemory(sample), ProgressRange(feedback, 0, 1));
 }
 
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
@@ -348,10 +350,11 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   // Bad files fail before the long work.
   std::optional<std::unordered_set<std::uint64_t>> kept = keptCellsOf(options), outline = outlineCellsOf(options);
   GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_KIND", "hierarchy"}}};  // the kind: refuse another's file now
-  checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
-  if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints, kFixedName);
   // The hierarchy and the accuracy files go into place together, or none of them.
   OutputFiles files(overwrite, datasetFiles({demPath, options.fixedPoints}));
+  files.refuseInput(outPath, "output");  // first: an input's folder may be read-only
+  checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints, kFixedName);
   const StagedFile& out = files.add(outPath, "output", true);
   const AccuracyFiles accuracyFiles = stageAccuracyFiles(accuracy, files);
   const ProgressRange all(feedback, 0, 1);

@@ -91,6 +91,7 @@ void refuseNonGeoPackage(const std::string& path) {
 }  // namespace
 
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
+  refuseVirtualPath(path, "output");
   const fs::path out(path);
   if (lower(out.extension().string()) != ".gpkg")
     throw Error("output '" + path + "' must be a GeoPackage file ending in .gpkg");

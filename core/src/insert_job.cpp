@@ -280,7 +280,7 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   // At least this, measured on alps_2x2 keeping 0.6 % of its cells (317 MiB); more as the
   // insertion keeps more (851 MiB at 8 %).
   const MemoryUse use{"greedy insertion", 56,
-                      "cut the DEM into parts (gdal_translate -srcwin), or build a tiled hierarchy with tinlod tiles"};
+                      "cut the DEM into parts (gdal_translate -srcwin), or build a tiled hierarchy with tinlod tiles", 0, ""};
   const Dem dem = readDem(demPath, options.sample.band, all.sub(0, 0.1), options.sample.validHeights, &use);
   const auto late = std::make_shared<LateFigures>();
   writeOptions.lateMetadata = [late] { return lateMetadata(*late); };

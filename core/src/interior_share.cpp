@@ -3,11 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 
 #include "text_and_paths.h"
-#include "tinlod/hierarchy_options.h"
 
 namespace tinlod {
 namespace {
@@ -20,21 +20,18 @@ std::string percent(double part, double whole, int decimals) {
   return out.str();
 }
 
-// The -stop_pct, in the fewest decimals, that stops the builder right after level n. Its
-// count, ceil(p % of level 0's vertices), is at least level n's, so the builder stops there;
-// rounded up, it may cut level n's deletions a little, but leaves them 1 % of level n-1's
-// vertices or more, so that level n is still made (the builder's rule for a level).
+// The -stop_pct, in the fewest decimals, whose count (the builder's ceil(p % of level 0's
+// vertices), from p as typed) is level n's exactly: the builder then stops right after level
+// n, which deletes what it deleted here, so its figures are the ones this warning gives.
 std::string stopPctFor(const std::vector<LevelStats>& levels, std::size_t n) {
-  const double all = double(levels.front().vertices);
-  const std::size_t before = levels[n - 1].vertices;
-  for (int decimals = 1; decimals <= 6; ++decimals) {
+  const double all = double(levels.front().vertices), exact = 100.0 * double(levels[n].vertices) / all;
+  for (int decimals = 1; decimals <= 9; ++decimals) {
     const double scale = std::pow(10.0, decimals);
-    const double p = std::ceil(100.0 * double(levels[n].vertices) / all * scale) / scale;
-    const auto count = static_cast<std::size_t>(std::ceil(p / 100.0 * all));
-    if (count < before && before - count >= before / kMinLevelShare) {
+    for (const double candidate : {std::floor(exact * scale) / scale, std::ceil(exact * scale) / scale}) {
       std::ostringstream out;
-      out << std::fixed << std::setprecision(decimals) << p;
-      return out.str();
+      out << std::fixed << std::setprecision(decimals) << candidate;
+      const double typed = std::strtod(out.str().c_str(), nullptr);
+      if (static_cast<std::size_t>(std::ceil(typed / 100.0 * all)) == levels[n].vertices) return out.str();
     }
   }
   return {};

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/memory_check.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -37,6 +38,25 @@ double cgroupValue(const char* file) {
   return std::strtod(text.c_str(), nullptr);
 }
 
+// ulimit -v: every mapping counts, the libraries' and the threads' stacks as the heap.
+double addressSpaceLimit() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return 0;
+  return double(limit.rlim_cur);
+}
+
+double addressSpaceUsed() {
+  std::ifstream in("/proc/self/statm");
+  double pages = 0;
+  in >> pages;
+  return pages * double(sysconf(_SC_PAGE_SIZE));
+}
+
+void capAt(MachineMemory& m, double total, double available) {
+  m.total = m.total > 0 ? std::min(m.total, total) : total;
+  m.available = m.available > 0 ? std::min(m.available, available) : available;
+}
+
 std::string bytesText(double bytes) {
   const char* units[] = {"bytes", "KB", "MB", "GB", "TB", "PB"};
   int u = 0;
@@ -59,11 +79,9 @@ MachineMemory machineMemory() {
     const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
     if (pages > 0 && size > 0) out.total = double(pages) * double(size);
   }
-  if (const double limit = cgroupValue("memory.max"); limit > 0) {
-    out.total = out.total > 0 ? std::min(out.total, limit) : limit;
-    const double left = std::max(0.0, limit - cgroupValue("memory.current"));
-    out.available = out.available > 0 ? std::min(out.available, left) : left;
-  }
+  if (const double limit = cgroupValue("memory.max"); limit > 0)
+    capAt(out, limit, std::max(0.0, limit - cgroupValue("memory.current")));
+  if (const double limit = addressSpaceLimit(); limit > 0) capAt(out, limit, std::max(0.0, limit - addressSpaceUsed()));
   return out;
 }
 
@@ -81,8 +99,12 @@ void checkMemory(const std::string& path, std::int64_t width, std::int64_t heigh
                            " for them (" + std::to_string(static_cast<int>(std::lround(use.bytesPerCell))) +
                            " bytes a cell)";
   switch (memoryVerdict(need, memory)) {
-    case MemoryVerdict::TooLarge:
-      throw Error(what + ", more than this machine's " + bytesText(memory.total) + " of memory and swap: " + use.instead);
+    case MemoryVerdict::TooLarge: {
+      const bool atFloor = !use.insteadAtFloor.empty() &&
+                           memoryVerdict(cells * use.floorBytesPerCell, memory) == MemoryVerdict::TooLarge;
+      throw Error(what + ", more than the " + bytesText(memory.total) + " of memory and swap this run may use: " +
+                  (atFloor ? use.insteadAtFloor : use.instead));
+    }
     case MemoryVerdict::Tight:
       progress.warn(what + ", more than the " + bytesText(memory.available) +
                     " of memory free now: the run may be slow, or stopped by the system; " + use.instead);

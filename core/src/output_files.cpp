@@ -115,17 +115,27 @@ OutputFiles::~OutputFiles() = default;
 
 void OutputFiles::checkNotInput(const fs::path& target, const std::string& option, const std::string& path) const {
   for (const std::string& input : inputs_)
-    if (!input.empty() && sameFile(target, input))
-      throw Error(option + ": '" + path + "' is " + (target.filename() == fs::path(path).filename() ? "" : "beside it ") +
-                  "an input of this run ('" + input + "'): writing it would destroy the input; choose another name");
+    if (!input.empty() && sameFile(target, input)) {
+      // A sidecar of the output (ENVI's .hdr) may be an input's file; a link to an input is the input.
+      const bool itself = sameFile(path, input) || target.filename() == fs::path(path).filename();
+      throw Error(option + ": '" + path + "' is " + (itself ? "" : "beside it ") + "an input of this run ('" + input +
+                  "'): writing it would destroy the input; choose another name");
+    }
 }
 
 void OutputFiles::refuseInput(const std::string& path, const std::string& option) const {
   checkNotInput(resolved(path), option, path);
 }
 
+void refuseVirtualPath(const std::string& path, const std::string& option) {
+  if (path.rfind("/vsi", 0) == 0)
+    throw Error(option + ": '" + path + "' is a GDAL virtual path; outputs are written as files: give a file path "
+                "(zip or copy it afterwards)");
+}
+
 const StagedFile& OutputFiles::add(const std::string& path, const std::string& option, bool keepContent) {
   if (path.empty()) throw Error(option + ": no file named");
+  refuseVirtualPath(path, option);
   const fs::path target = resolved(path);
   // First: an input's folder is often read-only (a data share), and "not writable" would
   // hide that the name itself is the mistake.

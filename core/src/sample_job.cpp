@@ -200,7 +200,8 @@ SampleSummary runSampleJob(const std::string& demPath, const std::string& outPat
   const ProgressRange all(feedback, 0, 1);
   // Measured on alps_2x2 (250 MiB at -block 3): the DEM, and each sampled vertex.
   const MemoryUse use{"sampling it", 13 + 290.0 / (double(options.block) * options.block),
-                      "sample fewer cells with a larger -block, or cut the DEM into parts (gdal_translate -srcwin)"};
+                      "sample fewer cells with a larger -block, or cut the DEM into parts (gdal_translate -srcwin)", 13,
+                      "cut the DEM into parts (gdal_translate -srcwin)"};
   const Dem dem = readDem(demPath, options.band, all.sub(0, 0.1), options.validHeights, &use);
   const Tin tin = sampleTin(dem, options, all.sub(0.1, 0.6));
   writeOptions.metadata["TINLOD_CRS"] = tin.crsName;

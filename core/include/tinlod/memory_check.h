@@ -17,10 +17,14 @@ struct MemoryUse {
   std::string doing;  // "building its hierarchy"
   double bytesPerCell = 0;
   std::string instead;  // "cut it into tiles with tinlod tiles, ..."
+  // What no option can lower (the DEM's own cells), and what to do when even that is too
+  // much: a larger -block would not help then.
+  double floorBytesPerCell = 0;
+  std::string insteadAtFloor;
 };
 
-// This machine's memory in bytes, RAM and swap, within a cgroup's limit (a container's);
-// 0 where unknown.
+// This machine's memory in bytes, RAM and swap, within a cgroup's limit (a container's) and
+// this process's address-space limit (ulimit -v, as batch clusters set); 0 where unknown.
 struct MachineMemory {
   double total = 0, available = 0;
 };

@@ -68,6 +68,10 @@ bool abandonStagedOutputs();
 // the staging folder's by the output's folder (for sidecar files).
 std::string inUserTerms(const StagedFile& file, std::string message);
 
+// Throws Error, naming `option`, for a GDAL virtual path (/vsimem/, /vsizip/...): outputs are
+// staged and moved into place as files, which those are not.
+void refuseVirtualPath(const std::string& path, const std::string& option);
+
 // Whether the disk that holds `folder` is full (under 1 MB left to this process): a failed
 // write says so, as GDAL's drivers do not ("WriteEncodedTile/Strip() failed").
 bool diskFull(const std::filesystem::path& folder);
