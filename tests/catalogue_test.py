@@ -80,4 +80,15 @@ with tempfile.TemporaryDirectory() as folder:
     check("a catalogue that fails while being written leaves neither it nor its partial file",
           raised and not os.path.exists(broken) and not os.path.exists(broken + ".partial.gpkg"), os.listdir(folder))
 
+    # A full disk at a tile's update: said as such, with what to do (SQLite said "database or
+    # disk is full" of no file).
+    real_usage = catalogue_module.shutil.disk_usage
+    catalogue_module.shutil.disk_usage = lambda _: real_usage(folder)._replace(free=4096)
+    said = catalogue_module.write_failure(path, RuntimeError("failed to execute update : database or disk is full"))
+    catalogue_module.shutil.disk_usage = real_usage
+    check("a full disk under the catalogue is said as such, with what to do",
+          said == "the disk is full: make room and run tinlod-tiles again, which keeps the finished tiles", said)
+    check("another failure keeps its own words",
+          catalogue_module.write_failure(path, RuntimeError(" no such table \n")) == "no such table")
+
 sys.exit(exit_code("catalogue"))

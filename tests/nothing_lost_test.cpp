@@ -186,11 +186,20 @@ TEST(NothingLost, AFullDiskIsSaidInOneLine) {
   const CliRun raster = tinlod("accuracy -q -step 1 " + built + "/d.tif " + built + "/h.gpkg -accuracy " + dir + "/a.tif");
   const CliRun tin = tinlod("sample -q " + built + "/d.tif " + dir + "/t.gpkg");
   const CliRun lod = tinlod("lod -q -max_error 5 " + built + "/h.gpkg " + dir + "/l.gpkg");
+  {  // the last bytes too: a report is small
+    std::ofstream rest(dir + "/rest");
+    for (int k = 0; k < 1024 && rest; ++k) rest << std::string(4096, 'x') << std::flush;
+  }
+  const CliRun report = tinlod("accuracy -q " + built + "/d.tif " + built + "/h.gpkg -report " + dir + "/r.html");
+  const CliRun dem = tinlod("makedem " + dir + "/m.tif");
   fs::remove(dir + "/fill");
+  fs::remove(dir + "/rest");
   const auto left = snapshot(dir);
   umount(dir.c_str());
   EXPECT_EQ(raster.exitCode, 1);
   EXPECT_EQ(raster.err, "ERROR: -accuracy: cannot write the accuracy raster '" + dir + "/a.tif': the disk is full\n");
+  EXPECT_EQ(report.err, "ERROR: -report: cannot write '" + dir + "/r.html': the disk is full\n");
+  EXPECT_TRUE(has(dem.err, "ERROR: cannot write '" + dir + "/m.tif': the disk is full\n")) << dem.err;  // after progress
   for (const CliRun& r : {tin, lod}) {
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_EQ(r.err.rfind("ERROR: ", 0), 0u) << r.err;

@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 
 #include "accuracy_report_formats.h"
 #include "tinlod/error.h"
+#include "tinlod/output_files.h"
 
 namespace fs = std::filesystem;
 
@@ -55,10 +57,11 @@ void writeAccuracyReport(const AccuracyReport& report, const std::string& path) 
 }
 
 void writeAccuracyReport(const AccuracyReport& report, const StagedFile& file) {
+  errno = 0;
   std::ofstream out(file.staging, std::ios::binary);
   writerFor(file.path)(report, out);
   out.close();
-  if (!out) throw Error(file.option + ": cannot write '" + file.path + "' (is the disk full?)");
+  if (!out) throw Error(file.option + ": cannot write '" + file.path + "': " + whyWriteFailed(file.staging.parent_path()));
 }
 
 bool isAccuracyReportPath(const std::string& path) { return writerFor(path) != nullptr; }

@@ -2,6 +2,7 @@
 #include "tinlod/build_job.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "tinlod/dem_reader.h"
 #include "tinlod/hierarchy_builder.h"
 #include "tinlod/hierarchy_writer.h"
+#include "tinlod/output_files.h"
 #include "tinlod/point_reader.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/tile_reader.h"
@@ -298,9 +300,11 @@ BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, c
                                      tile.size > 0 ? &borders : nullptr);
   const std::string partial = outPath + ".partial";
   {
+    errno = 0;
     std::ofstream out(partial);
     out << surveyJson(h.survey, outline);
-    if (!out) throw Error("cannot write '" + partial + "'");
+    out.close();
+    if (!out) throw Error("cannot write '" + partial + "': " + whyWriteFailed(std::filesystem::path(partial).parent_path()));
   }
   std::filesystem::rename(partial, outPath);
   all.finish("Done");

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "lod_part_files.h"
 
+#include <cerrno>
 #include <fstream>
 #include <string>
 #include <type_traits>
 
 #include "tinlod/error.h"
+#include "tinlod/output_files.h"
 
 namespace tinlod {
 namespace fs = std::filesystem;
@@ -55,10 +57,11 @@ LodPartFiles::~LodPartFiles() {
 fs::path LodPartFiles::fileOf(std::size_t tile) const { return folder_ / ("tile_" + std::to_string(tile) + ".part"); }
 
 void LodPartFiles::write(std::size_t tile, const TileLodPart& part) const {
+  errno = 0;
   std::ofstream out(fileOf(tile), std::ios::binary | std::ios::trunc);
   eachArray(part, [&out](const auto& values) { put(out, values); });
   out.close();
-  if (!out) throw Error("cannot write a tile's part of the output in '" + folder_.string() + "': is the disk full?");
+  if (!out) throw Error("cannot write a tile's part of the output in '" + folder_.string() + "': " + whyWriteFailed(folder_));
 }
 
 TileLodPart LodPartFiles::read(std::size_t tile) const {

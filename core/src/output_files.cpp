@@ -230,6 +230,12 @@ bool diskFull(const fs::path& folder) {
   return (geteuid() == 0 ? space.free : space.available) < (1u << 20);
 }
 
+std::string whyWriteFailed(const fs::path& folder) {
+  const int error = errno;
+  if (diskFull(folder)) return "the disk is full";
+  return error != 0 ? std::strerror(error) : "the write failed";
+}
+
 bool abandonStagedOutputs() {
   StagingFolder::removeAllLive();
   return committedOnce();

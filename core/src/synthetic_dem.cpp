@@ -123,7 +123,8 @@ void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite, co
   ds.reset();  // closing writes the last blocks
   CPLPopErrorHandler();
   if (err != CE_None || CPLGetLastErrorType() >= CE_Failure)
-    throw Error("cannot write '" + path + "': " + inUserTerms(file, CPLGetLastErrorMsg()));
+    throw Error("cannot write '" + path + "': " +
+                (diskFull(file.staging.parent_path()) ? "the disk is full" : inUserTerms(file, CPLGetLastErrorMsg())));
   files.commit();
 }
 

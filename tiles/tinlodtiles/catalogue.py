@@ -7,6 +7,7 @@ stopped anyhow leaves a catalogue that says which tiles are finished.
 """
 import os
 import shlex
+import shutil
 import time
 
 from osgeo import ogr, osr
@@ -165,9 +166,13 @@ class Catalogue:
                 feature.SetField(name, value)
         if extent is not None:
             feature.SetGeometry(extent)
-        self.dataset.StartTransaction()
-        self.layer.SetFeature(feature)
-        self.dataset.CommitTransaction()
+        try:
+            self.dataset.StartTransaction()
+            self.layer.SetFeature(feature)
+            self.dataset.CommitTransaction()
+        except RuntimeError as e:
+            raise TilesError("cannot update the catalogue %s (tile %d,%d): %s" % (
+                self.dataset.GetDescription(), col, row, write_failure(self.dataset.GetDescription(), e))) from None
 
     def feature(self, col, row):
         if (col, row) not in self.fids:
@@ -210,6 +215,18 @@ class Catalogue:
     def close(self):
         self.dataset.FlushCache()
         self.dataset = self.layer = None
+
+
+def write_failure(path, error):
+    """Why a write to `path` failed: SQLite's "database or disk is full" names no file and
+    leaves the user guessing which; a full disk is said as such, with what to do."""
+    try:
+        full = shutil.disk_usage(os.path.dirname(os.path.abspath(path)) or ".").free < 1 << 20
+    except OSError:
+        full = False
+    if full:
+        return "the disk is full: make room and run tinlod-tiles again, which keeps the finished tiles"
+    return str(error).strip()
 
 
 def write_new(path, settings, srs, tiles):

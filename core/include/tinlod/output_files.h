@@ -76,6 +76,10 @@ void refuseVirtualPath(const std::string& path, const std::string& option);
 // write says so, as GDAL's drivers do not ("WriteEncodedTile/Strip() failed").
 bool diskFull(const std::filesystem::path& folder);
 
+// Why a write into `folder` just failed, for a message: "the disk is full", or the system's
+// reason (errno) as far as it gave one.
+std::string whyWriteFailed(const std::filesystem::path& folder);
+
 // Whether `a` and `b` name the same file (hard links, symbolic links, ./ and ../ alike).
 bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b);
 
