@@ -295,12 +295,13 @@ def border_agreement(base, options, work, env):
           metadata.get("TINLOD_BORDER_KEPT"))
 
 
-def ctrl_c(dem, tiles, work, env, stop=signal.SIGINT):
+def ctrl_c(dem, tiles, work, env, stop=signal.SIGINT, started_ignoring=False):
     """(i) Ctrl-C while tiles are being built: the run stops at once (exit 130), the tiles'
     tinlods end with it, and the tiles stay pending. The tinlod here sleeps, so that only
     the stop can end the tasks. SIGTERM (a batch scheduler's) and SIGHUP (a closed
-    terminal) stop it alike."""
-    name = signal.Signals(stop).name
+    terminal) stop it alike, and so does SIGINT where a script's shell started the run in
+    the background, ignoring SIGINT (`started_ignoring`), as it stops tinlod."""
+    name = signal.Signals(stop).name + ("_ignored" if started_ignoring else "")
     sleeper, pids = os.path.join(work, "sleeping_tinlod"), os.path.join(work, "sleeping_%s.pids" % name)
     with open(sleeper, "w") as f:
         # -check and --version (which the driver asks beside the checks) answer at once.
@@ -309,7 +310,8 @@ def ctrl_c(dem, tiles, work, env, stop=signal.SIGINT):
     os.chmod(sleeper, 0o755)
     catalogue = os.path.join(work, "g_%s.gpkg" % name)
     driver = subprocess.Popen([tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-workers", "2", "-selection", "tile",
-                               "-tinlod", sleeper], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+                               "-tinlod", sleeper], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                              preexec_fn=(lambda: signal.signal(signal.SIGINT, signal.SIG_IGN)) if started_ignoring else None)
     started = []
     deadline = time.monotonic() + 60
     while len(started) < 2 and time.monotonic() < deadline and driver.poll() is None:
@@ -1063,6 +1065,7 @@ def main(tinlod, tiles):
     border_agreement(base, options, work, env)
     for stop in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         ctrl_c(dem, tiles, work, env, stop)
+    ctrl_c(dem, tiles, work, env, signal.SIGINT, started_ignoring=True)
     hangup_under_nohup(dem, tiles, work, env)
     hangup_of_the_terminal(dem, tiles, work, env)
     ctrl_c_in_survey(tinlod, dem, tiles, work, env)

@@ -23,6 +23,10 @@ def main(args):
     ogr.UseExceptions()
     guard_terminal_streams(sys)
     stop_as_ctrl_c(signal.SIGTERM, signal.SIGHUP)
+    # A shell starts a script's background job with SIGINT ignored, and Python then raises no
+    # KeyboardInterrupt: caught as tinlod catches it, so that `kill -INT` stops both alike.
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
     merging = args[0] == "merge"
     try:
         if merging:
