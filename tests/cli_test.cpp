@@ -1319,6 +1319,13 @@ TEST(Cli, ADemTooLargeForTheMachinesMemoryIsRefusedBeforeItIsRead) {
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10) << command;
     EXPECT_FALSE(fs::exists(dir + "/out.gpkg")) << command;
   }
+  // accuracy reads the DEM whole too (a catalogue's, a tile at a time).
+  ASSERT_EQ(tinlod("build -q -max_levels 1 " + defaultDem() + " " + dir + "/h.gpkg").exitCode, 0);
+  const CliRun accuracy = tinlod("accuracy " + dir + "/huge.vrt " + dir + "/h.gpkg -report " + dir + "/r.csv");
+  EXPECT_EQ(accuracy.exitCode, 1);
+  EXPECT_TRUE(has(accuracy.err, cells + "measuring the accuracy against it holds about 152 TB for them (38 bytes a cell)"))
+      << accuracy.err;
+  EXPECT_FALSE(fs::exists(dir + "/r.csv"));
   // build -check says what the build would stop with.
   const CliRun check = tinlod("build -check " + dir + "/huge.vrt " + dir + "/out.gpkg");
   EXPECT_EQ(check.exitCode, 1);
