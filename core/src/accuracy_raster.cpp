@@ -162,8 +162,8 @@ void writeRasterWindow(GDALRasterBand& band, const Grid& grid, const TestRect& r
 }
 
 Error rasterWriteError(const StagedFile& file) {
-  const std::string why = diskFull(file.staging.parent_path()) ? "the disk is full" : inUserTerms(file, CPLGetLastErrorMsg());
-  return Error(file.option + ": cannot write the accuracy raster '" + file.path + "': " + why);
+  return Error(file.option + ": cannot write the accuracy raster '" + file.path +
+               "': " + writeFailureInUserTerms(file, CPLGetLastErrorMsg()));
 }
 
 void closeRaster(DatasetPtr& out, const StagedFile& file) {

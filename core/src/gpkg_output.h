@@ -80,10 +80,7 @@ class GpkgOutput {
   std::vector<std::string> withoutCrs_;  // bulk layers made without a CRS
   std::unique_ptr<SqliteDatabase> db_;
   bool vacuum_ = false;
-  // GDAL's message in the user's terms; on a full disk, that (GDAL says "no such table").
-  std::string said(const std::string& gdalMessage) const {
-    return diskFull(file_.staging.parent_path()) ? "the disk is full" : inUserTerms(file_, gdalMessage);
-  }
+  std::string said(const std::string& gdalMessage) const { return writeFailureInUserTerms(file_, gdalMessage); }
   StagedFile file_;
   GpkgWriteOptions options_;
   GDALDataset* ds_ = nullptr;

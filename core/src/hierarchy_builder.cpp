@@ -28,6 +28,7 @@ using Clock = std::chrono::steady_clock;
 // Not yet replaced (a triangle) or deleted (a vertex): above every level there may be.
 constexpr std::int32_t kOpenLevel = std::numeric_limits<std::int16_t>::max();
 static_assert(kOpenLevel > kMaxLevel, "an open level must lie above every level");
+constexpr std::size_t kMinLevelShare = 100;  // a level must delete at least 1 / 100 of its vertices
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 

@@ -24,6 +24,15 @@ std::atomic<bool>& committed() {
 }
 bool committedOnce() { return committed(); }
 
+// Whether the disk that holds `folder` is full (under 1 MB left to this process).
+bool diskFull(const fs::path& folder) {
+  std::error_code ec;
+  const fs::space_info space = fs::space(folder, ec);
+  if (ec) return false;
+  // Root may write into the blocks a file system keeps back from the others.
+  return (geteuid() == 0 ? space.free : space.available) < (1u << 20);
+}
+
 fs::path folderOf(const fs::path& p) { return p.parent_path().empty() ? fs::path(".") : p.parent_path(); }
 
 // A symbolic link as output is followed, so its target is what gets replaced.
@@ -222,12 +231,8 @@ std::string inUserTerms(const StagedFile& file, std::string message) {
   return message;
 }
 
-bool diskFull(const fs::path& folder) {
-  std::error_code ec;
-  const fs::space_info space = fs::space(folder, ec);
-  if (ec) return false;
-  // Root may write into the blocks a file system keeps back from the others.
-  return (geteuid() == 0 ? space.free : space.available) < (1u << 20);
+std::string writeFailureInUserTerms(const StagedFile& file, const std::string& driverMessage) {
+  return diskFull(file.staging.parent_path()) ? "the disk is full" : inUserTerms(file, driverMessage);
 }
 
 std::string whyWriteFailed(const fs::path& folder) {

@@ -123,8 +123,7 @@ void writeDemGeoTiff(const Dem& dem, const std::string& path, bool overwrite, co
   ds.reset();  // closing writes the last blocks
   CPLPopErrorHandler();
   if (err != CE_None || CPLGetLastErrorType() >= CE_Failure)
-    throw Error("cannot write '" + path + "': " +
-                (diskFull(file.staging.parent_path()) ? "the disk is full" : inUserTerms(file, CPLGetLastErrorMsg())));
+    throw Error("cannot write '" + path + "': " + writeFailureInUserTerms(file, CPLGetLastErrorMsg()));
   files.commit();
 }
 

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <cmath>
-#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -13,10 +12,6 @@ namespace tinlod {
 // The finest level is 0, the coarsest at most kMaxLevel: a hierarchy's triangles keep
 // their levels in 16 bits.
 constexpr int kMaxLevel = 32766;
-
-// A level is made only when it deletes at least 1 / kMinLevelShare of its vertices (rounded
-// down); outside a tile, the builder stops before one that would delete fewer.
-constexpr std::size_t kMinLevelShare = 100;
 
 // Options of the delete simplification, shared by `tinlod build` and the QGIS algorithm.
 struct HierarchyOptions {

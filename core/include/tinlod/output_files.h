@@ -72,9 +72,10 @@ std::string inUserTerms(const StagedFile& file, std::string message);
 // staged and moved into place as files, which those are not.
 void refuseVirtualPath(const std::string& path, const std::string& option);
 
-// Whether the disk that holds `folder` is full (under 1 MB left to this process): a failed
-// write says so, as GDAL's drivers do not ("WriteEncodedTile/Strip() failed").
-bool diskFull(const std::filesystem::path& folder);
+// A driver's message on a failed write of `file`, in the user's terms (inUserTerms); on a
+// full disk, that, which drivers word every way ("no such table", "WriteEncodedTile/Strip()
+// failed").
+std::string writeFailureInUserTerms(const StagedFile& file, const std::string& driverMessage);
 
 // Why a write into `folder` just failed, for a message: "the disk is full", or the system's
 // reason (errno) as far as it gave one.
