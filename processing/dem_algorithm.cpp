@@ -26,6 +26,14 @@ std::string targetSrs(const QgsCoordinateReferenceSystem& crs) {
   return srsText(crs);
 }
 
+// QGIS reads a PROJ string only after "PROJ:" and takes anything it cannot read as no CRS at
+// all: the run went on in the automatic CRS. Such text goes to the core as -t_srs does, which
+// reads what GDAL reads (the "+proj=..." its warnings advise) and refuses the rest by name.
+std::string targetSrs(const QgsCoordinateReferenceSystem& crs, const QVariant& value) {
+  if (crs.isValid() || value.userType() != QMetaType::QString) return targetSrs(crs);
+  return value.toString().trimmed().toStdString();
+}
+
 // A CRS the user gave the layer in QGIS (Layer Properties, or QGIS's question for a file
 // without one) where its file has none or another: the DEM's, as -s_srs on the command line.
 std::string assignedSrs(QgsRasterLayer& layer) {
@@ -79,7 +87,8 @@ void DemAlgorithm::readDemAndSamplingParameters(const QVariantMap& parameters, Q
   sample_.block = parameterAsInt(parameters, QStringLiteral("BLOCK"), context);
   sample_.jitter = parameterAsDouble(parameters, QStringLiteral("JITTER"), context);
   sample_.seed = static_cast<std::uint64_t>(parameterAsInt(parameters, QStringLiteral("SEED"), context));
-  sample_.targetSrs = targetSrs(parameterAsCrs(parameters, QStringLiteral("TARGET_CRS"), context));
+  sample_.targetSrs = targetSrs(parameterAsCrs(parameters, QStringLiteral("TARGET_CRS"), context),
+                                parameters.value(QStringLiteral("TARGET_CRS")));
 }
 
 void DemAlgorithm::readDemParameters(const QVariantMap& parameters, QgsProcessingContext& context, int emptyBand) {
@@ -132,8 +141,8 @@ QString DemAlgorithm::samplingHelp() {
       "the target CRS given, which must be projected and in metres. A DEM without a CRS is taken "
       "as metric.\n\n"
       "Band: empty means band 1. Target CRS: empty means automatic (the DEM's own CRS when it is "
-      "metric, else the UTM zone of its centre); a CRS that distorts distances by more than 1 % "
-      "there draws a warning.");
+      "metric, else the UTM zone of its centre); a CRS that stretches distances by more than 1 % "
+      "over the DEM draws a warning naming one to use.");
 }
 
 ParameterNames DemAlgorithm::demParameterNames(const ParameterNames& more) {

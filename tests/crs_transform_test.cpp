@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "crs_scale.h"
 #include "test_support.h"
 #include "tinlod/crs_transform.h"
 #include "tinlod/error.h"
@@ -95,11 +96,108 @@ TEST(Crs, DistortingCrsDrawsAWarningNamingTheUtmZone) {
   test::RecordingFeedback fb;
   CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
   ASSERT_EQ(fb.warnings.size(), 1u);
-  EXPECT_TRUE(fb.warned("stretches distances by 27 %")) << fb.warnings[0];
+  EXPECT_TRUE(fb.warned("stretches distances by up to 27 %")) << fb.warnings[0];
   EXPECT_TRUE(fb.warned("-t_srs EPSG:32610")) << fb.warnings[0];
   test::RecordingFeedback utm;
   CrsTransform::forDem(dem, "", "EPSG:32610", ProgressRange(utm.feedback(), 0, 1));
   EXPECT_TRUE(utm.warnings.empty());
+}
+
+namespace {
+
+// A DEM in degrees spanning lon0..lon1 and lat0..lat1 (5 x 5 cells).
+Dem degreeDem(double lon0, double lon1, double lat0, double lat1) {
+  Dem dem = test::makeDem(5, 5, 10, [](int, int) { return 1.0f; });
+  dem.geotransform = {lon0, (lon1 - lon0) / 5, 0.0, lat1, 0.0, -(lat1 - lat0) / 5};
+  dem.crsWkt = test::wktOf(4326);
+  return dem;
+}
+
+// The CRS a warning advises: the text between the quotes after -t_srs.
+std::string advisedCrs(const std::string& warning) {
+  const std::size_t start = warning.find("-t_srs '");
+  if (start == std::string::npos) return {};
+  const std::size_t end = warning.find('\'', start + 8);
+  return warning.substr(start + 8, end - start - 8);
+}
+
+std::vector<LonLat> denseGrid(double lon0, double lon1, double lat0, double lat1) {
+  std::vector<LonLat> points;
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j <= 40; ++j) points.push_back({lon0 + (lon1 - lon0) * j / 40, lat0 + (lat1 - lat0) * i / 40});
+  return points;
+}
+
+}  // namespace
+
+TEST(CrsScale, WorstScaleErrorIsProjsScaleFactor) {
+  // UTM's scale factor on its central meridian; Mercator's sqrt(1 - e2 sin2 lat) / cos lat at 60 N.
+  EXPECT_NEAR(worstScaleError("EPSG:32632", {{9.0, 0.0}}), 0.0004, 1e-9);
+  const double e2 = 0.00669437999014, s2 = 0.75;
+  EXPECT_NEAR(worstScaleError("+proj=merc +k=1 +datum=WGS84 +type=crs", {{0.0, 0.0}, {10.0, 60.0}}),
+              std::sqrt(1 - e2 * s2) / 0.5 - 1, 1e-9);
+  EXPECT_EQ(worstScaleError("not a crs", {{0.0, 0.0}}), 0.0);
+}
+
+TEST(CrsScale, AFittedCrsShrinksAsMuchAsItStretches) {
+  // On the equator and at 10 N a Mercator's scales are 1 and 1/cos 10 (nearly): balanced about
+  // 1, each is off by their half-difference over their half-sum, whatever the longitudes.
+  const std::vector<LonLat> band = {{-2, 0}, {2, 0}, {-2, 10}, {2, 10}, {0, 5}};
+  const FittedCrs fitted = fittedCrs(band, {0, 5});
+  const double high = std::sqrt(1 - 0.00669437999014 * std::pow(std::sin(10 * M_PI / 180), 2)) / std::cos(10 * M_PI / 180);
+  EXPECT_LE(fitted.error, (high - 1) / (high + 1) + 1e-6);  // a Mercator's, or better
+  EXPECT_NEAR(worstScaleError(fitted.definition + " +type=crs", band), fitted.error, 1e-12);
+}
+
+TEST(Crs, ADemWiderThanAUtmZoneIsWarnedOfWithACrsThatFitsIt) {
+  // 60 degrees of longitude at 30-40 N: UTM zone 32N is true to scale at the centre, 12 % off at the sides.
+  const Dem dem = degreeDem(-20, 40, 30, 40);
+  test::RecordingFeedback fb;
+  CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
+  ASSERT_EQ(fb.warnings.size(), 1u);
+  EXPECT_TRUE(fb.warned("UTM zone 32N (EPSG:32632) stretches distances by up to 12 % over the DEM")) << fb.warnings[0];
+  EXPECT_TRUE(fb.warned("(a Lambert conformal conic fitted to the DEM, within 0.2 %)")) << fb.warnings[0];
+  const std::string advised = advisedCrs(fb.warnings[0]);
+  ASSERT_NE(advised.find("+proj=lcc"), std::string::npos) << fb.warnings[0];
+  // Within what it says everywhere over the DEM, not only at the points weighed.
+  EXPECT_LE(worstScaleError(advised + " +type=crs", denseGrid(-20, 40, 30, 40)), 0.0025);
+  test::RecordingFeedback taken;
+  const CrsTransform t = CrsTransform::forDem(dem, "", advised, ProgressRange(taken.feedback(), 0, 1));
+  EXPECT_TRUE(taken.warnings.empty()) << taken.warnings[0];
+  EXPECT_EQ(t.targetName().rfind("'+proj=lcc ", 0), 0u) << t.targetName();  // named by its PROJ string, not "unknown"
+}
+
+TEST(Crs, ADemAcrossTheAntimeridianIsFittedAboutItsCentre) {
+  // 170 E to 160 W: the centre, 175 W, is in zone 1, whose meridian is 2 degrees west of it.
+  const Dem dem = degreeDem(170, 200, 0, 10);
+  test::RecordingFeedback fb;
+  CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
+  ASSERT_EQ(fb.warnings.size(), 1u);
+  EXPECT_TRUE(fb.warned("UTM zone 1N (EPSG:32601) stretches distances by up to")) << fb.warnings[0];
+  EXPECT_NE(advisedCrs(fb.warnings[0]).find("+lon_0=-175 "), std::string::npos) << fb.warnings[0];
+  test::RecordingFeedback taken;
+  CrsTransform::forDem(dem, "", advisedCrs(fb.warnings[0]), ProgressRange(taken.feedback(), 0, 1));
+  EXPECT_TRUE(taken.warnings.empty());
+}
+
+TEST(Crs, ADemWithinItsUtmZonesReachIsNotWarnedOf) {
+  // 14 degrees of longitude at 58-62 N are within 420 km of zone 33's meridian (0.2 % at most).
+  test::RecordingFeedback fb;
+  CrsTransform::forDem(degreeDem(5, 19, 58, 62), "", "", ProgressRange(fb.feedback(), 0, 1));
+  EXPECT_TRUE(fb.warnings.empty()) << fb.warnings[0];
+}
+
+TEST(Crs, AContinentNoCrsKeepsTrueToScaleIsSaidToBeSo) {
+  // Antarctica in its polar stereographic CRS, 6000 km across: 2.7 % short at the pole, longer
+  // at the corners; a fitted stereographic would still be off by over 5 %.
+  Dem dem = test::makeDem(5, 5, 10, [](int, int) { return 1.0f; });
+  dem.geotransform = {-3000000.0, 1200000.0, 0.0, 3000000.0, 0.0, -1200000.0};
+  dem.crsWkt = test::wktOf(3031);
+  test::RecordingFeedback fb;
+  CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
+  ASSERT_EQ(fb.warnings.size(), 1u);
+  EXPECT_TRUE(fb.warned("Antarctic Polar Stereographic (EPSG:3031) stretches distances by up to")) << fb.warnings[0];
+  EXPECT_TRUE(fb.warned("no CRS keeps a DEM this large within 1 % of true scale")) << fb.warnings[0];
 }
 
 TEST(Crs, TargetSrsIsUsed) {

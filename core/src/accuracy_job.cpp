@@ -15,6 +15,7 @@
 #include "catalogue_hierarchy.h"
 #include "dataset_files.h"
 #include "insertion_levels.h"
+#include "layer_crs.h"
 #include "tile_catalogue.h"
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
@@ -43,7 +44,7 @@ std::string demName(const std::string& path) { return std::filesystem::path(path
 
 std::string crsNameOf(const std::string& wkt) {
   OGRSpatialReference srs;
-  if (!wkt.empty() && srs.importFromWkt(wkt.c_str()) == OGRERR_NONE && srs.GetName()) return srs.GetName();
+  if (!wkt.empty() && srs.importFromWkt(wkt.c_str()) == OGRERR_NONE) return crsLabel(srs);
   return "no CRS";
 }
 

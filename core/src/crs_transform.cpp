@@ -3,12 +3,13 @@
 
 #include <cpl_error.h>
 #include <ogr_spatialref.h>
-#include <proj.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "crs_scale.h"
 #include "gdal_handles.h"
+#include "layer_crs.h"
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
@@ -25,7 +26,7 @@ struct CrsTransform::Impl {
 namespace {
 
 std::string describe(const OGRSpatialReference& srs) {
-  std::string name = srs.GetName() ? srs.GetName() : "unnamed CRS";
+  std::string name = crsLabel(srs);
   const char* authority = srs.GetAuthorityName(nullptr);
   const char* code = srs.GetAuthorityCode(nullptr);
   if (authority && code) name += std::string(" (") + authority + ":" + code + ")";
@@ -99,55 +100,89 @@ void warnAboutMissingCrs(const Dem& dem, const ProgressRange& progress) {
     progress.warn("'" + dem.path + "' has no CRS: its x and y units are taken as metres");
 }
 
-// The larger of the meridional and parallel scale errors of a projected CRS at a point,
-// from PROJ: 0.27 for Web Mercator at San Francisco, 0.001 at the edge of a UTM zone.
-double scaleError(const std::string& wkt, double lon, double lat) {
-  PJ_CONTEXT* ctx = proj_context_create();
-  PJ* crs = proj_create(ctx, wkt.c_str());
-  double error = 0;
-  if (crs) {
-    const PJ_FACTORS f = proj_factors(crs, proj_coord(proj_torad(lon), proj_torad(lat), 0, 0));
-    if (proj_errno(crs) == 0)
-      error = std::max(std::fabs(f.meridional_scale - 1), std::fabs(f.parallel_scale - 1));
-    proj_destroy(crs);
-  }
-  proj_context_destroy(ctx);
-  return error;
+// The DEM's extent as a 9 x 9 grid of points, corners and edges included, in its CRS.
+void extentGrid(const Dem& dem, std::vector<double>& x, std::vector<double>& y) {
+  const std::array<double, 6>& gt = dem.wholeGeotransform();  // a tile weighs its whole raster
+  constexpr int kSteps = 8;
+  for (int i = 0; i <= kSteps; ++i)
+    for (int j = 0; j <= kSteps; ++j) {
+      x.push_back(gt[0] + dem.wholeWidth() * gt[1] * j / kSteps);
+      y.push_back(gt[3] + dem.wholeHeight() * gt[5] * i / kSteps);
+    }
 }
 
 // A UTM zone stretches distances by under 0.3 % within 500 km of its central meridian:
 // far below the 1 % worth a warning, so PROJ's scale factors, which cost a PROJ
 // database context and a search for operations of their own, are not needed.
-bool nearUtmMeridian(const OGRSpatialReference& dst, const Dem& dem, const CrsTransform& toTin) {
+bool withinUtmZone(const OGRSpatialReference& dst, std::vector<double> x, std::vector<double> y,
+                   const CrsTransform& toTin) {
   if (dst.GetUTMZone() == 0) return false;
-  const std::array<double, 6>& gt = dem.wholeGeotransform();
-  std::vector<double> x{gt[0] + 0.5 * dem.wholeWidth() * gt[1]};
-  std::vector<double> y{gt[3] + 0.5 * dem.wholeHeight() * gt[5]};
   try {
     toTin.apply(x, y);
   } catch (const Error&) {
     return false;
   }
-  return std::fabs(x[0] - 500000.0) <= 500000.0;
+  return std::all_of(x.begin(), x.end(), [](double e) { return std::fabs(e - 500000.0) <= 500000.0; });
+}
+
+std::vector<LonLat> lonLatOf(const OGRSpatialReference& src, std::vector<double> x, std::vector<double> y) {
+  std::vector<LonLat> out;
+  if (!src.IsGeographic()) {
+    std::unique_ptr<OGRSpatialReference> geog(src.CloneGeogCS());
+    if (!geog) return out;  // a local CRS is nowhere on Earth
+    geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&src, geog.get()));
+    std::vector<int> ok(x.size());
+    if (!ct || !ct->Transform(x.size(), x.data(), y.data(), nullptr, ok.data())) return out;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (ok[i]) out.push_back({x[i], y[i]});
+    return out;
+  }
+  for (std::size_t i = 0; i < x.size(); ++i) out.push_back({x[i], y[i]});
+  return out;
+}
+
+std::string percentText(double fraction) {
+  const double percent = fraction * 100;
+  return formatNumber(percent >= 10 ? std::round(percent) : std::round(percent * 10) / 10) + " %";
+}
+
+// What to do about a CRS that stretches a DEM too much: a UTM zone when one fits it, else a
+// conformal CRS fitted to it, or the news that no CRS keeps a DEM this large true to scale.
+std::string scaleAdvice(const std::vector<LonLat>& points, LonLat centre, double error) {
+  const int utm = utmEpsgFor(centre.lon, centre.lat);
+  const double utmError = worstScaleError("EPSG:" + std::to_string(utm), points);
+  if (utmError <= 0.01) return "use -t_srs EPSG:" + std::to_string(utm) + " (the UTM zone of the centre)";
+  const FittedCrs fitted = fittedCrs(points, centre);
+  const std::string use = "-t_srs '" + fitted.definition + "' (" + fitted.kind + " fitted to the DEM";
+  if (fitted.error <= 0.01) return "use " + use + ", within " + percentText(fitted.error) + ")";
+  const std::string large = "no CRS keeps a DEM this large within 1 % of true scale";
+  if (fitted.error < 0.5 * error) return large + ": " + use + ") keeps it within " + percentText(fitted.error);
+  return large;
 }
 
 // Metres in a CRS that stretches distances are not metres on the ground: slopes, areas
-// and volumes come out wrong by the same factor.
+// and volumes come out wrong by the same factor. Measured over the whole extent: a DEM
+// wider than a UTM zone is true to scale at its centre and not at its sides.
 void warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpatialReference& dst,
                     const CrsTransform& toTin, const ProgressRange& progress) {
-  if (!dst.IsProjected() || nearUtmMeridian(dst, dem, toTin)) return;
-  double lon = 0, lat = 0;
+  if (!dst.IsProjected() || !dem.hasGeotransform) return;
+  std::vector<double> x, y;
+  extentGrid(dem, x, y);
+  if (withinUtmZone(dst, x, y, toTin)) return;
+  const std::vector<LonLat> points = lonLatOf(src, x, y);
+  if (points.empty()) return;
+  const double error = worstScaleError(toTin.targetWkt(), points);
+  if (error <= 0.01) return;
+  LonLat centre;
   try {
-    centreLonLat(dem, src, lon, lat);
+    centreLonLat(dem, src, centre.lon, centre.lat);
   } catch (const Error&) {
     return;
   }
-  const double error = scaleError(toTin.targetWkt(), lon, lat);
-  if (error <= 0.01) return;
-  const int percent = static_cast<int>(std::lround(error * 100));
-  progress.warn(describe(dst) + " stretches distances by " + std::to_string(percent) +
-                " % at the DEM's centre, so slopes, areas and volumes of the TIN are off by as much: "
-                "use -t_srs EPSG:" + std::to_string(utmEpsgFor(lon, lat)) + " (the UTM zone of the centre)");
+  progress.warn(describe(dst) + " stretches distances by up to " + percentText(error) +
+                " over the DEM, so slopes, areas and volumes of the TIN are off by as much: " +
+                scaleAdvice(points, centre, error));
 }
 
 OGRSpatialReference parseTarget(const std::string& targetSrs) {

@@ -117,7 +117,7 @@ HierarchyInfo catalogueInfo(GDALDataset& ds, HierarchyInfo info) {
   info.kind = "catalogue";
   if (OGRLayer* tiles = ds.GetLayerByName("tiles")) {
     const OGRSpatialReference* srs = layerCrs(*tiles);
-    info.crsName = !srs ? "no CRS" : srs->GetName() ? srs->GetName() : "";
+    info.crsName = !srs ? "no CRS" : crsLabel(*srs);
   }
   for (int i = 0; i < ds.GetLayerCount(); ++i) info.layers.push_back(ds.GetLayer(i)->GetName());
   info.bytes = std::filesystem::file_size(info.path);
@@ -192,7 +192,7 @@ HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
     throw Error("'" + path + "' was not written by tinlod (no tinlod metadata or triangles layer)");
   info.kind = info.metadata.count("kind") ? info.metadata["kind"] : "tin";
   const OGRSpatialReference* srs = layerCrs(*ds->GetLayerByName("triangles"));
-  info.crsName = !srs ? "no CRS" : srs->GetName() ? srs->GetName() : "";
+  info.crsName = !srs ? "no CRS" : crsLabel(*srs);
   for (int i = 0; i < ds->GetLayerCount(); ++i) info.layers.push_back(ds->GetLayer(i)->GetName());
   readLevels(*ds, info);
   info.bytes = std::filesystem::file_size(path);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "layer_crs.h"
 
+#include <cpl_conv.h>
+
 #include <cstring>
 
 namespace tinlod {
@@ -12,6 +14,16 @@ const OGRSpatialReference* layerCrs(OGRLayer& layer) {
       std::strcmp(layer.GetDataset() ? layer.GetDataset()->GetDriverName() : "", "GPKG") == 0)
     return nullptr;
   return srs;
+}
+
+std::string crsLabel(const OGRSpatialReference& srs) {
+  const char* name = srs.GetName();
+  if (name && *name && std::strcmp(name, "unknown") != 0) return name;
+  char* proj4 = nullptr;
+  std::string label = "an unnamed CRS";
+  if (srs.exportToProj4(&proj4) == OGRERR_NONE && proj4 && *proj4) label = std::string("'") + proj4 + "'";
+  CPLFree(proj4);
+  return label;
 }
 
 }  // namespace tinlod

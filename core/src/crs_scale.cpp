@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "crs_scale.h"
+
+#include <proj.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "text_and_paths.h"
+
+namespace tinlod {
+
+namespace {
+
+struct ScaleRange {
+  double low = std::numeric_limits<double>::infinity();
+  double high = -std::numeric_limits<double>::infinity();
+  bool empty() const { return low > high; }
+};
+
+using PjPtr = std::unique_ptr<PJ, decltype(&proj_destroy)>;
+
+// The projection of a projected CRS, taking radians as proj_factors gives them: proj_factors
+// on the CRS itself looks an operation up again at every point (15 ms each), and the CRS's
+// own conversion takes degrees in the CRS's axis order.
+PjPtr projectionOf(PJ_CONTEXT* ctx, const std::string& definition) {
+  PjPtr pj(proj_create(ctx, definition.c_str()), proj_destroy);
+  if (!pj || !proj_is_crs(pj.get())) return pj;
+  if (proj_get_type(pj.get()) == PJ_TYPE_BOUND_CRS) pj = PjPtr(proj_get_source_crs(ctx, pj.get()), proj_destroy);
+  if (!pj || proj_get_type(pj.get()) != PJ_TYPE_PROJECTED_CRS) return PjPtr(nullptr, proj_destroy);
+  const char* text = proj_as_proj_string(ctx, pj.get(), PJ_PROJ_5, nullptr);
+  std::string projection = text ? text : "";
+  const std::size_t type = projection.find(" +type=crs");
+  if (type != std::string::npos) projection.erase(type, 10);
+  return PjPtr(projection.empty() ? nullptr : proj_create(ctx, projection.c_str()), proj_destroy);
+}
+
+ScaleRange scaleRange(const std::string& definition, const std::vector<LonLat>& points) {
+  ScaleRange range;
+  std::unique_ptr<PJ_CONTEXT, decltype(&proj_context_destroy)> ctx(proj_context_create(), proj_context_destroy);
+  proj_log_level(ctx.get(), PJ_LOG_NONE);  // a projection that cannot take a point says so by its errno
+  const PjPtr projection = projectionOf(ctx.get(), definition);
+  if (!projection) return range;
+  for (const LonLat& p : points) {
+    proj_errno_reset(projection.get());
+    const PJ_FACTORS f = proj_factors(projection.get(), proj_coord(proj_torad(p.lon), proj_torad(p.lat), 0, 0));
+    if (proj_errno(projection.get()) != 0 || !std::isfinite(f.meridional_scale) || !std::isfinite(f.parallel_scale)) continue;
+    range.low = std::min({range.low, f.meridional_scale, f.parallel_scale});
+    range.high = std::max({range.high, f.meridional_scale, f.parallel_scale});
+  }
+  return range;
+}
+
+double errorOf(const ScaleRange& range) {
+  return range.empty() ? 0 : std::max(std::fabs(range.low - 1), std::fabs(range.high - 1));
+}
+
+double wrapLongitude(double lon) { return std::remainder(lon, 360.0); }
+
+struct Candidate {
+  std::string kind;
+  std::string projection;  // without its scale factor and datum
+  std::string scaleKey;    // "+k" or "+k_0"
+};
+
+std::vector<Candidate> candidatesAbout(LonLat centre) {
+  const std::string lon0 = "+lon_0=" + formatNumber(std::round(wrapLongitude(centre.lon) * 1000) / 1000);
+  const std::string lat0 = formatNumber(std::round(centre.lat * 1000) / 1000);
+  std::vector<Candidate> out{{"a transverse Mercator", "+proj=tmerc +lat_0=0 " + lon0 + " +x_0=500000 +y_0=0", "+k"},
+                             {"a Mercator", "+proj=merc " + lon0 + " +x_0=0 +y_0=0", "+k"}};
+  // A cone on the equator is no cone.
+  if (std::fabs(centre.lat) >= 1)
+    out.push_back({"a Lambert conformal conic", "+proj=lcc +lat_0=" + lat0 + " +lat_1=" + lat0 + " " + lon0 + " +x_0=0 +y_0=0", "+k_0"});
+  if (std::fabs(centre.lat) >= 45)
+    out.push_back({"a polar stereographic", std::string("+proj=stere +lat_0=") + (centre.lat > 0 ? "90 " : "-90 ") + lon0 + " +x_0=0 +y_0=0", "+k"});
+  return out;
+}
+
+std::string withScale(const Candidate& c, double k) {
+  return c.projection + " " + c.scaleKey + "=" + formatNumber(k) + " +datum=WGS84 +units=m +no_defs";
+}
+
+}  // namespace
+
+double worstScaleError(const std::string& crsDefinition, const std::vector<LonLat>& points) {
+  return errorOf(scaleRange(crsDefinition, points));
+}
+
+FittedCrs fittedCrs(const std::vector<LonLat>& points, LonLat centre) {
+  FittedCrs best;
+  best.error = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : candidatesAbout(centre)) {
+    const ScaleRange unit = scaleRange(withScale(c, 1), points);
+    if (unit.empty()) continue;
+    // Balanced: the scale factor that makes the largest shrink equal the largest stretch.
+    const double k = std::round(2 / (unit.low + unit.high) * 1e6) / 1e6;
+    const std::string definition = withScale(c, k);
+    const double error = worstScaleError(definition, points);
+    if (error < best.error) best = {definition, c.kind, error};
+  }
+  return best;
+}
+
+}  // namespace tinlod

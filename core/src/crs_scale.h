@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tinlod {
+
+struct LonLat {
+  double lon = 0, lat = 0;  // degrees
+};
+
+// How far a projected CRS's scale strays from 1 at the points, from PROJ's scale factors:
+// the larger of the meridional and parallel errors (0.27 for Web Mercator at San Francisco,
+// 0.001 at the edge of a UTM zone). 0 when PROJ cannot tell.
+double worstScaleError(const std::string& crsDefinition, const std::vector<LonLat>& points);
+
+// A CRS for a DEM whose points a UTM zone stretches too much: the conformal one, among a
+// transverse Mercator, a Lambert conic, a Mercator and a polar stereographic centred on
+// the DEM, that strays least from true scale at the points, its scale factor chosen so
+// that it shrinks as much as it stretches.
+struct FittedCrs {
+  std::string definition;  // a PROJ string, as -t_srs takes it
+  std::string kind;        // "a Lambert conformal conic", for messages
+  double error = 0;        // worstScaleError at the points
+};
+FittedCrs fittedCrs(const std::vector<LonLat>& points, LonLat centre);
+
+}  // namespace tinlod
