@@ -327,8 +327,14 @@ TEST(Cli, BuildErrorsNameTheOption) {
 }
 
 TEST(Cli, GdalsOwnMessagesDoNotLeak) {
-  const CliRun r = tinlod("sample -t_srs EPSG:99999 " + defaultDem() + " " + test::tempDir() + "/tin.gpkg");
+  const std::string dir = test::tempDir();
+  const CliRun r = tinlod("sample -t_srs EPSG:99999 " + defaultDem() + " " + dir + "/tin.gpkg");
   EXPECT_EQ(r.err.find("ERROR 1:"), std::string::npos) << r.err;
+  // Into a GeoPackage ogr2ogr made (no gpkg_metadata table): "ERROR 1: ... no such table" on a run that went well.
+  ASSERT_EQ(std::system(("ogr2ogr -q -f GPKG " + dir + "/project.gpkg '{\"type\":\"Point\",\"coordinates\":[0,0]}' -nln pts").c_str()), 0);
+  const CliRun into = tinlod("sample -q -overwrite " + defaultDem() + " " + dir + "/project.gpkg");
+  EXPECT_EQ(into.exitCode, 0) << into.err;
+  EXPECT_EQ(into.err.find("ERROR"), std::string::npos) << into.err;
 }
 
 TEST(Cli, TermSignalStopsCleanlyWithNothingLeft) {

@@ -143,6 +143,9 @@ bool GpkgOutput::holdsOnly(const fs::path& path, const std::function<bool(const 
   // Every table and view, registered or not (QGIS keeps projects in a plain table), must be
   // the GeoPackage's own, an index's, or the job's; and the metadata only the job's items.
   std::vector<std::string> names;
+  // A GeoPackage without metadata (ogr2ogr's) has no gpkg_metadata table: GDAL printed
+  // "ERROR 1: ... no such table" on a run that went well.
+  CPLPushErrorHandler(CPLQuietErrorHandler);
   if (OGRLayer* r = ds->ExecuteSQL("SELECT name FROM sqlite_master WHERE type IN ('table', 'view') "
                                    "UNION ALL SELECT 'metadata:' || count(*) FROM gpkg_metadata "
                                    "UNION ALL SELECT 'domains:' || count(*) FROM gpkg_metadata WHERE metadata LIKE '%domain=%'",
@@ -150,6 +153,7 @@ bool GpkgOutput::holdsOnly(const fs::path& path, const std::function<bool(const 
     for (auto& f : *r) names.push_back(f->GetFieldAsString(0));
     ds->ReleaseResultSet(r);
   }
+  CPLPopErrorHandler();
   if (names.empty()) return false;  // no gpkg_metadata table, or unreadable: keep what is there
   const auto infrastructure = [](const std::string& name) {
     return name.rfind("gpkg_", 0) == 0 || name.rfind("rtree_", 0) == 0 || name.rfind("sqlite_", 0) == 0;
