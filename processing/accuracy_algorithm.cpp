@@ -53,13 +53,16 @@ void AccuracyAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameterHelp(*this);
 }
 
+bool AccuracyAlgorithm::checkParameterValues(const QVariantMap& parameters, QgsProcessingContext& context, QString* message) const {
+  return QgsProcessingAlgorithm::checkParameterValues(parameters, context, message) &&
+         hierarchyIsAcceptable(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context, message);
+}
+
 bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {
   readDemParameters(parameters, context, 0);
   hierarchy_ = hierarchyFile(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context);
   readAccuracyParameters(parameters, context);
   accuracy_.rasterLevel = parameterAsInt(parameters, QStringLiteral("LEVEL"), context);
-  if (!accuracy_.wanted())
-    throw QgsProcessingException(QStringLiteral("Nothing to write: set the accuracy raster (ACCURACY), the report (REPORT) or both"));
   return true;
 }
 

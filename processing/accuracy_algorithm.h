@@ -19,6 +19,8 @@ class AccuracyAlgorithm : public DemAlgorithm {
   QString helpUrl() const override;
   AccuracyAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
+  bool checkParameterValues(const QVariantMap& parameters, QgsProcessingContext& context,
+                            QString* message = nullptr) const override;
 
  protected:
   bool prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

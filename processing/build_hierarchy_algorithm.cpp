@@ -13,6 +13,7 @@
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
+#include "tin_layer_output.h"
 #include "tin_layer_style.h"
 #include "tinlod/build_job.h"
 #include "tinlod/build_summary_text.h"
@@ -115,6 +116,7 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error of the coarsest level against the DEM (metres)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("RMSE"), QStringLiteral("RMSE of the coarsest level against the DEM (metres)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("CELLS_GIVEN_UP"), QStringLiteral("Valid cells the coarsest level's outline gave up")));
+  addOutput(trianglesLayerOutput(QStringLiteral("COARSEST_LAYER"), QStringLiteral("Coarsest level layer")));
   addParameterHelp(*this);
 }
 
@@ -193,6 +195,7 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
   accuracyLoad_.reRegister(context);
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
+  outputs.insert(QStringLiteral("COARSEST_LAYER"), hierarchyLevelLayer(output, s.levels, s.levelViews));
   outputs.insert(QStringLiteral("LEVELS"), s.levels + 1);
   outputs.insert(QStringLiteral("COARSEST_LEVEL"), s.levels);
   outputs.insert(QStringLiteral("COARSEST_VERTICES"), static_cast<qlonglong>(s.coarsestVertices));

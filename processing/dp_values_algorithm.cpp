@@ -78,16 +78,16 @@ QVariantMap DpValuesAlgorithm::processAlgorithm(const QVariantMap& parameters, Q
   if (options_.threshold >= 0)
     feedback->pushInfo(QStringLiteral("At threshold %1 m: %2 vertices kept, %3 crossings between simplified lines")
                            .arg(options_.threshold).arg(s.keptVertices).arg(s.crossings));
-  context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=lines"),
+  loadOnCompletion(context, output + QStringLiteral("|layername=lines"),
                                      placedLayerDetails(QStringLiteral("lines with DP values"), context.project(),
                                                         QStringLiteral("OUTPUT")));
   // The other layers asked for come too: a threshold's simplified lines, the vertex points.
   if (options_.threshold >= 0)
-    context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=simplified"),
+    loadOnCompletion(context, output + QStringLiteral("|layername=simplified"),
                                        placedLayerDetails(QStringLiteral("lines simplified at %1 m").arg(options_.threshold),
                                                           context.project(), QStringLiteral("OUTPUT")));
   if (options_.points)
-    context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=vertices"),
+    loadOnCompletion(context, output + QStringLiteral("|layername=vertices"),
                                        placedLayerDetails(QStringLiteral("vertices with DP values"), context.project(),
                                                           QStringLiteral("OUTPUT")));
   QVariantMap outputs;

@@ -15,6 +15,7 @@
 #include "parameter_given.h"
 #include "processing_feedback.h"
 #include "source_file.h"
+#include "tin_layer_output.h"
 #include "tin_layer_style.h"
 #include "vertex_index_parameter.h"
 
@@ -76,7 +77,13 @@ void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("TRIANGLES"), QStringLiteral("Triangles")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
+  addOutput(trianglesLayerOutput(QStringLiteral("TRIANGLES_LAYER"), QStringLiteral("Triangles layer")));
   addParameterHelp(*this);
+}
+
+bool ExtractLodAlgorithm::checkParameterValues(const QVariantMap& parameters, QgsProcessingContext& context, QString* message) const {
+  return QgsProcessingAlgorithm::checkParameterValues(parameters, context, message) &&
+         hierarchyIsAcceptable(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context, message);
 }
 
 bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
@@ -129,6 +136,7 @@ QVariantMap ExtractLodAlgorithm::processAlgorithm(const QVariantMap& parameters,
                            outputBaseName(output, QStringLiteral("level of detail TIN")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
+  outputs.insert(QStringLiteral("TRIANGLES_LAYER"), gpkgLayer(output, QStringLiteral("triangles")));
   outputs.insert(QStringLiteral("TRIANGLES"), static_cast<qlonglong>(s.triangles));
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(s.vertices));
   return outputs;

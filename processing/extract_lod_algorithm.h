@@ -21,6 +21,8 @@ class ExtractLodAlgorithm : public QgsProcessingAlgorithm {
   QString helpUrl() const override;
   ExtractLodAlgorithm* createInstance() const override;
   void initAlgorithm(const QVariantMap& configuration = QVariantMap()) override;
+  bool checkParameterValues(const QVariantMap& parameters, QgsProcessingContext& context,
+                            QString* message = nullptr) const override;
 
  protected:
   bool prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,

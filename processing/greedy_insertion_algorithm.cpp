@@ -8,6 +8,7 @@
 #include "help_page.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
+#include "tin_layer_output.h"
 #include "tin_layer_style.h"
 #include "tinlod/insert_job.h"
 #include "vertex_index_parameter.h"
@@ -76,6 +77,7 @@ void GreedyInsertionAlgorithm::initAlgorithm(const QVariantMap&) {
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("TRIANGLES"), QStringLiteral("Triangles")));
+  addOutput(trianglesLayerOutput(QStringLiteral("TRIANGLES_LAYER"), QStringLiteral("Triangles layer")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("MAX_ERROR"), QStringLiteral("Maximum error (m), measured at every cell")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("RMSE"), QStringLiteral("RMSE (m)")));
   addParameterHelp(*this);
@@ -126,6 +128,7 @@ QVariantMap GreedyInsertionAlgorithm::processAlgorithm(const QVariantMap& parame
   loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"), base);
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
+  outputs.insert(QStringLiteral("TRIANGLES_LAYER"), gpkgLayer(output, QStringLiteral("triangles")));
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(s.vertices));
   outputs.insert(QStringLiteral("TRIANGLES"), static_cast<qlonglong>(s.triangles));
   outputs.insert(QStringLiteral("MAX_ERROR"), s.measuredMaxError);

@@ -36,4 +36,15 @@ std::string hierarchyFile(const QgsProcessingParameterDefinition* definition, co
   return path.toStdString();
 }
 
+bool hierarchyIsAcceptable(const QgsProcessingParameterDefinition* definition, const QVariantMap& parameters,
+                           QgsProcessingContext& context, QString* message) {
+  try {
+    hierarchyFile(definition, parameters, context);
+  } catch (const QgsProcessingException& e) {
+    if (message) *message = e.what();
+    return false;
+  }
+  return true;
+}
+
 }  // namespace tinlod::qgis

@@ -17,4 +17,10 @@ QgsProcessingParameterDefinition* hierarchyParameter(const QString& description)
 std::string hierarchyFile(const QgsProcessingParameterDefinition* definition, const QVariantMap& parameters,
                           QgsProcessingContext& context);
 
+// hierarchyFile as checkParameterValues asks: false with the message. Checked before the run,
+// the message is the exception processing.run raises (a run's own error reaches only its
+// log, the exception saying "There were errors executing the algorithm.").
+bool hierarchyIsAcceptable(const QgsProcessingParameterDefinition* definition, const QVariantMap& parameters,
+                           QgsProcessingContext& context, QString* message);
+
 }  // namespace tinlod::qgis

@@ -5,6 +5,8 @@
 #include <qgslayertreeregistrybridge.h>
 #include <qgsproject.h>
 
+#include <QFileInfo>
+
 namespace tinlod::qgis {
 namespace {
 
@@ -88,6 +90,25 @@ QgsProcessingContext::LayerDetails placedLayerDetails(const QString& name, QgsPr
   details.forceName = true;  // QGIS would name it after its file or table ("triangles") by default
   details.setPostProcessor(style ? style : new PlacedLayer);
   return details;
+}
+
+namespace {
+
+bool inTemporaryFolder(const QString& path) {
+  return QFileInfo(path).absoluteFilePath().startsWith(QFileInfo(QgsProcessingUtils::tempFolder()).absoluteFilePath() +
+                                                       QLatin1Char('/'));
+}
+
+}  // namespace
+
+void loadOnCompletion(QgsProcessingContext& context, const QString& layer, const QgsProcessingContext::LayerDetails& details) {
+  // A model runs its steps with its own variables (model_path, model_name) in the context.
+  const bool modelStep = context.expressionContext().hasVariable(QStringLiteral("model_path"));
+  if (modelStep && inTemporaryFolder(layer.section(QLatin1Char('|'), 0, 0))) {
+    delete details.postProcessor();  // the context would have owned it
+    return;
+  }
+  context.addLayerToLoadOnCompletion(layer, details);
 }
 
 }  // namespace tinlod::qgis

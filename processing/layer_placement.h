@@ -38,6 +38,12 @@ QgsProcessingContext::LayerDetails placedLayerDetails(
     QgsProcessingLayerPostProcessorInterface* style = nullptr,
     QgsProcessingUtils::LayerHint hint = QgsProcessingUtils::LayerHint::Vector);
 
+// Has QGIS load `layer` (a GeoPackage's "path|layername=...") when the run is over, as
+// `details` say; but not from a file a model's step writes only for a later step: QGIS adds
+// no model's intermediate layer to the map, and such a file is in its temporary folder, gone
+// with the session. (A model's own output written to a path of the user's is loaded.)
+void loadOnCompletion(QgsProcessingContext& context, const QString& layer, const QgsProcessingContext::LayerDetails& details);
+
 // placeLayer as a post-processor, for outputs without a style of their own.
 class PlacedLayer : public QgsProcessingLayerPostProcessorInterface {
  public:

@@ -60,6 +60,11 @@ void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameterHelp(*this);
 }
 
+bool LocateAlgorithm::checkParameterValues(const QVariantMap& parameters, QgsProcessingContext& context, QString* message) const {
+  return QgsProcessingAlgorithm::checkParameterValues(parameters, context, message) &&
+         hierarchyIsAcceptable(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context, message);
+}
+
 bool LocateAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
                                        QgsProcessingFeedback* feedback) {
   points_ = sourceFile(parameterDefinition(QStringLiteral("INPUT")), parameters, context, feedback, QStringLiteral("a point layer"));
@@ -82,7 +87,7 @@ QVariantMap LocateAlgorithm::processAlgorithm(const QVariantMap& parameters, Qgs
                          .arg(s.unfinishedTiles.empty() ? QString() : QStringLiteral("finished tiles' "))
                          .arg(s.level));
   // As small dots: thousands of QGIS's default markers would hide the map.
-  context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=points"),
+  loadOnCompletion(context, output + QStringLiteral("|layername=points"),
                                      placedLayerDetails(QStringLiteral("points with elevation"), context.project(),
                                                         QStringLiteral("OUTPUT"), new TinLayerStyle));
   QVariantMap outputs;

@@ -7,6 +7,7 @@
 #include "group_icon.h"
 #include "help_page.h"
 #include "processing_feedback.h"
+#include "tin_layer_output.h"
 #include "tin_layer_style.h"
 #include "tinlod/sample_job.h"
 #include "vertex_index_parameter.h"
@@ -48,6 +49,7 @@ void SampleTinAlgorithm::initAlgorithm(const QVariantMap&) {
                                                          QStringLiteral("GeoPackage files (*.gpkg *.GPKG)")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("VERTICES"), QStringLiteral("Vertices")));
   addOutput(new QgsProcessingOutputNumber(QStringLiteral("TRIANGLES"), QStringLiteral("Triangles")));
+  addOutput(trianglesLayerOutput(QStringLiteral("TRIANGLES_LAYER"), QStringLiteral("Triangles layer")));
   addParameterHelp(*this);
 }
 
@@ -75,6 +77,7 @@ QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, 
   loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"), base);
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
+  outputs.insert(QStringLiteral("TRIANGLES_LAYER"), gpkgLayer(output, QStringLiteral("triangles")));
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(summary.vertices));
   outputs.insert(QStringLiteral("TRIANGLES"), static_cast<qlonglong>(summary.triangles));
   return outputs;

@@ -42,7 +42,7 @@ void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg
                               const QString& outputName, const QString& baseName, const QString& group, bool visible,
                               int order) {
   const QString name = group.isEmpty() ? QStringLiteral("%1 %2").arg(baseName, layerName) : layerName;
-  context.addLayerToLoadOnCompletion(
+  loadOnCompletion(context, 
       gpkg + QStringLiteral("|layername=") + layerName,
       placedLayerDetails(name, context.project(), outputName, new TinLayerStyle(group, visible, order)));
 }

@@ -2,6 +2,7 @@
 // The Processing algorithms in a headless QgsApplication, registered through the same
 // C entry point the plugin calls.
 #include <gdal_priv.h>
+#include <ogr_spatialref.h>
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 #include <qgscategorizedsymbolrenderer.h>
@@ -15,6 +16,7 @@
 #include <qgsnativealgorithms.h>
 #include <qgsprocessingalgorithm.h>
 #include <qgsprocessingcontext.h>
+#include <qgsprocessingmodelalgorithm.h>
 #include <qgsprocessingfeedback.h>
 #include <qgsprocessingregistry.h>
 #include <qgsprocessingutils.h>
@@ -70,8 +72,13 @@ class RecordingFeedback : public QgsProcessingFeedback {
     infos += info;
     QgsProcessingFeedback::pushInfo(info);
   }
+  void pushWarning(const QString& warning) override {
+    warnings += warning;
+    QgsProcessingFeedback::pushWarning(warning);
+  }
   QString errors;
   QStringList infos;
+  QStringList warnings;
 };
 
 struct Result {
@@ -314,6 +321,45 @@ TEST(Processing, CoreErrorsBecomeProcessingExceptions) {
   EXPECT_FALSE(fs::exists(out.toStdString()));
 }
 
+// 60 x 10 cells of a degree from 20 W, 40 N: wider than a UTM zone reaches.
+std::string wideDegreeDem() {
+  const std::string path = test::tempDir() + "/wide_degrees.tif";
+  GDALDatasetUniquePtr ds(GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), 60, 10, 1, GDT_Float32, nullptr));
+  double gt[6] = {-20, 1, 0, 40, 0, -1};
+  ds->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  srs.importFromEPSG(4326);
+  ds->SetSpatialRef(&srs);
+  std::vector<float> z(600);
+  for (std::size_t i = 0; i < z.size(); ++i) z[i] = 100.0f + static_cast<float>((i % 7) * 10 + (i / 60) * 3);
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 60, 10, z.data(), 60, 10, GDT_Float32, 0, 0), CE_None);
+  return path;
+}
+
+// The PROJ string a warning advises is taken as TARGET_CRS as it is written: QGIS reads a
+// PROJ string only after "PROJ:", and took anything it could not read as no CRS at all.
+TEST(Processing, TargetCrsTakesThePROJStringAWarningAdvisesAndRefusesWhatNoOneReads) {
+  const QString dem = QString::fromStdString(wideDegreeDem());
+  const QString out = QString::fromStdString(test::tempDir() + "/wide.gpkg");
+  RecordingFeedback warned;
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", dem}, {"OUTPUT", out}}, &warned).ok);
+  const QString warning = warned.warnings.filter(QStringLiteral("stretches distances")).value(0);
+  const QRegularExpressionMatch advised = QRegularExpression(QStringLiteral("use TARGET_CRS '([^']+)'")).match(warning);
+  ASSERT_TRUE(advised.hasMatch()) << warning.toStdString();
+  RecordingFeedback taken;
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"),
+                                {{"INPUT", dem}, {"TARGET_CRS", advised.captured(1)}, {"OUTPUT", out}}, &taken);
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  EXPECT_TRUE(taken.warnings.filter(QStringLiteral("stretches distances")).isEmpty()) << taken.warnings.join('\n').toStdString();
+  QgsVectorLayer layer(out + "|layername=triangles", "t", QStringLiteral("ogr"));
+  EXPECT_TRUE(layer.crs().toProj().contains(QStringLiteral("+proj=lcc"))) << layer.crs().toProj().toStdString();
+  const QString none = QString::fromStdString(test::tempDir() + "/none.gpkg");
+  const Result bad = runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", dem}, {"TARGET_CRS", "nonsense"}, {"OUTPUT", none}});
+  EXPECT_FALSE(bad.ok);
+  EXPECT_TRUE(bad.error.contains("TARGET_CRS 'nonsense' is not a CRS GDAL understands")) << bad.error.toStdString();
+  EXPECT_FALSE(fs::exists(none.toStdString()));
+}
+
 TEST(Processing, OutputLayersAreLoadedNamedAndStyled) {
   const QString out = QString::fromStdString(test::tempDir() + "/my_tin.gpkg");
   std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:sampletin"));
@@ -523,6 +569,124 @@ TEST(Processing, ExistingGeoPackageKeepsItsOtherLayers) {
   ASSERT_TRUE(again.ok) << again.error.toStdString();
   EXPECT_GT(featureCount(out, "centroids"), 0);
   EXPECT_EQ(featureCount(out, "triangles"), again.outputs.value("TRIANGLES").toLongLong());
+}
+
+long long sqlCount(const std::string& gpkg, const std::string& sql);
+
+// A model: build (an intermediate step), its coarsest level to native:centroids, and
+// extractlod to a path of the user's. Only that output comes to the map, as QGIS loads no
+// intermediate layer of a model; and the centroids are the coarsest level's triangles',
+// where the GeoPackage alone gave native algorithms its first layer, the vertices.
+TEST(Processing, AModelLoadsOnlyItsOwnOutputsAndItsStepsPassTriangles) {
+  using Source = QgsProcessingModelChildParameterSource;
+  QgsProcessingModelAlgorithm model(QStringLiteral("m"), QStringLiteral("g"));
+  QgsProcessingModelChildAlgorithm build(QStringLiteral("tinlod:buildhierarchy"));
+  build.setChildId(QStringLiteral("build"));
+  build.addParameterSources(QStringLiteral("INPUT"), {Source::fromStaticValue(QString::fromStdString(defaultDem()))});
+  build.addParameterSources(QStringLiteral("MAX_LEVELS"), {Source::fromStaticValue(3)});
+  model.addChildAlgorithm(build);
+  QgsProcessingModelChildAlgorithm lod(QStringLiteral("tinlod:extractlod"));
+  lod.setChildId(QStringLiteral("lod"));
+  lod.addParameterSources(QStringLiteral("HIERARCHY"), {Source::fromChildOutput(QStringLiteral("build"), QStringLiteral("OUTPUT"))});
+  lod.addParameterSources(QStringLiteral("MAX_ERROR"), {Source::fromStaticValue(5)});
+  QgsProcessingModelOutput tin(QStringLiteral("tin"), QStringLiteral("tin"));
+  tin.setChildId(QStringLiteral("lod"));
+  tin.setChildOutputName(QStringLiteral("OUTPUT"));
+  lod.setModelOutputs({{QStringLiteral("tin"), tin}});
+  model.addChildAlgorithm(lod);
+  QgsProcessingModelChildAlgorithm centroids(QStringLiteral("native:centroids"));
+  centroids.setChildId(QStringLiteral("centroids"));
+  centroids.addParameterSources(QStringLiteral("INPUT"),
+                                {Source::fromChildOutput(QStringLiteral("build"), QStringLiteral("COARSEST_LAYER"))});
+  QgsProcessingModelOutput points(QStringLiteral("points"), QStringLiteral("points"));
+  points.setChildId(QStringLiteral("centroids"));
+  points.setChildOutputName(QStringLiteral("OUTPUT"));
+  centroids.setModelOutputs({{QStringLiteral("points"), points}});
+  model.addChildAlgorithm(centroids);
+  model.updateDestinationParameters();
+
+  const QString dir = QString::fromStdString(test::tempDir());
+  QgsProcessingContext context;
+  QgsProject project;
+  context.setProject(&project);
+  RecordingFeedback feedback;
+  bool ok = false;
+  const QVariantMap results = model.run({{QStringLiteral("lod:tin"), dir + "/lod.gpkg"},
+                                         {QStringLiteral("centroids:points"), dir + "/points.gpkg"}},
+                                        context, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  const QStringList loaded = context.layersToLoadOnCompletion().keys();
+  EXPECT_TRUE(loaded.contains(dir + "/lod.gpkg|layername=triangles")) << loaded.join(' ').toStdString();
+  for (const QString& layer : loaded)
+    EXPECT_FALSE(layer.startsWith(QgsProcessingUtils::tempFolder())) << "an intermediate layer: " << layer.toStdString();
+  const QVariantMap built = results.value(QStringLiteral("CHILD_RESULTS")).toMap().value(QStringLiteral("build")).toMap();
+  const QString coarsest = built.value(QStringLiteral("COARSEST_LAYER")).toString();
+  EXPECT_TRUE(coarsest.endsWith(QStringLiteral("|layername=level_3"))) << coarsest.toStdString();
+  QgsVectorLayer level(coarsest, QStringLiteral("level"), QStringLiteral("ogr"));
+  ASSERT_TRUE(level.isValid());
+  QgsVectorLayer centres(dir + "/points.gpkg", QStringLiteral("points"), QStringLiteral("ogr"));
+  EXPECT_EQ(centres.featureCount(), level.featureCount());
+  EXPECT_GT(level.featureCount(), 0);
+}
+
+// Where LEVEL_VIEWS wrote no view of the coarsest level, its layer is the triangles cut to it.
+TEST(Processing, TheCoarsestLayerWithoutItsViewIsTheTrianglesCutToIt) {
+  const QString out = QString::fromStdString(test::tempDir() + "/hier.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:buildhierarchy"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                          {"MAX_LEVELS", 3},
+                                                                          {"LEVEL_VIEWS", "0"},
+                                                                          {"OUTPUT", out}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  QgsVectorLayer cut(r.outputs.value("COARSEST_LAYER").toString(), QStringLiteral("cut"), QStringLiteral("ogr"));
+  ASSERT_TRUE(cut.isValid()) << r.outputs.value("COARSEST_LAYER").toString().toStdString();
+  EXPECT_EQ(cut.featureCount(), sqlCount(out.toStdString(), "SELECT count(*) FROM triangles WHERE first_level <= 3 AND last_level >= 3"));
+  const Result sampled = runAlgorithm(QStringLiteral("tinlod:sampletin"),
+                                      {{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", out + "2.gpkg"}});
+  ASSERT_TRUE(sampled.ok);
+  EXPECT_EQ(featureCount(out + "2.gpkg", "triangles"),
+            QgsVectorLayer(sampled.outputs.value("TRIANGLES_LAYER").toString(), "t", "ogr").featureCount());
+}
+
+// As tinlod accuracy: with neither output the figures still come (a model's step gets no file
+// for an optional output no later step takes).
+TEST(Processing, AccuracyWithNoFileToWriteStillMeasures) {
+  const QString hierarchy = QString::fromStdString(test::tempDir() + "/hier.gpkg");
+  ASSERT_TRUE(runAlgorithm(QStringLiteral("tinlod:buildhierarchy"),
+                           {{"INPUT", QString::fromStdString(defaultDem())}, {"MAX_LEVELS", 2}, {"OUTPUT", hierarchy}})
+                  .ok);
+  const Result r = runAlgorithm(QStringLiteral("tinlod:accuracy"),
+                                {{"INPUT", QString::fromStdString(defaultDem())}, {"HIERARCHY", hierarchy}});
+  ASSERT_TRUE(r.ok) << r.error.toStdString();
+  EXPECT_GT(r.outputs.value("RMSE").toDouble(), 0);
+  EXPECT_GE(r.outputs.value("MAX_ERROR").toDouble(), r.outputs.value("RMSE").toDouble());
+  EXPECT_FALSE(r.outputs.contains("REPORT"));
+}
+
+// A HIERARCHY that is no GeoPackage is refused by checkParameterValues, before the run: its
+// message is then what processing.run raises, where a run's own error said only "There were
+// errors executing the algorithm."
+TEST(Processing, AHierarchyInNoGeoPackageIsRefusedBeforeTheRun) {
+  QgsVectorLayer memory(QStringLiteral("Polygon?crs=EPSG:32632"), QStringLiteral("l2"), QStringLiteral("memory"));
+  QgsVectorLayer points(QStringLiteral("Point?crs=EPSG:32632"), QStringLiteral("points"), QStringLiteral("memory"));
+  QgsProject project;
+  project.addMapLayer(&memory, false, false);
+  project.addMapLayer(&points, false, false);
+  QgsProcessingContext context;
+  context.setProject(&project);
+  for (const char* id : {"tinlod:accuracy", "tinlod:extractlod", "tinlod:locate"}) {
+    std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById(id));
+    ASSERT_NE(alg, nullptr) << id;
+    QString message;
+    const QVariant input = std::string(id) == "tinlod:locate" ? QVariant(points.id()) : QVariant(QString::fromStdString(defaultDem()));
+    EXPECT_FALSE(alg->checkParameterValues({{"INPUT", input},
+                                            {"HIERARCHY", memory.id()},
+                                            {"OUTPUT", QString::fromStdString(test::tempDir() + "/o.gpkg")}},
+                                           context, &message))
+        << id;
+    EXPECT_TRUE(message.contains("HIERARCHY: 'l2' is not stored in a GeoPackage")) << id << ": " << message.toStdString();
+  }
+  project.removeMapLayer(memory.id());
+  project.removeMapLayer(points.id());
 }
 
 TEST(Processing, BuildHierarchyWritesLevelsQgisCanOpen) {
