@@ -169,6 +169,7 @@ bool GpkgOutput::holdsOnly(const fs::path& path, const std::function<bool(const 
 }
 
 GpkgOutput::~GpkgOutput() {
+  abandonIndexes_->store(true);  // first: a cancelled write waited up to 2 s for them (alps_2x2)
   if (!ds_) return;
   // Closing after a failure or a cancel: GDAL's complaints (an R-tree thread cut short)
   // would only confuse; the temporary file is removed anyway.
@@ -283,9 +284,14 @@ void GpkgOutput::indexLater(const std::string& table, std::function<std::vector<
   if (!indexes_.empty()) previous = indexes_.back().tree;
   // One packing at a time, in the order asked: the caller's thread writes rows on the
   // other core, and only one layer's boxes are held at once.
-  auto pack = [previous, boxes = std::move(boxes), capacity]() {
+  auto pack = [previous, boxes = std::move(boxes), capacity, abandon = abandonIndexes_]() -> std::shared_ptr<PackedRtree> {
     if (previous.valid()) previous.wait();
-    return std::make_shared<PackedRtree>(boxes(), capacity);
+    if (abandon->load()) return nullptr;
+    try {
+      return std::make_shared<PackedRtree>(boxes(), capacity, abandon.get());
+    } catch (const PackingAbandoned&) {
+      return nullptr;
+    }
   };
   indexes_.push_back({table, std::async(std::launch::async, std::move(pack)).share()});
 }

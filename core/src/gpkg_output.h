@@ -77,6 +77,9 @@ class GpkgOutput {
   void compactIfDropped();
   void finishDatabase(const ProgressRange& progress);
   std::vector<PendingIndex> indexes_;
+  // Set when the output is given up: the packings still running stop (their futures'
+  // destructors would wait for them).
+  std::shared_ptr<std::atomic<bool>> abandonIndexes_ = std::make_shared<std::atomic<bool>>(false);
   std::vector<std::string> withoutCrs_;  // bulk layers made without a CRS
   std::unique_ptr<SqliteDatabase> db_;
   bool vacuum_ = false;

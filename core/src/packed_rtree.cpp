@@ -39,9 +39,20 @@ void putFloat(unsigned char* at, float value) {
   putBigEndian(at, bits, 4);
 }
 
+// A comparison that looks at `abandon` every 65,536 calls: a sort of millions of boxes is
+// where a packing spends its time, and nothing else could stop it.
+template <class Less>
+auto abandonable(Less less, const std::atomic<bool>* abandon) {
+  return [less, abandon, calls = std::uint32_t{0}](std::uint32_t a, std::uint32_t b) mutable {
+    if (abandon && (++calls & 0xFFFF) == 0 && abandon->load(std::memory_order_relaxed)) throw PackingAbandoned{};
+    return less(a, b);
+  };
+}
+
 // Sort-tile-recursive: sorted by x into vertical slices of whole nodes, each slice
 // sorted by y and cut into nodes. Returns the items in node order.
-std::vector<std::uint32_t> strOrder(const std::vector<RtreeBox>& boxes, std::size_t capacity) {
+std::vector<std::uint32_t> strOrder(const std::vector<RtreeBox>& boxes, std::size_t capacity,
+                                    const std::atomic<bool>* abandon) {
   const std::size_t n = boxes.size();
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
@@ -56,13 +67,13 @@ std::vector<std::uint32_t> strOrder(const std::vector<RtreeBox>& boxes, std::siz
     const float ca = boxes[a].minY + boxes[a].maxY, cb = boxes[b].minY + boxes[b].maxY;
     return ca < cb || (ca == cb && a < b);
   };
-  std::sort(order.begin(), order.end(), byX);
+  std::sort(order.begin(), order.end(), abandonable(byX, abandon));
   const std::size_t nodes = (n + capacity - 1) / capacity;
   const auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(nodes))));
   const std::size_t sliceItems = slices * capacity;
   for (std::size_t begin = 0; begin < n; begin += sliceItems) {
     const std::size_t end = std::min(n, begin + sliceItems);
-    std::sort(order.begin() + begin, order.begin() + end, byY);
+    std::sort(order.begin() + begin, order.begin() + end, abandonable(byY, abandon));
   }
   return order;
 }
@@ -81,13 +92,13 @@ int rtreeNodeCapacity(int pageSize) {
   return (nodeBytes - 4) / kCellBytes;
 }
 
-PackedRtree::PackedRtree(std::vector<RtreeBox> boxes, int nodeCapacity)
+PackedRtree::PackedRtree(std::vector<RtreeBox> boxes, int nodeCapacity, const std::atomic<bool>* abandon)
     : entryBoxes_(std::move(boxes)), entries_(entryBoxes_.size()), capacity_(nodeCapacity) {
   const auto m = static_cast<std::size_t>(capacity_);
   do {
     const std::vector<RtreeBox>& below = levels_.empty() ? entryBoxes_ : levels_.back().boxes;
     Level level;
-    level.children = strOrder(below, m);
+    level.children = strOrder(below, m, abandon);
     level.boxes.reserve((below.size() + m - 1) / m);
     for (std::size_t k = 0; k < below.size(); k += m) {
       RtreeBox box = below[level.children[k]];

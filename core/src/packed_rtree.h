@@ -4,6 +4,7 @@
 // instead of built row by row.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -24,10 +25,16 @@ RtreeBox outwardBox(const Envelope& envelope);
 // How many cells SQLite's rtree puts in a node of a 2-D index for a database page size.
 int rtreeNodeCapacity(int pageSize);
 
+// Thrown by PackedRtree's constructor once `abandon` is set.
+struct PackingAbandoned {};
+
 class PackedRtree {
  public:
-  // Entry i has id i + 1 (the features' fids) and box boxes[i].
-  PackedRtree(std::vector<RtreeBox> boxes, int nodeCapacity);
+  // Entry i has id i + 1 (the features' fids) and box boxes[i]. Packing a big layer takes a
+  // second or more on a thread beside the writing: once `abandon` (when given) is set, it
+  // stops within a few milliseconds, throwing PackingAbandoned, so that a cancelled or failed
+  // write does not wait for an index it will never write.
+  PackedRtree(std::vector<RtreeBox> boxes, int nodeCapacity, const std::atomic<bool>* abandon = nullptr);
 
   std::size_t entries() const { return entries_; }
   // Nodes are numbered from 1, the root, level by level down to the leaves.
