@@ -88,21 +88,6 @@ TEST(Crs, MetricDemStaysAsItIs) {
   EXPECT_NE(t.targetName().find("32632"), std::string::npos);
 }
 
-TEST(Crs, DistortingCrsDrawsAWarningNamingTheUtmZone) {
-  Dem dem = test::makeDem(5, 5, 10, [](int, int) { return 1.0f; });
-  // Web Mercator around San Francisco (37.8 N): distances stretched by 1 / cos(lat).
-  dem.geotransform = {-13627000.0, 10.0, 0.0, 4551000.0, 0.0, -10.0};
-  dem.crsWkt = test::wktOf(3857);
-  test::RecordingFeedback fb;
-  CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
-  ASSERT_EQ(fb.warnings.size(), 1u);
-  EXPECT_TRUE(fb.warned("stretches distances by up to 27 %")) << fb.warnings[0];
-  EXPECT_TRUE(fb.warned("-t_srs EPSG:32610")) << fb.warnings[0];
-  test::RecordingFeedback utm;
-  CrsTransform::forDem(dem, "", "EPSG:32610", ProgressRange(utm.feedback(), 0, 1));
-  EXPECT_TRUE(utm.warnings.empty());
-}
-
 namespace {
 
 // A DEM in degrees spanning lon0..lon1 and lat0..lat1 (5 x 5 cells).
@@ -121,6 +106,25 @@ std::string advisedCrs(const std::string& warning) {
   return warning.substr(start + 8, end - start - 8);
 }
 
+// A DEM of 5 x 5 cells in a projected CRS, its upper-left corner at (x0, y0).
+Dem projectedDem(int epsg, double x0, double y0, double cell) {
+  Dem dem = test::makeDem(5, 5, cell, [](int, int) { return 1.0f; });
+  dem.geotransform = {x0, cell, 0.0, y0, 0.0, -cell};
+  dem.crsWkt = test::wktOf(epsg);
+  return dem;
+}
+
+// What forDem warns of for the DEM and target CRS.
+std::vector<std::string> warningsFor(const Dem& dem, const std::string& target = "") {
+  test::RecordingFeedback fb;
+  CrsTransform::forDem(dem, "", target, ProgressRange(fb.feedback(), 0, 1));
+  return fb.warnings;
+}
+
+bool has(const std::vector<std::string>& warnings, const std::string& fragment) {
+  return warnings.size() == 1 && warnings[0].find(fragment) != std::string::npos;
+}
+
 std::vector<LonLat> denseGrid(double lon0, double lon1, double lat0, double lat1) {
   std::vector<LonLat> points;
   for (int i = 0; i <= 40; ++i)
@@ -129,6 +133,15 @@ std::vector<LonLat> denseGrid(double lon0, double lon1, double lat0, double lat1
 }
 
 }  // namespace
+
+TEST(Crs, DistortingCrsDrawsAWarningNamingTheUtmZone) {
+  // Web Mercator around San Francisco (37.8 N): distances stretched by 1 / cos(lat).
+  const Dem dem = projectedDem(3857, -13627000.0, 4551000.0, 10);
+  const std::vector<std::string> warned = warningsFor(dem);
+  EXPECT_TRUE(has(warned, "stretches distances by up to 27 %")) << warned.size();
+  EXPECT_TRUE(has(warned, "-t_srs EPSG:32610"));
+  EXPECT_TRUE(warningsFor(dem, "EPSG:32610").empty());
+}
 
 TEST(CrsScale, WorstScaleErrorIsProjsScaleFactor) {
   // UTM's scale factor on its central meridian; Mercator's sqrt(1 - e2 sin2 lat) / cos lat at 60 N.
@@ -152,52 +165,38 @@ TEST(CrsScale, AFittedCrsShrinksAsMuchAsItStretches) {
 TEST(Crs, ADemWiderThanAUtmZoneIsWarnedOfWithACrsThatFitsIt) {
   // 60 degrees of longitude at 30-40 N: UTM zone 32N is true to scale at the centre, 12 % off at the sides.
   const Dem dem = degreeDem(-20, 40, 30, 40);
-  test::RecordingFeedback fb;
-  CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
-  ASSERT_EQ(fb.warnings.size(), 1u);
-  EXPECT_TRUE(fb.warned("UTM zone 32N (EPSG:32632) stretches distances by up to 12 % over the DEM")) << fb.warnings[0];
-  EXPECT_TRUE(fb.warned("(a Lambert conformal conic fitted to the DEM, within 0.2 %)")) << fb.warnings[0];
-  const std::string advised = advisedCrs(fb.warnings[0]);
-  ASSERT_NE(advised.find("+proj=lcc"), std::string::npos) << fb.warnings[0];
+  const std::vector<std::string> warned = warningsFor(dem);
+  ASSERT_TRUE(has(warned, "UTM zone 32N (EPSG:32632) stretches distances by up to 12 % over the DEM")) << warned.size();
+  EXPECT_TRUE(has(warned, "(a Lambert conformal conic fitted to the DEM, within 0.2 %)")) << warned[0];
+  const std::string advised = advisedCrs(warned[0]);
+  ASSERT_NE(advised.find("+proj=lcc"), std::string::npos) << warned[0];
   // Within what it says everywhere over the DEM, not only at the points weighed.
   EXPECT_LE(worstScaleError(advised + " +type=crs", denseGrid(-20, 40, 30, 40)), 0.0025);
-  test::RecordingFeedback taken;
-  const CrsTransform t = CrsTransform::forDem(dem, "", advised, ProgressRange(taken.feedback(), 0, 1));
-  EXPECT_TRUE(taken.warnings.empty()) << taken.warnings[0];
+  EXPECT_TRUE(warningsFor(dem, advised).empty());
+  const CrsTransform t = CrsTransform::forDem(dem, "", advised, ProgressRange(Feedback{}, 0, 1));
   EXPECT_EQ(t.targetName().rfind("'+proj=lcc ", 0), 0u) << t.targetName();  // named by its PROJ string, not "unknown"
 }
 
 TEST(Crs, ADemAcrossTheAntimeridianIsFittedAboutItsCentre) {
   // 170 E to 160 W: the centre, 175 W, is in zone 1, whose meridian is 2 degrees west of it.
   const Dem dem = degreeDem(170, 200, 0, 10);
-  test::RecordingFeedback fb;
-  CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
-  ASSERT_EQ(fb.warnings.size(), 1u);
-  EXPECT_TRUE(fb.warned("UTM zone 1N (EPSG:32601) stretches distances by up to")) << fb.warnings[0];
-  EXPECT_NE(advisedCrs(fb.warnings[0]).find("+lon_0=-175 "), std::string::npos) << fb.warnings[0];
-  test::RecordingFeedback taken;
-  CrsTransform::forDem(dem, "", advisedCrs(fb.warnings[0]), ProgressRange(taken.feedback(), 0, 1));
-  EXPECT_TRUE(taken.warnings.empty());
+  const std::vector<std::string> warned = warningsFor(dem);
+  ASSERT_TRUE(has(warned, "UTM zone 1N (EPSG:32601) stretches distances by up to")) << warned.size();
+  EXPECT_NE(advisedCrs(warned[0]).find("+lon_0=-175 "), std::string::npos) << warned[0];
+  EXPECT_TRUE(warningsFor(dem, advisedCrs(warned[0])).empty());
 }
 
 TEST(Crs, ADemWithinItsUtmZonesReachIsNotWarnedOf) {
   // 14 degrees of longitude at 58-62 N are within 420 km of zone 33's meridian (0.2 % at most).
-  test::RecordingFeedback fb;
-  CrsTransform::forDem(degreeDem(5, 19, 58, 62), "", "", ProgressRange(fb.feedback(), 0, 1));
-  EXPECT_TRUE(fb.warnings.empty()) << fb.warnings[0];
+  EXPECT_TRUE(warningsFor(degreeDem(5, 19, 58, 62)).empty());
 }
 
 TEST(Crs, AContinentNoCrsKeepsTrueToScaleIsSaidToBeSo) {
   // Antarctica in its polar stereographic CRS, 6000 km across: 2.7 % short at the pole, longer
   // at the corners; a fitted stereographic would still be off by over 5 %.
-  Dem dem = test::makeDem(5, 5, 10, [](int, int) { return 1.0f; });
-  dem.geotransform = {-3000000.0, 1200000.0, 0.0, 3000000.0, 0.0, -1200000.0};
-  dem.crsWkt = test::wktOf(3031);
-  test::RecordingFeedback fb;
-  CrsTransform::forDem(dem, "", "", ProgressRange(fb.feedback(), 0, 1));
-  ASSERT_EQ(fb.warnings.size(), 1u);
-  EXPECT_TRUE(fb.warned("Antarctic Polar Stereographic (EPSG:3031) stretches distances by up to")) << fb.warnings[0];
-  EXPECT_TRUE(fb.warned("no CRS keeps a DEM this large within 1 % of true scale")) << fb.warnings[0];
+  const std::vector<std::string> warned = warningsFor(projectedDem(3031, -3000000.0, 3000000.0, 1200000.0));
+  EXPECT_TRUE(has(warned, "Antarctic Polar Stereographic (EPSG:3031) stretches distances by up to")) << warned.size();
+  EXPECT_TRUE(has(warned, "no CRS keeps a DEM this large within 1 % of true scale"));
 }
 
 TEST(Crs, TargetSrsIsUsed) {

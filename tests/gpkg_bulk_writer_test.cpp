@@ -152,15 +152,20 @@ TEST(PackedRtree, EveryEntryInOneLeafAndEveryBoxInsideItsParent) {
 
 // The writer frees the entries' boxes once the nodes are written, before the rowid table:
 // what it then reads of the tree must not change.
-TEST(PackedRtree, LeavesAndParentsOutliveTheEntriesBoxes) {
-  std::mt19937 random(11);
+// `n` unit squares at random in 2000 x 2000.
+std::vector<RtreeBox> unitBoxes(unsigned seed, int n) {
+  std::mt19937 random(seed);
   std::uniform_real_distribution<double> at(-1000, 1000);
   std::vector<RtreeBox> boxes;
-  for (int i = 0; i < 5000; ++i) {
+  for (int i = 0; i < n; ++i) {
     const double x = at(random), y = at(random);
     boxes.push_back(outwardBox({x, x + 1, y, y + 1}));
   }
-  PackedRtree tree(boxes, 51);
+  return boxes;
+}
+
+TEST(PackedRtree, LeavesAndParentsOutliveTheEntriesBoxes) {
+  PackedRtree tree(unitBoxes(11, 5000), 51);
   const std::vector<std::uint32_t> leaves = tree.leaves(), parents = tree.parents();
   const std::size_t nodes = tree.nodes();
   tree.dropEntryBoxes();
@@ -173,13 +178,7 @@ TEST(PackedRtree, LeavesAndParentsOutliveTheEntriesBoxes) {
 // A cancelled write no longer waits for the packing beside it (up to 2 s on alps_2x2's
 // 3.4 million triangles): once abandoned, the packing stops; never abandoned, it packs the same tree.
 TEST(PackedRtree, AnAbandonedPackingStopsAndAWatchedOneIsTheSameTree) {
-  std::mt19937 random(5);
-  std::uniform_real_distribution<double> at(-1000, 1000);
-  std::vector<RtreeBox> boxes;
-  for (int i = 0; i < 100000; ++i) {
-    const double x = at(random), y = at(random);
-    boxes.push_back(outwardBox({x, x + 1, y, y + 1}));
-  }
+  const std::vector<RtreeBox> boxes = unitBoxes(5, 100000);
   std::atomic<bool> abandon{false};
   const PackedRtree plain(boxes, 51), watched(boxes, 51, &abandon);
   EXPECT_EQ(watched.leaves(), plain.leaves());
