@@ -418,6 +418,19 @@ TEST(InsertJob, WritesTheTinWithInsertionOrderAndLeavesNothingWhenCancelled) {
   EXPECT_TRUE(writing);
   EXPECT_FALSE(fs::exists(cancelled));
   EXPECT_THROW(runInsertJob(test::smallSyntheticDemFile(), out, o, false, Feedback{}), Error);  // exists
+  // Between the insertion and the file, the triangles are collected and cut free of the
+  // holes: over a second for alps_2x2's million triangles, where a stop went unheard.
+  for (const std::string phase : {"Collecting the triangles", "Cutting out nodata"}) {
+    bool asked = false;
+    Feedback there;
+    there.progress = [&asked, phase](double, const std::string& now) {
+      asked = asked || now == phase;
+      return !asked;
+    };
+    EXPECT_THROW(runInsertJob(big, cancelled, o, false, there), Cancelled) << phase;
+    EXPECT_TRUE(asked) << phase;
+    EXPECT_FALSE(fs::exists(cancelled)) << phase;
+  }
 }
 
 // Every feature of a layer, fid order: its fields as text and its geometry's WKB.

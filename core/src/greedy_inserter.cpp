@@ -185,7 +185,7 @@ struct GreedyInserter::Impl {
   // are cache misses for whoever reads them next (the nodata cut, the check, the file's
   // rows, its R-tree). In block order the triangles around a vertex come out close
   // together, and so do the file's rows for one area.
-  std::vector<FaceHandle> facesInBlockOrder() const {
+  std::vector<FaceHandle> facesInBlockOrder(const ProgressRange& progress) const {
     constexpr int kBlock = 16;  // cells a side
     const std::size_t blockCols = std::size_t(grid.cols) / kBlock + 1;
     const std::size_t blocks = blockCols * (std::size_t(grid.rows) / kBlock + 1);
@@ -194,10 +194,17 @@ struct GreedyInserter::Impl {
       return std::min(std::size_t(row / kBlock) * blockCols + std::size_t(col / kBlock), blocks - 1);
     };
     std::vector<std::size_t> start(blocks + 1, 0);
-    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) ++start[blockOf(f->info()) + 1];
+    const double faceCount = double(dt.number_of_faces()) + 1;
+    std::size_t seen = 0;
+    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f, ++seen) {
+      ++start[blockOf(f->info()) + 1];
+      if ((seen & 0xFFFF) == 0) progress.report(0.3 * seen / faceCount, "Collecting the triangles");
+    }
     for (std::size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
     std::vector<FaceHandle> faces(start[blocks]);
-    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    seen = 0;
+    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f, ++seen) {
+      if ((seen & 0xFFFF) == 0) progress.report(0.3 + 0.3 * seen / faceCount, "Collecting the triangles");
       const std::size_t at = start[blockOf(f->info())]++;
       f->info().index = std::int32_t(at);
       faces[at] = f;
@@ -279,13 +286,15 @@ double GreedyInserter::maxError() const { return impl_->largestError(); }
 
 const std::vector<InsertedVertex>& GreedyInserter::inserted() const { return impl_->inserted; }
 
-Triangulation GreedyInserter::triangulation() const {
+Triangulation GreedyInserter::triangulation(const ProgressRange& progress) const {
   const Delaunay& dt = impl_->dt;
-  const std::vector<FaceHandle> faces = impl_->facesInBlockOrder();
+  const std::vector<FaceHandle> faces = impl_->facesInBlockOrder(progress);
   Triangulation out;
   out.triangles.reserve(faces.size());
   out.neighbours.reserve(faces.size());
-  for (const FaceHandle& f : faces) {
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    if ((i & 0xFFFF) == 0) progress.report(0.6 + 0.4 * i / faces.size(), "Collecting the triangles");
+    const FaceHandle& f = faces[i];
     out.triangles.push_back({f->vertex(0)->info().order, f->vertex(1)->info().order, f->vertex(2)->info().order});
     std::array<std::int32_t, 3> n;
     for (int k = 0; k < 3; ++k) n[k] = dt.is_infinite(f->neighbor(k)) ? kNoNeighbour : f->neighbor(k)->info().index;

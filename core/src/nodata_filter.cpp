@@ -92,15 +92,20 @@ class TriangleFilter {
 
   // Corners are cells of the raster, so without a missing cell no triangle can cover one:
   // on a DEM without holes this pass over every triangle would find nothing.
-  void dropOverNodata() {
+  void dropOverNodata(const ProgressRange& progress) {
     if (!missing_.any()) return;
-    for (std::size_t t = 0; t < keep_.size(); ++t) keep_[t] = !coversMissing(missing_, corners(t));
+    for (std::size_t t = 0; t < keep_.size(); ++t) {
+      if ((t & 0xFFFF) == 0) progress.report(0.5 * t / keep_.size(), "Cutting out nodata");
+      keep_[t] = !coversMissing(missing_, corners(t));
+    }
   }
 
-  void peelBoundarySlivers() {
+  void peelBoundarySlivers(const ProgressRange& progress) {
     std::vector<std::int32_t> queue;
-    for (std::size_t t = 0; t < keep_.size(); ++t)
+    for (std::size_t t = 0; t < keep_.size(); ++t) {
+      if ((t & 0xFFFF) == 0) progress.report(0.5 + 0.5 * t / keep_.size(), "Cutting out nodata");
       if (isBoundarySliver(t)) queue.push_back(static_cast<std::int32_t>(t));
+    }
     while (!queue.empty()) {
       const std::int32_t t = queue.back();
       queue.pop_back();
@@ -160,26 +165,27 @@ class TriangleFilter {
 
 namespace {
 
-TriangleFilter filterOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin) {
+TriangleFilter filterOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin,
+                                 const ProgressRange& progress) {
   TriangleFilter filter(dem, triangulation, tin);
-  filter.dropOverNodata();
-  filter.peelBoundarySlivers();
+  filter.dropOverNodata(progress);
+  filter.peelBoundarySlivers(progress);
   return filter;
 }
 
 }  // namespace
 
 std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin,
-                                           std::vector<std::array<std::int32_t, 3>>* neighbours) {
-  const TriangleFilter filter = filterOnValidData(dem, triangulation, tin);
+                                           std::vector<std::array<std::int32_t, 3>>* neighbours,
+                                           const ProgressRange& progress) {
+  const TriangleFilter filter = filterOnValidData(dem, triangulation, tin, progress);
   if (neighbours) *neighbours = filter.keptNeighbours();
   return filter.kept();
 }
 
 std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triangulation, Tin& tin,
                                      const ProgressRange& progress) {
-  progress.report(0, "Cutting out nodata");
-  const TriangleFilter filter = filterOnValidData(dem, triangulation, tin);
+  const TriangleFilter filter = filterOnValidData(dem, triangulation, tin, progress.sub(0, 0.9));
   tin.triangles = filter.kept();
   tin.neighbours = filter.keptNeighbours();
   progress.report(0.9, "Cutting out nodata");

@@ -89,7 +89,8 @@ class GreedyInserter {
   // Every triangle with its neighbours, indexing inserted(); counter-clockwise in cell
   // units (col, row), which is clockwise on a north-up map. Those over holes are included:
   // trianglesOnValidData (nodata_filter.h) keeps the others, as `tinlod sample` does.
-  Triangulation triangulation() const;
+  // Reports over `progress` (a second for a few million triangles: a stop is heard).
+  Triangulation triangulation(const ProgressRange& progress = ProgressRange(Feedback{}, 0, 1)) const;
   // Where a candidate is, in cell units.
   double candidateCol(std::uint32_t candidate) const;
   double candidateRow(std::uint32_t candidate) const;

@@ -27,6 +27,7 @@ std::size_t keepTrianglesOnValidData(const Dem& dem, const Triangulation& triang
 // triangle's neighbours too, as keepTrianglesOnValidData sets them (numbered as the kept
 // triangles, kNoNeighbour across an outline edge).
 std::vector<Triangle> trianglesOnValidData(const Dem& dem, const Triangulation& triangulation, const Tin& tin,
-                                           std::vector<std::array<std::int32_t, 3>>* neighbours = nullptr);
+                                           std::vector<std::array<std::int32_t, 3>>* neighbours = nullptr,
+                                           const ProgressRange& progress = ProgressRange(Feedback{}, 0, 1));
 
 }  // namespace tinlod
