@@ -149,7 +149,29 @@ TEST(CrsScale, WorstScaleErrorIsProjsScaleFactor) {
   const double e2 = 0.00669437999014, s2 = 0.75;
   EXPECT_NEAR(worstScaleError("+proj=merc +k=1 +datum=WGS84 +type=crs", {{0.0, 0.0}, {10.0, 60.0}}),
               std::sqrt(1 - e2 * s2) / 0.5 - 1, 1e-9);
-  EXPECT_EQ(worstScaleError("not a crs", {{0.0, 0.0}}), 0.0);
+  // PROJ cannot tell: no CRS, or a point the projection cannot take (a transverse Mercator
+  // 100 degrees from its meridian); a CRS with heights is weighed by its projected part.
+  EXPECT_TRUE(std::isnan(worstScaleError("not a crs", {{0.0, 0.0}})));
+  EXPECT_TRUE(std::isnan(worstScaleError("+proj=tmerc +lon_0=0 +datum=WGS84", {{0.0, 0.0}, {100.0, 0.0}})));
+  EXPECT_NEAR(worstScaleError("EPSG:25832+7837", {{9.0, 0.0}}), 0.0004, 1e-9);
+}
+
+TEST(CrsScale, PercentagesSayWhatTheyMean) {
+  EXPECT_EQ(percentText(0.27), "27 %");
+  EXPECT_EQ(percentText(0.0023), "0.2 %");
+  EXPECT_EQ(percentText(0.012), "1.2 %");
+  EXPECT_EQ(percentText(0.0104), "1.04 %");  // over 1 %, never "1 %"
+  EXPECT_EQ(percentText(1.3e6), "over 1000 %");
+}
+
+TEST(CrsScale, AFittedCrsHoldsEveryPoint) {
+  // Around the globe at the equator no transverse Mercator can hold the points 180 degrees
+  // from its meridian: a Mercator can, and is the one fitted.
+  std::vector<LonLat> equator;
+  for (int lon = -180; lon < 180; lon += 20) equator.push_back({double(lon), 0.0});
+  const FittedCrs fitted = fittedCrs(equator, {0.0, 0.0});
+  EXPECT_EQ(fitted.kind, "a Mercator");
+  EXPECT_LT(fitted.error, 1e-6);
 }
 
 TEST(CrsScale, AFittedCrsShrinksAsMuchAsItStretches) {
@@ -196,7 +218,7 @@ TEST(Crs, AContinentNoCrsKeepsTrueToScaleIsSaidToBeSo) {
   // at the corners; a fitted stereographic would still be off by over 5 %.
   const std::vector<std::string> warned = warningsFor(projectedDem(3031, -3000000.0, 3000000.0, 1200000.0));
   EXPECT_TRUE(has(warned, "Antarctic Polar Stereographic (EPSG:3031) stretches distances by up to")) << warned.size();
-  EXPECT_TRUE(has(warned, "no CRS keeps a DEM this large within 1 % of true scale"));
+  EXPECT_TRUE(has(warned, "none of the conformal CRSs tinlod fits keeps a DEM this large within 1 % of true scale"));
 }
 
 TEST(Crs, TargetSrsIsUsed) {

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "text_and_paths.h"
+#include "tinlod/crs_transform.h"
 
 namespace tinlod {
 
@@ -17,24 +18,36 @@ namespace {
 struct ScaleRange {
   double low = std::numeric_limits<double>::infinity();
   double high = -std::numeric_limits<double>::infinity();
-  bool empty() const { return low > high; }
+  bool complete = false;  // every point projected: a CRS that cannot hold the DEM is no advice
 };
 
 using PjPtr = std::unique_ptr<PJ, decltype(&proj_destroy)>;
 
+// The projected CRS in a definition: itself, a bound CRS's source, a compound CRS's
+// horizontal part (a DEM's CRS with heights, EPSG:25832+7837).
+PjPtr projectedPart(PJ_CONTEXT* ctx, PjPtr pj) {
+  if (pj && proj_get_type(pj.get()) == PJ_TYPE_COMPOUND_CRS) pj = PjPtr(proj_crs_get_sub_crs(ctx, pj.get(), 0), proj_destroy);
+  if (pj && proj_get_type(pj.get()) == PJ_TYPE_BOUND_CRS) pj = PjPtr(proj_get_source_crs(ctx, pj.get()), proj_destroy);
+  if (!pj || proj_get_type(pj.get()) != PJ_TYPE_PROJECTED_CRS) return PjPtr(nullptr, proj_destroy);
+  return pj;
+}
+
 // The projection of a projected CRS, taking radians as proj_factors gives them: proj_factors
 // on the CRS itself looks an operation up again at every point (15 ms each), and the CRS's
-// own conversion takes degrees in the CRS's axis order.
+// own conversion takes degrees in the CRS's axis order. A CRS no PROJ string expresses is
+// kept as it is: slow, but rare.
 PjPtr projectionOf(PJ_CONTEXT* ctx, const std::string& definition) {
   PjPtr pj(proj_create(ctx, definition.c_str()), proj_destroy);
   if (!pj || !proj_is_crs(pj.get())) return pj;
-  if (proj_get_type(pj.get()) == PJ_TYPE_BOUND_CRS) pj = PjPtr(proj_get_source_crs(ctx, pj.get()), proj_destroy);
-  if (!pj || proj_get_type(pj.get()) != PJ_TYPE_PROJECTED_CRS) return PjPtr(nullptr, proj_destroy);
+  pj = projectedPart(ctx, std::move(pj));
+  if (!pj) return pj;
   const char* text = proj_as_proj_string(ctx, pj.get(), PJ_PROJ_5, nullptr);
   std::string projection = text ? text : "";
   const std::size_t type = projection.find(" +type=crs");
   if (type != std::string::npos) projection.erase(type, 10);
-  return PjPtr(projection.empty() ? nullptr : proj_create(ctx, projection.c_str()), proj_destroy);
+  if (projection.empty()) return pj;
+  PjPtr fast(proj_create(ctx, projection.c_str()), proj_destroy);
+  return fast ? std::move(fast) : std::move(pj);
 }
 
 ScaleRange scaleRange(const std::string& definition, const std::vector<LonLat>& points) {
@@ -42,19 +55,21 @@ ScaleRange scaleRange(const std::string& definition, const std::vector<LonLat>& 
   std::unique_ptr<PJ_CONTEXT, decltype(&proj_context_destroy)> ctx(proj_context_create(), proj_context_destroy);
   proj_log_level(ctx.get(), PJ_LOG_NONE);  // a projection that cannot take a point says so by its errno
   const PjPtr projection = projectionOf(ctx.get(), definition);
-  if (!projection) return range;
+  if (!projection || points.empty()) return range;
   for (const LonLat& p : points) {
     proj_errno_reset(projection.get());
     const PJ_FACTORS f = proj_factors(projection.get(), proj_coord(proj_torad(p.lon), proj_torad(p.lat), 0, 0));
-    if (proj_errno(projection.get()) != 0 || !std::isfinite(f.meridional_scale) || !std::isfinite(f.parallel_scale)) continue;
+    if (proj_errno(projection.get()) != 0 || !std::isfinite(f.meridional_scale) || !std::isfinite(f.parallel_scale)) return range;
     range.low = std::min({range.low, f.meridional_scale, f.parallel_scale});
     range.high = std::max({range.high, f.meridional_scale, f.parallel_scale});
   }
+  range.complete = true;
   return range;
 }
 
 double errorOf(const ScaleRange& range) {
-  return range.empty() ? 0 : std::max(std::fabs(range.low - 1), std::fabs(range.high - 1));
+  if (!range.complete) return std::numeric_limits<double>::quiet_NaN();
+  return std::max(std::fabs(range.low - 1), std::fabs(range.high - 1));
 }
 
 double wrapLongitude(double lon) { return std::remainder(lon, 360.0); }
@@ -93,14 +108,35 @@ FittedCrs fittedCrs(const std::vector<LonLat>& points, LonLat centre) {
   best.error = std::numeric_limits<double>::infinity();
   for (const Candidate& c : candidatesAbout(centre)) {
     const ScaleRange unit = scaleRange(withScale(c, 1), points);
-    if (unit.empty()) continue;
+    if (!unit.complete) continue;  // it cannot hold the whole DEM
     // Balanced: the scale factor that makes the largest shrink equal the largest stretch.
     const double k = std::round(2 / (unit.low + unit.high) * 1e6) / 1e6;
     const std::string definition = withScale(c, k);
     const double error = worstScaleError(definition, points);
-    if (error < best.error) best = {definition, c.kind, error};
+    if (error < best.error) best = {definition, c.kind, error};  // false for NaN
   }
   return best;
+}
+
+std::string percentText(double fraction) {
+  const double percent = fraction * 100;
+  if (percent >= 1000) return "over 1000 %";  // Web Mercator near a pole: the figure means nothing more
+  if (percent >= 10) return formatNumber(std::round(percent)) + " %";
+  // Two decimals where one would round a figure over 1 % to "1 %".
+  const double tenths = std::round(percent * 10) / 10;
+  return formatNumber(tenths <= 1 && percent > 1 ? std::round(percent * 100) / 100 : tenths) + " %";
+}
+
+std::string scaleAdvice(const std::vector<LonLat>& points, LonLat centre, double error) {
+  const int utm = utmEpsgFor(centre.lon, centre.lat);
+  const double utmError = worstScaleError("EPSG:" + std::to_string(utm), points);
+  if (utmError <= 0.01) return "use -t_srs EPSG:" + std::to_string(utm) + " (the UTM zone of the centre)";
+  const FittedCrs fitted = fittedCrs(points, centre);
+  const std::string use = "-t_srs '" + fitted.definition + "' (" + fitted.kind + " fitted to the DEM";
+  if (fitted.error <= 0.01) return "use " + use + ", within " + percentText(fitted.error) + ")";
+  const std::string large = "none of the conformal CRSs tinlod fits keeps a DEM this large within 1 % of true scale";
+  if (fitted.error < 0.5 * error) return large + ": " + use + ") keeps it within " + percentText(fitted.error);
+  return large;
 }
 
 }  // namespace tinlod

@@ -12,7 +12,8 @@ struct LonLat {
 
 // How far a projected CRS's scale strays from 1 at the points, from PROJ's scale factors:
 // the larger of the meridional and parallel errors (0.27 for Web Mercator at San Francisco,
-// 0.001 at the edge of a UTM zone). 0 when PROJ cannot tell.
+// 0.001 at the edge of a UTM zone). NaN when PROJ cannot tell: no projected CRS, or a point
+// it cannot project.
 double worstScaleError(const std::string& crsDefinition, const std::vector<LonLat>& points);
 
 // A CRS for a DEM whose points a UTM zone stretches too much: the conformal one, among a
@@ -22,8 +23,16 @@ double worstScaleError(const std::string& crsDefinition, const std::vector<LonLa
 struct FittedCrs {
   std::string definition;  // a PROJ string, as -t_srs takes it
   std::string kind;        // "a Lambert conformal conic", for messages
-  double error = 0;        // worstScaleError at the points
+  double error = 0;        // worstScaleError at the points; infinity when none holds them all
 };
 FittedCrs fittedCrs(const std::vector<LonLat>& points, LonLat centre);
+
+// A scale error for messages: "12 %", "0.2 %", "1.04 %" (never "1 %" for one over 1 %).
+std::string percentText(double fraction);
+
+// What to do about a CRS that stretches a DEM by `error` (at least 1 %): the UTM zone of its
+// centre when that keeps within 1 %, else the CRS fittedCrs finds, or the news that none of
+// those keeps a DEM this large within 1 %. Worded for -t_srs.
+std::string scaleAdvice(const std::vector<LonLat>& points, LonLat centre, double error);
 
 }  // namespace tinlod

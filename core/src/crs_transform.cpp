@@ -142,25 +142,6 @@ std::vector<LonLat> lonLatOf(const OGRSpatialReference& src, std::vector<double>
   return out;
 }
 
-std::string percentText(double fraction) {
-  const double percent = fraction * 100;
-  return formatNumber(percent >= 10 ? std::round(percent) : std::round(percent * 10) / 10) + " %";
-}
-
-// What to do about a CRS that stretches a DEM too much: a UTM zone when one fits it, else a
-// conformal CRS fitted to it, or the news that no CRS keeps a DEM this large true to scale.
-std::string scaleAdvice(const std::vector<LonLat>& points, LonLat centre, double error) {
-  const int utm = utmEpsgFor(centre.lon, centre.lat);
-  const double utmError = worstScaleError("EPSG:" + std::to_string(utm), points);
-  if (utmError <= 0.01) return "use -t_srs EPSG:" + std::to_string(utm) + " (the UTM zone of the centre)";
-  const FittedCrs fitted = fittedCrs(points, centre);
-  const std::string use = "-t_srs '" + fitted.definition + "' (" + fitted.kind + " fitted to the DEM";
-  if (fitted.error <= 0.01) return "use " + use + ", within " + percentText(fitted.error) + ")";
-  const std::string large = "no CRS keeps a DEM this large within 1 % of true scale";
-  if (fitted.error < 0.5 * error) return large + ": " + use + ") keeps it within " + percentText(fitted.error);
-  return large;
-}
-
 // Metres in a CRS that stretches distances are not metres on the ground: slopes, areas
 // and volumes come out wrong by the same factor. Measured over the whole extent: a DEM
 // wider than a UTM zone is true to scale at its centre and not at its sides.
@@ -173,7 +154,7 @@ void warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpa
   const std::vector<LonLat> points = lonLatOf(src, x, y);
   if (points.empty()) return;
   const double error = worstScaleError(toTin.targetWkt(), points);
-  if (error <= 0.01) return;
+  if (!(error > 0.01)) return;  // NaN: PROJ cannot tell, or cannot project the DEM (said later)
   LonLat centre;
   try {
     centreLonLat(dem, src, centre.lon, centre.lat);
