@@ -156,7 +156,7 @@ InsertedTin insertedTinWith(const Dem& dem, const InsertOptions& options, const 
   const StopRowsOnExit stopRows{rows};
   std::function<void()> handRows;
   if (rows) handRows = [rows, &inserter] { rows->add(inserter.inserted()); };
-  inserter.run({options.maxError, options.maxVertices, options.maxTriangles}, progress.sub(0.15, 1), handRows);
+  inserter.run({options.maxError, options.maxVertices, options.maxTriangles}, progress.sub(0.15, 0.95), handRows);
   out.summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.summary.maxError = inserter.maxError();
   out.summary.holesOpen = std::isinf(out.summary.maxError);
@@ -184,7 +184,8 @@ InsertedTin insertedTinWith(const Dem& dem, const InsertOptions& options, const 
   // The triangles tinlod sample would keep: none over a hole, no sliver the jitter of
   // sampled candidates leaves along a straight edge.
   std::vector<std::array<std::int32_t, 3>> neighbours;
-  all.triangles = trianglesOnValidData(dem, inserter.triangulation(progress.sub(1, 1)), all, &neighbours, progress.sub(1, 1));
+  all.triangles =
+      trianglesOnValidData(dem, inserter.triangulation(progress.sub(0.95, 0.97)), all, &neighbours, progress.sub(0.97, 1));
   if (placed.valid()) placed.get();
   // Keep the vertices some triangle uses, in insertion order.
   for (VertexId i : dropUnusedVertices(all)) {
@@ -232,9 +233,13 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
 struct LateFigures {
   double maxError = std::numeric_limits<double>::quiet_NaN();
   std::shared_future<InsertSummary> check;
+  // Called while the file waits for the check: a stop asked then is heard (it throws).
+  std::function<void()> whileWaiting;
 };
 
 std::map<std::string, std::string> lateMetadata(const LateFigures& late) {
+  while (late.check.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready)
+    if (late.whileWaiting) late.whileWaiting();
   const InsertSummary s = late.check.get();
   std::map<std::string, std::string> items{{"TINLOD_UNCOVERED_CELLS", std::to_string(s.uncoveredCells)},
                                            {"TINLOD_MEASURED_MAX_ERROR", formatNumber(s.measuredMaxError)},
@@ -298,14 +303,16 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   const InsertedTin result = insertedTinWith(dem, options, all.sub(0.1, 0.85), startRows);
   late->maxError = result.summary.maxError;
   // The independent check runs while the file is written; its figures are the file's last
-  // metadata items. (It reports no progress from its thread.) It takes one core when the
-  // writing would outlast it (about 1.5 us a triangle against 0.1 us a cell), else all.
+  // metadata items. (It reports no progress from its thread: the file's thread does while it
+  // waits for them.) It takes one core when the writing would outlast it (about 1.5 us a
+  // triangle against 0.1 us a cell), else all.
   const bool longWrite = result.tin.triangles.size() * 16 > std::size_t(dem.width) * dem.height;
   // Given up with the file (a stop, a failed write), the check stops too: waiting for it
   // held a stop asked while the triangles were written by up to 1.5 s (alps_2x2 at 10 m).
   const auto abandonCheck = std::make_shared<std::atomic<bool>>(false);
   Feedback checkFeedback;
   checkFeedback.progress = [abandonCheck](double, const std::string&) { return !abandonCheck->load(); };
+  late->whileWaiting = [all] { all.report(0.99, "Checking every cell against the TIN"); };
   late->check = std::async(std::launch::async, [&dem, &result, longWrite, checkFeedback] {
     std::optional<ThisThreadAlone> alone;
     if (longWrite) alone.emplace();
