@@ -10,6 +10,7 @@
 
 #include "group_icon.h"
 #include "help_page.h"
+#include "layer_placement.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "source_file.h"
@@ -186,7 +187,7 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
                          .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1).arg(s.levels)
                          .arg(s.coarsestRmse, 0, 'f', 2).arg(QString::fromStdString(coarsestCellsText(s))));
   if (const std::string cover = levelZeroCoverText(s); !cover.empty()) feedback->pushInfo(QString::fromStdString(cover));
-  if (loadLevels_) {
+  if (loadLevels_ && !writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context)) {
     const QString base = outputBaseName(output, QStringLiteral("TIN hierarchy"));
     for (const std::int32_t level : s.levelViews)
       loadTinLayerOnCompletion(context, output, QStringLiteral("level_%1").arg(level), QStringLiteral("OUTPUT"), base,

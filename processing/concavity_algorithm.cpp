@@ -93,9 +93,10 @@ QVariantMap ConcavityAlgorithm::processAlgorithm(const QVariantMap& parameters, 
                       names);
   feedback->pushInfo(QStringLiteral("%1 vertices of %2 lines; parts: %3 convex, %4 straight, %5 concave")
                          .arg(s.vertices).arg(s.lines).arg(s.convex).arg(s.straight).arg(s.concave));
-  loadOnCompletion(context, output + QStringLiteral("|layername=parts"),
-                                     placedLayerDetails(QStringLiteral("concavity parts"), context.project(),
-                                                        QStringLiteral("OUTPUT"), new ConcavityPartsStyle));
+  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+    context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=parts"),
+                                       placedLayerDetails(QStringLiteral("concavity parts"), context.project(),
+                                                          QStringLiteral("OUTPUT"), new ConcavityPartsStyle));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("VERTICES"), static_cast<qlonglong>(s.vertices));

@@ -14,6 +14,26 @@
 
 namespace tinlod::qgis {
 
+namespace {
+
+// The lines with their values, and the other layers asked for: a threshold's simplified
+// lines, the vertex points.
+void loadDpLayers(const QString& output, const DpOptions& options, QgsProcessingContext& context) {
+  context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=lines"),
+                                     placedLayerDetails(QStringLiteral("lines with DP values"), context.project(),
+                                                        QStringLiteral("OUTPUT")));
+  if (options.threshold >= 0)
+    context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=simplified"),
+                                       placedLayerDetails(QStringLiteral("lines simplified at %1 m").arg(options.threshold),
+                                                          context.project(), QStringLiteral("OUTPUT")));
+  if (options.points)
+    context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=vertices"),
+                                       placedLayerDetails(QStringLiteral("vertices with DP values"), context.project(),
+                                                          QStringLiteral("OUTPUT")));
+}
+
+}  // namespace
+
 QString DpValuesAlgorithm::name() const { return QStringLiteral("dpvalues"); }
 QString DpValuesAlgorithm::displayName() const { return QStringLiteral("Douglas-Peucker simplification values"); }
 QString DpValuesAlgorithm::group() const { return QStringLiteral("Lines"); }
@@ -78,18 +98,7 @@ QVariantMap DpValuesAlgorithm::processAlgorithm(const QVariantMap& parameters, Q
   if (options_.threshold >= 0)
     feedback->pushInfo(QStringLiteral("At threshold %1 m: %2 vertices kept, %3 crossings between simplified lines")
                            .arg(options_.threshold).arg(s.keptVertices).arg(s.crossings));
-  loadOnCompletion(context, output + QStringLiteral("|layername=lines"),
-                                     placedLayerDetails(QStringLiteral("lines with DP values"), context.project(),
-                                                        QStringLiteral("OUTPUT")));
-  // The other layers asked for come too: a threshold's simplified lines, the vertex points.
-  if (options_.threshold >= 0)
-    loadOnCompletion(context, output + QStringLiteral("|layername=simplified"),
-                                       placedLayerDetails(QStringLiteral("lines simplified at %1 m").arg(options_.threshold),
-                                                          context.project(), QStringLiteral("OUTPUT")));
-  if (options_.points)
-    loadOnCompletion(context, output + QStringLiteral("|layername=vertices"),
-                                       placedLayerDetails(QStringLiteral("vertices with DP values"), context.project(),
-                                                          QStringLiteral("OUTPUT")));
+  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context)) loadDpLayers(output, options_, context);
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("LINES"), static_cast<qlonglong>(s.lines));

@@ -11,6 +11,7 @@
 #include "group_icon.h"
 #include "help_page.h"
 #include "hierarchy_parameter.h"
+#include "layer_placement.h"
 #include "parameter_decimals.h"
 #include "parameter_given.h"
 #include "processing_feedback.h"
@@ -132,8 +133,9 @@ QVariantMap ExtractLodAlgorithm::processAlgorithm(const QVariantMap& parameters,
       names);
   feedback->pushInfo(QStringLiteral("%1 triangles (level 0 has %2) and %3 vertices in %4")
                          .arg(s.triangles).arg(s.levelZeroTriangles).arg(s.vertices).arg(QString::fromStdString(s.crsName)));
-  loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"),
-                           outputBaseName(output, QStringLiteral("level of detail TIN")));
+  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+    loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"),
+                             outputBaseName(output, QStringLiteral("level of detail TIN")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("TRIANGLES_LAYER"), gpkgLayer(output, QStringLiteral("triangles")));

@@ -6,6 +6,7 @@
 
 #include "group_icon.h"
 #include "help_page.h"
+#include "layer_placement.h"
 #include "parameter_decimals.h"
 #include "processing_feedback.h"
 #include "tin_layer_output.h"
@@ -122,10 +123,8 @@ QVariantMap GreedyInsertionAlgorithm::processAlgorithm(const QVariantMap& parame
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3; maximum error %4 m, RMSE %5 m over %6 cells")
                          .arg(s.vertices).arg(s.triangles).arg(QString::fromStdString(s.crsName))
                          .arg(s.measuredMaxError).arg(s.rmse).arg(s.measuredCells));
-  // The vertices load hidden: a hundred thousand dots would cover the map.
-  const QString base = outputBaseName(output, QStringLiteral("greedy insertion TIN"));
-  loadTinLayerOnCompletion(context, output, QStringLiteral("vertices"), QStringLiteral("OUTPUT"), base, QString(), false);
-  loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"), base);
+  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+    loadTinOnCompletion(context, output, outputBaseName(output, QStringLiteral("greedy insertion TIN")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("TRIANGLES_LAYER"), gpkgLayer(output, QStringLiteral("triangles")));

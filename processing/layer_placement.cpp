@@ -101,14 +101,13 @@ bool inTemporaryFolder(const QString& path) {
 
 }  // namespace
 
-void loadOnCompletion(QgsProcessingContext& context, const QString& layer, const QgsProcessingContext::LayerDetails& details) {
-  // A model runs its steps with its own variables (model_path, model_name) in the context.
-  const bool modelStep = context.expressionContext().hasVariable(QStringLiteral("model_path"));
-  if (modelStep && inTemporaryFolder(layer.section(QLatin1Char('|'), 0, 0))) {
-    delete details.postProcessor();  // the context would have owned it
-    return;
-  }
-  context.addLayerToLoadOnCompletion(layer, details);
+bool writesForALaterStepOnly(const QVariant& output, const QgsProcessingContext& context) {
+  // A model runs its steps with its own variables (model_path, model_name) in the context;
+  // they stay there after it, so the output as given decides.
+  if (!context.expressionContext().hasVariable(QStringLiteral("model_path"))) return false;
+  if (output.userType() != QMetaType::QString) return false;
+  const QString path = output.toString();
+  return path != QgsProcessing::TEMPORARY_OUTPUT && inTemporaryFolder(path);
 }
 
 }  // namespace tinlod::qgis

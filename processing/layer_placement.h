@@ -38,11 +38,12 @@ QgsProcessingContext::LayerDetails placedLayerDetails(
     QgsProcessingLayerPostProcessorInterface* style = nullptr,
     QgsProcessingUtils::LayerHint hint = QgsProcessingUtils::LayerHint::Vector);
 
-// Has QGIS load `layer` (a GeoPackage's "path|layername=...") when the run is over, as
-// `details` say; but not from a file a model's step writes only for a later step: QGIS adds
-// no model's intermediate layer to the map, and such a file is in its temporary folder, gone
-// with the session. (A model's own output written to a path of the user's is loaded.)
-void loadOnCompletion(QgsProcessingContext& context, const QString& layer, const QgsProcessingContext::LayerDetails& details);
+// Whether an algorithm's OUTPUT (as given, not resolved) is a file a model's step writes
+// only for a later step: its layers are then not loaded, as QGIS loads no intermediate layer
+// of a model (such a file, in QGIS's temporary folder, is gone with the session). A model
+// hands such a step a path in that folder; a model output comes as the user gave it (a path,
+// or TEMPORARY_OUTPUT, loaded as native algorithms' are).
+bool writesForALaterStepOnly(const QVariant& output, const QgsProcessingContext& context);
 
 // placeLayer as a post-processor, for outputs without a style of their own.
 class PlacedLayer : public QgsProcessingLayerPostProcessorInterface {

@@ -87,9 +87,10 @@ QVariantMap LocateAlgorithm::processAlgorithm(const QVariantMap& parameters, Qgs
                          .arg(s.unfinishedTiles.empty() ? QString() : QStringLiteral("finished tiles' "))
                          .arg(s.level));
   // As small dots: thousands of QGIS's default markers would hide the map.
-  loadOnCompletion(context, output + QStringLiteral("|layername=points"),
-                                     placedLayerDetails(QStringLiteral("points with elevation"), context.project(),
-                                                        QStringLiteral("OUTPUT"), new TinLayerStyle));
+  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+    context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=points"),
+                                       placedLayerDetails(QStringLiteral("points with elevation"), context.project(),
+                                                          QStringLiteral("OUTPUT"), new TinLayerStyle));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("POINTS"), static_cast<qlonglong>(s.points));

@@ -6,6 +6,7 @@
 
 #include "group_icon.h"
 #include "help_page.h"
+#include "layer_placement.h"
 #include "processing_feedback.h"
 #include "tin_layer_output.h"
 #include "tin_layer_style.h"
@@ -71,10 +72,8 @@ QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, 
       samplingParameterNames());
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3")
                          .arg(summary.vertices).arg(summary.triangles).arg(QString::fromStdString(summary.crsName)));
-  // The vertices load hidden: a hundred thousand dots would cover the map.
-  const QString base = outputBaseName(output, QStringLiteral("sampled TIN"));
-  loadTinLayerOnCompletion(context, output, QStringLiteral("vertices"), QStringLiteral("OUTPUT"), base, QString(), false);
-  loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"), base);
+  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+    loadTinOnCompletion(context, output, outputBaseName(output, QStringLiteral("sampled TIN")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("TRIANGLES_LAYER"), gpkgLayer(output, QStringLiteral("triangles")));

@@ -42,9 +42,14 @@ void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg
                               const QString& outputName, const QString& baseName, const QString& group, bool visible,
                               int order) {
   const QString name = group.isEmpty() ? QStringLiteral("%1 %2").arg(baseName, layerName) : layerName;
-  loadOnCompletion(context, 
+  context.addLayerToLoadOnCompletion(
       gpkg + QStringLiteral("|layername=") + layerName,
       placedLayerDetails(name, context.project(), outputName, new TinLayerStyle(group, visible, order)));
+}
+
+void loadTinOnCompletion(QgsProcessingContext& context, const QString& gpkg, const QString& baseName) {
+  loadTinLayerOnCompletion(context, gpkg, QStringLiteral("vertices"), QStringLiteral("OUTPUT"), baseName, QString(), false);
+  loadTinLayerOnCompletion(context, gpkg, QStringLiteral("triangles"), QStringLiteral("OUTPUT"), baseName);
 }
 
 }  // namespace tinlod::qgis

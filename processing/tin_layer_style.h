@@ -34,4 +34,8 @@ void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg
                               const QString& outputName, const QString& baseName, const QString& group = QString(),
                               bool visible = true, int order = 0);
 
+// A single TIN's two layers: the triangles, and the vertices hidden (a hundred thousand
+// dots would cover the map).
+void loadTinOnCompletion(QgsProcessingContext& context, const QString& gpkg, const QString& baseName);
+
 }  // namespace tinlod::qgis

@@ -574,12 +574,9 @@ TEST(Processing, ExistingGeoPackageKeepsItsOtherLayers) {
 long long sqlCount(const std::string& gpkg, const std::string& sql);
 
 // A model: build (an intermediate step), its coarsest level to native:centroids, and
-// extractlod to a path of the user's. Only that output comes to the map, as QGIS loads no
-// intermediate layer of a model; and the centroids are the coarsest level's triangles',
-// where the GeoPackage alone gave native algorithms its first layer, the vertices.
-TEST(Processing, AModelLoadsOnlyItsOwnOutputsAndItsStepsPassTriangles) {
+// extractlod, whose TIN is the model's output "lod:tin".
+void makeLodModel(QgsProcessingModelAlgorithm& model) {
   using Source = QgsProcessingModelChildParameterSource;
-  QgsProcessingModelAlgorithm model(QStringLiteral("m"), QStringLiteral("g"));
   QgsProcessingModelChildAlgorithm build(QStringLiteral("tinlod:buildhierarchy"));
   build.setChildId(QStringLiteral("build"));
   build.addParameterSources(QStringLiteral("INPUT"), {Source::fromStaticValue(QString::fromStdString(defaultDem()))});
@@ -604,7 +601,14 @@ TEST(Processing, AModelLoadsOnlyItsOwnOutputsAndItsStepsPassTriangles) {
   centroids.setModelOutputs({{QStringLiteral("points"), points}});
   model.addChildAlgorithm(centroids);
   model.updateDestinationParameters();
+}
 
+// Only the model's output comes to the map, as QGIS loads no intermediate layer of a model;
+// and the centroids are the coarsest level's triangles', where the GeoPackage alone gave
+// native algorithms its first layer, the vertices.
+TEST(Processing, AModelLoadsOnlyItsOwnOutputsAndItsStepsPassTriangles) {
+  QgsProcessingModelAlgorithm model(QStringLiteral("m"), QStringLiteral("g"));
+  makeLodModel(model);
   const QString dir = QString::fromStdString(test::tempDir());
   QgsProcessingContext context;
   QgsProject project;
@@ -627,6 +631,30 @@ TEST(Processing, AModelLoadsOnlyItsOwnOutputsAndItsStepsPassTriangles) {
   QgsVectorLayer centres(dir + "/points.gpkg", QStringLiteral("points"), QStringLiteral("ogr"));
   EXPECT_EQ(centres.featureCount(), level.featureCount());
   EXPECT_GT(level.featureCount(), 0);
+}
+
+// A model output left temporary is loaded, as native algorithms' are; and a context a model
+// ran in (its variables stay in it) loads an algorithm's layers run after it.
+TEST(Processing, AModelsTemporaryOutputAndALaterRunInItsContextAreLoaded) {
+  QgsProcessingModelAlgorithm model(QStringLiteral("m"), QStringLiteral("g"));
+  makeLodModel(model);
+  QgsProcessingContext context;
+  QgsProject project;
+  context.setProject(&project);
+  RecordingFeedback feedback;
+  bool ok = false;
+  model.run({{QStringLiteral("lod:tin"), QgsProcessing::TEMPORARY_OUTPUT},
+             {QStringLiteral("centroids:points"), QgsProcessing::TEMPORARY_OUTPUT}},
+            context, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  const QStringList loaded = context.layersToLoadOnCompletion().keys();
+  EXPECT_EQ(loaded.filter(QStringLiteral("|layername=triangles")).size(), 1) << loaded.join(' ').toStdString();
+  EXPECT_TRUE(loaded.filter(QStringLiteral("|layername=level_")).isEmpty()) << loaded.join(' ').toStdString();
+  context.setLayersToLoadOnCompletion({});
+  std::unique_ptr<QgsProcessingAlgorithm> sample(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:sampletin"));
+  sample->run({{"INPUT", QString::fromStdString(defaultDem())}, {"OUTPUT", QgsProcessing::TEMPORARY_OUTPUT}}, context, &feedback, &ok);
+  ASSERT_TRUE(ok) << feedback.errors.toStdString();
+  EXPECT_EQ(context.layersToLoadOnCompletion().size(), 2);
 }
 
 // Where LEVEL_VIEWS wrote no view of the coarsest level, its layer is the triangles cut to it.
