@@ -15,6 +15,7 @@
 #include "tinlod/dem_reader.h"
 #include "tinlod/error.h"
 #include "tinlod/hierarchy_builder.h"
+#include "tinlod/hierarchy_info.h"
 #include "tinlod/hierarchy_reader.h"
 #include "tinlod/sample_job.h"
 #include "tinlod/synthetic_dem.h"
@@ -262,6 +263,22 @@ TEST(AccuracyJob, TooFewTestPointsOnTheTinAreRefusedWithNothingWritten) {
             "only 1 test point of '" + smallDem() + "' lies on the TIN: give the DEM the TIN was made from, or a "
             "smaller -step");
   EXPECT_FALSE(fs::exists(a.reportPath));
+}
+
+// A level the hierarchy does not have is refused from its levels table, before anything
+// is read or measured: no progress at all.
+TEST(AccuracyJob, ALevelTheHierarchyDoesNotHaveFailsBeforeAnyWork) {
+  AccuracyOutputs a;
+  a.rasterPath = test::tempDir() + "/level.tif";
+  a.rasterLevel = 40;
+  bool progressed = false;
+  Feedback watching;
+  watching.progress = [&progressed](double, const std::string&) { return progressed = true; };
+  const int top = static_cast<int>(readHierarchyInfo(built().gpkg).levels.size()) - 1;
+  EXPECT_EQ(test::errorOf([&] { runAccuracyJob(smallDem(), built().gpkg, a, 0, "", watching); }),
+            "-level 40 does not exist: the hierarchy has levels 0 to " + std::to_string(top));
+  EXPECT_FALSE(progressed);
+  EXPECT_FALSE(fs::exists(a.rasterPath));
 }
 
 TEST(AccuracyJob, CancelLeavesNoRasterOrReport) {

@@ -62,12 +62,23 @@ LevelAccuracy levelRow(const Hierarchy& h, const std::string& dem, int level, co
   return row;
 }
 
+Error missingLevel(int level, int top) {
+  return Error("-level " + std::to_string(level) + " does not exist: the hierarchy has levels 0 to " + std::to_string(top));
+}
+
+// A level the file does not have fails before the long work: its levels table says, where
+// the level was found missing once the triangles were read (a second for alps_2x2's).
+void requireRasterLevel(int level, const std::string& hierarchyPath) {
+  if (level < 0) return;
+  const int top = static_cast<int>(readHierarchyInfo(hierarchyPath, false).levels.size()) - 1;
+  if (top >= 0 && level > top) throw missingLevel(level, top);
+}
+
 std::vector<LevelAccuracy> measureLevels(const AccuracyEvaluator& evaluator, const Hierarchy& h, const std::string& dem,
                                          int rasterLevel, const BandStrips* bands, const ProgressRange& progress) {
   const int top = h.coarsest();
   const int chosen = rasterLevel < 0 ? top : rasterLevel;
-  if (chosen > top)
-    throw Error("-level " + std::to_string(rasterLevel) + " does not exist: the hierarchy has levels 0 to " + std::to_string(top));
+  if (chosen > top) throw missingLevel(rasterLevel, top);
   std::vector<LevelAccuracy> rows;
   for (int L = 0; L <= top; ++L) {
     LevelAccuracy row = levelRow(h, dem, L, h.levels[L]);
@@ -235,6 +246,7 @@ AccuracyReport runAccuracyJob(const std::string& demPath, const std::string& hie
     all.finish("Done");
     return report;
   }
+  if (!isCatalogue(hierarchyPath)) requireRasterLevel(outputs.rasterLevel, hierarchyPath);
   const StoredHierarchy stored = readHierarchyOrCatalogue(hierarchyPath, all.sub(0, 0.15));
   band = bandToMeasure(band, stored.info, hierarchyPath, outputs, all);
   warnOfAnotherSourceSrs(sourceSrs, stored.info, all);
