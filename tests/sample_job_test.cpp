@@ -229,6 +229,23 @@ TEST(SampleJob, ExistingOutputNeedsOverwriteAndKeepsOtherLayers) {
   EXPECT_EQ(layerInfo(out, "triangles").features, (long long)s.triangles);
 }
 
+// QGIS replaces an output without asking: a hierarchy's levels going for a sampled TIN are
+// said; a TIN replacing a TIN is not news.
+TEST(SampleJob, ReplacingAHierarchySaysItsLevelsGo) {
+  const std::string out = test::tempDir() + "/h.gpkg";
+  HierarchyOptions h;
+  h.maxLevels = 2;
+  runBuildJob(defaultDem(), out, {}, h, false, {});
+  test::RecordingFeedback first;
+  runSampleJob(defaultDem(), out, {}, true, first.feedback());
+  EXPECT_TRUE(first.warned("'" + out + "' held a tinlod TIN hierarchy (its levels, groups and level views): this run's TIN "
+                           "replaces it, its other layers kept"));
+  EXPECT_EQ(readHierarchyInfo(out).kind, "tin");
+  test::RecordingFeedback again;
+  runSampleJob(defaultDem(), out, {}, true, again.feedback());
+  EXPECT_FALSE(again.warned("held a tinlod"));
+}
+
 // An output that is not a GeoPackage is neither replaced nor half updated: the error says
 // so, and the file and its folder are as they were.
 TEST(SampleJob, AnOutputThatIsNotAGeoPackageIsLeftAlone) {

@@ -362,6 +362,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   const StagedFile& out = files.add(outPath, "output", true);
   const AccuracyFiles accuracyFiles = stageAccuracyFiles(accuracy, files);
   const ProgressRange all(feedback, 0, 1);
+  if (const std::string note = replacedKindNote(outPath, writeOptions); !note.empty()) all.warn(note);
   Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, options, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();

@@ -90,6 +90,21 @@ void refuseNonGeoPackage(const std::string& path) {
 
 }  // namespace
 
+std::string replacedKindNote(const std::string& path, const GpkgWriteOptions& options) {
+  const auto given = options.metadata.find("TINLOD_KIND");
+  if (given == options.metadata.end() || !fs::is_regular_file(path)) return "";
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  CPLPopErrorHandler();
+  const std::string old = ds && ds->GetMetadataItem("TINLOD_KIND") ? ds->GetMetadataItem("TINLOD_KIND") : "";
+  if (old.empty() || old == given->second || old == "catalogue") return "";
+  const auto words = [](const std::string& kind) {
+    return kind == "hierarchy" ? std::string("TIN hierarchy") : kind == "lod" ? std::string("level-of-detail TIN") : "TIN";
+  };
+  return "'" + path + "' held a tinlod " + words(old) + (old == "hierarchy" ? " (its levels, groups and level views)" : "") +
+         ": this run's " + words(given->second) + " replaces it, its other layers kept";
+}
+
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
   refuseVirtualPath(path, "output");
   const fs::path out(path);

@@ -200,6 +200,7 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   checkOutputPath(outPath, writeOptions);
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
+  if (const std::string note = replacedKindNote(outPath, writeOptions); !note.empty()) all.warn(note);
   if (!options.lod.centres.empty() && std::isnan(options.lod.dropoff) && !(options.lod.errorGrowth > 0))
     all.warn(std::string(options.centresPath.empty() ? "-center" : "-centers") +
              " does nothing without a test that measures from the centres: -dropoff D, or -error_growth G with -max_error");

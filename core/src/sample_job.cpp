@@ -198,6 +198,7 @@ SampleSummary runSampleJob(const std::string& demPath, const std::string& outPat
   OutputFiles files(overwrite, datasetFiles(demPath));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
+  if (const std::string note = replacedKindNote(outPath, writeOptions); !note.empty()) all.warn(note);
   // Measured on alps_2x2 (250 MiB at -block 3): the DEM, and each sampled vertex.
   const MemoryUse use{"sampling it", 13 + 290.0 / (double(options.block) * options.block),
                       "sample fewer cells with a larger -block, or cut the DEM into parts (gdal_translate -srcwin)", 13,

@@ -33,6 +33,11 @@ struct GpkgWriteOptions {
 // Throws Error when `path` exists and overwrite is off, or its folder is missing.
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options);
 
+// What a run replacing another kind of tinlod TIN in `path` (a hierarchy by a sampled TIN:
+// its levels, groups and views go) should say, "" when there is nothing to say. QGIS
+// replaces without asking where the command line wants -overwrite.
+std::string replacedKindNote(const std::string& path, const GpkgWriteOptions& options);
+
 // A further field of the 'vertices' or 'triangles' layer: one value per feature, NaN and
 // infinity written as null.
 struct ExtraField {
