@@ -161,17 +161,28 @@ TEST(CrsScale, PercentagesSayWhatTheyMean) {
   EXPECT_EQ(percentText(0.0023), "0.2 %");
   EXPECT_EQ(percentText(0.012), "1.2 %");
   EXPECT_EQ(percentText(0.0104), "1.04 %");  // over 1 %, never "1 %"
+  EXPECT_EQ(percentText(0.010004), "1.01 %");
   EXPECT_EQ(percentText(1.3e6), "over 1000 %");
 }
 
 TEST(CrsScale, AFittedCrsHoldsEveryPoint) {
-  // Around the globe at the equator no transverse Mercator can hold the points 180 degrees
-  // from its meridian: a Mercator can, and is the one fitted.
-  std::vector<LonLat> equator;
-  for (int lon = -180; lon < 180; lon += 20) equator.push_back({double(lon), 0.0});
-  const FittedCrs fitted = fittedCrs(equator, {0.0, 0.0});
+  // Along the meridian a transverse Mercator would be true to scale, but it cannot project the
+  // point 100 degrees east of it: the Mercator, which can, is the one fitted.
+  std::vector<LonLat> points{{100.0, 0.0}};
+  for (int lat = -60; lat <= 60; lat += 10) points.push_back({0.0, double(lat)});
+  const FittedCrs fitted = fittedCrs(points, {0.0, 0.0});
   EXPECT_EQ(fitted.kind, "a Mercator");
-  EXPECT_LT(fitted.error, 1e-6);
+  EXPECT_EQ(worstScaleError(fitted.definition, points), fitted.error);
+}
+
+TEST(CrsScale, AFittedCrsFarFromTrueScaleIsNotAdvised) {
+  // Web Mercator of a DEM 120 degrees wide reaching 85 N: a balanced Mercator would still be
+  // 84 % off (and shrink the equator by as much), the others more.
+  std::vector<LonLat> points;
+  for (int lon = -60; lon <= 60; lon += 60)
+    for (int lat = 0; lat <= 85; lat += 5) points.push_back({double(lon), double(lat)});
+  const std::string advice = scaleAdvice(points, {0.0, 42.5}, worstScaleError("EPSG:3857", points));
+  EXPECT_EQ(advice, "none of the conformal CRSs tinlod fits keeps a DEM this large within 1 % of true scale");
 }
 
 TEST(CrsScale, AFittedCrsShrinksAsMuchAsItStretches) {

@@ -26,10 +26,17 @@ using PjPtr = std::unique_ptr<PJ, decltype(&proj_destroy)>;
 // The projected CRS in a definition: itself, a bound CRS's source, a compound CRS's
 // horizontal part (a DEM's CRS with heights, EPSG:25832+7837).
 PjPtr projectedPart(PJ_CONTEXT* ctx, PjPtr pj) {
-  if (pj && proj_get_type(pj.get()) == PJ_TYPE_COMPOUND_CRS) pj = PjPtr(proj_crs_get_sub_crs(ctx, pj.get(), 0), proj_destroy);
-  if (pj && proj_get_type(pj.get()) == PJ_TYPE_BOUND_CRS) pj = PjPtr(proj_get_source_crs(ctx, pj.get()), proj_destroy);
-  if (!pj || proj_get_type(pj.get()) != PJ_TYPE_PROJECTED_CRS) return PjPtr(nullptr, proj_destroy);
-  return pj;
+  for (int depth = 0; pj && depth < 4; ++depth) {  // a bound CRS may wrap a compound one
+    const PJ_TYPE type = proj_get_type(pj.get());
+    if (type == PJ_TYPE_PROJECTED_CRS) return pj;
+    if (type == PJ_TYPE_COMPOUND_CRS)
+      pj = PjPtr(proj_crs_get_sub_crs(ctx, pj.get(), 0), proj_destroy);
+    else if (type == PJ_TYPE_BOUND_CRS)
+      pj = PjPtr(proj_get_source_crs(ctx, pj.get()), proj_destroy);
+    else
+      break;
+  }
+  return PjPtr(nullptr, proj_destroy);
 }
 
 // The projection of a projected CRS, taking radians as proj_factors gives them: proj_factors
@@ -122,9 +129,9 @@ std::string percentText(double fraction) {
   const double percent = fraction * 100;
   if (percent >= 1000) return "over 1000 %";  // Web Mercator near a pole: the figure means nothing more
   if (percent >= 10) return formatNumber(std::round(percent)) + " %";
-  // Two decimals where one would round a figure over 1 % to "1 %".
+  // Two decimals, rounded up, where one would round a figure over 1 % to "1 %".
   const double tenths = std::round(percent * 10) / 10;
-  return formatNumber(tenths <= 1 && percent > 1 ? std::round(percent * 100) / 100 : tenths) + " %";
+  return formatNumber(tenths <= 1 && percent > 1 ? std::ceil(percent * 100) / 100 : tenths) + " %";
 }
 
 std::string scaleAdvice(const std::vector<LonLat>& points, LonLat centre, double error) {
@@ -135,7 +142,10 @@ std::string scaleAdvice(const std::vector<LonLat>& points, LonLat centre, double
   const std::string use = "-t_srs '" + fitted.definition + "' (" + fitted.kind + " fitted to the DEM";
   if (fitted.error <= 0.01) return "use " + use + ", within " + percentText(fitted.error) + ")";
   const std::string large = "none of the conformal CRSs tinlod fits keeps a DEM this large within 1 % of true scale";
-  if (fitted.error < 0.5 * error) return large + ": " + use + ") keeps it within " + percentText(fitted.error);
+  // Named only while it is near true scale: a Mercator of a DEM reaching 85 N "within 84 %"
+  // would shrink its equator by as much.
+  if (fitted.error <= 0.05 && fitted.error < 0.5 * error)
+    return large + ": " + use + ") keeps it within " + percentText(fitted.error);
   return large;
 }
 

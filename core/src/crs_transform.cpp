@@ -161,7 +161,7 @@ void warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpa
   } catch (const Error&) {
     return;
   }
-  progress.warn(describe(dst) + " stretches distances by up to " + percentText(error) +
+  progress.warn(describe(dst) + " stretches distances by " + (error >= 10 ? "" : "up to ") + percentText(error) +
                 " over the DEM, so slopes, areas and volumes of the TIN are off by as much: " +
                 scaleAdvice(points, centre, error));
 }
