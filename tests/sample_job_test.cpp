@@ -239,7 +239,7 @@ TEST(SampleJob, ReplacingAHierarchySaysItsLevelsGo) {
   test::RecordingFeedback first;
   runSampleJob(defaultDem(), out, {}, true, first.feedback());
   EXPECT_TRUE(first.warned("'" + out + "' held a tinlod TIN hierarchy (its levels, groups and level views): this run's TIN "
-                           "replaces it, its other layers kept"));
+                           "will replace it, its other layers kept"));
   EXPECT_EQ(readHierarchyInfo(out).kind, "tin");
   test::RecordingFeedback again;
   runSampleJob(defaultDem(), out, {}, true, again.feedback());

@@ -102,7 +102,7 @@ std::string replacedKindNote(const std::string& path, const GpkgWriteOptions& op
     return kind == "hierarchy" ? std::string("TIN hierarchy") : kind == "lod" ? std::string("level-of-detail TIN") : "TIN";
   };
   return "'" + path + "' held a tinlod " + words(old) + (old == "hierarchy" ? " (its levels, groups and level views)" : "") +
-         ": this run's " + words(given->second) + " replaces it, its other layers kept";
+         ": this run's " + words(given->second) + " will replace it, its other layers kept";
 }
 
 void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
