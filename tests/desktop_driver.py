@@ -415,6 +415,41 @@ def run_algorithm(alg, parameters):
     return (finished[0][1] if ok else None), new
 
 
+def cancel_a_run():
+    """Runs a long build from its dialog and presses Cancel as a user would; yields Waits."""
+    alg, out = "buildhierarchy", os.path.join(WORK, "cancelled.gpkg")
+    if not open_from_toolbox("tinlod:" + alg):
+        return
+    yield Wait(lambda: algorithm_dialog("tinlod:" + alg) is not None, 20, "its dialog")
+    dialog = algorithm_dialog("tinlod:" + alg)
+    if not check("cancel: the build's dialog opens again", dialog, "no dialog within 20 s"):
+        return
+    dialog.setParameters({"INPUT": os.path.join(WORK, "big.tif"), "OUTPUT": out})
+    finished = []
+    dialog.algorithmFinished.connect(lambda ok, results: finished.append(ok))
+    QTest.mouseClick(dialog.buttonBox().button(QDialogButtonBox.Ok), Qt.LeftButton)
+    yield pause(3)
+    check("cancel: the build is still running after 3 s", not finished, "it ended first: the DEM is too small to cancel")
+    cancel = dialog.cancelButton()
+    check("cancel: the dialog's Cancel button is enabled", cancel is not None and cancel.isEnabled(), "disabled")
+    asked = time.monotonic()
+    QTest.mouseClick(cancel, Qt.LeftButton)
+    yield Wait(lambda: finished, RUN_TIMEOUT_S, "the cancelled run")
+    stopped = round(time.monotonic() - asked, 2)
+    seconds["cancel"] = stopped
+    text = dialog_log(dialog)
+    with open(os.path.join(ARTEFACTS, "dialog_cancel.log"), "w", encoding="utf-8") as f:
+        f.write(text)
+    check("cancel: the run stops within 2 s of Cancel (%s s)" % stopped, finished and stopped < 2, text[-2000:])
+    check("cancel: the run ends unsuccessful", finished and not finished[0], "it reported success")
+    check("cancel: no output is left", not os.path.exists(out), out)
+    leftovers = [n for n in os.listdir(WORK) if n.startswith(".cancelled.gpkg.tinlod-")]
+    check("cancel: no staging folder is left", not leftovers, leftovers)
+    check("cancel: no modal window asked anything", not [s for s in watchdog.seen if "cancel" in s.lower()], watchdog.seen)
+    QTest.mouseClick(dialog.buttonBox().button(QDialogButtonBox.Close), Qt.LeftButton)
+    yield pause(1)
+
+
 def scenario():
     install_plugin()
     if QgsApplication.processingRegistry().providerById("tinlod") is None:
@@ -543,6 +578,7 @@ def scenario():
                       == ["convex", "straight", "concave"], renderer.type())
         check("%s: exactly %d new layer%s" % (alg, layers, "s" if layers > 1 else ""), len(new) == layers, describe(new))
 
+    yield from cancel_a_run()
     yield from screenshot(dem)
 
 

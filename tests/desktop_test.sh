@@ -44,6 +44,8 @@ unset QGIS_PLUGINPATH DISPLAY WAYLAND_DISPLAY
 # A small DEM keeps each run to seconds; contours of it are the line input.
 "$tinlod_cli" makedem -q -size 400 300 -cell 30 "$work/data/dem.tif"
 gdal_contour -q -a elev -i 25 "$work/data/dem.tif" "$work/data/contours.gpkg"
+# A build long enough to cancel from its dialog (about 10 s here).
+"$tinlod_cli" makedem -q -size 2000 2000 -cell 10 "$work/data/big.tif"
 
 export TINLOD_DESKTOP_ZIP=$plugin_zip TINLOD_DESKTOP_WORK=$work/data TINLOD_DESKTOP_ARTEFACTS=$artefacts
 export TINLOD_DESKTOP_RESULT=$artefacts/result.json
