@@ -357,12 +357,12 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   // The hierarchy and the accuracy files go into place together, or none of them.
   OutputFiles files(overwrite, datasetFiles({demPath, options.fixedPoints}));
   files.refuseInput(outPath, "output");  // first: an input's folder may be read-only
-  checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  const std::string held = checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   if (!options.fixedPoints.empty()) checkPointsExist(options.fixedPoints, kFixedName);
   const StagedFile& out = files.add(outPath, "output", true);
   const AccuracyFiles accuracyFiles = stageAccuracyFiles(accuracy, files);
   const ProgressRange all(feedback, 0, 1);
-  if (const std::string note = replacedKindNote(outPath, writeOptions); !note.empty()) all.warn(note);
+  warnOfReplacedKind(outPath, held, writeOptions, all);
   Dem dem = readInput(demPath, sample, tile, all.sub(0, 0.05));
   Tin tin = sampleTile(dem, sample, options, tile, all.sub(0.05, 0.2));
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();

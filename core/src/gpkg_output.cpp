@@ -61,7 +61,8 @@ std::string familyOf(const std::string& kind) {
 // -overwrite replaces the layers of the output being written and keeps a GeoPackage's other
 // layers: into a tinlod file of another kind (a TIN given as a lines job's output), that
 // would leave the old kind's layers under the new kind's metadata, a file neither reads.
-void refuseAnotherKind(const std::string& path, const GpkgWriteOptions& options) {
+// Returns the kind the file holds ("" for none).
+std::string refuseAnotherKind(const std::string& path, const GpkgWriteOptions& options) {
   const auto given = options.metadata.find("TINLOD_KIND");
   const std::string kind = given == options.metadata.end() ? "" : given->second;
   GDALAllRegister();
@@ -69,7 +70,7 @@ void refuseAnotherKind(const std::string& path, const GpkgWriteOptions& options)
   GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
   CPLPopErrorHandler();
   const char* old = ds ? ds->GetMetadataItem("TINLOD_KIND") : nullptr;
-  if (!old || kind.empty() || familyOf(old) == familyOf(kind)) return;
+  if (!old || kind.empty() || familyOf(old) == familyOf(kind)) return old ? old : "";
   throw Error("'" + path + "' holds a tinlod " + old + " output: -overwrite replaces the layers of the same kind " +
               "of output and keeps the others, so writing " + kind + " into it would leave a file of two kinds that " +
               "neither reads; name another file, or remove this one first");
@@ -90,22 +91,19 @@ void refuseNonGeoPackage(const std::string& path) {
 
 }  // namespace
 
-std::string replacedKindNote(const std::string& path, const GpkgWriteOptions& options) {
+void warnOfReplacedKind(const std::string& path, const std::string& held, const GpkgWriteOptions& options,
+                        const ProgressRange& progress) {
   const auto given = options.metadata.find("TINLOD_KIND");
-  if (given == options.metadata.end() || !fs::is_regular_file(path)) return "";
-  CPLPushErrorHandler(CPLQuietErrorHandler);
-  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  CPLPopErrorHandler();
-  const std::string old = ds && ds->GetMetadataItem("TINLOD_KIND") ? ds->GetMetadataItem("TINLOD_KIND") : "";
-  if (old.empty() || old == given->second || old == "catalogue") return "";
+  if (held.empty() || given == options.metadata.end() || held == given->second) return;
   const auto words = [](const std::string& kind) {
     return kind == "hierarchy" ? std::string("TIN hierarchy") : kind == "lod" ? std::string("level-of-detail TIN") : "TIN";
   };
-  return "'" + path + "' held a tinlod " + words(old) + (old == "hierarchy" ? " (its levels, groups and level views)" : "") +
-         ": this run's " + words(given->second) + " will replace it, its other layers kept";
+  progress.warn("'" + path + "' held a tinlod " + words(held) +
+                (held == "hierarchy" ? " (its levels, groups and level views)" : "") + ": this run's " +
+                words(given->second) + " will replace it, its other layers kept");
 }
 
-void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
+std::string checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
   refuseVirtualPath(path, "output");
   const fs::path out(path);
   if (lower(out.extension().string()) != ".gpkg")
@@ -114,11 +112,12 @@ void checkOutputPath(const std::string& path, const GpkgWriteOptions& options) {
   if (!fs::is_directory(dir)) throw Error("the folder of output '" + path + "' does not exist");
   if (access(dir.c_str(), W_OK) != 0) throw Error("the folder of output '" + path + "' is not writable");
   if (fs::is_directory(out)) throw Error("output '" + path + "' is a folder: name a .gpkg file");
-  if (!fs::exists(out)) return;
+  if (!fs::exists(out)) return "";
   refuseNonGeoPackage(path);
-  refuseAnotherKind(path, options);  // first: -overwrite would not help
+  std::string held = refuseAnotherKind(path, options);  // first: -overwrite would not help
   if (!options.overwrite)
     throw Error("output '" + path + "' exists: add -overwrite to replace its tinlod layers (its other layers are kept)");
+  return held;
 }
 
 bool isTinlodLayer(const std::string& name) {

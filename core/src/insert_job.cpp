@@ -279,11 +279,11 @@ InsertSummary runInsertJob(const std::string& demPath, const std::string& outPat
   options.validate();
   GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_KIND", "tin"}}};  // the kind: refuse another's file now
   writeOptions.vertexIndex = vertexIndex;
-  checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  const std::string held = checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   OutputFiles files(overwrite, datasetFiles(demPath));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
-  if (const std::string note = replacedKindNote(outPath, writeOptions); !note.empty()) all.warn(note);
+  warnOfReplacedKind(outPath, held, writeOptions, all);
   // At least this, measured on alps_2x2 keeping 0.6 % of its cells (317 MiB); more as the
   // insertion keeps more (851 MiB at 8 %).
   const MemoryUse use{"greedy insertion", 56,

@@ -197,10 +197,10 @@ LodSummary runLodJob(const std::string& hierarchyPath, const std::string& outPat
   inputs.insert(inputs.end(), {options.centresPath, options.regionPath});
   OutputFiles files(overwrite, datasetFiles(inputs));
   files.refuseInput(outPath, "output");
-  checkOutputPath(outPath, writeOptions);
+  const std::string held = checkOutputPath(outPath, writeOptions);
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
-  if (const std::string note = replacedKindNote(outPath, writeOptions); !note.empty()) all.warn(note);
+  warnOfReplacedKind(outPath, held, writeOptions, all);
   if (!options.lod.centres.empty() && std::isnan(options.lod.dropoff) && !(options.lod.errorGrowth > 0))
     all.warn(std::string(options.centresPath.empty() ? "-center" : "-centers") +
              " does nothing without a test that measures from the centres: -dropoff D, or -error_growth G with -max_error");

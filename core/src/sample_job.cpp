@@ -194,11 +194,11 @@ SampleSummary runSampleJob(const std::string& demPath, const std::string& outPat
   options.validate();
   GpkgWriteOptions writeOptions{overwrite, jobMetadata(demPath, options)};
   writeOptions.vertexIndex = vertexIndex;
-  checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
+  const std::string held = checkOutputPath(outPath, writeOptions);  // fail before the long work, not after it
   OutputFiles files(overwrite, datasetFiles(demPath));
   const StagedFile& out = files.add(outPath, "output", true);
   const ProgressRange all(feedback, 0, 1);
-  if (const std::string note = replacedKindNote(outPath, writeOptions); !note.empty()) all.warn(note);
+  warnOfReplacedKind(outPath, held, writeOptions, all);
   // Measured on alps_2x2 (250 MiB at -block 3): the DEM, and each sampled vertex.
   const MemoryUse use{"sampling it", 13 + 290.0 / (double(options.block) * options.block),
                       "sample fewer cells with a larger -block, or cut the DEM into parts (gdal_translate -srcwin)", 13,

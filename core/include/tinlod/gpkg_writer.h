@@ -30,13 +30,15 @@ struct GpkgWriteOptions {
   bool vertexIndex = false;
 };
 
-// Throws Error when `path` exists and overwrite is off, or its folder is missing.
-void checkOutputPath(const std::string& path, const GpkgWriteOptions& options);
+// Throws Error when `path` exists and overwrite is off, or its folder is missing. Returns
+// the kind of tinlod output the existing file holds (its TINLOD_KIND), "" for none.
+std::string checkOutputPath(const std::string& path, const GpkgWriteOptions& options);
 
-// What a run replacing another kind of tinlod TIN in `path` (a hierarchy by a sampled TIN:
-// its levels, groups and views go) should say, "" when there is nothing to say. QGIS
-// replaces without asking where the command line wants -overwrite.
-std::string replacedKindNote(const std::string& path, const GpkgWriteOptions& options);
+// Warns when the run replaces another kind of tinlod TIN that `path` held (checkOutputPath's
+// answer): a hierarchy by a sampled TIN loses its levels, groups and views. QGIS replaces
+// without asking where the command line wants -overwrite.
+void warnOfReplacedKind(const std::string& path, const std::string& held, const GpkgWriteOptions& options,
+                        const ProgressRange& progress);
 
 // A further field of the 'vertices' or 'triangles' layer: one value per feature, NaN and
 // infinity written as null.
