@@ -54,8 +54,7 @@ void AccuracyAlgorithm::initAlgorithm(const QVariantMap&) {
 }
 
 bool AccuracyAlgorithm::checkParameterValues(const QVariantMap& parameters, QgsProcessingContext& context, QString* message) const {
-  return QgsProcessingAlgorithm::checkParameterValues(parameters, context, message) &&
-         hierarchyIsAcceptable(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context, message);
+  return parametersWithHierarchyAcceptable(*this, parameters, context, message);
 }
 
 bool AccuracyAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context, QgsProcessingFeedback*) {

@@ -187,7 +187,7 @@ QVariantMap BuildHierarchyAlgorithm::processAlgorithm(const QVariantMap& paramet
                          .arg(s.coarsestError, 0, 'f', 2).arg(s.fileBytes / 1e6, 0, 'f', 1).arg(s.levels)
                          .arg(s.coarsestRmse, 0, 'f', 2).arg(QString::fromStdString(coarsestCellsText(s))));
   if (const std::string cover = levelZeroCoverText(s); !cover.empty()) feedback->pushInfo(QString::fromStdString(cover));
-  if (loadLevels_ && !writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context)) {
+  if (loadLevels_ && !writesForALaterStepOnly(parameters, context)) {
     const QString base = outputBaseName(output, QStringLiteral("TIN hierarchy"));
     for (const std::int32_t level : s.levelViews)
       loadTinLayerOnCompletion(context, output, QStringLiteral("level_%1").arg(level), QStringLiteral("OUTPUT"), base,

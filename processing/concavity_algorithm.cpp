@@ -93,7 +93,7 @@ QVariantMap ConcavityAlgorithm::processAlgorithm(const QVariantMap& parameters, 
                       names);
   feedback->pushInfo(QStringLiteral("%1 vertices of %2 lines; parts: %3 convex, %4 straight, %5 concave")
                          .arg(s.vertices).arg(s.lines).arg(s.convex).arg(s.straight).arg(s.concave));
-  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+  if (!writesForALaterStepOnly(parameters, context))
     context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=parts"),
                                        placedLayerDetails(QStringLiteral("concavity parts"), context.project(),
                                                           QStringLiteral("OUTPUT"), new ConcavityPartsStyle));

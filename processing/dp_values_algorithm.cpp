@@ -98,7 +98,7 @@ QVariantMap DpValuesAlgorithm::processAlgorithm(const QVariantMap& parameters, Q
   if (options_.threshold >= 0)
     feedback->pushInfo(QStringLiteral("At threshold %1 m: %2 vertices kept, %3 crossings between simplified lines")
                            .arg(options_.threshold).arg(s.keptVertices).arg(s.crossings));
-  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context)) loadDpLayers(output, options_, context);
+  if (!writesForALaterStepOnly(parameters, context)) loadDpLayers(output, options_, context);
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("LINES"), static_cast<qlonglong>(s.lines));

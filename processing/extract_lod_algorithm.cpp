@@ -83,8 +83,7 @@ void ExtractLodAlgorithm::initAlgorithm(const QVariantMap&) {
 }
 
 bool ExtractLodAlgorithm::checkParameterValues(const QVariantMap& parameters, QgsProcessingContext& context, QString* message) const {
-  return QgsProcessingAlgorithm::checkParameterValues(parameters, context, message) &&
-         hierarchyIsAcceptable(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context, message);
+  return parametersWithHierarchyAcceptable(*this, parameters, context, message);
 }
 
 bool ExtractLodAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
@@ -133,7 +132,7 @@ QVariantMap ExtractLodAlgorithm::processAlgorithm(const QVariantMap& parameters,
       names);
   feedback->pushInfo(QStringLiteral("%1 triangles (level 0 has %2) and %3 vertices in %4")
                          .arg(s.triangles).arg(s.levelZeroTriangles).arg(s.vertices).arg(QString::fromStdString(s.crsName)));
-  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+  if (!writesForALaterStepOnly(parameters, context))
     loadTinLayerOnCompletion(context, output, QStringLiteral("triangles"), QStringLiteral("OUTPUT"),
                              outputBaseName(output, QStringLiteral("level of detail TIN")));
   QVariantMap outputs;

@@ -123,7 +123,7 @@ QVariantMap GreedyInsertionAlgorithm::processAlgorithm(const QVariantMap& parame
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3; maximum error %4 m, RMSE %5 m over %6 cells")
                          .arg(s.vertices).arg(s.triangles).arg(QString::fromStdString(s.crsName))
                          .arg(s.measuredMaxError).arg(s.rmse).arg(s.measuredCells));
-  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+  if (!writesForALaterStepOnly(parameters, context))
     loadTinOnCompletion(context, output, outputBaseName(output, QStringLiteral("greedy insertion TIN")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);

@@ -36,10 +36,11 @@ std::string hierarchyFile(const QgsProcessingParameterDefinition* definition, co
   return path.toStdString();
 }
 
-bool hierarchyIsAcceptable(const QgsProcessingParameterDefinition* definition, const QVariantMap& parameters,
-                           QgsProcessingContext& context, QString* message) {
+bool parametersWithHierarchyAcceptable(const QgsProcessingAlgorithm& algorithm, const QVariantMap& parameters,
+                                       QgsProcessingContext& context, QString* message) {
+  if (!algorithm.QgsProcessingAlgorithm::checkParameterValues(parameters, context, message)) return false;
   try {
-    hierarchyFile(definition, parameters, context);
+    hierarchyFile(algorithm.parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context);
   } catch (const QgsProcessingException& e) {
     if (message) *message = e.what();
     return false;

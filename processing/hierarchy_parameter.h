@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <qgsprocessingalgorithm.h>
 #include <qgsprocessingcontext.h>
 #include <qgsprocessingparameters.h>
 
@@ -17,10 +18,11 @@ QgsProcessingParameterDefinition* hierarchyParameter(const QString& description)
 std::string hierarchyFile(const QgsProcessingParameterDefinition* definition, const QVariantMap& parameters,
                           QgsProcessingContext& context);
 
-// hierarchyFile as checkParameterValues asks: false with the message. Checked before the run,
-// the message is the exception processing.run raises (a run's own error reaches only its
-// log, the exception saying "There were errors executing the algorithm.").
-bool hierarchyIsAcceptable(const QgsProcessingParameterDefinition* definition, const QVariantMap& parameters,
-                           QgsProcessingContext& context, QString* message);
+// checkParameterValues for an algorithm with a HIERARCHY: QGIS's checks, then hierarchyFile's,
+// false with the message. Checked before the run, the message is the exception
+// processing.run raises (a run's own error reaches only its log, the exception saying
+// "There were errors executing the algorithm.").
+bool parametersWithHierarchyAcceptable(const QgsProcessingAlgorithm& algorithm, const QVariantMap& parameters,
+                                       QgsProcessingContext& context, QString* message);
 
 }  // namespace tinlod::qgis

@@ -92,19 +92,16 @@ QgsProcessingContext::LayerDetails placedLayerDetails(const QString& name, QgsPr
   return details;
 }
 
-namespace {
-
 bool inTemporaryFolder(const QString& path) {
   return QFileInfo(path).absoluteFilePath().startsWith(QFileInfo(QgsProcessingUtils::tempFolder()).absoluteFilePath() +
                                                        QLatin1Char('/'));
 }
 
-}  // namespace
-
-bool writesForALaterStepOnly(const QVariant& output, const QgsProcessingContext& context) {
+bool writesForALaterStepOnly(const QVariantMap& parameters, const QgsProcessingContext& context) {
   // A model runs its steps with its own variables (model_path, model_name) in the context;
   // they stay there after it, so the output as given decides.
   if (!context.expressionContext().hasVariable(QStringLiteral("model_path"))) return false;
+  const QVariant output = parameters.value(QStringLiteral("OUTPUT"));
   if (output.userType() != QMetaType::QString) return false;
   const QString path = output.toString();
   return path != QgsProcessing::TEMPORARY_OUTPUT && inTemporaryFolder(path);

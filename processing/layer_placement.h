@@ -38,12 +38,16 @@ QgsProcessingContext::LayerDetails placedLayerDetails(
     QgsProcessingLayerPostProcessorInterface* style = nullptr,
     QgsProcessingUtils::LayerHint hint = QgsProcessingUtils::LayerHint::Vector);
 
-// Whether an algorithm's OUTPUT (as given, not resolved) is a file a model's step writes
-// only for a later step: its layers are then not loaded, as QGIS loads no intermediate layer
-// of a model (such a file, in QGIS's temporary folder, is gone with the session). A model
-// hands such a step a path in that folder; a model output comes as the user gave it (a path,
-// or TEMPORARY_OUTPUT, loaded as native algorithms' are).
-bool writesForALaterStepOnly(const QVariant& output, const QgsProcessingContext& context);
+// Whether `path` is in QGIS's temporary folder for this session (TEMPORARY_OUTPUT's files,
+// a model's intermediate ones).
+bool inTemporaryFolder(const QString& path);
+
+// Whether an algorithm's OUTPUT (in `parameters`, as given, not resolved) is a file a model's
+// step writes only for a later step: its layers are then not loaded, as QGIS loads no
+// intermediate layer of a model (such a file, in QGIS's temporary folder, is gone with the
+// session). A model hands such a step a path in that folder; a model output comes as the
+// user gave it (a path, or TEMPORARY_OUTPUT, loaded as native algorithms' are).
+bool writesForALaterStepOnly(const QVariantMap& parameters, const QgsProcessingContext& context);
 
 // placeLayer as a post-processor, for outputs without a style of their own.
 class PlacedLayer : public QgsProcessingLayerPostProcessorInterface {

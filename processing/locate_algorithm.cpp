@@ -61,8 +61,7 @@ void LocateAlgorithm::initAlgorithm(const QVariantMap&) {
 }
 
 bool LocateAlgorithm::checkParameterValues(const QVariantMap& parameters, QgsProcessingContext& context, QString* message) const {
-  return QgsProcessingAlgorithm::checkParameterValues(parameters, context, message) &&
-         hierarchyIsAcceptable(parameterDefinition(QStringLiteral("HIERARCHY")), parameters, context, message);
+  return parametersWithHierarchyAcceptable(*this, parameters, context, message);
 }
 
 bool LocateAlgorithm::prepareAlgorithm(const QVariantMap& parameters, QgsProcessingContext& context,
@@ -87,7 +86,7 @@ QVariantMap LocateAlgorithm::processAlgorithm(const QVariantMap& parameters, Qgs
                          .arg(s.unfinishedTiles.empty() ? QString() : QStringLiteral("finished tiles' "))
                          .arg(s.level));
   // As small dots: thousands of QGIS's default markers would hide the map.
-  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+  if (!writesForALaterStepOnly(parameters, context))
     context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=points"),
                                        placedLayerDetails(QStringLiteral("points with elevation"), context.project(),
                                                           QStringLiteral("OUTPUT"), new TinLayerStyle));

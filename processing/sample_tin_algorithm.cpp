@@ -72,7 +72,7 @@ QVariantMap SampleTinAlgorithm::processAlgorithm(const QVariantMap& parameters, 
       samplingParameterNames());
   feedback->pushInfo(QStringLiteral("%1 vertices, %2 triangles in %3")
                          .arg(summary.vertices).arg(summary.triangles).arg(QString::fromStdString(summary.crsName)));
-  if (!writesForALaterStepOnly(parameters.value(QStringLiteral("OUTPUT")), context))
+  if (!writesForALaterStepOnly(parameters, context))
     loadTinOnCompletion(context, output, outputBaseName(output, QStringLiteral("sampled TIN")));
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);

@@ -2,7 +2,6 @@
 #include "tin_layer_style.h"
 
 #include <qgsfillsymbol.h>
-#include <qgsprocessingutils.h>
 #include <qgsproject.h>
 #include <qgsmarkersymbol.h>
 #include <qgssinglesymbolrenderer.h>
@@ -11,6 +10,7 @@
 #include <QFileInfo>
 
 #include "layer_placement.h"
+#include "tin_layer_output.h"
 #include "stale_layers.h"
 
 namespace tinlod::qgis {
@@ -32,10 +32,9 @@ void TinLayerStyle::postProcessLayer(QgsMapLayer* layer, QgsProcessingContext& c
 }
 
 QString outputBaseName(const QString& path, const QString& temporaryName) {
-  const QFileInfo file(path);
   // A temporary output is named after the parameter ("OUTPUT.gpkg" in a folder of QGIS's).
-  if (file.absolutePath().startsWith(QFileInfo(QgsProcessingUtils::tempFolder()).absoluteFilePath())) return temporaryName;
-  return file.completeBaseName();
+  if (inTemporaryFolder(path)) return temporaryName;
+  return QFileInfo(path).completeBaseName();
 }
 
 void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg, const QString& layerName,
@@ -43,7 +42,7 @@ void loadTinLayerOnCompletion(QgsProcessingContext& context, const QString& gpkg
                               int order) {
   const QString name = group.isEmpty() ? QStringLiteral("%1 %2").arg(baseName, layerName) : layerName;
   context.addLayerToLoadOnCompletion(
-      gpkg + QStringLiteral("|layername=") + layerName,
+      gpkgLayer(gpkg, layerName),
       placedLayerDetails(name, context.project(), outputName, new TinLayerStyle(group, visible, order)));
 }
 
