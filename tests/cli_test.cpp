@@ -337,6 +337,27 @@ TEST(Cli, GdalsOwnMessagesDoNotLeak) {
   EXPECT_EQ(into.err.find("ERROR"), std::string::npos) << into.err;
 }
 
+TEST(Cli, AHemisphereInOneUtmZoneFailsWithTheCrsToUseAndNoGdalNoise) {
+  // The default DEM stretched over 90 W-90 E, 60 S-60 N: GDAL reported every point PROJ
+  // could not take ("ERROR 1: Point outside of projection domain", 19 lines) before the error.
+  const std::string dir = test::tempDir();
+  ASSERT_EQ(std::system(("gdal_translate -q -outsize 180 120 -a_srs EPSG:4326 -a_ullr -90 60 90 -60 " + defaultDem() + " " +
+                         dir + "/hemisphere.tif").c_str()),
+            0);
+  const CliRun checked = tinlod("build -check " + dir + "/hemisphere.tif " + dir + "/tin.gpkg");
+  EXPECT_TRUE(has(checked.err, "cannot project the whole DEM")) << checked.err;
+  const CliRun r = tinlod("sample -q " + dir + "/hemisphere.tif " + dir + "/tin.gpkg");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err.find("ERROR 1:"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/tin.gpkg"));
+  const std::size_t start = r.err.find("ERROR: PROJ could not transform"), advised = r.err.find("use -t_srs '+proj=merc ");
+  ASSERT_NE(start, std::string::npos) << r.err;
+  ASSERT_NE(advised, std::string::npos) << r.err;
+  const std::string crs = r.err.substr(advised + 12, r.err.find('\'', advised + 12) - advised - 12);
+  const CliRun again = tinlod("sample -q -t_srs '" + crs + "' " + dir + "/hemisphere.tif " + dir + "/tin.gpkg");
+  EXPECT_EQ(again.exitCode, 0) << again.err;
+}
+
 TEST(Cli, TermSignalStopsCleanlyWithNothingLeft) {
   const std::string dir = test::tempDir();
   const std::string big = dir + "/big.tif";

@@ -219,6 +219,39 @@ TEST(Crs, ADemAcrossTheAntimeridianIsFittedAboutItsCentre) {
   EXPECT_TRUE(warningsFor(dem, advisedCrs(warned[0])).empty());
 }
 
+TEST(Crs, AHemisphereNoUtmZoneCanHoldIsSaidBeforeTheRunWithACrsThatCoversIt) {
+  // 180 degrees of longitude, 60 S to 60 N: PROJ cannot project the equator 90 degrees from
+  // zone 31's meridian. The run would fail once the DEM is read; it is said now, and the
+  // run's error says what to use: a Mercator, 1 at the equator and 2 at 60 degrees,
+  // balanced to 33 %.
+  const Dem dem = degreeDem(-90, 90, -60, 60);
+  const std::vector<std::string> warned = warningsFor(dem);
+  ASSERT_TRUE(has(warned, "UTM zone 31N (EPSG:32631) cannot project the whole DEM: PROJ fails at 2 of 81 points"))
+      << (warned.empty() ? "" : warned[0]);
+  EXPECT_TRUE(has(warned, "(a Mercator fitted to the DEM, which covers it, within 33 % of true scale")) << warned[0];
+  EXPECT_TRUE(has(warned, "or cut it into regions (gdal_translate -projwin)")) << warned[0];
+  std::vector<double> x, y;
+  for (const LonLat& p : denseGrid(-90, 90, -60, 60)) x.push_back(p.lon), y.push_back(p.lat);
+  const std::string failed = test::errorOf([&] {
+    std::vector<double> tx = x, ty = y;
+    CrsTransform::forDem(dem, "", "", ProgressRange(Feedback{}, 0, 1)).apply(tx, ty);
+  });
+  EXPECT_NE(failed.find("PROJ could not transform 17 of 1681 points of the DEM to WGS 84 / UTM zone 31N"), std::string::npos)
+      << failed;
+  EXPECT_NE(failed.find("use -t_srs '" + advisedCrs(warned[0]) + "'"), std::string::npos) << failed;
+  // The CRS advised covers every point, within what it says.
+  const CrsTransform advised = CrsTransform::forDem(dem, "", advisedCrs(warned[0]), ProgressRange(Feedback{}, 0, 1));
+  EXPECT_NO_THROW(advised.apply(x, y));
+  EXPECT_LE(worstScaleError(advisedCrs(warned[0]) + " +type=crs", denseGrid(-90, 90, -60, 60)), 0.335);
+}
+
+TEST(Crs, TheWholeWorldIsToldToBeCutIntoRegions) {
+  const std::vector<std::string> warned = warningsFor(degreeDem(-180, 180, -90, 90));
+  EXPECT_TRUE(has(warned, "cannot project the whole DEM: PROJ fails at")) << (warned.empty() ? "" : warned[0]);
+  EXPECT_TRUE(has(warned, ": none of the conformal CRSs tinlod fits covers a DEM this large within 50 % of true scale: "
+                          "cut it into regions (gdal_translate -projwin) and run each in a CRS of its own"));
+}
+
 TEST(Crs, ADemWithinItsUtmZonesReachIsNotWarnedOf) {
   // 14 degrees of longitude at 58-62 N are within 420 km of zone 33's meridian (0.2 % at most).
   EXPECT_TRUE(warningsFor(degreeDem(5, 19, 58, 62)).empty());

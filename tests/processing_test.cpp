@@ -360,6 +360,22 @@ TEST(Processing, TargetCrsTakesThePROJStringAWarningAdvisesAndRefusesWhatNoOneRe
   EXPECT_FALSE(fs::exists(none.toStdString()));
 }
 
+// The whole world, 36 x 18 cells of 10 degrees: no projected CRS holds it.
+TEST(Processing, TheWholeWorldIsToldToBeClippedAsQgisDoesIt) {
+  const std::string path = test::tempDir() + "/world.tif";
+  ASSERT_EQ(std::system(("gdal_translate -q -outsize 36 18 -a_srs EPSG:4326 -a_ullr -180 90 180 -90 " + defaultDem() + " " + path)
+                            .c_str()),
+            0);
+  RecordingFeedback warned;
+  const QString out = QString::fromStdString(test::tempDir() + "/world.gpkg");
+  const Result r = runAlgorithm(QStringLiteral("tinlod:sampletin"), {{"INPUT", QString::fromStdString(path)}, {"OUTPUT", out}}, &warned);
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.error.contains(QStringLiteral("cut it into regions (Raster > Extraction > Clip Raster by Extent)"))) << r.error.toStdString();
+  EXPECT_TRUE(warned.warnings.filter(QStringLiteral("cannot project the whole DEM")).size() == 1) << warned.warnings.join('\n').toStdString();
+  EXPECT_FALSE(r.error.contains(QStringLiteral("gdal_translate"))) << r.error.toStdString();
+  EXPECT_FALSE(fs::exists(out.toStdString()));
+}
+
 TEST(Processing, OutputLayersAreLoadedNamedAndStyled) {
   const QString out = QString::fromStdString(test::tempDir() + "/my_tin.gpkg");
   std::unique_ptr<QgsProcessingAlgorithm> alg(QgsApplication::processingRegistry()->createAlgorithmById("tinlod:sampletin"));

@@ -149,4 +149,17 @@ std::string scaleAdvice(const std::vector<LonLat>& points, LonLat centre, double
   return large;
 }
 
+std::string coverAdvice(const std::vector<LonLat>& points, LonLat centre) {
+  const std::string cut = "cut it into regions (gdal_translate -projwin) and run each in a CRS of its own";
+  const FittedCrs fitted = fittedCrs(points, centre);
+  // At half or one and a half times true scale and beyond (a Mercator reaching a pole), a
+  // TIN's slopes and areas mean nothing: no advice.
+  if (!(fitted.error < 0.5))
+    return "none of the conformal CRSs tinlod fits covers a DEM this large within 50 % of true scale: " + cut;
+  return "use -t_srs '" + fitted.definition + "' (" + fitted.kind + " fitted to the DEM, which covers it, within " +
+         percentText(fitted.error) + " of true scale" +
+         (fitted.error > 0.01 ? ": slopes, areas and volumes are off by as much)" : ")") +
+         (fitted.error > 0.05 ? ", or " + cut : "");
+}
+
 }  // namespace tinlod

@@ -35,4 +35,10 @@ std::string percentText(double fraction);
 // those keeps a DEM this large within 1 %. Worded for -t_srs.
 std::string scaleAdvice(const std::vector<LonLat>& points, LonLat centre, double error);
 
+// What to use for a DEM that a CRS cannot project whole (a hemisphere in one UTM zone): the
+// CRS fittedCrs finds, which covers every point, with its scale error (and, over 5 %, the
+// advice to cut the DEM into regions), or the news that none of those covers a DEM this large
+// within 50 %. Worded for -t_srs.
+std::string coverAdvice(const std::vector<LonLat>& points, LonLat centre);
+
 }  // namespace tinlod

@@ -21,6 +21,7 @@ struct CrsTransform::Impl {
   std::string wkt;
   std::string name;
   std::string sourceWkt;
+  std::string coverAdvice;  // what to use instead, when this CRS cannot project the DEM's whole extent
 };
 
 namespace {
@@ -111,18 +112,22 @@ void extentGrid(const Dem& dem, std::vector<double>& x, std::vector<double>& y) 
     }
 }
 
+// How many of the points PROJ cannot transform, transforming the others in place. GDAL
+// reports each failed point ("Point outside of projection domain"): the caller says it once.
+std::size_t transformMisses(OGRCoordinateTransformation& ct, std::vector<double>& x, std::vector<double>& y) {
+  std::vector<int> ok(x.size());
+  const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);
+  const bool done = ct.Transform(x.size(), x.data(), y.data(), nullptr, ok.data());
+  const auto misses = static_cast<std::size_t>(std::count(ok.begin(), ok.end(), 0));
+  return done || misses > 0 ? misses : x.size();
+}
+
 // A UTM zone stretches distances by under 0.3 % within 500 km of its central meridian:
 // far below the 1 % worth a warning, so PROJ's scale factors, which cost a PROJ
 // database context and a search for operations of their own, are not needed.
-bool withinUtmZone(const OGRSpatialReference& dst, std::vector<double> x, std::vector<double> y,
-                   const CrsTransform& toTin) {
-  if (dst.GetUTMZone() == 0) return false;
-  try {
-    toTin.apply(x, y);
-  } catch (const Error&) {
-    return false;
-  }
-  return std::all_of(x.begin(), x.end(), [](double e) { return std::fabs(e - 500000.0) <= 500000.0; });
+bool withinUtmZone(const OGRSpatialReference& dst, const std::vector<double>& easting) {
+  return dst.GetUTMZone() != 0 &&
+         std::all_of(easting.begin(), easting.end(), [](double e) { return std::fabs(e - 500000.0) <= 500000.0; });
 }
 
 std::vector<LonLat> lonLatOf(const OGRSpatialReference& src, std::vector<double> x, std::vector<double> y) {
@@ -144,26 +149,40 @@ std::vector<LonLat> lonLatOf(const OGRSpatialReference& src, std::vector<double>
 
 // Metres in a CRS that stretches distances are not metres on the ground: slopes, areas
 // and volumes come out wrong by the same factor. Measured over the whole extent: a DEM
-// wider than a UTM zone is true to scale at its centre and not at its sides.
-void warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpatialReference& dst,
-                    const CrsTransform& toTin, const ProgressRange& progress) {
-  if (!dst.IsProjected() || !dem.hasGeotransform) return;
+// wider than a UTM zone is true to scale at its centre and not at its sides. A CRS that
+// cannot project part of the extent (a hemisphere in one UTM zone) fails the run where
+// the DEM has data there, after the DEM is read: said here first, with a CRS that covers
+// it. Returns that advice, for the run's error; empty when the CRS projects the extent.
+std::string warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpatialReference& dst,
+                           OGRCoordinateTransformation* toTin, const std::string& targetWkt,
+                           const ProgressRange& progress) {
+  if (!dst.IsProjected() || !dem.hasGeotransform) return {};
   std::vector<double> x, y;
   extentGrid(dem, x, y);
-  if (withinUtmZone(dst, x, y, toTin)) return;
+  std::vector<double> easting = x, northing = y;
+  const std::size_t misses = toTin ? transformMisses(*toTin, easting, northing) : 0;
+  if (misses == 0 && withinUtmZone(dst, easting)) return {};
   const std::vector<LonLat> points = lonLatOf(src, x, y);
-  if (points.empty()) return;
-  const double error = worstScaleError(toTin.targetWkt(), points);
-  if (!(error > 0.01)) return;  // NaN: PROJ cannot tell, or cannot project the DEM (said later)
   LonLat centre;
   try {
     centreLonLat(dem, src, centre.lon, centre.lat);
   } catch (const Error&) {
-    return;
+    return {};
   }
+  if (points.empty()) return {};
+  if (misses > 0) {
+    const std::string advice = coverAdvice(points, centre);
+    progress.warn(describe(dst) + " cannot project the whole DEM: PROJ fails at " + std::to_string(misses) + " of " +
+                  std::to_string(x.size()) + " points spread over its extent, and the run fails if the DEM has data "
+                  "there: " + advice);
+    return advice;
+  }
+  const double error = worstScaleError(targetWkt, points);
+  if (!(error > 0.01)) return {};  // NaN: PROJ cannot tell
   progress.warn(describe(dst) + " stretches distances by " + (error >= 10 ? "" : "up to ") + percentText(error) +
                 " over the DEM, so slopes, areas and volumes of the TIN are off by as much: " +
                 scaleAdvice(points, centre, error));
+  return {};
 }
 
 OGRSpatialReference parseTarget(const std::string& targetSrs) {
@@ -244,17 +263,14 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
       throw Error("no transformation from " + describe(src) + " to " + impl->name + ": " +
                   CPLGetLastErrorMsg());
   }
-  CrsTransform out(std::move(impl));
-  warnAboutScale(dem, src, dst, out, progress);
-  return out;
+  impl->coverAdvice = warnAboutScale(dem, src, dst, impl->transform.get(), impl->wkt, progress);
+  return CrsTransform(std::move(impl));
 }
 
 namespace {
 
 bool transformAll(OGRCoordinateTransformation& ct, std::vector<double>& x, std::vector<double>& y) {
-  std::vector<int> ok(x.size());
-  return ct.Transform(x.size(), x.data(), y.data(), nullptr, ok.data()) &&
-         std::find(ok.begin(), ok.end(), 0) == ok.end();
+  return transformMisses(ct, x, y) == 0;
 }
 
 }  // namespace
@@ -267,9 +283,11 @@ double CrsTransform::groundDistance(double x0, double y0, double x1, double y1) 
 
 void CrsTransform::apply(std::vector<double>& x, std::vector<double>& y) const {
   if (!impl_->transform) return;
-  if (!transformAll(*impl_->transform, x, y))
-    throw Error("PROJ could not transform every sample point to " + impl_->name +
-                ": choose a CRS that covers the DEM with -t_srs");
+  const std::size_t misses = transformMisses(*impl_->transform, x, y);
+  if (misses > 0)
+    throw Error("PROJ could not transform " + std::to_string(misses) + " of " + std::to_string(x.size()) +
+                " points of the DEM to " + impl_->name + ": " +
+                (impl_->coverAdvice.empty() ? "choose a CRS that covers the DEM with -t_srs" : impl_->coverAdvice));
 }
 
 void CrsTransform::applyInverse(std::vector<double>& x, std::vector<double>& y) const {
