@@ -330,6 +330,12 @@ TEST(Cli, GdalsOwnMessagesDoNotLeak) {
   const std::string dir = test::tempDir();
   const CliRun r = tinlod("sample -t_srs EPSG:99999 " + defaultDem() + " " + dir + "/tin.gpkg");
   EXPECT_EQ(r.err.find("ERROR 1:"), std::string::npos) << r.err;
+  // A CRS whose grid file is missing: 16 lines of PROJ's complaint before the error.
+  const CliRun grid = tinlod("sample -t_srs '+proj=utm +zone=32 +ellps=GRS80 +nadgrids=missing.gsb +units=m' " + defaultDem() + " " +
+                             dir + "/grid.gpkg");
+  EXPECT_EQ(grid.exitCode, 1);
+  EXPECT_EQ(grid.err.find("ERROR 1:"), std::string::npos) << grid.err;
+  EXPECT_NE(grid.err.find("could not find required grid"), std::string::npos) << grid.err;
   // Into a GeoPackage ogr2ogr made (no gpkg_metadata table): "ERROR 1: ... no such table" on a run that went well.
   ASSERT_EQ(std::system(("ogr2ogr -q -f GPKG " + dir + "/project.gpkg '{\"type\":\"Point\",\"coordinates\":[0,0]}' -nln pts").c_str()), 0);
   const CliRun into = tinlod("sample -q -overwrite " + defaultDem() + " " + dir + "/project.gpkg");

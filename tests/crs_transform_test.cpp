@@ -163,6 +163,7 @@ TEST(CrsScale, PercentagesSayWhatTheyMean) {
   EXPECT_EQ(percentText(0.0104), "1.04 %");  // over 1 %, never "1 %"
   EXPECT_EQ(percentText(0.010004), "1.01 %");
   EXPECT_EQ(percentText(1.3e6), "over 1000 %");
+  EXPECT_EQ(percentText(1e-6), "under 0.1 %");  // never "0 %"
 }
 
 TEST(CrsScale, AFittedCrsHoldsEveryPoint) {
@@ -243,6 +244,17 @@ TEST(Crs, AHemisphereNoUtmZoneCanHoldIsSaidBeforeTheRunWithACrsThatCoversIt) {
   const CrsTransform advised = CrsTransform::forDem(dem, "", advisedCrs(warned[0]), ProgressRange(Feedback{}, 0, 1));
   EXPECT_NO_THROW(advised.apply(x, y));
   EXPECT_LE(worstScaleError(advisedCrs(warned[0]) + " +type=crs", denseGrid(-90, 90, -60, 60)), 0.335);
+}
+
+TEST(Crs, ACrsWhoseGridIsMissingFailsBeforeTheRunWithProjsReason) {
+  // GDAL reported the missing grid at each question asked of the CRS, then "Reprojection
+  // failed, err = 4098" at each point, and the run failed once the DEM was read.
+  const std::string failed = test::errorOf([] {
+    CrsTransform::forDem(degreeDem(7, 8, 46, 47), "", "+proj=utm +zone=32 +ellps=GRS80 +nadgrids=missing.gsb +units=m",
+                         ProgressRange(Feedback{}, 0, 1));
+  });
+  EXPECT_NE(failed.find("PROJ cannot transform any point of the DEM to '+proj=utm +zone=32"), std::string::npos) << failed;
+  EXPECT_NE(failed.find("(PROJ: hgridshift: could not find required grid(s).)"), std::string::npos) << failed;
 }
 
 TEST(Crs, TheWholeWorldIsToldToBeCutIntoRegions) {

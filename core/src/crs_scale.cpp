@@ -129,6 +129,7 @@ std::string percentText(double fraction) {
   const double percent = fraction * 100;
   if (percent >= 1000) return "over 1000 %";  // Web Mercator near a pole: the figure means nothing more
   if (percent >= 10) return formatNumber(std::round(percent)) + " %";
+  if (percent < 0.05) return "under 0.1 %";  // not "0 %", which no projection is
   // Two decimals, rounded up, where one would round a figure over 1 % to "1 %".
   const double tenths = std::round(percent * 10) / 10;
   return formatNumber(tenths <= 1 && percent > 1 ? std::ceil(percent * 100) / 100 : tenths) + " %";

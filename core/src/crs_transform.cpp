@@ -112,13 +112,33 @@ void extentGrid(const Dem& dem, std::vector<double>& x, std::vector<double>& y) 
     }
 }
 
-// How many of the points PROJ cannot transform, transforming the others in place. GDAL
-// reports each failed point ("Point outside of projection domain"): the caller says it once.
-std::size_t transformMisses(OGRCoordinateTransformation& ct, std::vector<double>& x, std::vector<double>& y) {
+// GDAL's first error while PROJ works ("hgridshift: could not find required grid(s)"), which
+// names the cause, where its last ("Reprojection failed, err = 4098") does not.
+class FirstGdalError {
+ public:
+  FirstGdalError() { CPLPushErrorHandlerEx(&FirstGdalError::keep, this); }
+  ~FirstGdalError() { CPLPopErrorHandler(); }
+  FirstGdalError(const FirstGdalError&) = delete;
+  FirstGdalError& operator=(const FirstGdalError&) = delete;
+  const std::string& message() const { return first_; }
+
+ private:
+  static void CPL_STDCALL keep(CPLErr, CPLErrorNum, const char* message) {
+    auto* self = static_cast<FirstGdalError*>(CPLGetErrorHandlerUserData());
+    if (self->first_.empty() && message) self->first_ = message;
+  }
+  std::string first_;
+};
+
+// How many of the points PROJ cannot transform, transforming the others in place, and PROJ's
+// reason for the first. GDAL reports each failed point: the caller says it once.
+std::size_t transformMisses(OGRCoordinateTransformation& ct, std::vector<double>& x, std::vector<double>& y,
+                            std::string* reason = nullptr) {
   std::vector<int> ok(x.size());
-  const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);
+  const FirstGdalError first;
   const bool done = ct.Transform(x.size(), x.data(), y.data(), nullptr, ok.data());
   const auto misses = static_cast<std::size_t>(std::count(ok.begin(), ok.end(), 0));
+  if (reason) *reason = first.message();
   return done || misses > 0 ? misses : x.size();
 }
 
@@ -155,12 +175,13 @@ std::vector<LonLat> lonLatOf(const OGRSpatialReference& src, std::vector<double>
 // it. Returns that advice, for the run's error; empty when the CRS projects the extent.
 std::string warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const OGRSpatialReference& dst,
                            OGRCoordinateTransformation* toTin, const std::string& targetWkt,
-                           const ProgressRange& progress) {
+                           const std::string& gdalSaid, const ProgressRange& progress) {
   if (!dst.IsProjected() || !dem.hasGeotransform) return {};
   std::vector<double> x, y;
   extentGrid(dem, x, y);
   std::vector<double> easting = x, northing = y;
-  const std::size_t misses = toTin ? transformMisses(*toTin, easting, northing) : 0;
+  std::string reason;
+  const std::size_t misses = toTin ? transformMisses(*toTin, easting, northing, &reason) : 0;
   if (misses == 0 && withinUtmZone(dst, easting)) return {};
   const std::vector<LonLat> points = lonLatOf(src, x, y);
   LonLat centre;
@@ -170,6 +191,9 @@ std::string warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const
     return {};
   }
   if (points.empty()) return {};
+  if (misses == x.size())  // nowhere near the DEM, or not at all: PROJ's first word says which
+    throw Error("PROJ cannot transform any point of the DEM to " + describe(dst) + " (" +
+                (gdalSaid.empty() ? reason : gdalSaid) + "): " + coverAdvice(points, centre));
   if (misses > 0) {
     const std::string advice = coverAdvice(points, centre);
     progress.warn(describe(dst) + " cannot project the whole DEM: PROJ fails at " + std::to_string(misses) + " of " +
@@ -213,6 +237,9 @@ const std::string& CrsTransform::sourceWkt() const { return impl_->sourceWkt; }
 
 CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, const std::string& targetSrs,
                                   const ProgressRange& progress) {
+  // A CRS PROJ cannot use (a grid file missing) makes GDAL report the same errors at every
+  // question asked of it; each failure is said below, once, in the user's terms.
+  const FirstGdalError gdalSaid;
   auto impl = std::make_unique<Impl>();
   OGRSpatialReference src;
   bool hasSrc = !dem.crsWkt.empty() && src.importFromWkt(dem.crsWkt.c_str()) == OGRERR_NONE;
@@ -263,7 +290,7 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
       throw Error("no transformation from " + describe(src) + " to " + impl->name + ": " +
                   CPLGetLastErrorMsg());
   }
-  impl->coverAdvice = warnAboutScale(dem, src, dst, impl->transform.get(), impl->wkt, progress);
+  impl->coverAdvice = warnAboutScale(dem, src, dst, impl->transform.get(), impl->wkt, gdalSaid.message(), progress);
   return CrsTransform(std::move(impl));
 }
 
@@ -283,10 +310,11 @@ double CrsTransform::groundDistance(double x0, double y0, double x1, double y1) 
 
 void CrsTransform::apply(std::vector<double>& x, std::vector<double>& y) const {
   if (!impl_->transform) return;
-  const std::size_t misses = transformMisses(*impl_->transform, x, y);
+  std::string reason;
+  const std::size_t misses = transformMisses(*impl_->transform, x, y, &reason);
   if (misses > 0)
     throw Error("PROJ could not transform " + std::to_string(misses) + " of " + std::to_string(x.size()) +
-                " points of the DEM to " + impl_->name + ": " +
+                " points of the DEM to " + impl_->name + (reason.empty() ? "" : " (" + reason + ")") + ": " +
                 (impl_->coverAdvice.empty() ? "choose a CRS that covers the DEM with -t_srs" : impl_->coverAdvice));
 }
 
