@@ -8,7 +8,7 @@ resumes it.
 import subprocess
 
 from .errors import TilesError
-from .task import tinlod_error
+from .task import tinlod_error, warning_lines
 
 IN_EFFECT = "Options in effect: "
 
@@ -17,19 +17,23 @@ def check_job(tinlod, dem, catalogue, tile_size, tiles, build_options):
     """-check with the job's build options on the first and the last tile (the raster's two
     ends, where a geographic DEM's cells are widest and narrowest); TilesError with tinlod's
     message if it refuses them. Returns the settings to record ("" from a tinlod that prints
-    none)."""
+    none) and the checks' warnings (a CRS that stretches distances or cannot project the whole
+    DEM), which every task would give again after its tile, hours into a national job."""
     # At once, with the version the settings name: the run's first task waits on them.
     checks = [(tile, start_check(tinlod, dem, catalogue, tile_size, tile, build_options))
               for tile in dict.fromkeys((tiles[0], tiles[-1]))]  # once for a single tile
     asked_version = start_version(tinlod)
     try:
+        warnings = []
         for tile, check in checks:
             result = finished(check)
+            warnings += warning_lines(result.stderr)
             if result.returncode != 0:
                 message = tinlod_error(result.stderr) or result.stderr.strip() or "exit code %d" % result.returncode
                 raise TilesError("tinlod build refuses the job (tile %d,%d): %s. Nothing was written"
                                  % (tile.col, tile.row, message))
-        return settings_of(version_of(finished(asked_version)), result)  # the options read alike on every tile
+        # The options read alike on every tile.
+        return settings_of(version_of(finished(asked_version)), result), list(dict.fromkeys(warnings))
     finally:  # a refusal, or Ctrl-C
         for process in [process for _, process in checks] + [asked_version]:
             if process.poll() is None:

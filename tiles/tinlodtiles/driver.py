@@ -40,8 +40,10 @@ def run(arguments):
     settings = job_settings(arguments, dem)
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
     warn_of_small_tiles(tiles, arguments.tile_size)
-    settings[BUILD_SETTINGS] = build_check.check_job(arguments.tinlod, dem_path(arguments.dem), arguments.catalogue,
-                                                     arguments.tile_size, tiles, arguments.build_options)
+    settings[BUILD_SETTINGS], job_warnings = build_check.check_job(
+        arguments.tinlod, dem_path(arguments.dem), arguments.catalogue, arguments.tile_size, tiles, arguments.build_options)
+    warnings = TileWarnings()  # what the checks and the tasks' tinlods said, over every pass
+    warnings.show_job(job_warnings)
     fixed = build_option(arguments.build_options, "-fixed")  # there: -check opened it
     settings[FIXED_STAMP] = file_stamp(fixed) if fixed else ""
     if fixed and not build_option(arguments.build_options, "-s_srs"):  # else the DEM's own CRS is not the one
@@ -75,7 +77,7 @@ def run(arguments):
             warn_of_reused_thresholds(catalogue, arguments)
         started = set(pending)  # surveyed or built by this run (a survey may find a tile empty)
         try:
-            outcome, built, rounds = build(catalogue, tiles, arguments, folder, pending, agreeing)
+            outcome, built, rounds = build(catalogue, tiles, arguments, folder, pending, agreeing, warnings)
         except TilesStopped:
             if not agreeing:  # tiles built under a bound may not meet yet: no layer across them
                 write_level_vrts(catalogue, arguments.catalogue, fewest_levels(catalogue.rows().values()))
@@ -112,13 +114,13 @@ def warn_of_points_outside(fixed, dem):
               % (outside, total), file=sys.stderr)
 
 
-def build(catalogue, tiles, arguments, folder, pending, agreeing):
+def build(catalogue, tiles, arguments, folder, pending, agreeing, warnings):
     """The passes over the pending tiles; (outcome by status, the tiles built, rounds of
-    border agreement)."""
+    border agreement). `warnings` (TileWarnings) shows what the tiles' tinlods say."""
     outcome, built, rounds = {}, set(pending), 1
     if not pending:
         return outcome, built, rounds
-    with Workers(arguments) as workers:  # one cluster for every pass
+    with Workers(arguments, warnings) as workers:  # one cluster for every pass
         extra = []
         if global_selection(arguments):
             extra = ["-level_thresholds", level_thresholds(catalogue, tiles, arguments, workers)]
@@ -430,9 +432,9 @@ class Workers:
     """The Dask client (and local cluster) of a run, started once for both passes and closed
     however the run ends."""
 
-    def __init__(self, arguments):
+    def __init__(self, arguments, warnings):
         self.arguments = arguments
-        self.warnings = TileWarnings()  # what the tasks' tinlods said, over every pass
+        self.warnings = warnings  # a TileWarnings, over every pass
 
     def __enter__(self):
         self.distributed = dask_import.distributed()  # only a run with tiles to build needs Dask
