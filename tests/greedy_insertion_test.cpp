@@ -474,6 +474,22 @@ void expectTheFileWrittenAfterTheInsertion(const Dem& dem, const InsertOptions& 
 // Without nodata, with every cell a candidate, the job writes the vertex rows on the other
 // core while the insertion runs: the file is the one written after it, feature for
 // feature, metadata included; a cancel during the insertion leaves nothing.
+TEST(InsertJob, ADemOfNoPossibleTriangleFailsAsSampleDoesAndWritesNothing) {
+  // A checkerboard of nodata: every valid cell is alone. insert wrote 0 triangles and
+  // "Maximum error 0 m", exit 0.
+  const std::string dir = test::tempDir();
+  const Dem dem = test::makeDem(40, 40, 10, [](int r, int c) { return (r + c) % 2 ? std::nanf("") : float(100 + r + c); });
+  writeDemGeoTiff(dem, dir + "/checker.tif");
+  for (const bool samples : {false, true}) {
+    InsertOptions o;
+    if (samples) o.candidates = InsertCandidates::Samples;
+    const std::string error = test::errorOf([&] { runInsertJob(dir + "/checker.tif", dir + "/tin.gpkg", o, false, Feedback{}); });
+    EXPECT_NE(error.find("'" + dir + "/checker.tif' gives no triangle: its valid cells are isolated or in a line"), std::string::npos)
+        << error;
+    EXPECT_FALSE(fs::exists(dir + "/tin.gpkg"));
+  }
+}
+
 TEST(InsertJob, VertexRowsWrittenDuringTheInsertionAreThoseWrittenAfterIt) {
   const std::string dir = test::tempDir();
   Dem dem = test::makeGeographicDem(300, 220, 7.0, 47.0);  // transformed to UTM: PROJ on both paths

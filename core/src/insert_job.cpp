@@ -187,6 +187,9 @@ InsertedTin insertedTinWith(const Dem& dem, const InsertOptions& options, const 
   all.triangles =
       trianglesOnValidData(dem, inserter.triangulation(progress.sub(0.95, 0.97)), all, &neighbours, progress.sub(0.97, 1));
   if (placed.valid()) placed.get();
+  // As tinlod sample says it: a file of no triangle and "Maximum error 0 m" was a success.
+  if (all.triangles.empty())
+    throw NoTriangle("'" + dem.path + "' gives no triangle: its valid cells are isolated or in a line");
   // Keep the vertices some triangle uses, in insertion order.
   for (VertexId i : dropUnusedVertices(all)) {
     out.cellPositions.push_back({inserter.candidateCol(inserted[i].candidate), inserter.candidateRow(inserted[i].candidate)});
