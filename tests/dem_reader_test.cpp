@@ -164,6 +164,25 @@ TEST(DemReader, RotatedGeotransformIsAnError) {
   expectError(writeRaster(s), 1, "rotated geotransform");
 }
 
+TEST(DemReader, GroundControlPointsInsteadOfAGeotransformAreAnError) {
+  // Read as 1 x 1 metre cells in no CRS, the TIN was nowhere, with only a warning.
+  const std::string path = test::tempDir() + "/gcps.tif";
+  {
+    GDALDatasetUniquePtr ds(GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), 6, 5, 1, GDT_Float32, nullptr));
+    std::vector<float> z(30, 100.0f);
+    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 6, 5, z.data(), 6, 5, GDT_Float32, 0, 0), CE_None);
+    GDAL_GCP gcps[3];
+    GDALInitGCPs(3, gcps);
+    const double pixel[3] = {0, 6, 0}, line[3] = {0, 0, 5}, x[3] = {8, 8.1, 8}, y[3] = {46, 46, 45.9};
+    for (int i = 0; i < 3; ++i) gcps[i].dfGCPPixel = pixel[i], gcps[i].dfGCPLine = line[i], gcps[i].dfGCPX = x[i], gcps[i].dfGCPY = y[i];
+    OGRSpatialReference wgs84;
+    wgs84.importFromEPSG(4326);
+    ASSERT_EQ(ds->SetGCPs(3, gcps, &wgs84), CE_None);
+    GDALDeinitGCPs(3, gcps);
+  }
+  expectError(path, 1, "is georeferenced by 3 ground control points, not a geotransform: warp it to a grid first, e.g. gdalwarp");
+}
+
 TEST(DemReader, FewerThanThreeValidCellsIsAnError) {
   RasterSpec s;
   s.setNodata = true;

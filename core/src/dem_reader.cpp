@@ -58,6 +58,11 @@ void readGeoreferencing(GDALDataset& ds, Dem& dem, const ProgressRange& progress
     if (gt[1] == 0.0 || gt[5] == 0.0)
       throw Error("'" + dem.path + "' has a zero pixel size in its geotransform");
     for (int i = 0; i < 6; ++i) dem.geotransform[i] = gt[i];
+  } else if (ds.GetGCPCount() > 0) {
+    // Its cells' places come from a warp GDAL has not made: as 1 x 1 metre in no CRS, the TIN
+    // would be nowhere.
+    throw Error("'" + dem.path + "' is georeferenced by " + std::to_string(ds.GetGCPCount()) +
+                " ground control points, not a geotransform: warp it to a grid first, e.g. gdalwarp in.tif warped.tif");
   } else {
     progress.warn("'" + dem.path + "' has no geotransform: cells are taken as 1 x 1 metre");
   }
