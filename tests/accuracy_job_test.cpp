@@ -260,9 +260,28 @@ TEST(AccuracyJob, TooFewTestPointsOnTheTinAreRefusedWithNothingWritten) {
   a.reportPath = test::tempDir() + "/few.csv";
   a.options.step = 1000;  // one test point of the 360 x 300 DEM: figures of zeros and NaN
   EXPECT_EQ(test::errorOf([&] { runAccuracyJob(smallDem(), built().gpkg, a, 0, "", {}); }),
-            "only 1 test point of '" + smallDem() + "' lies on the TIN: give the DEM the TIN was made from, or a "
-            "smaller -step");
+            "-step 1000 leaves 1 test point on the DEM's 360 x 300 cells, and the figures need 3: give a smaller -step");
   EXPECT_FALSE(fs::exists(a.reportPath));
+}
+
+TEST(AccuracyJob, ATestGridTooSmallForTheSurfacesSaysSo) {
+  // 4 x 3 test points: no B-spline surface point, every correlation nan, without a word.
+  AccuracyOutputs a;
+  a.reportPath = test::tempDir() + "/small.csv";
+  a.options.step = 100;
+  test::RecordingFeedback fb;
+  const AccuracyReport r = runAccuracyJob(smallDem(), built().gpkg, a, 0, "", fb.feedback());
+  ASSERT_EQ(fb.warnings.size(), 1u);
+  EXPECT_EQ(fb.warnings[0], "the test grid of 4 x 3 points is too small for B-spline surfaces with control points every 3 "
+                            "(they need 10 x 10): the height and curvature correlations are not measured (nan); give a "
+                            "smaller -step or -control");
+  EXPECT_GT(r.rows[0].testPoints, 0u);
+  // 12 x 10 test points hold one: measured, and no warning.
+  a.options.step = 30;
+  a.overwrite = true;
+  test::RecordingFeedback enough;
+  runAccuracyJob(smallDem(), built().gpkg, a, 0, "", enough.feedback());
+  EXPECT_TRUE(enough.warnings.empty()) << enough.warnings[0];
 }
 
 // A level the hierarchy does not have is refused from its levels table, before anything

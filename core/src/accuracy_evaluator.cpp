@@ -87,6 +87,7 @@ AccuracyEvaluator::AccuracyEvaluator(const Dem& dem, const Tin& original, const 
   Impl& m = *impl_;
   m.options = options;
   m.grid = makeTestGrid(dem, options.step, toTin);
+  if (const std::string small = surfacesMissWarning(m.grid, options.controlSpacing); !small.empty()) progress.warn(small);
   m.positions = gridPositions(m.grid, dem, original.vertices, toTin);
   m.z.reserve(original.vertices.size());
   for (const TinVertex& v : original.vertices) m.z.push_back(v.z);

@@ -64,6 +64,7 @@ WholeGrid wholeGrid(const std::string& demPath, int band, const HeightRange& val
   const ProgressRange quiet(Feedback{}, 0, 1);  // the sampling run already said what it had to about the CRS
   CrsTransform toTin = CrsTransform::forDem(header, sourceSrs, tinCrs, quiet);
   TestGrid grid = makeTestGrid(header, options.step, toTin);
+  if (const std::string small = surfacesMissWarning(grid, options.controlSpacing); !small.empty()) progress.warn(small);
   return WholeGrid{std::move(header), std::move(toTin), std::move(grid), options, valid};
 }
 

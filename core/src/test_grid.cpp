@@ -2,6 +2,7 @@
 #include "tinlod/test_grid.h"
 
 #include <cmath>
+#include <cstdint>
 
 #include "tinlod/error.h"
 
@@ -16,13 +17,31 @@ TestGrid makeTestGrid(const Dem& dem, int step, const CrsTransform& toTin) {
   // Test point (c, r) is the centre of DEM cell (r step, c step): a raster cell of step
   // DEM cells centred there.
   g.geotransform = {gt[0] + 0.5 * (1 - step) * gt[1], step * gt[1], 0, gt[3] + 0.5 * (1 - step) * gt[5], 0, step * gt[5]};
+  constexpr int kFewest = 3;  // a correlation needs three
+  if (std::int64_t(g.cols) * g.rows < kFewest)
+    throw Error("-step " + std::to_string(step) + " leaves " + std::to_string(g.cols * g.rows) + " test point" +
+                (g.cols * g.rows == 1 ? "" : "s") + " on the DEM's " + std::to_string(dem.width) + " x " +
+                std::to_string(dem.height) + " cells, and the figures need " + std::to_string(kFewest) +
+                ": give a smaller -step");
   g.crsWkt = toTin.sourceWkt();  // -s_srs's when given: the DEM's file may have none
+  // Measured over one DEM cell, times the step: a step of many cells of a DEM in degrees
+  // would reach beyond the poles.
   const double midX = g.x(g.cols / 2);
-  g.cellHeight = toTin.groundDistance(midX, g.y(g.rows / 2), midX, g.y(g.rows / 2) + g.geotransform[5]);
+  g.cellHeight = step * toTin.groundDistance(midX, g.y(g.rows / 2), midX, g.y(g.rows / 2) + gt[5]);
   g.cellWidth.resize(g.rows);
-  for (int r = 0; r < g.rows; ++r)
-    g.cellWidth[r] = toTin.groundDistance(midX, g.y(r), midX + g.geotransform[1], g.y(r));
+  for (int r = 0; r < g.rows; ++r) g.cellWidth[r] = step * toTin.groundDistance(midX, g.y(r), midX + gt[1], g.y(r));
   return g;
+}
+
+std::string surfacesMissWarning(const TestGrid& grid, int controlSpacing) {
+  // A cubic B-spline is defined between its second and its second-to-last control points:
+  // four control points, three spacings of test points, at least, across and down.
+  const int fewest = 3 * controlSpacing + 1;
+  if (grid.cols >= fewest && grid.rows >= fewest) return {};
+  return "the test grid of " + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
+         " points is too small for B-spline surfaces with control points every " + std::to_string(controlSpacing) +
+         " (they need " + std::to_string(fewest) + " x " + std::to_string(fewest) +
+         "): the height and curvature correlations are not measured (nan); give a smaller -step or -control";
 }
 
 namespace {

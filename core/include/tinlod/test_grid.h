@@ -26,8 +26,13 @@ struct TestGrid {
   double y(int row) const { return geotransform[3] + (row + 0.5) * geotransform[5]; }
 };
 
-// `toTin` takes the DEM's CRS to the TIN's (as when the TIN was sampled).
+// `toTin` takes the DEM's CRS to the TIN's (as when the TIN was sampled). Throws Error when
+// `step` leaves fewer than three test points.
 TestGrid makeTestGrid(const Dem& dem, int step, const CrsTransform& toTin);
+
+// The warning for a test grid too small for any B-spline surface point with control points
+// every `controlSpacing` test points (its correlations all nan); empty when it is not.
+std::string surfacesMissWarning(const TestGrid& grid, int controlSpacing);
 
 // Each vertex's position in test-point units (col, row): (2, 3) is the test point of
 // DEM cell (3 step, 2 step).
