@@ -67,7 +67,7 @@ ParameterNames DemAlgorithm::accuracyParameterNames() {
           {QStringLiteral("-report"), QStringLiteral("REPORT")},
           {QStringLiteral("-step"), QStringLiteral("STEP")},
           {QStringLiteral("-reference"), QStringLiteral("REFERENCE")},
-          {QStringLiteral("-control_spacing"), QStringLiteral("CONTROL_SPACING")}};
+          {QStringLiteral("-control"), QStringLiteral("CONTROL_SPACING")}};
 }
 
 QString DemAlgorithm::accuracyHelp() {

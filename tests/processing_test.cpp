@@ -952,6 +952,16 @@ TEST(Processing, AccuracyMeasuresAHierarchyAndNamesBadParameters) {
   EXPECT_EQ(r.outputs.value("RMSE").toDouble(), 0.0);  // level 0 against itself
   EXPECT_NEAR(r.outputs.value("R_ELEVATION").toDouble(), 1.0, 1e-12);
   EXPECT_TRUE(fs::exists(raster.toStdString()));
+  // A test grid too small for the surfaces is said in the dialog's names.
+  RecordingFeedback small;
+  const Result coarse = runAlgorithm(QStringLiteral("tinlod:accuracy"), {{"INPUT", QString::fromStdString(defaultDem())},
+                                                                         {"HIERARCHY", hier},
+                                                                         {"LEVEL", 0},
+                                                                         {"STEP", 200}},
+                                     &small);
+  ASSERT_TRUE(coarse.ok) << coarse.error.toStdString();
+  const QString warned = small.warnings.filter(QStringLiteral("too small for B-spline surfaces")).value(0);
+  EXPECT_TRUE(warned.endsWith(QStringLiteral("give a smaller STEP or CONTROL_SPACING"))) << small.warnings.join('\n').toStdString();
   // COMPARE_INSERT: greedy insertion at each level's size fills the report's ratio column.
   const QString compared = QString::fromStdString(dir + "/compared.csv");
   const Result c = runAlgorithm(QStringLiteral("tinlod:accuracy"), {{"INPUT", QString::fromStdString(defaultDem())},
