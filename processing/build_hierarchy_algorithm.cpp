@@ -81,7 +81,7 @@ void BuildHierarchyAlgorithm::initAlgorithm(const QVariantMap&) {
   addParameter(new QgsProcessingParameterEnum(QStringLiteral("METHOD"), QStringLiteral("Importance method"), kMethods,
                                               false, static_cast<int>(d.measure)));
   addParameter(decimals(1, new QgsProcessingParameterNumber(QStringLiteral("DELETE_PCT"), QStringLiteral("Delete percentage per level"),
-                                                QgsProcessingParameterNumber::Double, d.deletePct, false, 0.1, 100)));
+                                                QgsProcessingParameterNumber::Double, d.deletePct, false, 1, 100)));
   addParameter(decimals(1, new QgsProcessingParameterNumber(QStringLiteral("STOP_PCT"), QStringLiteral("Stop percentage of the original vertices"),
                                                 QgsProcessingParameterNumber::Double, d.stopPct, false, 0, 99.9)));
   addParameter(new QgsProcessingParameterFeatureSource(QStringLiteral("FIXED_POINTS"), QStringLiteral("Points to keep"),

@@ -444,7 +444,9 @@ TEST(BuildJob, CheckRefusesWhatTheBuildWouldAndWritesNothing) {
   EXPECT_EQ(check({}, {}, {120, 1, 0}), "no error");  // 150 x 120 cells: 2 x 1 tiles
   HierarchyOptions badPct;
   badPct.deletePct = 200;
-  EXPECT_TRUE(test::contains(check({}, badPct, {}), "delete_pct must be more than 0 and at most 100 (got 200)"));
+  EXPECT_TRUE(test::contains(check({}, badPct, {}), "delete_pct must be from 1 to 100 (got 200)"));
+  badPct.deletePct = 0.5;  // no level can be made: the run ended with level 0 alone, blaming fixed vertices
+  EXPECT_TRUE(test::contains(check({}, badPct, {}), "delete_pct must be from 1 to 100 (got 0.5): a level deletes at least 1 %"));
   EXPECT_TRUE(test::contains(check({}, {}, {120, 9, 0}), "-tile 9,0 is outside the grid"));
   EXPECT_TRUE(test::contains(check({}, {}, {100, 0, 0}), "-tile_size 100 must be a multiple of -block"));
   SampleOptions farJitter;

@@ -225,7 +225,7 @@ TEST(Cli, BuildCheckSaysWhetherTheOptionsAreGoodAndWritesNothing) {
   EXPECT_TRUE(has(all.out, "Options in effect: (the defaults)\n")) << all.out << all.err;
   const CliRun bad = tinlod("build " + defaultDem() + " " + out + " -check -delete_pct 200");
   EXPECT_EQ(bad.exitCode, 1);
-  EXPECT_TRUE(has(bad.err, "ERROR: -delete_pct must be more than 0 and at most 100 (got 200)")) << bad.err;
+  EXPECT_TRUE(has(bad.err, "ERROR: -delete_pct must be from 1 to 100 (got 200)")) << bad.err;
   EXPECT_FALSE(fs::exists(out));
   // Numbers are decimal: strtod would read 0x2 as 2, which tinlod tiles, reading the options
   // itself, would not (it then took a bounded job for an unbounded one).

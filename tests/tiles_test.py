@@ -615,7 +615,7 @@ def main(tinlod, tiles):
     wrong = run(base + [os.path.join(work, "w.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2",
                         "-tinlod", program, "--", "-delete_pct", "200"], env)
     check("build options every tile would refuse are refused once, with tinlod's message, before anything is written",
-          wrong.returncode == 1 and "tinlod build refuses the job (tile 0,0): -delete_pct must be more than 0 and at most 100 (got 200)"
+          wrong.returncode == 1 and "tinlod build refuses the job (tile 0,0): -delete_pct must be from 1 to 100 (got 200)"
           in wrong.stderr and "Nothing was written" in wrong.stderr and "tiles failed" not in wrong.stderr
           and not os.path.exists(os.path.join(work, "w.gpkg")) and not os.path.exists(os.path.join(work, "w_tiles")),
           wrong.stderr[-2000:])
