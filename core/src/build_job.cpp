@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "dataset_files.h"
+#include "grid_bend.h"
 #include "interior_share.h"
 #include "release_memory.h"
 #include "text_and_paths.h"
@@ -346,6 +347,24 @@ void checkBuildJob(const std::string& demPath, const SampleOptions& sample, cons
   if (tile.size == 0) checkMemory(demPath, raster[0], raster[1], buildMemory(sample), ProgressRange(feedback, 0, 1));
 }
 
+namespace {
+
+// The levels are measured on the DEM's grid: no triangle of theirs may turn over in the TIN's
+// CRS, and the coarsest, whose triangles are the largest, should read the same there.
+void checkBuildGridBend(const Dem& dem, const SampleOptions& sample, const Hierarchy& h, const ProgressRange& progress) {
+  const std::size_t folded =
+      foldedTriangles(h.base.vertices, h.triangles.size(), [&h](std::size_t i) -> const Triangle& { return h.triangles[i].v; });
+  double gap = 0;
+  if (folded == 0) {
+    const CrsTransform toTin = CrsTransform::forDem(dem, sample.sourceSrs, sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
+    const std::vector<std::uint32_t> coarsest = h.levelTriangles(h.coarsest());
+    gap = heightGap(dem, toTin, h.base.vertices, coarsest.size(), [&](std::size_t i) -> const Triangle& { return h.triangles[coarsest[i]].v; });
+  }
+  checkGridBend(folded, gap, h.levels.back().maxError, "level " + std::to_string(h.coarsest()), h.base.crsName, progress);
+}
+
+}  // namespace
+
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                          const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
                          const AccuracyOutputs& accuracy, const HierarchyLayers& layers, const TileSpec& tile) {
@@ -375,6 +394,7 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,
                                tile.size > 0 ? &borders : nullptr);
   if (tile.size == 0) warnIfStoppedEarly(h, all), warnIfInteriorStarved(h, all), noteSampleAboveMaxError(h, sample, all);
+  checkBuildGridBend(dem, sample, h, all);
   const std::size_t validCells = tile.size > 0 ? 0 : dem.validCount();  // a tile's window holds its halo's too
   // Only the accuracy outputs read the heights and level 0's TIN again; freed, they leave
   // the writing room (68 and 45 MB for a 4096 x 4096 tile). The DEM's size and window stay

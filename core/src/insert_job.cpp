@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "dataset_files.h"
+#include "grid_bend.h"
 #include "inserted_vertex_rows.h"
 #include "parallel_blocks.h"
 #include "text_and_paths.h"
@@ -202,6 +203,10 @@ InsertedTin insertedTinWith(const Dem& dem, const InsertOptions& options, const 
   out.tin.crsName = toTin.targetName();
   markOutline(out.tin, neighbours);
   orientTriangles(out.tin);
+  const TriangleAt triangle = [&out](std::size_t i) -> const Triangle& { return out.tin.triangles[i]; };
+  const std::size_t folded = foldedTriangles(out.tin.vertices, out.tin.triangles.size(), triangle);
+  const double gap = folded > 0 ? 0 : heightGap(dem, toTin, out.tin.vertices, out.tin.triangles.size(), triangle);
+  checkGridBend(folded, gap, out.summary.maxError, "the TIN", out.tin.crsName, progress);
 
   InsertSummary& s = out.summary;
   s.vertices = out.tin.vertices.size(), s.triangles = out.tin.triangles.size(), s.crsName = out.tin.crsName;

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "tin_layers.h"
+#include "tinlod/crs_transform.h"
+#include "tinlod/dem.h"
+#include "tinlod/feedback.h"
+#include "tinlod/tin.h"
+
+namespace tinlod {
+
+// tinlod measures a TIN on the DEM's grid, each triangle linear in cell coordinates; read in
+// the TIN's CRS, a triangle is linear there. Where that CRS is near-affine over a triangle
+// (a projected DEM: exactly; a DEM in degrees away from the poles: within centimetres) the
+// two agree. Near a pole, or across a DEM that wraps the globe, triangles turn over between
+// the two, or their heights part: the figures would hold on the grid only.
+
+// How many of the `count` triangles turn over between the grid and the TIN's CRS (those
+// fewer of the two orientations). No PROJ: cheap over every triangle of every level.
+std::size_t foldedTriangles(const std::vector<TinVertex>& vertices, std::size_t count, const TriangleAt& triangle);
+
+// The largest difference, in metres, between a triangle's height at its centre on the grid
+// and in the TIN's CRS (the grid centre taken there with PROJ), over the triangles whose centre
+// is on a valid cell: 0 when the TIN's CRS is the DEM's. NaN when PROJ cannot take a centre.
+double heightGap(const Dem& dem, const CrsTransform& toTin, const std::vector<TinVertex>& vertices, std::size_t count,
+                 const TriangleAt& triangle);
+
+// Refuses a TIN whose triangles turn over (Error, naming the fix); warns when `gap` (of the
+// triangles `what` names, "level 14") exceeds a quarter of `maxError`, their largest error measured
+// on the grid, and 10 cm.
+void checkGridBend(std::size_t folded, double gap, double maxError, const std::string& what, const std::string& crsName,
+                   const ProgressRange& progress);
+
+}  // namespace tinlod
