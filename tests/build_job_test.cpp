@@ -59,16 +59,6 @@ std::vector<std::string> layerNames(const std::string& gpkg) {
   return names;
 }
 
-// Hills over longitudes lon0..lon0 + width * cell and latitudes 90 - height * cell / 2 to 90.
-std::string polarDem(const std::string& name, double lon0, int width, int height, double cell) {
-  Dem dem = test::makeDem(width, height, 1, [](int r, int c) { return float(500 + 300 * std::sin(c / 3.0) * std::cos(r / 2.0)); });
-  dem.geotransform = {lon0, cell, 0, 90, 0, -cell / 2};
-  dem.crsWkt = test::wktOf(4326);
-  const std::string path = test::tempDir() + "/" + name;
-  writeDemGeoTiff(dem, path);
-  return path;
-}
-
 // tinlod measures on the DEM's grid; near a pole, or across a DEM that wraps the globe, the
 // TIN's CRS turns triangles over against it or bends it far from linear: the figures (544 m
 // where the TIN in its CRS is 54 m off) held nowhere.
@@ -76,7 +66,7 @@ TEST(BuildJob, ACrsThatTurnsTrianglesOverAgainstTheGridIsRefusedAndOneThatBendsI
   const std::string stere = "+proj=stere +lat_0=90 +lon_0=0 +k=0.965376 +datum=WGS84 +units=m";
   SampleOptions sample;
   sample.targetSrs = stere;
-  const std::string cap = polarDem("cap.tif", -180, 360, 60, 1.0);  // 60 N to the pole, all the way round
+  const std::string cap = test::polarDemFile("cap.tif", -180, 360, 30, 1.0);  // 60 N to the pole, all the way round
   const std::string out = test::tempDir() + "/cap.gpkg";
   const std::string refused = test::errorOf([&] { runBuildJob(cap, out, sample, {}, true, {}); });
   EXPECT_NE(refused.find("turns "), std::string::npos) << refused;
@@ -87,7 +77,7 @@ TEST(BuildJob, ACrsThatTurnsTrianglesOverAgainstTheGridIsRefusedAndOneThatBendsI
   EXPECT_FALSE(fs::exists(out));
   // A quarter of the cap (0-90 E) does not wrap, but its coarsest triangles bend far from linear.
   test::RecordingFeedback fb;
-  runBuildJob(polarDem("quarter.tif", 0, 90, 60, 1.0), out, sample, {}, true, fb.feedback());
+  runBuildJob(test::polarDemFile("quarter.tif", 0, 90, 30, 1.0), out, sample, {}, true, fb.feedback());
   const auto bent = std::find_if(fb.warnings.begin(), fb.warnings.end(), [](const std::string& w) {
     return w.find("triangles part by up to") != std::string::npos;
   });

@@ -490,6 +490,18 @@ TEST(InsertJob, ADemOfNoPossibleTriangleFailsAsSampleDoesAndWritesNothing) {
   }
 }
 
+TEST(InsertJob, TrianglesThatTurnOverInTheTinsCrsAreRefused) {
+  // The whole world in Mollweide, whose poles are points: the TIN, triangulated on the ground
+  // about the grid, overlapped itself in the CRS (148 triangles turned over).
+  const std::string cap = test::polarDemFile("world.tif", -180, 360, 180, 1.0), out = test::tempDir() + "/world.gpkg";
+  InsertOptions o;
+  o.maxError = 30;
+  o.sample.targetSrs = "ESRI:54009";
+  const std::string error = test::errorOf([&] { runInsertJob(cap, out, o, false, Feedback{}); });
+  EXPECT_NE(error.find(" of its triangles over against the DEM's grid"), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(InsertJob, VertexRowsWrittenDuringTheInsertionAreThoseWrittenAfterIt) {
   const std::string dir = test::tempDir();
   Dem dem = test::makeGeographicDem(300, 220, 7.0, 47.0);  // transformed to UTM: PROJ on both paths

@@ -81,6 +81,19 @@ Dem makeDem(int width, int height, double cell, const std::function<float(int, i
   return dem;
 }
 
+std::string polarDemFile(const std::string& name, double lon0, int width, int height, double cell) {
+  // One hill and a valley across the DEM, rough by +-20 m as a real one is.
+  Dem dem = makeDem(width, height, 1, [width, height](int r, int c) {
+    const double rough = std::sin(r * 12.9898 + c * 78.233) * 43758.5453;
+    return float(500 + 500 * std::sin(6.3 * c / width) * std::cos(4.1 * r / height) + 40 * (rough - std::floor(rough) - 0.5));
+  });
+  dem.geotransform = {lon0, cell, 0, 90, 0, -cell};
+  dem.crsWkt = wktOf(4326);
+  const std::string path = tempDir() + "/" + name;
+  writeDemGeoTiff(dem, path);
+  return path;
+}
+
 Dem makeGeographicDem(int width, int height, double lon0, double lat0) {
   Dem dem = makeDem(width, height, 1.0, [](int r, int c) { return float(100 + r + 2 * c); });
   dem.geotransform = {lon0, 1.0 / 1200, 0.0, lat0, 0.0, -1.0 / 1200};

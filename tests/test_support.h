@@ -40,6 +40,10 @@ Dem demUnder(Tin& tin, double cell);
 // A DEM whose cells are 1/1200 degree in EPSG:4326, upper-left corner at (lon0, lat0).
 Dem makeGeographicDem(int width, int height, double lon0, double lat0);
 
+// Rough hills in EPSG:4326 over longitudes lon0 to lon0 + width * cell and latitudes 90 - height *
+// cell to the pole, written as a GeoTIFF `name` in a new temporary folder; its path.
+std::string polarDemFile(const std::string& name, double lon0, int width, int height, double cell);
+
 std::string readFile(const std::string& path);
 
 // A shell command's exit code and what it printed on stdout and stderr.
