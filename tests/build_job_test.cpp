@@ -338,9 +338,9 @@ TEST(BuildJob, BadOptionsFailBeforeAnyWork) {
   missing.fixedPoints = test::tempDir() + "/none.shp";
   EXPECT_THROW(runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, missing, false, {}), Error);
   // A tile makes every level its delete and stop percentages imply; a hierarchy holds at
-  // most kMaxLevel + 1 of them (about 138,000 here).
+  // most kMaxLevel + 1 of them (about 34,800 here).
   HierarchyOptions tooMany;
-  tooMany.deletePct = 0.01, tooMany.stopPct = 0.0001;
+  tooMany.deletePct = 1, tooMany.stopPct = 1e-150;
   try {
     runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, tooMany, false, counting, AccuracyOutputs(),
                 HierarchyLayers(), TileSpec{60, 0, 0});
@@ -348,7 +348,7 @@ TEST(BuildJob, BadOptionsFailBeforeAnyWork) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("-max_levels"), std::string::npos) << e.what();
   }
-  for (const double deletePct : {1e-8, 1e-15}) {  // more levels than an int holds; 1 - d rounds to 1
+  for (const double deletePct : {1e-8, 1e-15}) {  // under 1 %: refused, as it would make more levels than an int holds
     tooMany.deletePct = deletePct;
     EXPECT_THROW(runBuildJob(smallDem(), test::tempDir() + "/h.gpkg", {}, tooMany, false, counting, AccuracyOutputs(),
                              HierarchyLayers(), TileSpec{60, 0, 0}),

@@ -257,6 +257,29 @@ TEST(Crs, ACrsWhoseGridIsMissingFailsBeforeTheRunWithProjsReason) {
   EXPECT_NE(failed.find("(PROJ: hgridshift: could not find required grid(s).)"), std::string::npos) << failed;
 }
 
+TEST(Crs, ADemOfMarsGoesToATransverseMercatorOnMarsNotToAnEarthUtmZone) {
+  // Mars picked Earth's UTM zone 52N and failed with both CRSs' whole WKT in the message.
+  Dem dem = degreeDem(130, 133, 18, 20);
+  OGRSpatialReference mars;
+  ASSERT_EQ(mars.SetFromUserInput("IAU_2015:49900"), OGRERR_NONE);
+  char* wkt = nullptr;
+  mars.exportToWkt(&wkt);
+  dem.crsWkt = wkt;
+  CPLFree(wkt);
+  const CrsTransform t = CrsTransform::forDem(dem, "", "", ProgressRange(Feedback{}, 0, 1));
+  EXPECT_EQ(t.targetName(), "Transverse Mercator 131.5 on Mars (2015) - Sphere");
+  // A degree of latitude on the central meridian is pi / 180 of Mars's 3396.19 km radius.
+  std::vector<double> x{131.5, 131.5}, y{18.0, 19.0};
+  t.apply(x, y);
+  EXPECT_NEAR(y[1] - y[0], 3396190.0 * M_PI / 180, 1e-3);
+  EXPECT_NEAR(x[0], 0, 1e-6);
+  const std::string earth = test::errorOf([&] { CrsTransform::forDem(dem, "", "EPSG:32652", ProgressRange(Feedback{}, 0, 1)); });
+  EXPECT_NE(earth.find("and WGS 84 / UTM zone 52N (EPSG:32652) is on Earth: give -t_srs a projected CRS of the DEM's own body"),
+            std::string::npos)
+      << earth;
+  EXPECT_EQ(earth.find("GEOGCRS"), std::string::npos) << earth;
+}
+
 TEST(Crs, TheWholeWorldIsToldToBeCutIntoRegions) {
   const std::vector<std::string> warned = warningsFor(degreeDem(-180, 180, -90, 90));
   EXPECT_TRUE(has(warned, "cannot project the whole DEM: PROJ fails at")) << (warned.empty() ? "" : warned[0]);

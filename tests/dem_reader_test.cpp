@@ -166,6 +166,7 @@ TEST(DemReader, RotatedGeotransformIsAnError) {
 
 TEST(DemReader, GroundControlPointsInsteadOfAGeotransformAreAnError) {
   // Read as 1 x 1 metre cells in no CRS, the TIN was nowhere, with only a warning.
+  GDALAllRegister();  // run alone (ctest), no other test has
   const std::string path = test::tempDir() + "/gcps.tif";
   {
     GDALDatasetUniquePtr ds(GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), 6, 5, 1, GDT_Float32, nullptr));

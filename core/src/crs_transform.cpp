@@ -74,6 +74,32 @@ void centreLonLat(const Dem& dem, const OGRSpatialReference& src, double& lon, d
                 "': name a projected CRS with -t_srs");
 }
 
+// Earth's ellipsoids all have a semi-major axis within a few kilometres of WGS 84's; a DEM
+// of Mars (3396 km) or the Moon (1737 km) is on another body, which no UTM zone covers.
+bool onEarth(const OGRSpatialReference& srs) {
+  OGRErr err = OGRERR_NONE;
+  const double a = srs.GetSemiMajor(&err);
+  return err != OGRERR_NONE || std::fabs(a - 6378137.0) < 10000.0;
+}
+
+std::string bodyOf(const OGRSpatialReference& srs) {
+  const char* datum = srs.GetAttrValue("DATUM");
+  return datum ? datum : "its body";
+}
+
+// The automatic CRS of a DEM in degrees on another body: a transverse Mercator about its
+// centre, true to scale on its meridian.
+OGRSpatialReference transverseMercatorOnItsBody(const OGRSpatialReference& src, double lon) {
+  std::unique_ptr<OGRSpatialReference> geog(src.CloneGeogCS());
+  OGRSpatialReference dst;
+  const double meridian = std::round(lon * 1000) / 1000;
+  dst.SetProjCS(("Transverse Mercator " + formatNumber(meridian) + " on " + bodyOf(src)).c_str());
+  if (geog) dst.CopyGeogCSFrom(geog.get());
+  dst.SetTM(0, meridian, 1, 0, 0);
+  dst.SetLinearUnits(SRS_UL_METER, 1.0);
+  return dst;
+}
+
 OGRSpatialReference parseSrs(const std::string& definition, const std::string& role, const std::string& example) {
   OGRSpatialReference srs;
   CPLPushErrorHandler(CPLQuietErrorHandler);
@@ -191,11 +217,15 @@ std::string warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const
     return {};
   }
   if (points.empty()) return {};
+  // The CRSs tinlod fits are on WGS 84: a DEM of Mars is told what to look for.
+  const auto ofItsBody = [&src](const std::string& that) {
+    return "choose a projected CRS of " + bodyOf(src) + " that " + that + ", with -t_srs";
+  };
   if (misses == x.size())  // nowhere near the DEM, or not at all: PROJ's first word says which
     throw Error("PROJ cannot transform any point of the DEM to " + describe(dst) + " (" +
-                (gdalSaid.empty() ? reason : gdalSaid) + "): " + coverAdvice(points, centre));
+                (gdalSaid.empty() ? reason : gdalSaid) + "): " + (onEarth(src) ? coverAdvice(points, centre) : ofItsBody("covers it")));
   if (misses > 0) {
-    const std::string advice = coverAdvice(points, centre);
+    const std::string advice = onEarth(src) ? coverAdvice(points, centre) : ofItsBody("covers it");
     progress.warn(describe(dst) + " cannot project the whole DEM: PROJ fails at " + std::to_string(misses) + " of " +
                   std::to_string(x.size()) + " points spread over its extent, and the run fails if the DEM has data "
                   "there: " + advice);
@@ -205,7 +235,7 @@ std::string warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const
   if (!(error > 0.01)) return {};  // NaN: PROJ cannot tell
   progress.warn(describe(dst) + " stretches distances by " + (error >= 10 ? "" : "up to ") + percentText(error) +
                 " over the DEM, so slopes, areas and volumes of the TIN are off by as much: " +
-                scaleAdvice(points, centre, error));
+                (onEarth(src) ? scaleAdvice(points, centre, error) : ofItsBody("keeps it within 1 % of true scale")));
   return {};
 }
 
@@ -275,20 +305,28 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
   } else {
     double lon = 0, lat = 0;
     centreLonLat(dem, src, lon, lat);
-    dst.importFromEPSG(utmEpsgFor(lon, lat));
+    if (onEarth(src))
+      dst.importFromEPSG(utmEpsgFor(lon, lat));
+    else
+      dst = transverseMercatorOnItsBody(src, lon);
     progress.inform("'" + dem.path + "' is in " + describe(src) +
                     ", which is not metric: points are transformed to " + describe(dst));
   }
   dst.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   impl->wkt = wkt2(dst);
   impl->name = describe(dst);
+  if (hasSrc && onEarth(src) != onEarth(dst))
+    throw Error("'" + dem.path + "' is in " + describe(src) + ", on " + (onEarth(src) ? "Earth" : bodyOf(src)) + ", and " +
+                impl->name + " is on " + (onEarth(dst) ? "Earth" : bodyOf(dst)) +
+                ": give -t_srs a projected CRS of the DEM's own body, or leave it out for a transverse Mercator on it");
   if (!src.IsSame(&dst)) {
     CPLPushErrorHandler(CPLQuietErrorHandler);  // the error below says it, once
     impl->transform.reset(OGRCreateCoordinateTransformation(&src, &dst));
     CPLPopErrorHandler();
     if (!impl->transform)
       throw Error("no transformation from " + describe(src) + " to " + impl->name + ": " +
-                  CPLGetLastErrorMsg());
+                  // GDAL quotes both CRSs' whole WKT after "from".
+                  std::string(CPLGetLastErrorMsg()).substr(0, std::string(CPLGetLastErrorMsg()).find(" from `")));
   }
   impl->coverAdvice = warnAboutScale(dem, src, dst, impl->transform.get(), impl->wkt, gdalSaid.message(), progress);
   return CrsTransform(std::move(impl));
