@@ -324,6 +324,12 @@ TEST(Cli, BuildErrorsNameTheOption) {
     EXPECT_TRUE(has(r.err, c.message)) << c.args << ": " << r.err;
   }
   EXPECT_FALSE(fs::exists(dir + "/h.gpkg"));
+  // A GeoPackage of rasters is one: "not a GeoPackage GDAL can read" sent the user looking for damage.
+  ASSERT_EQ(std::system(("gdal_translate -q -of GPKG " + defaultDem() + " " + dir + "/raster.gpkg").c_str()), 0);
+  for (const std::string command : {"info ", "lod -max_error 5 "}) {
+    const CliRun r = tinlod(command + dir + "/raster.gpkg" + (command == "info " ? "" : " " + dir + "/lod.gpkg"));
+    EXPECT_TRUE(has(r.err, "'" + dir + "/raster.gpkg' is a GeoPackage of rasters only, not a TIN tinlod wrote")) << command << r.err;
+  }
 }
 
 TEST(Cli, GdalsOwnMessagesDoNotLeak) {

@@ -159,7 +159,13 @@ HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
   refuseCatalogueLevel(path);
   const char* const gpkgOnly[] = {"GPKG", nullptr};
   const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR, gpkgOnly);
-  if (!ds) throw Error("'" + path + "' is not a GeoPackage GDAL can read");
+  if (!ds) {
+    // GDAL opens a GeoPackage of rasters only as a raster: it is one, but holds no TIN.
+    if (openReadOnly(path, GDAL_OF_RASTER, gpkgOnly))
+      throw Error("'" + path + "' is a GeoPackage of rasters only, not a TIN tinlod wrote: give the GeoPackage of "
+                  "tinlod build, sample or insert");
+    throw Error("'" + path + "' is not a GeoPackage GDAL can read");
+  }
   HierarchyInfo info;
   info.path = path;
   if (char** md = ds->GetMetadata()) {
