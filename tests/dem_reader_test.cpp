@@ -184,6 +184,17 @@ TEST(DemReader, GroundControlPointsInsteadOfAGeotransformAreAnError) {
   expectError(path, 1, "is georeferenced by 3 ground control points, not a geotransform: warp it to a grid first, e.g. gdalwarp");
 }
 
+TEST(DemReader, AFileOfSeveralRastersNamesThemToChooseFrom) {
+  // A GeoPackage (as a netCDF of several variables) of two rasters: "has no raster band".
+  const std::string dem = writeRaster(RasterSpec{}), path = test::tempDir() + "/two.gpkg";
+  ASSERT_EQ(std::system(("gdal_translate -q -of GPKG -co RASTER_TABLE=heights " + dem + " " + path + " && gdal_translate -q "
+                         "-of GPKG -co RASTER_TABLE=slopes -co APPEND_SUBDATASET=YES " + dem + " " + path)
+                            .c_str()),
+            0);
+  expectError(path, 1, "' holds 2 rasters (subdatasets), not one: give one of them as the DEM, e.g. GPKG:" + path +
+                           ":heights, GPKG:" + path + ":slopes");
+}
+
 TEST(DemReader, FewerThanThreeValidCellsIsAnError) {
   RasterSpec s;
   s.setNodata = true;

@@ -41,7 +41,19 @@ DatasetPtr openRaster(const std::string& path) {
     throw Error(msg);
   }
   if (ds->GetRasterCount() < 1) {
+    // A netCDF or HDF file of several variables: GDAL reads each as a subdataset of its own.
+    std::string subdatasets;
+    int count = 0;
+    for (char** item = ds->GetMetadata("SUBDATASETS"); item && *item; ++item) {
+      const std::string entry = *item;
+      const std::size_t name = entry.find("_NAME=");
+      if (name == std::string::npos) continue;
+      if (++count <= 3) subdatasets += (count > 1 ? ", " : "") + entry.substr(name + 6);
+    }
     GDALClose(ds);
+    if (count > 0)
+      throw Error("'" + path + "' holds " + std::to_string(count) + " rasters (subdatasets), not one: give one of them as "
+                  "the DEM, e.g. " + subdatasets + (count > 3 ? " ..." : ""));
     throw Error("'" + path + "' has no raster band");
   }
   return DatasetPtr(ds);
