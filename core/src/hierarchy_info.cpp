@@ -286,12 +286,17 @@ std::string toText(const HierarchyInfo& info) {
   // A single TIN (sample, insert, lod) has no deletions, times or cells of its own.
   const bool single = !catalogue && info.kind != "hierarchy";
   const auto known = [](double v, int decimals, int width) { return std::isfinite(v) ? columnNumber(v, decimals, width) : "-"; };
+  // Centimetres of a LiDAR TIN read "0.03" and "0.01" to two decimals: as many as show them.
+  double largest = 0;
+  for (const LevelStats& l : info.levels)
+    if (std::isfinite(l.maxError)) largest = std::max(largest, l.maxError);
+  const int errorDecimals = largest >= 1 || largest == 0 ? 2 : largest >= 0.1 ? 3 : 4;
   for (const LevelStats& l : info.levels) {
     const std::string outline = catalogue ? "-" : std::to_string(l.outlineVertices);
     out << std::setw(6) << l.level << std::setw(11) << l.vertices << std::setw(11) << l.triangles << std::setw(10)
         << (single ? "-" : std::to_string(l.deleted)) << std::setw(10) << (single ? "-" : columnNumber(l.selectSeconds, 3, 9))
-        << std::setw(10) << (single ? "-" : columnNumber(l.deleteSeconds, 3, 9)) << std::setw(12) << known(l.maxError, 2, 11)
-        << std::setw(9) << known(l.rmse, 2, 8) << std::setw(10) << outline << std::setw(15)
+        << std::setw(10) << (single ? "-" : columnNumber(l.deleteSeconds, 3, 9)) << std::setw(12) << known(l.maxError, errorDecimals, 11)
+        << std::setw(9) << known(l.rmse, errorDecimals, 8) << std::setw(10) << outline << std::setw(15)
         << (single ? "-" : std::to_string(info.levels.front().cells - l.cells)) << "\n";
   }
   return out.str();
