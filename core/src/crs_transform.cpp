@@ -142,16 +142,19 @@ void extentGrid(const Dem& dem, std::vector<double>& x, std::vector<double>& y) 
 // names the cause, where its last ("Reprojection failed, err = 4098") does not.
 class FirstGdalError {
  public:
-  FirstGdalError() { CPLPushErrorHandlerEx(&FirstGdalError::keep, this); }
+  FirstGdalError() {
+    CPLPushErrorHandlerEx(&FirstGdalError::keep, this);
+    CPLSetCurrentErrorHandlerCatchDebug(FALSE);  // a user's CPL_DEBUG output still shows
+  }
   ~FirstGdalError() { CPLPopErrorHandler(); }
   FirstGdalError(const FirstGdalError&) = delete;
   FirstGdalError& operator=(const FirstGdalError&) = delete;
   const std::string& message() const { return first_; }
 
  private:
-  static void CPL_STDCALL keep(CPLErr, CPLErrorNum, const char* message) {
+  static void CPL_STDCALL keep(CPLErr level, CPLErrorNum, const char* message) {
     auto* self = static_cast<FirstGdalError*>(CPLGetErrorHandlerUserData());
-    if (self->first_.empty() && message) self->first_ = message;
+    if (level >= CE_Failure && self->first_.empty() && message) self->first_ = message;
   }
   std::string first_;
 };
@@ -205,27 +208,31 @@ std::string warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const
   if (!dst.IsProjected() || !dem.hasGeotransform) return {};
   std::vector<double> x, y;
   extentGrid(dem, x, y);
+  // A raster reaching a hair beyond a pole (requireLonLat allows half a degree) is weighed at it.
+  if (src.IsGeographic())
+    for (double& lat : y) lat = std::clamp(lat, -90.0, 90.0);
   std::vector<double> easting = x, northing = y;
   std::string reason;
   const std::size_t misses = toTin ? transformMisses(*toTin, easting, northing, &reason) : 0;
   if (misses == 0 && withinUtmZone(dst, easting)) return {};
   const std::vector<LonLat> points = lonLatOf(src, x, y);
   LonLat centre;
+  bool placed = !points.empty();
   try {
-    centreLonLat(dem, src, centre.lon, centre.lat);
+    if (placed) centreLonLat(dem, src, centre.lon, centre.lat);
   } catch (const Error&) {
-    return {};
+    placed = false;
   }
-  if (points.empty()) return {};
   // The CRSs tinlod fits are on WGS 84: a DEM of Mars is told what to look for.
-  const auto ofItsBody = [&src](const std::string& that) {
-    return "choose a projected CRS of " + bodyOf(src) + " that " + that + ", with -t_srs";
-  };
+  const std::string covering = !placed          ? "choose a CRS that covers the DEM with -t_srs"
+                               : onEarth(src) ? coverAdvice(points, centre)
+                                              : "choose a projected CRS of " + bodyOf(src) + " that covers it, with -t_srs";
   if (misses == x.size())  // nowhere near the DEM, or not at all: PROJ's first word says which
     throw Error("PROJ cannot transform any point of the DEM to " + describe(dst) + " (" +
-                (gdalSaid.empty() ? reason : gdalSaid) + "): " + (onEarth(src) ? coverAdvice(points, centre) : ofItsBody("covers it")));
+                (gdalSaid.empty() ? reason : gdalSaid) + "): " + covering);
+  if (!placed) return {};
   if (misses > 0) {
-    const std::string advice = onEarth(src) ? coverAdvice(points, centre) : ofItsBody("covers it");
+    const std::string& advice = covering;
     progress.warn(describe(dst) + " cannot project the whole DEM: PROJ fails at " + std::to_string(misses) + " of " +
                   std::to_string(x.size()) + " points spread over its extent, and the run fails if the DEM has data "
                   "there: " + advice);
@@ -235,7 +242,8 @@ std::string warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const
   if (!(error > 0.01)) return {};  // NaN: PROJ cannot tell
   progress.warn(describe(dst) + " stretches distances by " + (error >= 10 ? "" : "up to ") + percentText(error) +
                 " over the DEM, so slopes, areas and volumes of the TIN are off by as much: " +
-                (onEarth(src) ? scaleAdvice(points, centre, error) : ofItsBody("keeps it within 1 % of true scale")));
+                (onEarth(src) ? scaleAdvice(points, centre, error)
+                              : "choose a projected CRS of " + bodyOf(src) + " that keeps it within 1 % of true scale, with -t_srs"));
   return {};
 }
 
@@ -320,13 +328,15 @@ CrsTransform CrsTransform::forDem(const Dem& dem, const std::string& sourceSrs, 
                 impl->name + " is on " + (onEarth(dst) ? "Earth" : bodyOf(dst)) +
                 ": give -t_srs a projected CRS of the DEM's own body, or leave it out for a transverse Mercator on it");
   if (!src.IsSame(&dst)) {
-    CPLPushErrorHandler(CPLQuietErrorHandler);  // the error below says it, once
-    impl->transform.reset(OGRCreateCoordinateTransformation(&src, &dst));
-    CPLPopErrorHandler();
-    if (!impl->transform)
-      throw Error("no transformation from " + describe(src) + " to " + impl->name + ": " +
-                  // GDAL quotes both CRSs' whole WKT after "from".
-                  std::string(CPLGetLastErrorMsg()).substr(0, std::string(CPLGetLastErrorMsg()).find(" from `")));
+    {
+      const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);  // the error below says it, once
+      impl->transform.reset(OGRCreateCoordinateTransformation(&src, &dst));
+    }
+    if (!impl->transform) {
+      const std::string why = CPLGetLastErrorMsg();
+      // GDAL quotes both CRSs' whole WKT after "from".
+      throw Error("no transformation from " + describe(src) + " to " + impl->name + ": " + why.substr(0, why.find(" from `")));
+    }
   }
   impl->coverAdvice = warnAboutScale(dem, src, dst, impl->transform.get(), impl->wkt, gdalSaid.message(), progress);
   return CrsTransform(std::move(impl));
