@@ -280,6 +280,16 @@ Dem readInput(const std::string& demPath, const SampleOptions& sample, const Til
 // A survey pass of a tiled run with one threshold per level: the levels are made as usual
 // (each tile deleting its share, or as earlier thresholds say) to see what each level's
 // candidates are worth, and only that is written (LevelSurvey, as JSON): no hierarchy.
+// The levels are measured on the DEM's grid: no triangle of theirs may turn over in the TIN's
+// CRS, and the coarsest, whose triangles are the largest, should read the same there.
+void checkBuildGridBend(const Dem& dem, const CrsTransform& toTin, const Hierarchy& h, const ProgressRange& progress) {
+  const std::vector<std::uint32_t> coarsest = h.levelTriangles(h.coarsest());
+  checkGridBend(
+      dem, toTin, h.base.vertices, h.triangles.size(), [&h](std::size_t i) -> const Triangle& { return h.triangles[i].v; },
+      coarsest.size(), [&](std::size_t i) -> const Triangle& { return h.triangles[coarsest[i]].v; },
+      h.levels.back().maxError, "level " + std::to_string(h.coarsest()), progress);
+}
+
 BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                        const HierarchyOptions& options, bool overwrite, const Feedback& feedback, const TileSpec& tile) {
   if (!overwrite && std::filesystem::exists(outPath))
@@ -299,6 +309,7 @@ BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, c
   std::vector<std::uint8_t> fixed = options.fixPeaksPits ? peaksAndPits(dem, tin) : std::vector<std::uint8_t>();
   const Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, 0.95), {},
                                      tile.size > 0 ? &borders : nullptr);
+  checkBuildGridBend(dem, CrsTransform::forDem(dem, sample.sourceSrs, sample.targetSrs, ProgressRange(Feedback{}, 0, 1)), h, all);
   const std::string partial = outPath + ".partial";
   {
     errno = 0;
@@ -347,24 +358,6 @@ void checkBuildJob(const std::string& demPath, const SampleOptions& sample, cons
   if (tile.size == 0) checkMemory(demPath, raster[0], raster[1], buildMemory(sample), ProgressRange(feedback, 0, 1));
 }
 
-namespace {
-
-// The levels are measured on the DEM's grid: no triangle of theirs may turn over in the TIN's
-// CRS, and the coarsest, whose triangles are the largest, should read the same there.
-void checkBuildGridBend(const Dem& dem, const SampleOptions& sample, const Hierarchy& h, const ProgressRange& progress) {
-  const std::size_t folded =
-      foldedTriangles(h.base.vertices, h.triangles.size(), [&h](std::size_t i) -> const Triangle& { return h.triangles[i].v; });
-  double gap = 0;
-  if (folded == 0) {
-    const CrsTransform toTin = CrsTransform::forDem(dem, sample.sourceSrs, sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
-    const std::vector<std::uint32_t> coarsest = h.levelTriangles(h.coarsest());
-    gap = heightGap(dem, toTin, h.base.vertices, coarsest.size(), [&](std::size_t i) -> const Triangle& { return h.triangles[coarsest[i]].v; });
-  }
-  checkGridBend(folded, gap, h.levels.back().maxError, "level " + std::to_string(h.coarsest()), h.base.crsName, progress);
-}
-
-}  // namespace
-
 BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                          const HierarchyOptions& options, bool overwrite, const Feedback& feedback,
                          const AccuracyOutputs& accuracy, const HierarchyLayers& layers, const TileSpec& tile) {
@@ -394,7 +387,8 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   Hierarchy h = buildHierarchy(std::move(tin), dem, std::move(fixed), options, all.sub(0.2, write), keep,
                                tile.size > 0 ? &borders : nullptr);
   if (tile.size == 0) warnIfStoppedEarly(h, all), warnIfInteriorStarved(h, all), noteSampleAboveMaxError(h, sample, all);
-  checkBuildGridBend(dem, sample, h, all);
+  const CrsTransform toTin = CrsTransform::forDem(dem, sample.sourceSrs, sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
+  checkBuildGridBend(dem, toTin, h, all);
   const std::size_t validCells = tile.size > 0 ? 0 : dem.validCount();  // a tile's window holds its halo's too
   // Only the accuracy outputs read the heights and level 0's TIN again; freed, they leave
   // the writing room (68 and 45 MB for a 4096 x 4096 tile). The DEM's size and window stay
@@ -417,7 +411,6 @@ BuildSummary runBuildJob(const std::string& demPath, const std::string& outPath,
   writeHierarchyGpkg(h, out, writeOptions, all.sub(write, measure), layers);
   BuildSummary s;
   if (accuracy.wanted()) {
-    const CrsTransform toTin = CrsTransform::forDem(dem, sample.sourceSrs, sample.targetSrs, ProgressRange(Feedback{}, 0, 1));
     s.accuracy = measureAndWrite(dem, h, toTin, accuracy, accuracyFiles, all.sub(measure, 1)).rows;
   }
   files.commit();

@@ -59,53 +59,60 @@ std::size_t foldedTriangles(const std::vector<TinVertex>& vertices, std::size_t 
 
 double heightGap(const Dem& dem, const CrsTransform& toTin, const std::vector<TinVertex>& vertices, std::size_t count,
                  const TriangleAt& triangle) {
-  if (toTin.isIdentity() || count == 0) return 0;
-  // Only centres over data: across a void no DEM cell tells the two readings apart.
+  if (toTin.isIdentity()) return 0;
+  // A chunk at a time: a fine TIN's centres would take a copy of its size; a chunk PROJ cannot
+  // take (its reason is the run's error where it matters) is passed over.
+  constexpr std::size_t kChunk = 1 << 16;
+  double gap = 0;
   std::vector<std::size_t> over;
   std::vector<double> x, y;
-  for (std::size_t i = 0; i < count; ++i) {
-    const Triangle& t = triangle(i);
-    double col = 0, row = 0;
-    for (VertexId v : t) col += gridCol(vertices[v]) / 3, row += gridRow(vertices[v]) / 3;
-    const int c = static_cast<int>(std::floor(col)), r = static_cast<int>(std::floor(row));
-    if (!dem.valid(r, c)) continue;
-    over.push_back(i);
-    x.push_back(dem.geotransform[0] + col * dem.geotransform[1]);
-    y.push_back(dem.geotransform[3] + row * dem.geotransform[5]);
-  }
-  try {
-    toTin.apply(x, y);
-  } catch (const Error&) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  double gap = 0;
-  for (std::size_t k = 0; k < over.size(); ++k) {
-    const Triangle& t = triangle(over[k]);
-    const TinVertex &a = vertices[t[0]], &b = vertices[t[1]], &c = vertices[t[2]];
-    const double area = cross(a.x, a.y, b.x, b.y, c.x, c.y);
-    if (area == 0) continue;
-    // The centre's barycentric weights in the TIN's CRS; on the grid they are a third each.
-    const double wa = cross(x[k], y[k], b.x, b.y, c.x, c.y) / area, wb = cross(a.x, a.y, x[k], y[k], c.x, c.y) / area;
-    const double inCrs = wa * a.z + wb * b.z + (1 - wa - wb) * c.z, onGrid = (a.z + b.z + c.z) / 3;
-    gap = std::max(gap, std::fabs(inCrs - onGrid));
+  for (std::size_t start = 0; start < count; start += kChunk) {
+    over.clear(), x.clear(), y.clear();
+    for (std::size_t i = start; i < std::min(count, start + kChunk); ++i) {
+      const Triangle& t = triangle(i);
+      double col = 0, row = 0;
+      for (VertexId v : t) col += gridCol(vertices[v]) / 3, row += gridRow(vertices[v]) / 3;
+      // Only centres over data: across a void no DEM cell tells the two readings apart.
+      if (!dem.valid(static_cast<int>(std::floor(row)), static_cast<int>(std::floor(col)))) continue;
+      over.push_back(i);
+      x.push_back(dem.geotransform[0] + col * dem.geotransform[1]);
+      y.push_back(dem.geotransform[3] + row * dem.geotransform[5]);
+    }
+    try {
+      toTin.apply(x, y);
+    } catch (const Error&) {
+      continue;
+    }
+    for (std::size_t k = 0; k < over.size(); ++k) {
+      const Triangle& t = triangle(over[k]);
+      const TinVertex &a = vertices[t[0]], &b = vertices[t[1]], &c = vertices[t[2]];
+      const double area = cross(a.x, a.y, b.x, b.y, c.x, c.y);
+      if (area == 0) continue;
+      // The centre's barycentric weights in the TIN's CRS; on the grid they are a third each.
+      const double wa = cross(x[k], y[k], b.x, b.y, c.x, c.y) / area, wb = cross(a.x, a.y, x[k], y[k], c.x, c.y) / area;
+      gap = std::max(gap, std::fabs(wa * a.z + wb * b.z + (1 - wa - wb) * c.z - (a.z + b.z + c.z) / 3));
+    }
   }
   return gap;
 }
 
-void checkGridBend(std::size_t folded, double gap, double maxError, const std::string& what, const std::string& crsName,
-                   const ProgressRange& progress) {
-  if (folded > 0)
-    throw Error("the TIN's CRS, " + crsName + ", turns " + std::to_string(folded) +
+void checkGridBend(const Dem& dem, const CrsTransform& toTin, const std::vector<TinVertex>& vertices, std::size_t turnCount,
+                   const TriangleAt& turnAt, std::size_t gapCount, const TriangleAt& gapAt, double maxError,
+                   const std::string& what, const ProgressRange& progress) {
+  if (const std::size_t folded = foldedTriangles(vertices, turnCount, turnAt); folded > 0)
+    throw Error("the TIN's CRS, " + toTin.targetName() + ", turns " + std::to_string(folded) +
                 " of its triangles over against the DEM's grid, where tinlod measures them (a DEM that wraps the globe, or "
                 "reaches a pole): warp the DEM to a projected CRS first (gdalwarp -t_srs), so that its grid is the "
                 "TIN's plane, or cut it into regions");
+  const double gap = heightGap(dem, toTin, vertices, gapCount, gapAt);
   // A quarter of the largest error: swiss_alps' coarsest level parts by 84 m at one centre, 7 %
   // of its 1255 m, yet its RMSE read in the CRS is within 0.4 % of the grid's.
-  if (!(gap > 0.25 * maxError) || !(gap > 0.1)) return;  // NaN: PROJ said why, when it could not take the DEM
-  progress.warn("read in its CRS (" + crsName + "), " + what + "'s triangles part by up to " + formatNumber(std::round(gap * 100) / 100) +
-                " m at their centres from their heights on the DEM's grid, where tinlod measures its errors (at most " +
-                formatNumber(std::round(maxError * 100) / 100) + " m): the CRS bends the grid (near a pole, or over a "
-                "wide DEM); for figures that hold in the CRS, warp the DEM to it first (gdalwarp -t_srs)");
+  if (!(gap > 0.25 * maxError) || !(gap > 0.01)) return;
+  progress.warn("read in its CRS (" + toTin.targetName() + "), " + what + "'s triangles part by up to " +
+                formatNumber(std::round(gap * 100) / 100) + " m at their centres from their heights on the DEM's grid, "
+                "where tinlod measures its errors (at most " + formatNumber(std::round(maxError * 100) / 100) +
+                " m): the CRS bends the grid (near a pole, or over a wide DEM); for figures that hold in the CRS, warp "
+                "the DEM to it first (gdalwarp -t_srs)");
 }
 
 }  // namespace tinlod

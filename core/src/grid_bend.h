@@ -25,14 +25,15 @@ std::size_t foldedTriangles(const std::vector<TinVertex>& vertices, std::size_t 
 
 // The largest difference, in metres, between a triangle's height at its centre on the grid
 // and in the TIN's CRS (the grid centre taken there with PROJ), over the triangles whose centre
-// is on a valid cell: 0 when the TIN's CRS is the DEM's. NaN when PROJ cannot take a centre.
+// is on a valid cell and that PROJ can take: 0 when the TIN's CRS is the DEM's.
 double heightGap(const Dem& dem, const CrsTransform& toTin, const std::vector<TinVertex>& vertices, std::size_t count,
                  const TriangleAt& triangle);
 
-// Refuses a TIN whose triangles turn over (Error, naming the fix); warns when `gap` (of the
-// triangles `what` names, "level 14") exceeds a quarter of `maxError`, their largest error measured
-// on the grid, and 10 cm.
-void checkGridBend(std::size_t folded, double gap, double maxError, const std::string& what, const std::string& crsName,
-                   const ProgressRange& progress);
+// Refuses a TIN any of whose `turnCount` triangles turn over (Error, naming the fix); warns when
+// the height gap of the `gapCount` triangles at `gapAt` (what `what` names, "level 14") exceeds a
+// quarter of `maxError`, their largest error measured on the grid, and 1 cm.
+void checkGridBend(const Dem& dem, const CrsTransform& toTin, const std::vector<TinVertex>& vertices, std::size_t turnCount,
+                   const TriangleAt& turnAt, std::size_t gapCount, const TriangleAt& gapAt, double maxError,
+                   const std::string& what, const ProgressRange& progress);
 
 }  // namespace tinlod

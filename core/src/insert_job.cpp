@@ -204,9 +204,8 @@ InsertedTin insertedTinWith(const Dem& dem, const InsertOptions& options, const 
   markOutline(out.tin, neighbours);
   orientTriangles(out.tin);
   const TriangleAt triangle = [&out](std::size_t i) -> const Triangle& { return out.tin.triangles[i]; };
-  const std::size_t folded = foldedTriangles(out.tin.vertices, out.tin.triangles.size(), triangle);
-  const double gap = folded > 0 ? 0 : heightGap(dem, toTin, out.tin.vertices, out.tin.triangles.size(), triangle);
-  checkGridBend(folded, gap, out.summary.maxError, "the TIN", out.tin.crsName, progress);
+  const std::size_t count = out.tin.triangles.size();
+  checkGridBend(dem, toTin, out.tin.vertices, count, triangle, count, triangle, out.summary.maxError, "the TIN", progress);
 
   InsertSummary& s = out.summary;
   s.vertices = out.tin.vertices.size(), s.triangles = out.tin.triangles.size(), s.crsName = out.tin.crsName;
