@@ -272,9 +272,18 @@ TEST(AccuracyJob, ATestGridTooSmallForTheSurfacesSaysSo) {
   test::RecordingFeedback fb;
   const AccuracyReport r = runAccuracyJob(smallDem(), built().gpkg, a, 0, "", fb.feedback());
   ASSERT_EQ(fb.warnings.size(), 1u);
-  EXPECT_EQ(fb.warnings[0], "the test grid of 4 x 3 points is too small for B-spline surfaces with control points every 3 "
-                            "(they need 10 x 10): the height and curvature correlations are not measured (nan); give a "
-                            "smaller -step or -control");
+  EXPECT_EQ(fb.warnings[0], "the test grid of 4 x 3 points is too small for B-spline surfaces with control points every 3: "
+                            "they reach 0 of its points, and a correlation needs 3: the height and curvature correlations "
+                            "are not measured (nan); give a smaller -step or -control");
+  // With control points at every test point, on 5 x 4 test points, the surfaces reach the
+  // inner 2 x 1: still too few (3c + 1 across and down is not enough).
+  a.options.controlSpacing = 1, a.options.step = 75;
+  a.overwrite = true;
+  test::RecordingFeedback every;
+  runAccuracyJob(smallDem(), built().gpkg, a, 0, "", every.feedback());
+  ASSERT_EQ(every.warnings.size(), 1u);
+  EXPECT_NE(every.warnings[0].find("with control points every 1: they reach 2 of its points"), std::string::npos) << every.warnings[0];
+  a.options.controlSpacing = 3;
   EXPECT_GT(r.rows[0].testPoints, 0u);
   // 12 x 10 test points hold one: measured, and no warning.
   a.options.step = 30;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "tinlod/test_grid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -34,14 +35,19 @@ TestGrid makeTestGrid(const Dem& dem, int step, const CrsTransform& toTin) {
 }
 
 std::string surfacesMissWarning(const TestGrid& grid, int controlSpacing) {
-  // A cubic B-spline is defined between its second and its second-to-last control points:
-  // four control points, three spacings of test points, at least, across and down.
-  const int fewest = 3 * controlSpacing + 1;
-  if (grid.cols >= fewest && grid.rows >= fewest) return {};
+  // A cubic B-spline is defined between its second and its second-to-last control points: the
+  // test points from the first spacing up to the spacing before the second-to-last point.
+  const auto reached = [controlSpacing](int points) {
+    const std::int64_t c = controlSpacing, controls = (points - 1) / c + 1;
+    return std::max<std::int64_t>(0, std::min<std::int64_t>(points, (controls - 2) * c) - c);
+  };
+  constexpr std::int64_t kFewest = 3;  // a correlation needs three
+  const std::int64_t points = reached(grid.cols) * reached(grid.rows);
+  if (points >= kFewest) return {};
   return "the test grid of " + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
          " points is too small for B-spline surfaces with control points every " + std::to_string(controlSpacing) +
-         " (they need " + std::to_string(fewest) + " x " + std::to_string(fewest) +
-         "): the height and curvature correlations are not measured (nan); give a smaller -step or -control";
+         ": they reach " + std::to_string(points) + " of its points, and a correlation needs " + std::to_string(kFewest) +
+         ": the height and curvature correlations are not measured (nan); give a smaller -step or -control";
 }
 
 namespace {
