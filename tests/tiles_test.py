@@ -666,6 +666,7 @@ def main(tinlod, tiles):
                 'echo "Warning: 2 of the 3 points to keep fall outside" >&2\n'
                 '[ -z "$c" ] && echo "Warning: tile $t has a warning of its own" >&2\n'
                 'echo "Warning: 3 border vertices would take cells ...: TINLOD_BORDER_REFUSED lists them" >&2\n'
+                '[ -z "$c" ] && echo "Warning: read in its CRS (UTM), level 9\'s triangles part by up to $t m" >&2\n'
                 'exec "%s" "$@"\n' % program)
     os.chmod(warning, 0o755)
     warned = run(base + [os.path.join(work, "wn.gpkg"), "-tile_size", str(TILE_SIZE), "-workers", "2", "-tinlod", warning],
@@ -677,6 +678,8 @@ def main(tinlod, tiles):
           "job, hours into it)",
           warned.stderr.count("2 of the 3 points to keep fall outside") == 1
           and warned.stderr.startswith("Warning: 2 of the 3 points to keep fall outside\n"), warned.stderr[-2000:])
+    check("... one whose figures are each tile's own (the coarsest level's bend), once, for the first tile",
+          warned.stderr.count("triangles part by up to") == 1, warned.stderr[-2000:])
     check("... and none the driver acts on itself (the border rule's refused cells)",
           "TINLOD_BORDER_REFUSED" not in warned.stderr, warned.stderr[-2000:])
     empty = run(base + [os.path.join(work, "e0.gpkg")] + options + ["-valid_range", "50000", "90000"], env)

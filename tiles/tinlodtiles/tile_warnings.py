@@ -9,6 +9,10 @@ import sys
 
 # Warnings addressed to someone building tiles by hand, whose work the driver does.
 HANDLED = ("TINLOD_BORDER_REFUSED lists",)
+# Warnings whose figures are each tile's own (a DEM in degrees has cells of another size in
+# each tile; each tile's coarsest level bends by its own height): the first tile's stands for
+# them all.
+FIGURES_VARY = ("m is more than half the cell size", "triangles part by up to")
 
 
 class TileWarnings:
@@ -27,6 +31,11 @@ class TileWarnings:
 
     def new(self, warnings):
         """Those not shown yet nor handled by the driver, marked shown."""
-        out = [w for w in dict.fromkeys(warnings) if w not in self.shown and not any(m in w for m in HANDLED)]
-        self.shown.update(out)
+        out = []
+        for warning in dict.fromkeys(warnings):
+            key = next((marker for marker in FIGURES_VARY if marker in warning), warning)
+            if key in self.shown or any(marker in warning for marker in HANDLED):
+                continue
+            self.shown.add(key)
+            out.append(warning)
         return out
