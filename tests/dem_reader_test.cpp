@@ -182,6 +182,22 @@ TEST(DemReader, GroundControlPointsInsteadOfAGeotransformAreAnError) {
     GDALDeinitGCPs(3, gcps);
   }
   expectError(path, 1, "is georeferenced by 3 ground control points, not a geotransform: warp it to a grid first, e.g. gdalwarp");
+  // A satellite DEM's rational polynomial coefficients, likewise.
+  const std::string rpc = test::tempDir() + "/rpc.tif";
+  {
+    GDALDatasetUniquePtr ds(GetGDALDriverManager()->GetDriverByName("GTiff")->Create(rpc.c_str(), 6, 5, 1, GDT_Float32, nullptr));
+    std::vector<float> z(30, 100.0f);
+    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 6, 5, z.data(), 6, 5, GDT_Float32, 0, 0), CE_None);
+    const char* const coefficients[] = {"LINE_OFF=2", "SAMP_OFF=3", "LAT_OFF=46", "LONG_OFF=8", "HEIGHT_OFF=0", "LINE_SCALE=2",
+                                        "SAMP_SCALE=3", "LAT_SCALE=0.01", "LONG_SCALE=0.01", "HEIGHT_SCALE=100",
+                                        "LINE_NUM_COEFF=0 1 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0",
+                                        "LINE_DEN_COEFF=1 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0",
+                                        "SAMP_NUM_COEFF=0 0 1 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0",
+                                        "SAMP_DEN_COEFF=1 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0", nullptr};
+    ASSERT_EQ(ds->SetMetadata(const_cast<char**>(coefficients), "RPC"), CE_None);
+  }
+  expectError(rpc, 1, "is georeferenced by rational polynomial coefficients (RPC), not a geotransform: warp it to a grid "
+                      "first, e.g. gdalwarp -rpc");
 }
 
 TEST(DemReader, AFileOfSeveralRastersNamesThemToChooseFrom) {
