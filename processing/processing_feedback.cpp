@@ -45,6 +45,8 @@ const ParameterNames& desktopTerms() {
       {QStringLiteral("name the right one with -s_srs"), QStringLiteral("assign the right one to the layer (Layer Properties > Source)")},
       {QStringLiteral("leave -s_srs out to use the DEM's own CRS"),
        QStringLiteral("assign the layer the CRS of its file (Layer Properties > Source)")},
+      // -t_srs is TARGET_CRS by now: the warp is QGIS's.
+      {QStringLiteral("(gdalwarp TARGET_CRS)"), QStringLiteral("(Raster > Projections > Warp (Reproject))")},
       {QStringLiteral("cut it into regions (gdal_translate -projwin)"),
        QStringLiteral("cut it into regions (Raster > Extraction > Clip Raster by Extent)")},
       {QStringLiteral("-s_srs "), QStringLiteral("the layer's CRS ")},

@@ -1307,8 +1307,17 @@ TEST(Processing, MessagesGiveFixesAsAQgisUserMakesThem) {
   EXPECT_TRUE(locate.error.contains("(of Douglas-Peucker simplification values, Polyline concavity or TIN elevation at points), "
                                     "not a TIN or a hierarchy: add it to the map as it is"))
       << locate.error.toStdString();
-  for (const Result* r : {&lod, &into, &locate})
-    for (const char* command : {"tinlod build", "tinlod lines", "ogrinfo", "-overwrite"})
+  // The world in Mollweide: triangles turn over; the warp is QGIS's, not "gdalwarp TARGET_CRS".
+  const Result world = runAlgorithm(QStringLiteral("tinlod:greedyinsertion"),
+                                    {{"INPUT", QString::fromStdString(test::polarDemFile("world.tif", -180, 360, 180, 1.0))},
+                                     {"TARGET_CRS", QStringLiteral("ESRI:54009")},
+                                     {"MAX_ERROR", 30},
+                                     {"OUTPUT", QString::fromStdString(dir + "/world.gpkg")}});
+  ASSERT_FALSE(world.ok);
+  EXPECT_TRUE(world.error.contains("warp the DEM to a projected CRS first (Raster > Projections > Warp (Reproject))"))
+      << world.error.toStdString();
+  for (const Result* r : {&lod, &into, &locate, &world})
+    for (const char* command : {"tinlod build", "tinlod lines", "ogrinfo", "-overwrite", "gdalwarp"})
       EXPECT_FALSE(r->error.contains(QString::fromUtf8(command))) << r->error.toStdString();
 
   // A file tinlod did not write as the hierarchy, and points QGIS writes to a file of its own
