@@ -481,7 +481,7 @@ TEST(BuildJob, CheckRefusesWhatTheBuildWouldAndWritesNothing) {
   badPct.deletePct = 200;
   EXPECT_TRUE(test::contains(check({}, badPct, {}), "delete_pct must be from 1 to 100 (got 200)"));
   badPct.deletePct = 0.5;  // no level can be made: the run ended with level 0 alone, blaming fixed vertices
-  EXPECT_TRUE(test::contains(check({}, badPct, {}), "delete_pct must be from 1 to 100 (got 0.5): a level deletes at least 1 %"));
+  EXPECT_TRUE(test::contains(check({}, badPct, {}), "delete_pct must be from 1 to 100 (got 0.5): a whole run makes no level that deletes under 1 %"));
   EXPECT_TRUE(test::contains(check({}, {}, {120, 9, 0}), "-tile 9,0 is outside the grid"));
   EXPECT_TRUE(test::contains(check({}, {}, {100, 0, 0}), "-tile_size 100 must be a multiple of -block"));
   SampleOptions farJitter;

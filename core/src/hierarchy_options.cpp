@@ -9,11 +9,11 @@
 namespace tinlod {
 
 void HierarchyOptions::validate() const {
-  // Under 1 % no level is ever made (a level deletes at least 1 % of its vertices): such a
-  // run ended with level 0 alone, blaming fixed and outline vertices.
+  // Under 1 % a whole run makes no level (one must delete at least 1 % of its vertices): such
+  // a run ended with level 0 alone, blaming fixed and outline vertices.
   if (!(deletePct >= 1 && deletePct <= 100))
     throw Error("-delete_pct must be from 1 to 100 (got " + formatNumber(deletePct) +
-                "): a level deletes at least 1 % of its vertices; the study used 10 and 20");
+                "): a whole run makes no level that deletes under 1 % of its vertices; the study used 10 and 20");
   if (!(stopPct >= 0 && stopPct < 100))
     throw Error("-stop_pct must be from 0 to less than 100 (got " + formatNumber(stopPct) + "); the study used 5");
   if (maxLevels < 0 || maxLevels > kMaxLevel)
