@@ -219,6 +219,37 @@ TEST(DemReader, FewerThanThreeValidCellsIsAnError) {
   expectError(writeRaster(s), 1, "has 2 valid cell(s)");
 }
 
+TEST(DemReader, HeightsInKilometresAreConvertedAndAFeetCrsWithoutAHeightUnitIsWarnedOf) {
+  RasterSpec s;
+  s.value = [](int r, int c) { return r + c; };
+  const std::string path = writeRaster(s);
+  {
+    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+    ds->GetRasterBand(1)->SetUnitType("km");
+  }
+  EXPECT_FLOAT_EQ(readDem(path, 1, kRange, HeightRange{-1e6, 1e6}).at(2, 3), 5000.0f);
+  // California zone 3 in US survey feet, the heights' unit unnamed: taken as metres, said so.
+  {
+    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+    ds->GetRasterBand(1)->SetUnitType("");
+    ds->SetProjection(test::wktOf(2227).c_str());
+  }
+  test::RecordingFeedback fb;
+  EXPECT_FLOAT_EQ(readDem(path, 1, ProgressRange(fb.feedback(), 0, 1)).at(2, 3), 5.0f);
+  ASSERT_EQ(fb.warnings.size(), 1u);
+  EXPECT_NE(fb.warnings[0].find("whose x and y are in feet, and names no unit for its heights: they are taken as metres; if "
+                                "they are feet, say so (gdal_edit -units ft, or US-ft)"),
+            std::string::npos)
+      << fb.warnings[0];
+  {
+    GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+    ds->GetRasterBand(1)->SetUnitType("US-ft");
+  }
+  test::RecordingFeedback named;
+  EXPECT_NEAR(readDem(path, 1, ProgressRange(named.feedback(), 0, 1)).at(2, 3), 5 * 1200.0 / 3937.0, 1e-5);
+  EXPECT_TRUE(named.warnings.empty()) << named.warnings[0];
+}
+
 TEST(DemReader, ScaleAndOffsetAreApplied) {
   RasterSpec s;
   s.type = GDT_Int16;

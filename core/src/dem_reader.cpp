@@ -2,6 +2,7 @@
 #include "tinlod/dem_reader.h"
 
 #include <gdal_priv.h>
+#include <ogr_spatialref.h>
 
 #include <algorithm>
 #include <cctype>
@@ -127,7 +128,21 @@ double metresPerUnit(std::string unit) {
     return 1200.0 / 3937.0;
   if (unit == "cm" || unit == "centimetre" || unit == "centimeter") return 0.01;
   if (unit == "mm" || unit == "millimetre" || unit == "millimeter") return 0.001;
+  if (unit == "km" || unit == "kilometre" || unit == "kilometer") return 1000.0;
   return 0.0;
+}
+
+// A county DEM in a State Plane CRS in feet often gives its heights in feet too, without
+// naming the unit: taken as metres, they would stand 3.28 times too tall.
+void warnOfFeetCrsWithoutHeightUnit(const Dem& dem, const std::string& unit, const ProgressRange& progress) {
+  OGRSpatialReference srs;
+  if (!unit.empty() || dem.crsWkt.empty() || srs.importFromWkt(dem.crsWkt.c_str()) != OGRERR_NONE || !srs.IsProjected())
+    return;
+  const double metres = srs.GetLinearUnits();
+  if (std::fabs(metres - 0.3048) > 1e-4 && std::fabs(metres - 1200.0 / 3937.0) > 1e-4) return;
+  const char* name = srs.GetName();
+  progress.warn("'" + dem.path + "' is in " + (name ? name : "a CRS") + ", whose x and y are in feet, and names no unit "
+                "for its heights: they are taken as metres; if they are feet, say so (gdal_edit -units ft, or US-ft)");
 }
 
 // Packed DEMs store heights as integers with a scale and offset, and some store them in
@@ -138,6 +153,7 @@ void toMetres(GDALRasterBand& band, Dem& dem, const ProgressRange& progress) {
   const char* unitType = band.GetUnitType();
   const std::string unit = unitType ? unitType : "";
   double perUnit = metresPerUnit(unit);
+  warnOfFeetCrsWithoutHeightUnit(dem, unit, progress);
   if (perUnit == 0.0) {
     progress.warn("'" + dem.path + "' gives its heights in '" + unit + "', a unit tinlod does not know: taken as metres");
     perUnit = 1.0;
