@@ -277,9 +277,6 @@ Dem readInput(const std::string& demPath, const SampleOptions& sample, const Til
   return readDem(demPath, sample.band, progress, sample.validHeights, &use);
 }
 
-// A survey pass of a tiled run with one threshold per level: the levels are made as usual
-// (each tile deleting its share, or as earlier thresholds say) to see what each level's
-// candidates are worth, and only that is written (LevelSurvey, as JSON): no hierarchy.
 // The levels are measured on the DEM's grid: no triangle of theirs may turn over in the TIN's
 // CRS, and the coarsest, whose triangles are the largest, should read the same there.
 void checkBuildGridBend(const Dem& dem, const CrsTransform& toTin, const Hierarchy& h, const ProgressRange& progress) {
@@ -290,6 +287,9 @@ void checkBuildGridBend(const Dem& dem, const CrsTransform& toTin, const Hierarc
       h.levels.back().maxError, "level " + std::to_string(h.coarsest()), progress);
 }
 
+// A survey pass of a tiled run with one threshold per level: the levels are made as usual
+// (each tile deleting its share, or as earlier thresholds say) to see what each level's
+// candidates are worth, and only that is written (LevelSurvey, as JSON): no hierarchy.
 BuildSummary runSurvey(const std::string& demPath, const std::string& outPath, const SampleOptions& sample,
                        const HierarchyOptions& options, bool overwrite, const Feedback& feedback, const TileSpec& tile) {
   if (!overwrite && std::filesystem::exists(outPath))

@@ -535,10 +535,9 @@ std::size_t measureMissingTiles(const WholeGrid& g, const std::vector<CatalogueT
 }  // namespace
 
 void requireTestPoints(const std::vector<LevelAccuracy>& rows, const std::string& demPath) {
-  constexpr std::size_t kFewest = 3;  // a correlation needs three
   const std::size_t points = rows.empty() ? 0 : rows.front().testPoints;
   if (points == 0) throw Error("no test point of '" + demPath + "' lies on the TIN: give the DEM the TIN was made from");
-  if (points < kFewest)
+  if (points < std::size_t{kFewestTestPoints})
     throw Error("only " + std::to_string(points) + " test point" + (points == 1 ? "" : "s") + " of '" + demPath +
                 (points == 1 ? "' lies" : "' lie") + " on the TIN: give the DEM the TIN was made from, or a smaller -step");
 }

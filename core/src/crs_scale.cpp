@@ -104,6 +104,11 @@ std::string withScale(const Candidate& c, double k) {
   return c.projection + " " + c.scaleKey + "=" + formatNumber(k) + " +datum=WGS84 +units=m +no_defs";
 }
 
+// "-t_srs '+proj=...' (a Mercator fitted to the DEM", for advice to close.
+std::string useFitted(const FittedCrs& fitted) {
+  return "-t_srs '" + fitted.definition + "' (" + fitted.kind + " fitted to the DEM";
+}
+
 }  // namespace
 
 double worstScaleError(const std::string& crsDefinition, const std::vector<LonLat>& points) {
@@ -140,7 +145,7 @@ std::string scaleAdvice(const std::vector<LonLat>& points, LonLat centre, double
   const double utmError = worstScaleError("EPSG:" + std::to_string(utm), points);
   if (utmError <= 0.01) return "use -t_srs EPSG:" + std::to_string(utm) + " (the UTM zone of the centre)";
   const FittedCrs fitted = fittedCrs(points, centre);
-  const std::string use = "-t_srs '" + fitted.definition + "' (" + fitted.kind + " fitted to the DEM";
+  const std::string use = useFitted(fitted);
   if (fitted.error <= 0.01) return "use " + use + ", within " + percentText(fitted.error) + ")";
   const std::string large = "none of the conformal CRSs tinlod fits keeps a DEM this large within 1 % of true scale";
   // Named only while it is near true scale: a Mercator of a DEM reaching 85 N "within 84 %"
@@ -157,7 +162,7 @@ std::string coverAdvice(const std::vector<LonLat>& points, LonLat centre) {
   // TIN's slopes and areas mean nothing: no advice.
   if (!(fitted.error < 0.5))
     return "none of the conformal CRSs tinlod fits covers a DEM this large within 50 % of true scale: " + cut;
-  return "use -t_srs '" + fitted.definition + "' (" + fitted.kind + " fitted to the DEM, which covers it, within " +
+  return "use " + useFitted(fitted) + ", which covers it, within " +
          percentText(fitted.error) + " of true scale" +
          (fitted.error > 0.01 ? ": slopes, areas and volumes are off by as much)" : ")") +
          (fitted.error > 0.05 ? ", or " + cut : "");

@@ -87,6 +87,11 @@ std::string bodyOf(const OGRSpatialReference& srs) {
   return datum ? datum : "its body";
 }
 
+// The CRSs tinlod fits are on WGS 84: a DEM of Mars is told what to look for.
+std::string ownBodyAdvice(const OGRSpatialReference& src, const std::string& that) {
+  return "choose a projected CRS of " + bodyOf(src) + " that " + that + ", with -t_srs";
+}
+
 // The automatic CRS of a DEM in degrees on another body: a transverse Mercator about its
 // centre, true to scale on its meridian.
 OGRSpatialReference transverseMercatorOnItsBody(const OGRSpatialReference& src, double lon) {
@@ -223,27 +228,24 @@ std::string warnAboutScale(const Dem& dem, const OGRSpatialReference& src, const
   } catch (const Error&) {
     placed = false;
   }
-  // The CRSs tinlod fits are on WGS 84: a DEM of Mars is told what to look for.
   const std::string covering = !placed          ? "choose a CRS that covers the DEM with -t_srs"
                                : onEarth(src) ? coverAdvice(points, centre)
-                                              : "choose a projected CRS of " + bodyOf(src) + " that covers it, with -t_srs";
+                                              : ownBodyAdvice(src, "covers it");
   if (misses == x.size())  // nowhere near the DEM, or not at all: PROJ's first word says which
     throw Error("PROJ cannot transform any point of the DEM to " + describe(dst) + " (" +
                 (gdalSaid.empty() ? reason : gdalSaid) + "): " + covering);
   if (!placed) return {};
   if (misses > 0) {
-    const std::string& advice = covering;
     progress.warn(describe(dst) + " cannot project the whole DEM: PROJ fails at " + std::to_string(misses) + " of " +
                   std::to_string(x.size()) + " points spread over its extent, and the run fails if the DEM has data "
-                  "there: " + advice);
-    return advice;
+                  "there: " + covering);
+    return covering;
   }
   const double error = worstScaleError(targetWkt, points);
   if (!(error > 0.01)) return {};  // NaN: PROJ cannot tell
   progress.warn(describe(dst) + " stretches distances by " + (error >= 10 ? "" : "up to ") + percentText(error) +
                 " over the DEM, so slopes, areas and volumes of the TIN are off by as much: " +
-                (onEarth(src) ? scaleAdvice(points, centre, error)
-                              : "choose a projected CRS of " + bodyOf(src) + " that keeps it within 1 % of true scale, with -t_srs"));
+                (onEarth(src) ? scaleAdvice(points, centre, error) : ownBodyAdvice(src, "keeps it within 1 % of true scale")));
   return {};
 }
 

@@ -76,8 +76,7 @@ void readGeoreferencing(GDALDataset& ds, Dem& dem, const ProgressRange& progress
     // would be nowhere.
     throw Error("'" + dem.path + "' is georeferenced by " + std::to_string(ds.GetGCPCount()) +
                 " ground control points, not a geotransform: warp it to a grid first, e.g. gdalwarp in.tif warped.tif");
-  } else if (ds.GetMetadata("RPC") || ds.GetMetadata("GEOLOCATION")) {
-    const bool rpc = ds.GetMetadata("RPC") != nullptr;
+  } else if (const bool rpc = ds.GetMetadata("RPC") != nullptr; rpc || ds.GetMetadata("GEOLOCATION")) {
     throw Error("'" + dem.path + "' is georeferenced by " + (rpc ? "rational polynomial coefficients (RPC)" : "a geolocation array") +
                 ", not a geotransform: warp it to a grid first, e.g. gdalwarp " + (rpc ? "-rpc" : "-geoloc") + " in.tif warped.tif");
   } else {

@@ -53,7 +53,7 @@ std::size_t foldedTriangles(const std::vector<TinVertex>& vertices, std::size_t 
   // only those are weighed for slivers.
   const int folded = balance >= 0 ? -1 : 1;
   std::size_t out = 0;
-  for (std::size_t i = 0; i < count; ++i) out += turn(i, false) == folded && turn(i, true) == folded;
+  for (std::size_t i = 0; i < count; ++i) out += turn(i, true) == folded;
   return out;
 }
 

@@ -18,11 +18,10 @@ TestGrid makeTestGrid(const Dem& dem, int step, const CrsTransform& toTin) {
   // Test point (c, r) is the centre of DEM cell (r step, c step): a raster cell of step
   // DEM cells centred there.
   g.geotransform = {gt[0] + 0.5 * (1 - step) * gt[1], step * gt[1], 0, gt[3] + 0.5 * (1 - step) * gt[5], 0, step * gt[5]};
-  constexpr int kFewest = 3;  // a correlation needs three
-  if (std::int64_t(g.cols) * g.rows < kFewest)
+  if (std::int64_t(g.cols) * g.rows < kFewestTestPoints)
     throw Error("-step " + std::to_string(step) + " leaves " + std::to_string(g.cols * g.rows) + " test point" +
                 (g.cols * g.rows == 1 ? "" : "s") + " on the DEM's " + std::to_string(dem.width) + " x " +
-                std::to_string(dem.height) + " cells, and the figures need " + std::to_string(kFewest) +
+                std::to_string(dem.height) + " cells, and the figures need " + std::to_string(kFewestTestPoints) +
                 ": give a smaller -step");
   g.crsWkt = toTin.sourceWkt();  // -s_srs's when given: the DEM's file may have none
   // Measured over one DEM cell, times the step: a step of many cells of a DEM in degrees
@@ -41,12 +40,11 @@ std::string surfacesMissWarning(const TestGrid& grid, int controlSpacing) {
     const std::int64_t c = controlSpacing, controls = (points - 1) / c + 1;
     return std::max<std::int64_t>(0, std::min<std::int64_t>(points, (controls - 2) * c) - c);
   };
-  constexpr std::int64_t kFewest = 3;  // a correlation needs three
   const std::int64_t points = reached(grid.cols) * reached(grid.rows);
-  if (points >= kFewest) return {};
+  if (points >= kFewestTestPoints) return {};
   return "the test grid of " + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
          " points is too small for B-spline surfaces with control points every " + std::to_string(controlSpacing) +
-         ": they reach " + std::to_string(points) + " of its points, and a correlation needs " + std::to_string(kFewest) +
+         ": they reach " + std::to_string(points) + " of its points, and a correlation needs " + std::to_string(kFewestTestPoints) +
          ": the height and curvature correlations are not measured (nan); give a smaller -step or -control";
 }
 

@@ -26,8 +26,11 @@ struct TestGrid {
   double y(int row) const { return geotransform[3] + (row + 0.5) * geotransform[5]; }
 };
 
+// The fewest test points the figures need: a correlation needs three.
+constexpr int kFewestTestPoints = 3;
+
 // `toTin` takes the DEM's CRS to the TIN's (as when the TIN was sampled). Throws Error when
-// `step` leaves fewer than three test points.
+// `step` leaves fewer than kFewestTestPoints.
 TestGrid makeTestGrid(const Dem& dem, int step, const CrsTransform& toTin);
 
 // The warning for a test grid too small for any B-spline surface point with control points
