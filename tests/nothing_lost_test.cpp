@@ -3,7 +3,11 @@
 // their own inputs, a concurrent run, a full disk, and a stop at every phase.
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 #include <sys/mount.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -243,6 +247,111 @@ TEST(NothingLost, CtrlCStopsWithinTwoSecondsInEveryPhase) {
 
 TEST(NothingLost, ASecondCtrlCStopsAtOnceAndStillCleansUp) {
   expectPromptStop(mediumDem(), "Writing", "kill -INT $pid; sleep 0.1; kill -INT $pid;");
+}
+
+// A connection of another program's to a GeoPackage, in SQLite's write-ahead-log mode (as
+// QGIS edits one), with a table of its own.
+struct OtherProgram {
+  sqlite3* db = nullptr;
+  explicit OtherProgram(const std::string& path) {
+    EXPECT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    run("PRAGMA journal_mode=WAL; CREATE TABLE IF NOT EXISTS notes(a); INSERT INTO notes VALUES('kept');");
+  }
+  ~OtherProgram() { sqlite3_close(db); }
+  void run(const std::string& sql) { EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK) << sql; }
+};
+
+// What a fresh reader finds: the notes' rows, or -1 when the file cannot be read.
+long long notesIn(const std::string& path) {
+  sqlite3* db = nullptr;
+  sqlite3_stmt* st = nullptr;
+  long long rows = -1;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK &&
+      sqlite3_prepare_v2(db, "SELECT COUNT(*) FROM notes", -1, &st, nullptr) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW)
+    rows = sqlite3_column_int64(st, 0);
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  return rows;
+}
+
+TEST(NothingLost, AGeoPackageAnotherProgramHoldsIsNotReplaced) {
+  // Replaced beside the other program's write-ahead log, the new file was read with the old
+  // log by every reader: "malformed database schema", the user's table lost.
+  const std::string dir = builtFolder(), h = dir + "/h.gpkg";
+  const std::string rebuild = "build -q -overwrite -max_levels 3 " + dir + "/d.tif " + h;
+  {
+    OtherProgram qgis(h);
+    ASSERT_TRUE(fs::exists(h + "-wal"));
+    const CliRun held = tinlod(rebuild);
+    EXPECT_EQ(held.exitCode, 1);
+    EXPECT_TRUE(has(held.err, "output 'h.gpkg' is open in another program") || has(held.err, "/h.gpkg' is open in another program"))
+        << held.err;
+    EXPECT_TRUE(has(held.err, "write-ahead log 'h.gpkg-wal' in use")) << held.err;
+    EXPECT_TRUE(has(held.err, "close it there, then run again")) << held.err;
+  }
+  EXPECT_FALSE(fs::exists(h + "-wal"));  // the other program's close played it back
+  {
+    // Without the log, a transaction under way locks the file (its journal beside it).
+    OtherProgram script(h);
+    script.run("PRAGMA journal_mode=DELETE; BEGIN EXCLUSIVE; INSERT INTO notes VALUES('pending');");
+    const CliRun locked = tinlod(rebuild);
+    EXPECT_EQ(locked.exitCode, 1);
+    EXPECT_TRUE(has(locked.err, "is being written by another program (QGIS, with its layers loaded for editing, or a "
+                                "script), locked: close it there, then run again"))
+        << locked.err;
+    script.run("ROLLBACK; DELETE FROM notes WHERE rowid > 1;");
+  }
+  const CliRun free = tinlod(rebuild);
+  EXPECT_EQ(free.exitCode, 0) << free.err;
+  EXPECT_EQ(notesIn(h), 1);  // its other tables kept, as -overwrite promises
+}
+
+TEST(NothingLost, ALogLeftByAProgramThatCrashedIsPlayedBackFirst) {
+  const std::string dir = builtFolder(), h = dir + "/h.gpkg";
+  const pid_t child = fork();
+  if (child == 0) {
+    sqlite3* db = nullptr;
+    sqlite3_open(h.c_str(), &db);
+    sqlite3_exec(db, "PRAGMA journal_mode=WAL; CREATE TABLE notes(a); INSERT INTO notes VALUES('kept');", nullptr, nullptr,
+                 nullptr);
+    _exit(0);  // killed, as it were: the log stays
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(fs::exists(h + "-wal"));
+  const CliRun run = tinlod("build -q -overwrite -max_levels 3 " + dir + "/d.tif " + h);
+  EXPECT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_FALSE(fs::exists(h + "-wal"));
+  EXPECT_EQ(notesIn(h), 1);
+}
+
+TEST(NothingLost, AWriteProtectedOutputIsRefusedAndAReplacedOneKeepsItsMode) {
+  const std::string dir = builtFolder();
+  const std::string again = "accuracy -q -overwrite " + dir + "/d.tif " + dir + "/h.gpkg -report " + dir + "/r.csv";
+  fs::permissions(dir + "/r.csv", fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  const std::map<std::string, std::string> before = snapshot(dir);
+  const CliRun refused = tinlod(again);
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_TRUE(has(refused.err, "-report: '" + dir + "/r.csv' is write-protected (mode 0444): make it writable (chmod u+w) "
+                                "to replace it, or choose another name"))
+      << refused.err;
+  EXPECT_EQ(snapshot(dir), before);
+  fs::permissions(dir + "/r.csv", fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  const CliRun replaced = tinlod(again);
+  EXPECT_EQ(replaced.exitCode, 0) << replaced.err;
+  EXPECT_EQ(fs::status(dir + "/r.csv").permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);  // not the run's 0644
+}
+
+TEST(NothingLost, ADanglingLinkAsOutputIsRefusedBeforeTheWork) {
+  const std::string dir = builtFolder();
+  fs::create_symlink("gone/h2.gpkg", dir + "/link.gpkg");
+  const CliRun run = tinlod("build -q " + dir + "/d.tif " + dir + "/link.gpkg");
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_TRUE(has(run.err, "link.gpkg' is a symbolic link to 'gone/h2.gpkg', which does not exist: remove the link or "
+                           "name another file"))
+      << run.err;
+  EXPECT_FALSE(has(run.err, "appeared while")) << run.err;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "gdal_metadata_xml.h"
 #include "gpkg_spatial_index.h"
+#include "sqlite_in_use.h"
 #include "tinlod/error.h"
 
 namespace fs = std::filesystem;
@@ -113,6 +114,8 @@ std::string checkOutputPath(const std::string& path, const GpkgWriteOptions& opt
   if (access(dir.c_str(), W_OK) != 0) throw Error("the folder of output '" + path + "' is not writable");
   if (fs::is_directory(out)) throw Error("output '" + path + "' is a folder: name a .gpkg file");
   if (!fs::exists(out)) return "";
+  if (const std::string held = sqliteFileInUse(out); !held.empty())
+    throw Error("output '" + path + "' " + held + ": close it there, then run again");
   refuseNonGeoPackage(path);
   std::string held = refuseAnotherKind(path, options);  // first: -overwrite would not help
   if (!options.overwrite)

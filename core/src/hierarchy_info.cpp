@@ -19,6 +19,7 @@
 #include "catalogue_info.h"
 #include "gdal_handles.h"
 #include "number_text.h"
+#include "sqlite_in_use.h"
 #include "stored_table.h"
 #include "tile_catalogue.h"
 #include "text_and_paths.h"
@@ -164,6 +165,7 @@ HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
     if (openReadOnly(path, GDAL_OF_RASTER, gpkgOnly))
       throw Error("'" + path + "' is a GeoPackage of rasters only, not a TIN tinlod wrote: give the GeoPackage of "
                   "tinlod build, sample or insert");
+    if (sqliteFileLocked(path)) throw Error("'" + path + "' " + lockedFileWords() + ": try again once it is done");
     throw Error("'" + path + "' is not a GeoPackage GDAL can read");
   }
   HierarchyInfo info;

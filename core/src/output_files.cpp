@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <stdio.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "sqlite_in_use.h"
 #include "staging_folder.h"
 #include "tinlod/error.h"
 
@@ -109,6 +111,38 @@ std::string shown(const StagedFile& file, const fs::path& target) {
   return target == file.target ? file.path : target.string();
 }
 
+// Why an existing `target` may not be replaced, as `cp` would not write it: "" when it may.
+// Root may write any file, but one no one may write (chmod a-w) is a protected deliverable;
+// in a sticky folder (/tmp) only its owner may move another user's file.
+std::string whyNotReplaceable(const fs::path& target) {
+  struct stat file {}, folder {};
+  if (stat(target.c_str(), &file) != 0) return "";
+  const auto mode = [](const struct stat& s) {
+    char octal[8];
+    std::snprintf(octal, sizeof octal, "%04o", unsigned(s.st_mode & 07777));
+    return std::string(octal);
+  };
+  if ((file.st_mode & 0222) == 0)
+    return "is write-protected (mode " + mode(file) + "): make it writable (chmod u+w) to replace it";
+  if (access(target.c_str(), W_OK) != 0) return "is not yours to write (mode " + mode(file) + ")";
+  const uid_t me = geteuid();
+  if (me != 0 && stat(folderOf(target).c_str(), &folder) == 0 && (folder.st_mode & S_ISVTX) && file.st_uid != me &&
+      folder.st_uid != me)
+    return "belongs to another user, in a folder where only a file's owner may replace it (sticky, as /tmp)";
+  return "";
+}
+
+// The file put in place of `target` keeps its mode, group and (for root) owner: a group's
+// shared file stays theirs, a private one private.
+void takeOverPermissions(const fs::path& staged, const fs::path& target) {
+  struct stat old {};
+  if (stat(target.c_str(), &old) != 0) return;
+  if (chown(staged.c_str(), geteuid() == 0 ? old.st_uid : uid_t(-1), old.st_gid) != 0) {
+    // Not in the file's group: it keeps the run's own.
+  }
+  chmod(staged.c_str(), old.st_mode & 07777);
+}
+
 }  // namespace
 
 bool sameFile(const fs::path& a, const fs::path& b) {
@@ -145,11 +179,14 @@ void refuseVirtualPath(const std::string& path, const std::string& option) {
 const StagedFile& OutputFiles::add(const std::string& path, const std::string& option, bool keepContent) {
   if (path.empty()) throw Error(option + ": no file named");
   refuseVirtualPath(path, option);
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(path, ec)) && !fs::exists(path, ec))
+    throw Error(option + ": '" + path + "' is a symbolic link to '" + fs::read_symlink(path, ec).string() +
+                "', which does not exist: remove the link or name another file");
   const fs::path target = resolved(path);
   // First: an input's folder is often read-only (a data share), and "not writable" would
   // hide that the name itself is the mistake.
   checkNotInput(target, option, path);
-  std::error_code ec;
   if (fs::is_directory(target, ec)) throw Error(option + ": '" + path + "' is a folder: name a file");
   const fs::path dir = folderOf(target);
   if (!fs::is_directory(dir, ec)) throw Error(option + ": the folder of '" + path + "' does not exist");
@@ -159,6 +196,10 @@ const StagedFile& OutputFiles::add(const std::string& path, const std::string& o
       throw Error(option + ": '" + path + "' is also given as " + other->option + ": name two different files");
   const bool existed = fs::exists(target, ec);
   if (existed && !overwrite_) throw Error(option + ": '" + path + "' exists: add -overwrite to replace it");
+  if (const std::string held = existed ? sqliteFileInUse(target) : ""; !held.empty())
+    throw Error(option + ": '" + path + "' " + held + ": close it there, then run again");
+  if (const std::string why = existed ? whyNotReplaceable(target) : ""; !why.empty())
+    throw Error(option + ": '" + path + "' " + why + ", or choose another name");
   StagingFolder::removeStale(target);
   auto folder = std::make_unique<StagingFolder>(target);
   auto file = std::make_unique<StagedFile>(
@@ -191,7 +232,11 @@ void OutputFiles::commit() {
           checkNotInput(target, file.option, shown(file, target));
           if (fs::is_directory(fs::symlink_status(target)))
             throw Error(file.option + ": '" + shown(file, target) + "' is now a folder: nothing was written");
+          if (const std::string held = overwrite_ ? sqliteFileInUse(target) : ""; !held.empty())
+            throw Error(file.option + ": '" + shown(file, target) + "' " + held +
+                        " (it was opened while this run was working): nothing was written; close it there, then run again");
           if (overwrite_) {
+            takeOverPermissions(path, target);
             moved.push_back({target, replaceKeepingOld(path, target, folders_[i]->backupFor(path.filename()))});
           } else if (moveWithoutReplacing(path, target)) {
             moved.push_back({target, {}});
@@ -206,7 +251,8 @@ void OutputFiles::commit() {
       committed() = true;
     } catch (const fs::filesystem_error& e) {
       takeBack(moved);
-      throw Error("cannot move the outputs into place (" + e.code().message() + "): nothing was written");
+      throw Error("cannot move " + (e.path2().empty() ? std::string("the outputs") : "'" + e.path2().string() + "'") +
+                  " into place (" + e.code().message() + "): nothing was written");
     } catch (...) {
       takeBack(moved);
       throw;
