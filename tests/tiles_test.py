@@ -16,6 +16,7 @@ import re
 import shutil
 import signal
 import socket
+import sqlite3
 import struct
 import subprocess
 import sys
@@ -530,6 +531,46 @@ def exact_stop(base, options, work, env):
           and not os.path.exists(os.path.join(work, "x.gpkg")), tile.stderr)
 
 
+def point_count(path):
+    dataset = ogr.Open(path)  # held: a layer dies with its dataset
+    return dataset.GetLayerByName("points").GetFeatureCount()
+
+
+def catalogue_guard_cases(tiles, dem, work, program):
+    """-overwrite removes the catalogue before a new one is written: never an input's file,
+    never someone's other data, never a GeoPackage another program has open."""
+    options = ["-tile_size", str(TILE_SIZE), "-tinlod", program, "-overwrite"]
+    raster = os.path.join(work, "dem_in.gpkg")
+    gdal.Translate(raster, dem, format="GPKG")
+    before = os.path.getsize(raster)
+    itself = run([tiles, raster, raster] + options)
+    check("-overwrite with the catalogue named as the DEM is refused, and the DEM is left as it was",
+          itself.returncode == 1 and ("%s is an input of this job" % raster) in itself.stderr
+          and os.path.getsize(raster) == before and gdal.Open(raster) is not None, itself.stderr[-1500:])
+    points = make_points(dem, os.path.join(work, "keep.gpkg"))
+    fixed = run([tiles, dem, points] + options + ["--", "-fixed", points])
+    check("... as is the catalogue named as the -fixed points, which are kept",
+          fixed.returncode == 1 and "is an input of this job" in fixed.stderr
+          and point_count(points) == 1, fixed.stderr[-1500:])
+    other = make_points(dem, os.path.join(work, "someones.gpkg"))
+    others = run([tiles, dem, other] + options)
+    check("-overwrite on a GeoPackage that is no catalogue is refused, naming what it is",
+          others.returncode == 1 and "exists and is no tinlod-tiles catalogue (GDAL reads it as GPKG)" in others.stderr
+          and point_count(other) == 1, others.stderr[-1500:])
+    held = make_points(dem, os.path.join(work, "held.gpkg"))
+    connection = sqlite3.connect(held)
+    connection.execute("PRAGMA journal_mode=WAL")
+    connection.execute("CREATE TABLE notes(a)")
+    connection.commit()
+    try:
+        in_use = run([tiles, dem, held] + options)
+    finally:
+        connection.close()
+    check("-overwrite on a GeoPackage another program has open (its write-ahead log in use) is refused",
+          in_use.returncode == 1 and "is open in another program" in in_use.stderr
+          and "close it there, then run again" in in_use.stderr, in_use.stderr[-1500:])
+
+
 def main(tinlod, tiles):
     try:
         import distributed  # noqa: F401
@@ -589,6 +630,7 @@ def main(tinlod, tiles):
     check("a file where the tiles folder goes is an error naming it as in the way, not a traceback",
           refused.returncode == 1 and ("%s is in the way" % os.path.join(work, "blocked_tiles")) in refused.stderr
           and "Traceback" not in refused.stderr and not os.path.exists(blocked), refused.stderr[-1500:])
+    catalogue_guard_cases(tiles, dem, work, program)
     tiny = os.path.join(work, "tiny.tif")
     gdal.Translate(tiny, dem, srcWin=[0, 0, 1, 1])
     one_cell = run(base[:1] + [tiny, os.path.join(work, "tiny.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", program])

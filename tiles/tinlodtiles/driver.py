@@ -18,7 +18,7 @@ import time
 
 from osgeo import gdal
 
-from . import agreement, build_check, dask_import, fixed_points, line_outline, stop_check, task, thresholds
+from . import agreement, build_check, catalogue_guard, dask_import, fixed_points, line_outline, stop_check, task, thresholds
 from .cell_file import read_cells, write_cells
 from .arguments import build_option
 from .catalogue import BUILD_SETTINGS, FIXED_STAMP, SOURCE_STAMP, Catalogue, file_stamp, levels_folder, tiles_folder
@@ -37,6 +37,7 @@ def run(arguments):
     """Runs the job; returns the exit code (0, or 1 when tiles failed for good)."""
     dask_import.begin()
     dem = gdal.Open(arguments.dem)
+    catalogue_guard.check(arguments.catalogue, dem, arguments.build_options, arguments.overwrite)
     settings = job_settings(arguments, dem)
     tiles = tile_grid(dem.RasterXSize, dem.RasterYSize, arguments.tile_size)
     warn_of_small_tiles(tiles, arguments.tile_size)
