@@ -332,6 +332,21 @@ TEST(Cli, BuildErrorsNameTheOption) {
   }
 }
 
+TEST(Cli, AccuracyTakesTheBuildsSourceCrsForItsDemHoweverItIsSpelt) {
+  // A DEM in degrees whose file says UTM: built with -s_srs EPSG:4326 from its own folder,
+  // measured from another by its absolute path, which the build's relative record missed.
+  const std::string dir = test::tempDir();
+  Dem dem = test::makeGeographicDem(90, 80, -105.3, 40.1);
+  dem.crsWkt = test::wktOf(32613);
+  writeDemGeoTiff(dem, dir + "/wrong.tif");
+  const CliRun build = test::runCommand("cd " + dir + " && " + TINLOD_CLI + " build -q -s_srs EPSG:4326 wrong.tif w.gpkg");
+  ASSERT_EQ(build.exitCode, 0) << build.err;
+  const CliRun info = tinlod("info " + dir + "/w.gpkg");
+  EXPECT_TRUE(test::contains(info.out, "source = " + fs::absolute(dir + "/wrong.tif").lexically_normal().string())) << info.out;
+  const CliRun accuracy = tinlod("accuracy -q " + dir + "/./wrong.tif " + dir + "/w.gpkg -report " + dir + "/a.json");
+  EXPECT_EQ(accuracy.exitCode, 0) << accuracy.err;
+}
+
 TEST(Cli, GdalsOwnMessagesDoNotLeak) {
   const std::string dir = test::tempDir();
   const CliRun r = tinlod("sample -t_srs EPSG:99999 " + defaultDem() + " " + dir + "/tin.gpkg");

@@ -192,8 +192,8 @@ std::string sourceSrsOf(const std::string& given, const HierarchyInfo& info, con
   const std::string recorded = recordedSourceSrs(info);
   if (recorded.empty()) return "";
   const auto source = info.metadata.find("source");
-  const bool same =
-      source != info.metadata.end() && std::filesystem::path(source->second) == std::filesystem::path(demPath);
+  // An older file's source is as typed, relative to where the build ran.
+  const bool same = source != info.metadata.end() && (source->second == demPath || sameFile(source->second, demPath));
   return same || !placedOnEarth(demCrsWkt()) ? recorded : "";
 }
 

@@ -33,7 +33,7 @@ std::map<std::string, std::string> buildMetadata(const std::string& demPath, con
                                                  const HierarchyOptions& o, const std::string& crsName) {
   return {{"TINLOD_VERSION", kVersion},
           {"TINLOD_KIND", "hierarchy"},
-          {"TINLOD_SOURCE", demPath},
+          {"TINLOD_SOURCE", recordedPath(demPath)},
           {"TINLOD_CRS", crsName},
           {"TINLOD_BAND", std::to_string(s.band)},
           {"TINLOD_VALID_RANGE", s.validHeights.text()},

@@ -216,7 +216,7 @@ std::map<std::string, std::string> jobMetadata(const std::string& demPath, const
   std::map<std::string, std::string> items{{"TINLOD_VERSION", kVersion},
                                            {"TINLOD_KIND", "tin"},
                                            {"TINLOD_METHOD", "insert"},
-                                           {"TINLOD_SOURCE", demPath},
+                                           {"TINLOD_SOURCE", recordedPath(demPath)},
                                            {"TINLOD_BAND", std::to_string(o.sample.band)},
                                            {"TINLOD_VALID_RANGE", o.sample.validHeights.text()},
                                            {"TINLOD_CANDIDATES", candidatesName(o.candidates)},

@@ -133,7 +133,7 @@ void checkJitter(const Dem& dem, const CrsTransform& transform, double jitter, c
 std::map<std::string, std::string> jobMetadata(const std::string& demPath, const SampleOptions& o) {
   return {{"TINLOD_VERSION", kVersion},
           {"TINLOD_KIND", "tin"},
-          {"TINLOD_SOURCE", demPath},
+          {"TINLOD_SOURCE", recordedPath(demPath)},
           {"TINLOD_BAND", std::to_string(o.band)},
           {"TINLOD_VALID_RANGE", o.validHeights.text()},
           {"TINLOD_BLOCK", std::to_string(o.block)},

@@ -4,6 +4,7 @@
 #include <cpl_vsi.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 namespace tinlod {
@@ -35,10 +36,22 @@ std::string jsonString(const std::string& text) {
   return out + "\"";
 }
 
+namespace {
+
+bool gdalName(const std::string& path) { return path.rfind("/vsi", 0) == 0 || path.find(':') != std::string::npos; }
+
+}  // namespace
+
 bool plainPathMissing(const std::string& path) {
-  const bool special = path.rfind("/vsi", 0) == 0 || path.find(':') != std::string::npos;
   VSIStatBufL stat;
-  return !special && VSIStatL(path.c_str(), &stat) != 0;
+  return !gdalName(path) && VSIStatL(path.c_str(), &stat) != 0;
+}
+
+std::string recordedPath(const std::string& path) {
+  std::error_code ec;
+  if (gdalName(path) || !std::filesystem::exists(path, ec)) return path;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  return ec ? path : absolute.lexically_normal().string();
 }
 
 }  // namespace tinlod
