@@ -223,6 +223,18 @@ TEST(OutputFiles, MessagesNameTheUsersFileNotTheStagingOne) {
   EXPECT_EQ(said, "cannot write " + dir + "/a.tif and " + dir + "/a.hdr");
 }
 
+TEST(OutputFiles, ANameAsLongAsAFileSystemAllowsIsStagedAndMovedIntoPlace) {
+  // ".NAME.tinlod-<16 hex>" was 25 bytes beyond NAME: names of 231-255 bytes failed with
+  // "File name too long", where ogr2ogr writes them.
+  const std::string dir = test::tempDir(), name = std::string(245, 'c') + ".csv";
+  OutputFiles files(false);
+  const StagedFile& f = files.add(dir + "/" + name, "-report");
+  EXPECT_LE(f.staging.parent_path().filename().string().size(), 255u);
+  write(f.staging, "report");
+  files.commit();
+  EXPECT_EQ(namesIn(dir), std::set<std::string>{name});
+}
+
 TEST(OutputFiles, AbandoningRemovesEveryStagingFolder) {
   const std::string dir = test::tempDir();
   OutputFiles files(false);

@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
+#include <cstdio>
 #include <chrono>
 #include <cstring>
 #include <random>
@@ -24,7 +26,22 @@ namespace {
 const char* const kLock = ".lock";
 const char* const kBackupPrefix = ".old-";
 
-std::string prefixFor(const fs::path& target) { return "." + target.filename().string() + ".tinlod-"; }
+// ".NAME.tinlod-": a name of over 200 bytes is cut (at a whole UTF-8 character) and told apart
+// by its hash, so that the folder's name, 25 bytes longer, stays within the 255 a file
+// system allows wherever the output's own name fits.
+std::string prefixFor(const fs::path& target) {
+  std::string name = target.filename().string();
+  if (name.size() > 200) {
+    std::uint64_t hash = 14695981039346656037ull;  // FNV-1a: the same in every build
+    for (unsigned char c : name) hash = (hash ^ c) * 1099511628211ull;
+    std::size_t cut = 180;
+    while (cut > 0 && (static_cast<unsigned char>(name[cut]) & 0xC0) == 0x80) --cut;
+    char tail[18];
+    std::snprintf(tail, sizeof tail, "~%016llx", static_cast<unsigned long long>(hash));
+    name = name.substr(0, cut) + tail;
+  }
+  return "." + name + ".tinlod-";
+}
 
 fs::path folderOf(const fs::path& target) {
   return target.parent_path().empty() ? fs::path(".") : target.parent_path();
