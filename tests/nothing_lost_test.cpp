@@ -136,6 +136,17 @@ TEST(NothingLost, AMultiFileRasterFormatMovesAllItsFiles) {
   ASSERT_NE(ds, nullptr);
   EXPECT_EQ(ds->GetRasterCount(), 4);
   GDALClose(ds);
+  // A file the format writes beside it that is there already is said before the work.
+  const std::string other = dir + "/f.hdr";
+  std::ofstream(other) << "someone's header";
+  const CliRun beside = tinlod("accuracy -q -of ENVI " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/f.img");
+  EXPECT_EQ(beside.exitCode, 1);
+  EXPECT_TRUE(has(beside.err, "-accuracy: '" + other + "' exists (the format writes it beside '" + dir +
+                                  "/f.img'): add -overwrite to replace it"))
+      << beside.err;
+  EXPECT_FALSE(has(beside.err, "appeared while")) << beside.err;
+  EXPECT_FALSE(fs::exists(dir + "/f.img"));
+  EXPECT_EQ(test::readFile(other), "someone's header");
   const CliRun vrt = tinlod("accuracy -q -of VRT " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/e.vrt");
   EXPECT_EQ(vrt.exitCode, 1);
   EXPECT_TRUE(has(vrt.err, "-of: VRT cannot hold")) << vrt.err;

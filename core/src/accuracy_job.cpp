@@ -34,7 +34,8 @@ AccuracyFiles stageAccuracyFiles(const AccuracyOutputs& outputs, OutputFiles& fi
   AccuracyFiles staged;
   if (!outputs.rasterPath.empty()) {
     staged.raster = &files.add(outputs.rasterPath, "-accuracy");  // an input is refused as such first
-    checkRasterKeepsItsBands(outputs.raster);
+    for (const std::string& beside : checkRasterKeepsItsBands(outputs.raster, outputs.rasterPath))
+      files.checkBeside(*staged.raster, beside);
   }
   if (!outputs.reportPath.empty()) staged.report = &files.add(outputs.reportPath, "-report");
   return staged;

@@ -35,7 +35,8 @@ GDALDriver& driverFor(const RasterWriteOptions& options) {
 // What the driver makes of a raster like the accuracy raster (four bands of 32-bit floats,
 // a fraction and the nodata value), written to memory and read back: some drivers take any
 // raster and keep less (PNG bytes, XYZ one band) without an error.
-std::string whatItKeeps(GDALDriver& driver, const RasterWriteOptions& options) {
+std::string whatItKeeps(GDALDriver& driver, const RasterWriteOptions& options, const std::filesystem::path& target,
+                        std::vector<std::string>& besides) {
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
   DatasetPtr probe(mem->Create("", 2, 2, kAccuracyBandCount, GDT_Float32, nullptr));
   const double gt[6] = {0, 1, 0, 2, 0, -1};
@@ -76,6 +77,16 @@ std::string whatItKeeps(GDALDriver& driver, const RasterWriteOptions& options) {
   }
   back.reset();
   CPLPopErrorHandler();
+  // The probe's other files, named as the format names them beside `target`: "probe.hdr" is
+  // "a.hdr" beside "a.bil", "probe.bil.xml" "a.bil.xml".
+  const std::string main = std::filesystem::path(path).filename().string();
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ignored)) {
+    const std::string name = entry.path().filename().string();
+    const bool statistics = name.size() > 8 && name.compare(name.size() - 8, 8, ".aux.xml") == 0;
+    if (name == main || statistics || name.rfind("probe", 0) != 0) continue;
+    besides.push_back(name.rfind(main, 0) == 0 ? target.filename().string() + name.substr(main.size())
+                                               : target.stem().string() + name.substr(5));
+  }
   std::filesystem::remove_all(folder, ignored);
   return kept;
 }
@@ -84,12 +95,14 @@ std::string whatItKeeps(GDALDriver& driver, const RasterWriteOptions& options) {
 
 void checkRasterFormat(const RasterWriteOptions& options) { driverFor(options); }
 
-void checkRasterKeepsItsBands(const RasterWriteOptions& options) {
+std::vector<std::string> checkRasterKeepsItsBands(const RasterWriteOptions& options, const std::string& path) {
   GDALDriver& driver = driverFor(options);
-  const std::string kept = whatItKeeps(driver, options);
+  std::vector<std::string> besides;
+  const std::string kept = whatItKeeps(driver, options, path, besides);
   if (!kept.empty())
     throw Error("-of: " + std::string(driver.GetDescription()) + " cannot hold the accuracy raster (" +
                 std::to_string(kAccuracyBandCount) + " bands of 32-bit floats): " + kept + "; use e.g. GTiff (.tif)");
+  return besides;
 }
 
 std::string rasterFormatFor(const std::string& path) {

@@ -22,8 +22,10 @@ constexpr double kAccuracyNodata = -9999;
 // before long work.
 void checkRasterFormat(const RasterWriteOptions& options);
 // As above, and unless the format keeps the accuracy raster's four bands of 32-bit floats
-// (a small raster is written to a temporary folder and read back).
-void checkRasterKeepsItsBands(const RasterWriteOptions& options);
+// (a small raster is written to a temporary folder and read back). Returns the names of the
+// files the format writes beside a raster named `path` (ENVI's "a.hdr" beside "a.bil"), GDAL's
+// .aux.xml aside.
+std::vector<std::string> checkRasterKeepsItsBands(const RasterWriteOptions& options, const std::string& path);
 
 // The GDAL raster format that writes files named as `path` (GTiff for .tif), as gdal_translate
 // picks it without -of; empty when no format writes such files. The command line and QGIS

@@ -39,6 +39,10 @@ class OutputFiles {
   // GeoPackage's other layers): it copies the file into the staging folder when it has
   // such content (copyForUpdate), and starts a new file when it has none.
   const StagedFile& add(const std::string& path, const std::string& option, bool keepContent = false);
+  // A file the writer of `file` adds beside it (ENVI's .hdr), named `name` in its folder:
+  // checked as add checks `file`, so that one there already is said before the work, not
+  // when the outputs are moved into place.
+  void checkBeside(const StagedFile& file, const std::string& name) const;
   // add's first refusal alone: an output that is an input of the job, which -overwrite
   // would not make right (for a check that would otherwise ask for -overwrite first).
   void refuseInput(const std::string& path, const std::string& option) const;
