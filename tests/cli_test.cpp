@@ -347,6 +347,31 @@ TEST(Cli, AccuracyTakesTheBuildsSourceCrsForItsDemHoweverItIsSpelt) {
   EXPECT_EQ(accuracy.exitCode, 0) << accuracy.err;
 }
 
+TEST(Cli, NamesAsBatchScriptsWriteThem) {
+  // A user trial's scripts: a name starting with a dash, a quoted ~, no extension, .TIFF,
+  // a layer id beyond the file's layers.
+  const std::string dir = test::tempDir();
+  const CliRun dash = test::runCommand("cd " + dir + " && " + TINLOD_CLI + " sample -q -- " + defaultDem() + " -t.gpkg");
+  EXPECT_EQ(dash.exitCode, 0) << dash.err;
+  EXPECT_TRUE(fs::exists(dir + "/-t.gpkg"));
+  const CliRun unknown = test::runCommand("cd " + dir + " && " + TINLOD_CLI + " sample -q " + defaultDem() + " -u.gpkg");
+  EXPECT_TRUE(test::contains(unknown.err, "unknown option '-u.gpkg' (a file name starting with a dash goes after --, or "
+                                          "as ./-u.gpkg)"))
+      << unknown.err;
+  const CliRun tilde = tinlod("sample -q '~/no_such_dem.tif' " + dir + "/x.gpkg");
+  EXPECT_TRUE(test::contains(tilde.err, "DEM '~/no_such_dem.tif' does not exist (~ is expanded by a shell only outside "
+                                        "quotes: write the folder out, $HOME/...)"))
+      << tilde.err;
+  const CliRun bare = tinlod("accuracy -q " + defaultDem() + " " + dir + "/-t.gpkg -accuracy " + dir + "/noext");
+  EXPECT_TRUE(test::contains(bare.err, "a name without an extension names no raster format: name the file .tif, or give "
+                                       "the format with -of"))
+      << bare.err;
+  const CliRun upper = tinlod("makedem -q -size 20 20 " + dir + "/m.TIFF");
+  EXPECT_EQ(upper.exitCode, 0) << upper.err;
+  const CliRun layer = tinlod("locate -q " + dir + "/-t.gpkg '" + dir + "/-t.gpkg|layerid=9' " + dir + "/p.gpkg");
+  EXPECT_TRUE(test::contains(layer.err, "has no layer of id 9 (ids count from 0) (its layers: ")) << layer.err;
+}
+
 TEST(Cli, GdalsOwnMessagesDoNotLeak) {
   const std::string dir = test::tempDir();
   const CliRun r = tinlod("sample -t_srs EPSG:99999 " + defaultDem() + " " + dir + "/tin.gpkg");

@@ -41,9 +41,12 @@ AccuracyOutputs accuracyOutputs(Arguments& a) {
   // As gdal_translate: the format the file's extension names, unless -of says another.
   o.raster.format = a.text("-of", "");
   if (o.raster.format.empty()) o.raster.format = o.rasterPath.empty() ? "GTiff" : rasterFormatFor(o.rasterPath);
+  const std::string extension = std::filesystem::path(o.rasterPath).extension().string();
   if (o.raster.format.empty())
-    throw Error("-accuracy '" + o.rasterPath + "': no GDAL raster format writes files named '" +
-                std::filesystem::path(o.rasterPath).extension().string() + "': name the file .tif, or give the format with -of");
+    throw Error("-accuracy '" + o.rasterPath + "': " +
+                (extension.empty() ? std::string("a name without an extension names no raster format")
+                                   : "no GDAL raster format writes files named '" + extension + "'") +
+                ": name the file .tif, or give the format with -of");
   o.raster.creationOptions = a.repeated("-co");
   return o;
 }

@@ -52,6 +52,12 @@ std::string quoted(const std::string& value) {
 
 }  // namespace
 
+Arguments::Arguments(std::vector<std::string> args) {
+  const auto dashes = std::find(args.begin(), args.end(), "--");
+  afterDashes_.assign(dashes == args.end() ? dashes : dashes + 1, args.end());
+  args_.assign(args.begin(), dashes);
+}
+
 void Arguments::note(const std::string& name, const std::string& value, bool isDefault) {
   if (!isDefault) read_[name] = value;
 }
@@ -198,6 +204,8 @@ std::vector<double> Arguments::numbers(const std::string& name, std::size_t coun
 
 std::vector<std::string> Arguments::someOperands(const std::string& usage) {
   rejectOptions(usage);
+  args_.insert(args_.end(), afterDashes_.begin(), afterDashes_.end());
+  afterDashes_.clear();
   if (args_.empty()) throw Error("expected one or more file names\nUsage: " + usage);
   return args_;
 }
@@ -205,11 +213,17 @@ std::vector<std::string> Arguments::someOperands(const std::string& usage) {
 void Arguments::rejectOptions(const std::string& usage) const {
   for (const std::string& a : args_)
     if (a.size() > 1 && a[0] == '-' && !std::isdigit(static_cast<unsigned char>(a[1])))
-      throw Error("unknown option '" + a + "'\nUsage: " + usage);
+      throw Error("unknown option '" + a + "'" +
+                  (a.find_first_of("./") != std::string::npos  // a file's name, it seems
+                       ? " (a file name starting with a dash goes after --, or as ./" + a + ")"
+                       : std::string()) +
+                  "\nUsage: " + usage);
 }
 
 std::vector<std::string> Arguments::operands(std::size_t count, const std::string& usage) {
   rejectOptions(usage);
+  args_.insert(args_.end(), afterDashes_.begin(), afterDashes_.end());
+  afterDashes_.clear();
   if (args_.size() != count)
     throw Error("expected " + std::to_string(count) + (count == 1 ? " file name, got " : " file names, got ") + std::to_string(args_.size()) +
                 "\nUsage: " + usage);

@@ -13,7 +13,8 @@ namespace tinlod::cli {
 // operands. Each accessor consumes what it reads; finish() rejects what is left.
 class Arguments {
  public:
-  explicit Arguments(std::vector<std::string> args) : args_(std::move(args)) {}
+  // After "--" every argument is a file name, one starting with a dash included.
+  explicit Arguments(std::vector<std::string> args);
 
   bool flag(const std::string& name);
   // Whether an option is there, without consuming it.
@@ -51,6 +52,7 @@ class Arguments {
   // Records a value read unless it is the default.
   void note(const std::string& name, const std::string& value, bool isDefault);
   std::vector<std::string> args_;
+  std::vector<std::string> afterDashes_;  // the file names after "--"
   std::map<std::string, std::string> read_;  // by name: the value read, when not the default
 };
 

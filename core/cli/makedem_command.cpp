@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 
@@ -47,8 +48,9 @@ int makeDemCommand(std::vector<std::string> args) {
   const bool overwrite = a.flag("-overwrite");
   const bool quiet = a.flag("-q");
   const std::vector<std::string> files = a.operands(1, kUsage);
-  const std::string extension = std::filesystem::path(files[0]).extension().string();
-  if (extension != ".tif" && extension != ".tiff" && extension != ".TIF")
+  std::string extension = std::filesystem::path(files[0]).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (extension != ".tif" && extension != ".tiff")
     throw Error("output '" + files[0] + "' must be a GeoTIFF file ending in .tif");
   if (o.width < 2 || o.height < 2 || double(o.width) * o.height > 1e8)
     throw Error("-size must be at least 2 x 2 and at most 100 million cells");

@@ -31,7 +31,7 @@ GDALDataset* openWithDecodingThreads(const std::string& path) {
 
 DatasetPtr openRaster(const std::string& path) {
   GDALAllRegister();
-  if (plainPathMissing(path)) throw Error("DEM '" + path + "' does not exist");
+  if (plainPathMissing(path)) throw Error("DEM '" + path + "' does not exist" + tildeHint(path));
   CPLPushErrorHandler(CPLQuietErrorHandler);
   GDALDataset* ds = openWithDecodingThreads(path);
   const std::string gdalMessage = CPLGetLastErrorMsg();

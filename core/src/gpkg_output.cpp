@@ -10,6 +10,7 @@
 #include "gdal_metadata_xml.h"
 #include "gpkg_spatial_index.h"
 #include "sqlite_in_use.h"
+#include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace fs = std::filesystem;
@@ -110,7 +111,7 @@ std::string checkOutputPath(const std::string& path, const GpkgWriteOptions& opt
   if (lower(out.extension().string()) != ".gpkg")
     throw Error("output '" + path + "' must be a GeoPackage file ending in .gpkg");
   const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
-  if (!fs::is_directory(dir)) throw Error("the folder of output '" + path + "' does not exist");
+  if (!fs::is_directory(dir)) throw Error("the folder of output '" + path + "' does not exist" + tildeHint(path));
   if (access(dir.c_str(), W_OK) != 0) throw Error("the folder of output '" + path + "' is not writable");
   if (fs::is_directory(out)) throw Error("output '" + path + "' is a folder: name a .gpkg file");
   if (!fs::exists(out)) return "";

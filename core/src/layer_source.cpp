@@ -29,7 +29,7 @@ LayerSource parseLayerSource(const std::string& spec, const std::string& what) {
 
 OpenLayer openLayer(const std::string& spec, const std::string& what) {
   const LayerSource source = parseLayerSource(spec, what);
-  if (plainPathMissing(source.path)) throw Error(what + ": '" + source.path + "' does not exist");
+  if (plainPathMissing(source.path)) throw Error(what + ": '" + source.path + "' does not exist" + tildeHint(source.path));
   OpenLayer out;
   out.path = source.path;
   out.dataset = openReadOnly(source.path, GDAL_OF_VECTOR);
@@ -38,8 +38,12 @@ OpenLayer openLayer(const std::string& spec, const std::string& what) {
   out.layer = !source.layer.empty()                 ? ds.GetLayerByName(source.layer.c_str())
               : source.layerIndex < ds.GetLayerCount() ? ds.GetLayer(source.layerIndex)
                                                         : nullptr;
+  if (!out.layer && ds.GetLayerCount() == 0) throw Error(what + ": '" + source.path + "' has no layer");
   if (!out.layer)
-    throw Error(what + ": '" + source.path + "' has no " + (source.layer.empty() ? std::string("layer") : "layer '" + source.layer + "'") + " (its layers: " + layerNames(ds) + ")");
+    throw Error(what + ": '" + source.path + "' has no " +
+                (source.layer.empty() ? "layer of id " + std::to_string(source.layerIndex) + " (ids count from 0)"
+                                      : "layer '" + source.layer + "'") +
+                " (its layers: " + layerNames(ds) + ")");
   return out;
 }
 

@@ -13,6 +13,7 @@
 
 #include "sqlite_in_use.h"
 #include "staging_folder.h"
+#include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace fs = std::filesystem;
@@ -201,7 +202,7 @@ const StagedFile& OutputFiles::add(const std::string& path, const std::string& o
   checkNotInput(target, option, path);
   if (fs::is_directory(target, ec)) throw Error(option + ": '" + path + "' is a folder: name a file");
   const fs::path dir = folderOf(target);
-  if (!fs::is_directory(dir, ec)) throw Error(option + ": the folder of '" + path + "' does not exist");
+  if (!fs::is_directory(dir, ec)) throw Error(option + ": the folder of '" + path + "' does not exist" + tildeHint(path));
   if (access(dir.c_str(), W_OK) != 0) throw Error(option + ": the folder of '" + path + "' is not writable");
   for (const auto& other : files_)
     if (sameFile(other->target, target))

@@ -47,6 +47,10 @@ bool plainPathMissing(const std::string& path) {
   return !gdalName(path) && VSIStatL(path.c_str(), &stat) != 0;
 }
 
+std::string tildeHint(const std::string& path) {
+  return path.rfind('~', 0) == 0 ? " (~ is expanded by a shell only outside quotes: write the folder out, $HOME/...)" : "";
+}
+
 std::string recordedPath(const std::string& path) {
   std::error_code ec;
   if (gdalName(path) || !std::filesystem::exists(path, ec)) return path;

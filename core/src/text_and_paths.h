@@ -16,6 +16,10 @@ std::string jsonString(const std::string& text);
 // exist: said plainly before GDAL would answer with its own wording.
 bool plainPathMissing(const std::string& path);
 
+// For a message on a path that does not exist: a path starting with ~ was quoted where a
+// shell would have expanded it (a script's "~/dem.tif"), which tinlod does not.
+std::string tildeHint(const std::string& path);
+
 // A DEM's path as an output records it: a plain file's absolute, so that it names the same
 // file from any folder (tinlod accuracy takes the build's -s_srs for that DEM); GDAL's other
 // names (/vsizip/..., NETCDF:"f.nc":z) as given.
