@@ -387,6 +387,14 @@ TEST(Cli, GdalsOwnMessagesDoNotLeak) {
   const CliRun into = tinlod("sample -q -overwrite " + defaultDem() + " " + dir + "/project.gpkg");
   EXPECT_EQ(into.exitCode, 0) << into.err;
   EXPECT_EQ(into.err.find("ERROR"), std::string::npos) << into.err;
+  // A VRT whose source is gone: GDAL's "ERROR 4: ...: No such file or directory" above tinlod's.
+  ASSERT_EQ(std::system(("gdalbuildvrt -q " + dir + "/mosaic.vrt " + defaultDem()).c_str()), 0);
+  std::string vrt = test::readFile(dir + "/mosaic.vrt");
+  vrt.replace(vrt.find(defaultDem()), defaultDem().size(), dir + "/gone.tif");
+  std::ofstream(dir + "/mosaic.vrt") << vrt;
+  const CliRun gone = tinlod("sample -q " + dir + "/mosaic.vrt " + dir + "/vrt.gpkg");
+  EXPECT_EQ(gone.exitCode, 1);
+  EXPECT_EQ(gone.err, "ERROR: cannot read '" + dir + "/mosaic.vrt': " + dir + "/gone.tif: No such file or directory\n");
 }
 
 TEST(Cli, AHemisphereInOneUtmZoneFailsWithTheCrsToUseAndNoGdalNoise) {

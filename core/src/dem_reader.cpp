@@ -29,6 +29,13 @@ GDALDataset* openWithDecodingThreads(const std::string& path) {
   return ds;
 }
 
+// GDAL's failures while the cells are read are said once, in the error thrown with its last
+// message (a VRT's missing source printed "ERROR 4: src/a.tif: No such file or directory"
+// above it); its warnings show as usual.
+void CPL_STDCALL failuresAside(CPLErr level, CPLErrorNum number, const char* message) {
+  if (level < CE_Failure) CPLDefaultErrorHandler(level, number, message);
+}
+
 DatasetPtr openRaster(const std::string& path) {
   GDALAllRegister();
   if (plainPathMissing(path)) throw Error("DEM '" + path + "' does not exist" + tildeHint(path));
@@ -110,6 +117,7 @@ void applyMask(GDALRasterBand& band, Dem& dem) {
   }
   if (flags & GMF_ALL_VALID) return;
   std::vector<unsigned char> mask(dem.z.size());
+  const CPLErrorHandlerPusher failures(failuresAside);
   if (band.GetMaskBand()->RasterIO(GF_Read, dem.window.colOffset, dem.window.rowOffset, dem.width, dem.height, mask.data(), dem.width,
                                    dem.height, GDT_Byte, 0, 0) != CE_None)
     throw Error("cannot read the mask of '" + dem.path + "': " + CPLGetLastErrorMsg());
@@ -192,6 +200,7 @@ void dropImplausibleHeights(Dem& dem, const HeightRange& valid, const ProgressRa
 void readHeights(GDALRasterBand& band, Dem& dem, const ProgressRange& progress) {
   dem.z.resize(static_cast<std::size_t>(dem.width) * dem.height);
   const int chunk = std::max(1, (1 << 22) / std::max(1, dem.width));  // about 4 M cells a read
+  const CPLErrorHandlerPusher failures(failuresAside);
   for (int row = 0; row < dem.height; row += chunk) {
     const int rows = std::min(chunk, dem.height - row);
     float* dst = dem.z.data() + static_cast<std::size_t>(row) * dem.width;
