@@ -218,6 +218,9 @@ TEST(Cli, BuildCheckSaysWhetherTheOptionsAreGoodAndWritesNothing) {
   const std::string line = lines.out.substr(at, lines.out.find('\n', at) - at);
   EXPECT_EQ(line.back(), '\'') << line;
   EXPECT_GT(line.size(), text.size()) << line;
+  // Letters beyond ASCII stay as they are (they were escaped, $'r \xc3\xa9.html').
+  const CliRun accented = tinlod("build " + defaultDem() + " " + out + " -check -report '" + test::tempDir() + "/r é.html'");
+  EXPECT_TRUE(has(accented.out, "r é.html'")) << accented.out << accented.err;
   // A -levels list means its levels, whatever their order and repeats; all of them is the default.
   const CliRun reordered = tinlod("build " + defaultDem() + " " + out + " -check -levels 'last, 5,0,5'");
   EXPECT_TRUE(has(reordered.out, "Options in effect: -levels 0,5,last\n")) << reordered.out << reordered.err;
