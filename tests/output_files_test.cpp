@@ -164,9 +164,16 @@ TEST(OutputFiles, OnlyStagingFoldersNobodyHoldsAreRemoved) {
     EXPECT_TRUE(fs::exists(live / "out.gpkg"));
   }
   close(held);
+  // Another output's run, beside it, removes it too: a killed build's 200 MB stayed until a
+  // run for the same output came.
   OutputFiles again(false);
-  again.add(dir + "/out.gpkg", "output");
+  again.add(dir + "/other.csv", "-report");
   EXPECT_FALSE(fs::exists(live));
+  // A folder of the user's that only looks alike is no staging folder.
+  fs::create_directories(dir + "/.notes.tinlod-2026");
+  OutputFiles third(false);
+  third.add(dir + "/third.csv", "-report");
+  EXPECT_TRUE(fs::exists(dir + "/.notes.tinlod-2026"));
 }
 
 // A run stopped while a writer made a file in its folder may leave the folder, empty and

@@ -6,6 +6,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -81,6 +83,14 @@ bool oldEnoughToBeAbandoned(const fs::path& folder) {
 
 // An empty one is removed at once: a run that made it and finds it gone before its lock
 // is made tries another name (tryCreate).
+// ".NAME.tinlod-<16 hex>", any output's: a run killed outright leaves its folder (a whole
+// hierarchy's worth), which the next run writing beside it removes, whatever it writes.
+bool isStagingName(const std::string& name) {
+  const std::size_t tail = std::string(".tinlod-").size() + 16;
+  if (name.size() <= tail || name[0] != '.' || name.compare(name.size() - tail, 8, ".tinlod-") != 0) return false;
+  return std::all_of(name.end() - 16, name.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
+}
+
 void removeIfAbandoned(const fs::path& folder) {
   const int fd = open((folder / kLock).c_str(), O_RDWR | O_CLOEXEC);
   if (fd < 0) {
@@ -151,13 +161,9 @@ std::vector<fs::path> StagingFolder::stagedFiles() const {
 fs::path StagingFolder::backupFor(const fs::path& name) const { return path_ / (kBackupPrefix + name.filename().string()); }
 
 void StagingFolder::removeStale(const fs::path& target) {
-  const std::string prefix = prefixFor(target);
   std::error_code ec;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folderOf(target), ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0 || !entry.is_directory(ec)) continue;
-    removeIfAbandoned(entry.path());
-  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(folderOf(target), ec))
+    if (isStagingName(entry.path().filename().string()) && entry.is_directory(ec)) removeIfAbandoned(entry.path());
 }
 
 std::mutex& StagingFolder::commitMutex() {

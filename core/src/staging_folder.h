@@ -26,6 +26,8 @@ class StagingFolder {
   // Where the old file `name` is kept while a commit could still be taken back.
   std::filesystem::path backupFor(const std::filesystem::path& name) const;
 
+  // The staging folders beside `target` that no run holds (any output's: one run killed
+  // outright leaves a folder the size of its output).
   static void removeStale(const std::filesystem::path& target);
   // Every folder this process holds, removed at once; the lock of commitMutex() is taken
   // first, so a commit is never cut in half.
