@@ -872,6 +872,17 @@ def main(tinlod, tiles):
         merged = run([tiles, "merge", catalogue, "-level", str(level), out])
         check("(d) merge -level %d gives one layer of the %d triangles" % (level, expected),
               merged.returncode == 0 and level_count(out, "level_%d" % level) == expected, merged.stderr)
+    held = os.path.join(work, "merged_0.gpkg")
+    connection = sqlite3.connect(held)
+    connection.execute("PRAGMA journal_mode=WAL")
+    connection.execute("CREATE TABLE notes(a)")
+    connection.commit()
+    try:
+        again = run([tiles, "merge", catalogue, "-level", "0", held, "-overwrite"])
+    finally:
+        connection.close()
+    check("(d) merge -overwrite of an output another program has open (its write-ahead log in use) is refused",
+          again.returncode == 1 and "is open in another program" in again.stderr, again.stderr)
     # /proc: root may write its folder, but GDAL cannot make a file there.
     unwritable = run([tiles, "merge", catalogue, "-level", "0", "/proc/merged.gpkg"])
     check("(d) merge to where no file can be made names the output, not its staging file, and the fix",

@@ -8,6 +8,7 @@ from xml.sax.saxutils import escape, quoteattr
 
 from osgeo import gdal, ogr
 
+from . import catalogue_guard
 from .catalogue import Catalogue, levels_folder
 from .errors import TilesError
 
@@ -148,6 +149,8 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
                          % (level, ", ".join(str(k) for k in sorted(viewed))))
     if os.path.exists(out_path) and not overwrite:
         raise TilesError("%s exists: add -overwrite to replace it" % out_path)
+    if os.path.exists(out_path):
+        catalogue_guard.refuse_in_use(out_path)
     source = "/vsimem/tinlod_tiles_merge_%d.vrt" % os.getpid()
     gdal.FileFromMemBuffer(source, union_vrt(level, files).encode("utf-8"))
     partial, failure = out_path + ".partial.gpkg", ""
@@ -164,6 +167,8 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
         written.SetMetadata({"TINLOD_KIND": MERGED_KIND, "TINLOD_LEVEL": str(level),
                              "TINLOD_CATALOGUE": os.path.abspath(catalogue_path)})
         written = None
+        if os.path.exists(out_path):  # opened meanwhile: checked again
+            catalogue_guard.refuse_in_use(out_path)
         os.replace(partial, out_path)
     finally:
         gdal.Unlink(source)
