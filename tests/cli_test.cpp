@@ -373,6 +373,16 @@ TEST(Cli, NamesAsBatchScriptsWriteThem) {
   EXPECT_EQ(upper.exitCode, 0) << upper.err;
   const CliRun layer = tinlod("locate -q " + dir + "/-t.gpkg '" + dir + "/-t.gpkg|layerid=9' " + dir + "/p.gpkg");
   EXPECT_TRUE(test::contains(layer.err, "has no layer of id 9 (ids count from 0) (its layers: ")) << layer.err;
+  // A name in Latin-1: a GeoPackage's text is UTF-8, where it went in as its bytes.
+  fs::create_symlink(defaultDem(), dir + "/d\xe9m.tif");
+  const CliRun latin = tinlod("sample -q '" + dir + "/d\xe9m.tif' " + dir + "/latin.gpkg");
+  ASSERT_EQ(latin.exitCode, 0) << latin.err;
+  GDALAllRegister();
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/latin.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(ds);
+  const char* source = ds->GetMetadataItem("TINLOD_SOURCE");
+  ASSERT_NE(source, nullptr);
+  EXPECT_EQ(std::string(source), dir + "/d\xc3\xa9m.tif");
 }
 
 TEST(Cli, GdalsOwnMessagesDoNotLeak) {

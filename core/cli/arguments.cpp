@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <cpl_string.h>
+
 #include "tinlod/error.h"
 
 namespace tinlod::cli {
@@ -30,18 +32,6 @@ std::string joined(const std::vector<T>& values, F text) {
 
 bool plain(unsigned char c) { return c && (std::isalnum(c) || std::strchr("_@%+=:,./-", c)); }
 
-bool validUtf8(const std::string& text) {
-  for (std::size_t i = 0; i < text.size();) {
-    const auto byte = static_cast<unsigned char>(text[i]);
-    const std::size_t length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : (byte >> 3) == 0x1E ? 4 : 0;
-    if (length == 0 || i + length > text.size()) return false;
-    for (std::size_t k = 1; k < length; ++k)
-      if ((static_cast<unsigned char>(text[i + k]) & 0xC0) != 0x80) return false;
-    i += length;
-  }
-  return true;
-}
-
 // A value as a shell would read it back: bare when it is plain (and no option's name),
 // else quoted, and bytes that are not printable ASCII (a WKT's line breaks) as $'\xHH'; so
 // that two different sets of values never read alike, and the text stays one line.
@@ -49,7 +39,7 @@ std::string quoted(const std::string& value) {
   if (!value.empty() && value[0] != '-' && std::all_of(value.begin(), value.end(), [](char c) { return plain(c); }))
     return value;
   // Letters beyond ASCII (a file name's é, 日本) are printable as they are, in UTF-8.
-  const bool printable = validUtf8(value) && std::all_of(value.begin(), value.end(), [](char c) {
+  const bool printable = CPLIsUTF8(value.c_str(), int(value.size())) && std::all_of(value.begin(), value.end(), [](char c) {
     return static_cast<unsigned char>(c) >= 0x20 && c != 0x7f;
   });
   std::string out = printable ? "'" : "$'";

@@ -243,7 +243,7 @@ void DpOptions::validate() const {
 DpSummary runDpJob(const std::string& inPath, const std::string& outPath, const DpOptions& options, bool overwrite,
                    const Feedback& feedback) {
   options.validate();
-  GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "dp_values"}, {"TINLOD_SOURCE", inPath}}};
+  GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "dp_values"}, {"TINLOD_SOURCE", recordedPath(inPath)}}};
   checkOutputPath(outPath, writeOptions);
   OutputFiles files(overwrite, datasetFiles(inPath));
   const StagedFile& staged = files.add(outPath, "output", true);
@@ -297,7 +297,7 @@ void ConcavityOptions::validate() const {
 ConcavitySummary runConcavityJob(const std::string& inPath, const std::string& outPath, const ConcavityOptions& options,
                                  bool overwrite, const Feedback& feedback) {
   options.validate();
-  GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "concavity"}, {"TINLOD_SOURCE", inPath}}};
+  GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "concavity"}, {"TINLOD_SOURCE", recordedPath(inPath)}}};
   checkOutputPath(outPath, writeOptions);
   OutputFiles files(overwrite, datasetFiles(inPath));
   const StagedFile& staged = files.add(outPath, "output", true);

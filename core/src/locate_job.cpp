@@ -117,7 +117,7 @@ LocateSummary runLocateJob(const std::string& hierarchyPath, const std::string& 
   if (plainPathMissing(parseLayerSource(pointsPath, "points").path))  // before the long work
     throw Error("points: '" + pointsPath + "' does not exist");
   GpkgWriteOptions writeOptions{overwrite, {{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "points"},
-                                            {"TINLOD_SOURCE", hierarchyPath}, {"TINLOD_LEVEL", std::to_string(level)}}};
+                                            {"TINLOD_SOURCE", recordedPath(hierarchyPath)}, {"TINLOD_LEVEL", std::to_string(level)}}};
   // An input named as the output is refused as such first (not as a file of another kind).
   OutputFiles files(overwrite, datasetFiles({hierarchyPath, pointsPath}));
   files.refuseInput(outPath, "output");

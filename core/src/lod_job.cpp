@@ -44,7 +44,7 @@ void checkOptions(const LodJobOptions& o) {
 }
 
 std::map<std::string, std::string> jobMetadata(const std::string& source, const LodJobOptions& o) {
-  std::map<std::string, std::string> m{{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "lod"}, {"TINLOD_SOURCE", source}};
+  std::map<std::string, std::string> m{{"TINLOD_VERSION", kVersion}, {"TINLOD_KIND", "lod"}, {"TINLOD_SOURCE", recordedPath(source)}};
   // As given, to the last digit: in degrees (-center_srs) three decimals were 100 m, and a
   // rerun from the recorded centres extracted another TIN.
   std::string centres;

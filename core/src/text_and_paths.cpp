@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "text_and_paths.h"
 
+#include <cpl_string.h>
 #include <cpl_vsi.h>
 
 #include <cstdio>
@@ -53,9 +54,18 @@ std::string tildeHint(const std::string& path) {
 
 std::string recordedPath(const std::string& path) {
   std::error_code ec;
-  if (gdalName(path) || !std::filesystem::exists(path, ec)) return path;
-  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
-  return ec ? path : absolute.lexically_normal().string();
+  std::string out = path;
+  if (!gdalName(path) && std::filesystem::exists(path, ec)) {
+    const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+    if (!ec) out = absolute.lexically_normal().string();
+  }
+  // A GeoPackage's text is UTF-8: a name in another encoding (Latin-1's "d\xe9m.tif") is
+  // recorded as Latin-1 read ("dém.tif"), for the eye.
+  if (CPLIsUTF8(out.c_str(), int(out.size()))) return out;
+  char* recoded = CPLRecode(out.c_str(), CPL_ENC_ISO8859_1, CPL_ENC_UTF8);
+  out = recoded;
+  CPLFree(recoded);
+  return out;
 }
 
 }  // namespace tinlod
