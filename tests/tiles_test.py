@@ -883,6 +883,30 @@ def main(tinlod, tiles):
         connection.close()
     check("(d) merge -overwrite of an output another program has open (its write-ahead log in use) is refused",
           again.returncode == 1 and "is open in another program" in again.stderr, again.stderr)
+    someones = make_points(dem, os.path.join(work, "someones_merge.gpkg"))
+    other = run([tiles, "merge", catalogue, "-level", "0", someones, "-overwrite"])
+    check("(d) merge -overwrite of a GeoPackage that is no merged level (the user's layers) is refused, the file kept",
+          other.returncode == 1 and "exists and is no merged level of tinlod-tiles (GDAL reads it as GPKG)" in other.stderr
+          and point_count(someones) == 1, other.stderr)
+    os.chmod(held, 0o444)
+    protected = run([tiles, "merge", catalogue, "-level", "0", held, "-overwrite"])
+    check("(d) merge -overwrite of a write-protected output is refused, as cp would refuse it",
+          protected.returncode == 1 and "is write-protected (mode 0444)" in protected.stderr, protected.stderr)
+    os.chmod(held, 0o640)
+    kept = run([tiles, "merge", catalogue, "-level", "0", held, "-overwrite"])
+    check("(d) a replaced merge output keeps its mode",
+          kept.returncode == 0 and os.stat(held).st_mode & 0o777 == 0o640, (kept.stderr, oct(os.stat(held).st_mode)))
+    dangling = os.path.join(work, "dangling.gpkg")
+    os.symlink("nowhere/x.gpkg", dangling)
+    mine = os.path.join(work, "mine.gpkg")
+    with open(mine + ".partial.gpkg", "w") as f:
+        f.write("the user's")
+    linked = run([tiles, "merge", catalogue, "-level", "0", dangling])
+    unclobbered = run([tiles, "merge", catalogue, "-level", "0", mine])
+    check("(d) merge to a dangling link is refused; one to a new name leaves the user's NAME.partial.gpkg alone",
+          linked.returncode == 1 and "is a symbolic link to nowhere/x.gpkg, which does not exist" in linked.stderr
+          and unclobbered.returncode == 0 and open(mine + ".partial.gpkg").read() == "the user's",
+          (linked.stderr, unclobbered.stderr))
     # /proc: root may write its folder, but GDAL cannot make a file there.
     unwritable = run([tiles, "merge", catalogue, "-level", "0", "/proc/merged.gpkg"])
     check("(d) merge to where no file can be made names the output, not its staging file, and the fix",

@@ -18,7 +18,8 @@ import time
 
 from osgeo import gdal
 
-from . import agreement, build_check, catalogue_guard, dask_import, fixed_points, line_outline, stop_check, task, thresholds
+from . import (agreement, build_check, catalogue_guard, dask_import, fixed_points, line_outline, replace_guard, stop_check,
+               task, thresholds)
 from .cell_file import read_cells, write_cells
 from .arguments import build_option
 from .catalogue import BUILD_SETTINGS, FIXED_STAMP, SOURCE_STAMP, Catalogue, file_stamp, levels_folder, tiles_folder
@@ -64,9 +65,12 @@ def run(arguments):
         raise TilesError("cannot make the tiles folder %s (%s): put the catalogue where you can write"
                          % (folder, e.strerror)) from None
     with DriverLock(folder, arguments.catalogue):
+        replaced = os.stat(arguments.catalogue) if arguments.overwrite and os.path.exists(arguments.catalogue) else None
         if arguments.overwrite:
             remove_job(arguments.catalogue)
         catalogue = open_catalogue(arguments, settings, predicted_tin_srs(dem, arguments.build_options), tiles)
+        if replaced:
+            replace_guard.keep_permissions(arguments.catalogue, replaced)
         dem = None
         remove_leftovers(folder, catalogue)
         pending = pending_tiles(catalogue, tiles, arguments.catalogue)
@@ -328,11 +332,17 @@ LEFTOVER_FILES = re.compile(r"tile_\d+_\d+\.(partial\.gpkg|gpkg\.log|gpkg\.attem
 
 def remove_job(catalogue_path):
     """-overwrite: the catalogue, its tiles and its level files go; only files tinlod-tiles
-    names, so that nothing else a user keeps in those folders is lost."""
-    remove_matching(tiles_folder(catalogue_path), lambda name: RUN_FILES.fullmatch(name) or LEFTOVER_FILES.fullmatch(name))
-    remove_matching(levels_folder(catalogue_path), re.compile(r"level_\d+\.vrt").fullmatch)
-    if os.path.exists(catalogue_path):
-        os.remove(catalogue_path)
+    names, so that nothing else a user keeps in those folders is lost. The catalogue first:
+    replace_guard has said it may go, and without it the rest is no job."""
+    try:
+        if os.path.exists(catalogue_path):
+            os.remove(catalogue_path)
+        remove_matching(tiles_folder(catalogue_path),
+                        lambda name: RUN_FILES.fullmatch(name) or LEFTOVER_FILES.fullmatch(name))
+        remove_matching(levels_folder(catalogue_path), re.compile(r"level_\d+\.vrt").fullmatch)
+    except OSError as e:
+        raise TilesError("-overwrite cannot remove %s (%s): make the job's files yours to remove, or name another "
+                         "catalogue" % (e.filename, e.strerror)) from None
 
 
 def remove_matching(folder, names):

@@ -4,11 +4,12 @@ written beside the catalogue, and the same union merged into one GeoPackage on d
 import os
 import re
 import sys
+import tempfile
 from xml.sax.saxutils import escape, quoteattr
 
 from osgeo import gdal, ogr
 
-from . import catalogue_guard
+from . import replace_guard
 from .catalogue import Catalogue, levels_folder
 from .errors import TilesError
 
@@ -113,6 +114,18 @@ def unfinished_warning(rows):
 MERGED_KIND = "merged_level"  # a merge output's TINLOD_KIND
 
 
+def hidden_partial(out_path):
+    """A new hidden name beside OUT to write it under: no file of the user's is taken for it."""
+    folder, name = os.path.split(os.path.abspath(out_path))
+    try:
+        handle, partial = tempfile.mkstemp(prefix=".%s." % name[:200], suffix=".partial.gpkg", dir=folder)
+    except OSError as e:
+        raise TilesError("cannot write %s (%s): name an output where you can write" % (out_path, e.strerror)) from None
+    os.close(handle)
+    os.remove(partial)  # GDAL makes the file itself
+    return partial
+
+
 def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     """The tiles' level `level` (-1: the coarsest; of the tiles meeting `extent`, if given)
     merged into one layer `level_K` of a new GeoPackage; returns K and its triangle count."""
@@ -147,13 +160,16 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
     if level not in viewed:
         raise TilesError("-level %d: the tiles were built with -levels, and have a layer only for level %s"
                          % (level, ", ".join(str(k) for k in sorted(viewed))))
+    replace_guard.refuse_dangling_link(out_path, "OUT")
+    out_path = os.path.realpath(out_path) if os.path.islink(out_path) else out_path  # a link's file is replaced
     if os.path.exists(out_path) and not overwrite:
         raise TilesError("%s exists: add -overwrite to replace it" % out_path)
-    if os.path.exists(out_path):
-        catalogue_guard.refuse_in_use(out_path)
+    old_stat = os.stat(out_path) if os.path.exists(out_path) else None
+    if old_stat:
+        replace_guard.check_replaceable(out_path, MERGED_KIND, "merged level of tinlod-tiles", "OUT")
     source = "/vsimem/tinlod_tiles_merge_%d.vrt" % os.getpid()
     gdal.FileFromMemBuffer(source, union_vrt(level, files).encode("utf-8"))
-    partial, failure = out_path + ".partial.gpkg", ""
+    partial, failure = hidden_partial(out_path), ""
     try:
         options = gdal.VectorTranslateOptions(format="GPKG", layerName="level_%d" % level)
         try:
@@ -168,8 +184,13 @@ def merge_level(catalogue_path, level, out_path, overwrite, extent=None):
                              "TINLOD_CATALOGUE": os.path.abspath(catalogue_path)})
         written = None
         if os.path.exists(out_path):  # opened meanwhile: checked again
-            catalogue_guard.refuse_in_use(out_path)
-        os.replace(partial, out_path)
+            replace_guard.refuse_in_use(out_path)
+        if old_stat:
+            replace_guard.keep_permissions(partial, old_stat)
+        try:
+            os.replace(partial, out_path)
+        except OSError as e:
+            raise TilesError("cannot put %s in place (%s): nothing was written" % (out_path, e.strerror)) from None
     finally:
         gdal.Unlink(source)
         if os.path.exists(partial):
