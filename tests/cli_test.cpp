@@ -373,6 +373,8 @@ TEST(Cli, NamesAsBatchScriptsWriteThem) {
   EXPECT_EQ(upper.exitCode, 0) << upper.err;
   const CliRun layer = tinlod("locate -q " + dir + "/-t.gpkg '" + dir + "/-t.gpkg|layerid=9' " + dir + "/p.gpkg");
   EXPECT_TRUE(test::contains(layer.err, "has no layer of id 9 (ids count from 0) (its layers: ")) << layer.err;
+  const CliRun word = tinlod("locate -q " + dir + "/-t.gpkg '" + dir + "/-t.gpkg|layerid=abc' " + dir + "/p.gpkg");
+  EXPECT_TRUE(test::contains(word.err, "|layerid=abc': layerid must be a layer's number, 0 for the first")) << word.err;
   // A name in Latin-1: a GeoPackage's text is UTF-8, where it went in as its bytes.
   fs::create_symlink(defaultDem(), dir + "/d\xe9m.tif");
   const CliRun latin = tinlod("sample -q '" + dir + "/d\xe9m.tif' " + dir + "/latin.gpkg");

@@ -147,6 +147,15 @@ TEST(NothingLost, AMultiFileRasterFormatMovesAllItsFiles) {
   EXPECT_FALSE(has(beside.err, "appeared while")) << beside.err;
   EXPECT_FALSE(fs::exists(dir + "/f.img"));
   EXPECT_EQ(test::readFile(other), "someone's header");
+  // EHdr writes the CRS's .prj too (the format was tried without a CRS, and missed it).
+  std::ofstream(dir + "/g.prj") << "someone's CRS";
+  const CliRun prj = tinlod("accuracy -q " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/g.bil");
+  EXPECT_TRUE(has(prj.err, "-accuracy: '" + dir + "/g.prj' exists (the format writes it beside")) << prj.err;
+  // A raster named with all of a file system's 255 bytes: its scratch file was named longer.
+  const std::string longest = dir + "/" + std::string(251, 'b') + ".tif";
+  const CliRun named = tinlod("accuracy -q " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + longest);
+  EXPECT_EQ(named.exitCode, 0) << named.err;
+  EXPECT_TRUE(fs::exists(longest));
   const CliRun vrt = tinlod("accuracy -q -of VRT " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/e.vrt");
   EXPECT_EQ(vrt.exitCode, 1);
   EXPECT_TRUE(has(vrt.err, "-of: VRT cannot hold")) << vrt.err;
@@ -307,8 +316,9 @@ TEST(NothingLost, AGeoPackageAnotherProgramHoldsIsNotReplaced) {
     script.run("PRAGMA journal_mode=DELETE; BEGIN EXCLUSIVE; INSERT INTO notes VALUES('pending');");
     const CliRun locked = tinlod(rebuild);
     EXPECT_EQ(locked.exitCode, 1);
-    EXPECT_TRUE(has(locked.err, "is being written by another program (QGIS, with its layers loaded for editing, or a "
-                                "script), locked: close it there, then run again"))
+    EXPECT_TRUE(has(locked.err, "is being written by another program (QGIS, which holds a GeoPackage so once one of its "
+                                "layers has been edited, until all of them are removed; or a script), locked: close it "
+                                "there, then run again"))
         << locked.err;
     script.run("ROLLBACK; DELETE FROM notes WHERE rowid > 1;");
   }

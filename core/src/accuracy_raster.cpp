@@ -2,6 +2,7 @@
 #include "tinlod/accuracy_raster.h"
 
 #include <gdal_priv.h>
+#include <ogr_srs_api.h>
 
 #include <atomic>
 #include <cctype>
@@ -41,6 +42,7 @@ std::string whatItKeeps(GDALDriver& driver, const RasterWriteOptions& options, c
   DatasetPtr probe(mem->Create("", 2, 2, kAccuracyBandCount, GDT_Float32, nullptr));
   const double gt[6] = {0, 1, 0, 2, 0, -1};
   probe->SetGeoTransform(const_cast<double*>(gt));
+  probe->SetProjection(SRS_WKT_WGS84_LAT_LONG);  // so that a format writes its CRS's file too (EHdr's .prj)
   float values[4] = {0.25f, -1.5f, 1e-4f, float(kAccuracyNodata)};
   for (int b = 1; b <= kAccuracyBandCount; ++b) {
     probe->GetRasterBand(b)->SetNoDataValue(kAccuracyNodata);

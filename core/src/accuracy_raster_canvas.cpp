@@ -13,7 +13,9 @@
 namespace tinlod {
 
 AccuracyRasterCanvas::AccuracyRasterCanvas(const TestGrid& grid, const StagedFile& file, RasterWriteOptions options)
-    : file_(file), options_(std::move(options)), scratch_(file.staging.string() + ".canvas.tif") {
+    // Named apart from the output (whose name may take all of a file system's 255 bytes), in
+    // the output's own staging folder.
+    : file_(file), options_(std::move(options)), scratch_((file.staging.parent_path() / ".tinlod-canvas.tif").string()) {
   checkRasterFormat(options_);
   GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
   // Tiled, so that a tile's window touches few blocks, as tall as the strips written, so

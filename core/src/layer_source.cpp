@@ -1,12 +1,25 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "layer_source.h"
 
-#include <cstdlib>
+#include <algorithm>
+#include <cctype>
+#include <string>
 
 #include "text_and_paths.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
+
+namespace {
+
+// QGIS's layerid=N: digits only ("abc" and "" were read as the first layer).
+int layerId(const std::string& text, const std::string& spec, const std::string& what) {
+  if (text.empty() || text.size() > 6 || !std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); }))
+    throw Error(what + ": '" + spec + "': layerid must be a layer's number, 0 for the first");
+  return std::stoi(text);
+}
+
+}  // namespace
 
 LayerSource parseLayerSource(const std::string& spec, const std::string& what) {
   LayerSource s;
@@ -18,7 +31,7 @@ LayerSource parseLayerSource(const std::string& spec, const std::string& what) {
     if (part.rfind("layername=", 0) == 0)
       s.layer = part.substr(10);
     else if (part.rfind("layerid=", 0) == 0)
-      s.layerIndex = std::atoi(part.c_str() + 8);
+      s.layerIndex = layerId(part.substr(8), spec, what);
     else if (part.rfind("geometrytype=", 0) != 0)  // QGIS names the type of a layer it split: same features
       throw Error(what + ": '" + spec + "' has a filter or option tinlod cannot apply (" + part +
                   "): save the features as a file of their own first");

@@ -108,8 +108,9 @@ void setAsideOldSidecar(const StagedFile& file, const StagingFolder& folder, std
   moved.push_back({sidecar, backup});
 }
 
+// A file the commit moves, named as the user named the output's folder ("p.prj", not "./p.prj").
 std::string shown(const StagedFile& file, const fs::path& target) {
-  return target == file.target ? file.path : target.string();
+  return target == file.target ? file.path : (fs::path(file.path).parent_path() / target.filename()).string();
 }
 
 // Why an existing `target` may not be replaced, as `cp` would not write it: "" when it may.

@@ -25,7 +25,9 @@ int readOnce(const fs::path& file, int flags) {
   return rc;
 }
 
-const std::string kWho = " (QGIS, with its layers loaded for editing, or a script)";
+const std::string kWho =
+    " (QGIS, which holds a GeoPackage so once one of its layers has been edited, until all of them are removed; or a "
+    "script)";
 
 }  // namespace
 
