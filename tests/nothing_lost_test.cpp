@@ -151,6 +151,13 @@ TEST(NothingLost, AMultiFileRasterFormatMovesAllItsFiles) {
   std::ofstream(dir + "/g.prj") << "someone's CRS";
   const CliRun prj = tinlod("accuracy -q " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/g.bil");
   EXPECT_TRUE(has(prj.err, "-accuracy: '" + dir + "/g.prj' exists (the format writes it beside")) << prj.err;
+  // An older raster's statistics left beside the name: read as the new raster's, they were.
+  std::ofstream(dir + "/s.tif.aux.xml") << "<PAMDataset/>";
+  const CliRun stale = tinlod("accuracy -q " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/s.tif");
+  EXPECT_TRUE(has(stale.err, "-accuracy: '" + dir + "/s.tif.aux.xml' exists")) << stale.err;
+  const CliRun replaced = tinlod("accuracy -q -overwrite " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + dir + "/s.tif");
+  EXPECT_EQ(replaced.exitCode, 0) << replaced.err;
+  EXPECT_NE(test::readFile(dir + "/s.tif.aux.xml"), "<PAMDataset/>");  // set aside, or written anew
   // A raster named with all of a file system's 255 bytes: its scratch file was named longer.
   const std::string longest = dir + "/" + std::string(251, 'b') + ".tif";
   const CliRun named = tinlod("accuracy -q " + dir + "/d.tif " + dir + "/h.gpkg -accuracy " + longest);

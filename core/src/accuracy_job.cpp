@@ -36,6 +36,8 @@ AccuracyFiles stageAccuracyFiles(const AccuracyOutputs& outputs, OutputFiles& fi
     staged.raster = &files.add(outputs.rasterPath, "-accuracy");  // an input is refused as such first
     for (const std::string& beside : checkRasterKeepsItsBands(outputs.raster, outputs.rasterPath))
       files.checkBeside(*staged.raster, beside);
+    // GDAL's statistics of an older raster of that name would be read as the new one's.
+    files.checkBeside(*staged.raster, std::filesystem::path(outputs.rasterPath).filename().string() + ".aux.xml");
   }
   if (!outputs.reportPath.empty()) staged.report = &files.add(outputs.reportPath, "-report");
   return staged;
