@@ -328,6 +328,13 @@ TEST(NothingLost, AGeoPackageAnotherProgramHoldsIsNotReplaced) {
                                 "there, then run again"))
         << locked.err;
     script.run("ROLLBACK; DELETE FROM notes WHERE rowid > 1;");
+    // A writer that has not yet spilled its changes holds a lock readers pass: still refused
+    // (its journal, beside a new file, would be played into it).
+    script.run("BEGIN IMMEDIATE; INSERT INTO notes VALUES('pending');");
+    const CliRun reserved = tinlod(rebuild);
+    EXPECT_EQ(reserved.exitCode, 1);
+    EXPECT_TRUE(has(reserved.err, "is being written by another program")) << reserved.err;
+    script.run("ROLLBACK;");
   }
   const CliRun free = tinlod(rebuild);
   EXPECT_EQ(free.exitCode, 0) << free.err;

@@ -569,6 +569,18 @@ def catalogue_guard_cases(tiles, dem, work, program):
     check("-overwrite on a GeoPackage another program has open (its write-ahead log in use) is refused",
           in_use.returncode == 1 and "is open in another program" in in_use.stderr
           and "close it there, then run again" in in_use.stderr, in_use.stderr[-1500:])
+    writing = make_points(dem, os.path.join(work, "writing.gpkg"))
+    connection = sqlite3.connect(writing, isolation_level=None)
+    connection.execute("BEGIN EXCLUSIVE")
+    connection.execute("CREATE TABLE notes(a)")
+    try:
+        locked = run([tiles, dem, writing] + options)
+    finally:
+        connection.execute("ROLLBACK")
+        connection.close()
+    check("-overwrite on a GeoPackage another program is writing (locked) is refused, not taken for a damaged one",
+          locked.returncode == 1 and "is being written by another program" in locked.stderr
+          and point_count(writing) == 1, locked.stderr[-1500:])
 
 
 def main(tinlod, tiles):

@@ -34,10 +34,12 @@ AccuracyFiles stageAccuracyFiles(const AccuracyOutputs& outputs, OutputFiles& fi
   AccuracyFiles staged;
   if (!outputs.rasterPath.empty()) {
     staged.raster = &files.add(outputs.rasterPath, "-accuracy");  // an input is refused as such first
-    for (const std::string& beside : checkRasterKeepsItsBands(outputs.raster, outputs.rasterPath))
+    // Named as the file is (a link's target), as GDAL names them.
+    const std::filesystem::path& raster = staged.raster->target;
+    for (const std::string& beside : checkRasterKeepsItsBands(outputs.raster, raster.string()))
       files.checkBeside(*staged.raster, beside);
     // GDAL's statistics of an older raster of that name would be read as the new one's.
-    files.checkBeside(*staged.raster, std::filesystem::path(outputs.rasterPath).filename().string() + ".aux.xml");
+    files.checkBeside(*staged.raster, raster.filename().string() + ".aux.xml");
   }
   if (!outputs.reportPath.empty()) staged.report = &files.add(outputs.reportPath, "-report");
   return staged;

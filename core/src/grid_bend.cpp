@@ -71,6 +71,12 @@ double bendBound(const Dem& dem, const CrsTransform& toTin) {
   std::vector<double> norm(kLattice * kLattice);
   for (std::size_t k = 0; k < norm.size(); ++k) norm[k] = secondDerivativeNorm(&x[9 * k], &y[9 * k], hc, hr);
   const double largest = *std::max_element(norm.begin(), norm.end());
+  // A CRS that is the grid's up to rounding (ETRS89 / UTM to WGS 84 / UTM, a shift) has second
+  // differences of noise, which jump from sample to sample: bounded by the noise itself.
+  double extent = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) extent = std::max({extent, std::fabs(x[k]), std::fabs(y[k])});
+  const double noise = 64 * std::numeric_limits<double>::epsilon() * extent / std::min(hc * hc, hr * hr);
+  if (largest <= noise) return 2 * noise;
   for (int j = 0; j < kLattice; ++j)
     for (int i = 0; i < kLattice; ++i) {
       const double here = norm[j * kLattice + i];
@@ -152,6 +158,7 @@ HeightGap heightGap(const Dem& dem, const CrsTransform& toTin, const std::vector
     const std::lock_guard<std::mutex> lock(pickedMutex);
     picked.insert(picked.end(), part.begin(), part.end());
   }, {});
+  std::sort(picked.begin(), picked.end());  // in the triangles' order, whatever the threads' timing
   // A chunk at a time: a fine TIN's centres would take a copy of its size; a chunk PROJ cannot
   // take (its reason is the run's error where it matters) is passed over.
   constexpr std::size_t kChunk = 1 << 16;

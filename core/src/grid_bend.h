@@ -39,7 +39,7 @@ double heightGapBound(const TinVertex& a, const TinVertex& b, const TinVertex& c
 // and in the TIN's CRS (the grid centre taken there with PROJ), over the triangles whose centre
 // is on a valid cell and that PROJ can take: 0 when the TIN's CRS is the DEM's. A triangle that
 // heightGapBound shows cannot part by more than `floor` is not measured (PROJ over a fine TIN's
-// millions of centres cost 8 % of an insert), so a gap at or under `floor` is a lower bound.
+// millions of centres cost 8.7 % of an insert), so a gap at or under `floor` is a lower bound.
 struct HeightGap {
   double metres = 0;
   std::size_t measured = 0;  // the triangles measured with PROJ

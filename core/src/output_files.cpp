@@ -233,6 +233,7 @@ void OutputFiles::commit() {
   std::vector<Moved> moved;
   {
     std::lock_guard<std::mutex> lock(StagingFolder::commitMutex());
+    std::string moving = "the outputs";  // the user's name of the file being moved, for an error
     try {
       for (std::size_t i = 0; i < files_.size(); ++i) {
         const StagedFile& file = *files_[i];
@@ -249,6 +250,9 @@ void OutputFiles::commit() {
           if (const std::string held = overwrite_ ? sqliteFileInUse(target) : ""; !held.empty())
             throw Error(file.option + ": '" + shown(file, target) + "' " + held +
                         " (it was opened while this run was working): nothing was written; close it there, then run again");
+          moving = "'" + shown(file, target) + "'";
+          if (const std::string why = overwrite_ ? whyNotReplaceable(target) : ""; !why.empty())
+            throw Error(file.option + ": " + moving + " " + why + " (since this run began): nothing was written");
           if (overwrite_) {
             takeOverPermissions(path, target);
             moved.push_back({target, replaceKeepingOld(path, target, folders_[i]->backupFor(path.filename()))});
@@ -260,13 +264,13 @@ void OutputFiles::commit() {
                         "written; add -overwrite to replace it");
           }
         }
+        moving = "'" + shown(file, sidecarOf(file)) + "'";
         if (overwrite_ && !file.keepContent && !wroteSidecar) setAsideOldSidecar(file, *folders_[i], moved);
       }
       committed() = true;
     } catch (const fs::filesystem_error& e) {
       takeBack(moved);
-      throw Error("cannot move " + (e.path2().empty() ? std::string("the outputs") : "'" + e.path2().string() + "'") +
-                  " into place (" + e.code().message() + "): nothing was written");
+      throw Error("cannot move " + moving + " into place (" + e.code().message() + "): nothing was written");
     } catch (...) {
       takeBack(moved);
       throw;

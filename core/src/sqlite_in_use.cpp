@@ -16,11 +16,11 @@ bool isSqliteFile(const fs::path& file) {
   return in.read(header, sizeof header) && std::string(header, sizeof header) == std::string("SQLite format 3", 16);
 }
 
-// Reads `file` once, opened with `flags`: SQLite's code.
-int readOnce(const fs::path& file, int flags) {
+// Opens `file` with `flags` and runs `sql` once: SQLite's code.
+int runOnce(const fs::path& file, int flags, const char* sql) {
   sqlite3* db = nullptr;
   int rc = sqlite3_open_v2(file.c_str(), &db, flags, nullptr);
-  if (rc == SQLITE_OK) rc = sqlite3_exec(db, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr);
+  if (rc == SQLITE_OK) rc = sqlite3_exec(db, sql, nullptr, nullptr, nullptr);
   sqlite3_close(db);
   return rc;
 }
@@ -34,12 +34,14 @@ const std::string kWho =
 std::string lockedFileWords() { return "is being written by another program" + kWho + ", locked"; }
 
 std::string sqliteFileInUse(const fs::path& file) {
-  const fs::path wal = file.string() + "-wal", journal = file.string() + "-journal";
+  if (!isSqliteFile(file)) return "";
+  const fs::path wal = file.string() + "-wal";
   std::error_code ec;
-  if ((!fs::exists(wal, ec) && !fs::exists(journal, ec)) || !isSqliteFile(file)) return "";
-  // SQLite rolls back a journal left by a crash, and the last connection to close plays the
-  // log into the file and removes it; one still open elsewhere keeps it.
-  const int rc = readOnce(file, SQLITE_OPEN_READWRITE);
+  // A write lock asked for and given back: refused while another program writes (a journal's
+  // writer lets readers in, and its journal, beside a new file, would be played into it).
+  // SQLite also rolls back a journal left by a crash, and the last connection to close plays
+  // the log into the file and removes it; one still open elsewhere keeps it.
+  const int rc = runOnce(file, SQLITE_OPEN_READWRITE, "BEGIN IMMEDIATE; ROLLBACK");
   if (rc == SQLITE_BUSY || rc == SQLITE_LOCKED) return lockedFileWords();
   if (fs::exists(wal, ec))
     return "is open in another program" + kWho + ", its write-ahead log '" + wal.filename().string() +
@@ -49,7 +51,7 @@ std::string sqliteFileInUse(const fs::path& file) {
 
 bool sqliteFileLocked(const fs::path& file) {
   if (!isSqliteFile(file)) return false;
-  const int rc = readOnce(file, SQLITE_OPEN_READONLY);
+  const int rc = runOnce(file, SQLITE_OPEN_READONLY, "SELECT count(*) FROM sqlite_master");
   return rc == SQLITE_BUSY || rc == SQLITE_LOCKED;
 }
 

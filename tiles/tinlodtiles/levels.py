@@ -117,8 +117,9 @@ MERGED_KIND = "merged_level"  # a merge output's TINLOD_KIND
 def hidden_partial(out_path):
     """A new hidden name beside OUT to write it under: no file of the user's is taken for it."""
     folder, name = os.path.split(os.path.abspath(out_path))
+    short = os.fsencode(name)[:150].decode("utf-8", "ignore")  # the hidden name within 255 bytes
     try:
-        handle, partial = tempfile.mkstemp(prefix=".%s." % name[:200], suffix=".partial.gpkg", dir=folder)
+        handle, partial = tempfile.mkstemp(prefix=".%s." % short, suffix=".partial.gpkg", dir=folder)
     except OSError as e:
         raise TilesError("cannot write %s (%s): name an output where you can write" % (out_path, e.strerror)) from None
     os.close(handle)

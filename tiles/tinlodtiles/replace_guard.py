@@ -30,20 +30,26 @@ def check_replaceable(path, kind, kind_words, what):
 
 
 def refuse_in_use(path):
-    """SQLite's write-ahead log beside a GeoPackage belongs to it: a new file in its place
-    would be read with the old log, corrupt. One left by a program that ended is played
-    back by reading the file once; one still in use is another program's."""
-    wal = path + "-wal"
-    if not os.path.exists(wal):
+    """SQLite's journal or write-ahead log beside a GeoPackage belongs to it: a new file in
+    its place would be read with the old log, corrupt. A write lock is asked for and given
+    back: refused while another program writes. A log left by a program that ended is played
+    back so; one still in use is another program's."""
+    if not is_sqlite(path):
         return
+    wal = path + "-wal"
     try:
-        connection = sqlite3.connect(path, timeout=0)
+        connection = sqlite3.connect(path, timeout=0, isolation_level=None)
         try:
-            connection.execute("SELECT count(*) FROM sqlite_master").fetchone()
+            connection.execute("BEGIN IMMEDIATE")
+            connection.execute("ROLLBACK")
         finally:
             connection.close()
+    except sqlite3.OperationalError as e:
+        if "locked" in str(e) or "busy" in str(e):
+            raise TilesError("%s is being written by another program (%s), locked: close it there, then run again"
+                             % (path, IN_USE_BY)) from None
     except sqlite3.Error:
-        pass  # the test below says what matters
+        pass  # a damaged file: refuse_other_kind says what it is
     if os.path.exists(wal):
         raise TilesError("%s is open in another program (%s), its write-ahead log %s in use (a file put in its place "
                          "would be read with it, corrupt): close it there, then run again"
@@ -83,12 +89,16 @@ def refuse_protected(path, what):
 
 
 def keep_permissions(new_path, old_stat):
-    """The new file keeps the old one's mode, group and (for root) owner."""
+    """The new file keeps the old one's mode, group and (for root) owner, where the file
+    system keeps them (vfat, CIFS may not)."""
     try:
         os.chown(new_path, old_stat.st_uid if os.geteuid() == 0 else -1, old_stat.st_gid)
     except OSError:
         pass  # not in its group: the new file keeps this user's
-    os.chmod(new_path, stat.S_IMODE(old_stat.st_mode))
+    try:
+        os.chmod(new_path, stat.S_IMODE(old_stat.st_mode))
+    except OSError:
+        pass
 
 
 def is_sqlite(path):
