@@ -2,6 +2,7 @@
 #include "grid_bend.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -20,6 +21,11 @@ namespace {
 // A vertex's place on the grid, in cells (its jitter included).
 double gridCol(const TinVertex& v) { return v.col + 0.5 + double(v.dcol); }
 double gridRow(const TinVertex& v) { return v.row + 0.5 + double(v.drow); }
+
+// A triangle's centre on the grid, in cells: {column, row}.
+std::array<double, 2> gridCentre(const TinVertex& a, const TinVertex& b, const TinVertex& c) {
+  return {(gridCol(a) + gridCol(b) + gridCol(c)) / 3, (gridRow(a) + gridRow(b) + gridRow(c)) / 3};
+}
 
 double cross(double ax, double ay, double bx, double by, double cx, double cy) {
   return (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
@@ -123,7 +129,7 @@ std::size_t foldedTriangles(const std::vector<TinVertex>& vertices, std::size_t 
 // of the corners' mean in the CRS (Taylor), and the triangle's plane there climbs by its
 // gradient times that.
 double heightGapBound(const TinVertex& a, const TinVertex& b, const TinVertex& c, double bend) {
-  const double col = (gridCol(a) + gridCol(b) + gridCol(c)) / 3, row = (gridRow(a) + gridRow(b) + gridRow(c)) / 3;
+  const auto [col, row] = gridCentre(a, b, c);
   double spread = 0;
   for (const TinVertex* v : {&a, &b, &c}) {
     const double dc = gridCol(*v) - col, dr = gridRow(*v) - row;
@@ -152,7 +158,7 @@ HeightGap heightGap(const Dem& dem, const CrsTransform& toTin, const std::vector
       const TinVertex &a = vertices[t[0]], &b = vertices[t[1]], &c = vertices[t[2]];
       if (!(heightGapBound(a, b, c, bend) > floor)) continue;
       // Only centres over data: across a void no DEM cell tells the two readings apart.
-      const double col = (gridCol(a) + gridCol(b) + gridCol(c)) / 3, row = (gridRow(a) + gridRow(b) + gridRow(c)) / 3;
+      const auto [col, row] = gridCentre(a, b, c);
       if (dem.valid(static_cast<int>(std::floor(row)), static_cast<int>(std::floor(col)))) part.push_back(std::uint32_t(i));
     }
     const std::lock_guard<std::mutex> lock(pickedMutex);
@@ -168,8 +174,7 @@ HeightGap heightGap(const Dem& dem, const CrsTransform& toTin, const std::vector
     x.clear(), y.clear();
     for (std::size_t k = start; k < end; ++k) {
       const Triangle& t = triangle(picked[k]);
-      double col = 0, row = 0;
-      for (VertexId v : t) col += gridCol(vertices[v]) / 3, row += gridRow(vertices[v]) / 3;
+      const auto [col, row] = gridCentre(vertices[t[0]], vertices[t[1]], vertices[t[2]]);
       x.push_back(dem.geotransform[0] + col * dem.geotransform[1]);
       y.push_back(dem.geotransform[3] + row * dem.geotransform[5]);
     }

@@ -170,14 +170,14 @@ void OutputFiles::checkNotInput(const fs::path& target, const std::string& optio
 
 void OutputFiles::checkBeside(const StagedFile& file, const std::string& name) const {
   const fs::path beside = folderOf(file.target) / name;
-  const std::string shown = (fs::path(file.path).parent_path() / name).string();
-  checkNotInput(beside, file.option, shown);
+  const std::string shownName = shown(file, beside);
+  checkNotInput(beside, file.option, shownName);
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(beside, ec))) return;
   const std::string why = " (the format writes it beside '" + file.path + "')";
-  if (!overwrite_) throw Error(file.option + ": '" + shown + "' exists" + why + ": add -overwrite to replace it");
+  if (!overwrite_) throw Error(file.option + ": '" + shownName + "' exists" + why + ": add -overwrite to replace it");
   if (const std::string held = whyNotReplaceable(beside); !held.empty())
-    throw Error(file.option + ": '" + shown + "'" + why + " " + held + ", or choose another name");
+    throw Error(file.option + ": '" + shownName + "'" + why + " " + held + ", or choose another name");
 }
 
 void OutputFiles::refuseInput(const std::string& path, const std::string& option) const {

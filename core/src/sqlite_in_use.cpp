@@ -25,6 +25,7 @@ int runOnce(const fs::path& file, int flags, const char* sql) {
   return rc;
 }
 
+// tinlod-tiles says it alike (tiles/tinlodtiles/replace_guard.py, IN_USE_BY).
 const std::string kWho =
     " (QGIS, which holds a GeoPackage so once one of its layers has been edited, until all of them are removed; or a "
     "script)";

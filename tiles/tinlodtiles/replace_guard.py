@@ -12,7 +12,9 @@ from osgeo import gdal
 from .errors import TilesError
 
 SQLITE_HEADER = b"SQLite format 3\0"
-IN_USE_BY = "QGIS, holding a GeoPackage once one of its layers has been edited until all of them are removed, or a script"
+# As tinlod says it (core/src/sqlite_in_use.cpp).
+IN_USE_BY = ("QGIS, which holds a GeoPackage so once one of its layers has been edited, until all of them are removed; "
+             "or a script")
 
 
 def refuse_dangling_link(path, what):
