@@ -7,9 +7,11 @@
 #include <ogrsf_frmts.h>
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -185,6 +187,42 @@ TEST(PackedRtree, AnAbandonedPackingStopsAndAWatchedOneIsTheSameTree) {
   EXPECT_EQ(watched.parents(), plain.parents());
   abandon = true;
   EXPECT_THROW(PackedRtree(boxes, 51, &abandon), PackingAbandoned);
+}
+
+// The packing sorts each box as one integer (centre, then index): its leaves must be those
+// of sort-tile-recursive done as written, centres compared as floats and ties broken by
+// index, where centres tie often (a grid of boxes) and cross zero (-0 among them).
+TEST(PackedRtree, LeavesAreSortTileRecursiveWithTiesBrokenByIndex) {
+  std::mt19937 random(3);
+  std::uniform_int_distribution<int> cell(-20, 20);
+  std::vector<RtreeBox> boxes;
+  for (int i = 0; i < 30000; ++i) {
+    const float x = static_cast<float>(cell(random)), y = static_cast<float>(cell(random));
+    switch (i % 7) {
+      case 0: boxes.push_back({-0.0f, -0.0f, y, y + 1}); break;  // centre -0 in x
+      case 1: boxes.push_back({0.0f, 0.0f, -0.0f, -0.0f}); break;  // +0 in x, -0 in y
+      default: boxes.push_back({x, x + 1, y, y + 1});
+    }
+  }
+  const PackedRtree tree(boxes, 51);
+  std::vector<std::uint32_t> order(boxes.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const auto by = [&](float RtreeBox::*lo, float RtreeBox::*hi) {
+    return [&, lo, hi](std::uint32_t a, std::uint32_t b) {
+      const float ca = boxes[a].*lo + boxes[a].*hi, cb = boxes[b].*lo + boxes[b].*hi;
+      return ca < cb || (ca == cb && a < b);
+    };
+  };
+  std::sort(order.begin(), order.end(), by(&RtreeBox::minX, &RtreeBox::maxX));
+  const std::size_t leaves = (boxes.size() + 50) / 51;
+  const std::size_t slice = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(leaves)))) * 51;
+  for (std::size_t begin = 0; begin < order.size(); begin += slice)
+    std::sort(order.begin() + begin, order.begin() + std::min(order.size(), begin + slice),
+              by(&RtreeBox::minY, &RtreeBox::maxY));
+  std::vector<std::uint32_t> expected(boxes.size());
+  const std::size_t firstLeaf = tree.nodes() - leaves + 1;
+  for (std::size_t k = 0; k < order.size(); ++k) expected[order[k]] = static_cast<std::uint32_t>(firstLeaf + k / 51);
+  EXPECT_EQ(tree.leaves(), expected);
 }
 
 TEST(PackedRtree, RoundsOutwardAsSqlite) {
