@@ -25,7 +25,9 @@ def stand_in(folder, code):
 
 
 def job(tinlod, folder):
-    return {"tinlod": tinlod, "dem": "dem.tif", "tiles_dir": folder, "name": "tile_0_0.gpkg", "col": 0, "row": 0,
+    dem = os.path.join(folder, "dem.tif")
+    open(dem, "a").close()
+    return {"tinlod": tinlod, "dem": dem, "tiles_dir": folder, "name": "tile_0_0.gpkg", "col": 0, "row": 0,
             "tile_size": 100, "build_options": []}
 
 
@@ -80,5 +82,30 @@ with tempfile.TemporaryDirectory() as folder:
           task.last_error_line(task.read_log(log), -11) == "ERROR 1: TIFFReadEncodedTile() failed"
           and task.last_error_line(task.read_log(os.path.join(folder, "none.log")), -9) == "tinlod was killed by signal 9",
           task.last_error_line(task.read_log(log), -11))
+
+# A worker on another machine without the driver's paths: said, naming the worker and the
+# rule, where tinlod's own error blamed the DEM the driver had just read.
+with tempfile.TemporaryDirectory() as folder:
+    lacking = dict(job(stand_in(folder, 0), folder), remote=True)
+    said = {}
+    for case, change in (("DEM", {"dem": os.path.join(folder, "not_here.tif")}),
+                         ("tinlod", {"tinlod": os.path.join(folder, "no_tinlod")}),
+                         ("tiles folder", {"tiles_dir": os.path.join(folder, "gone")}),
+                         ("local", {"dem": os.path.join(folder, "not_here.tif"), "remote": False})):
+        try:
+            task.run_tile(dict(lacking, **change))
+        except task.TileFailed as e:
+            said[case] = str(e)
+    rule = "every worker must reach the DEM, the tiles folder and tinlod by the paths the driver gives"
+    check("a remote worker without the DEM, tinlod or the tiles folder at the driver's paths says which, who, and the rule",
+          said.get("DEM", "").startswith("worker on host ") and "cannot see the DEM" in said["DEM"]
+          and all(rule in said.get(c, "") for c in ("DEM", "tinlod", "tiles folder"))
+          and "has no tinlod at" in said.get("tinlod", "") and "cannot see the tiles folder" in said.get("tiles folder", ""),
+          said)
+    check("on the local cluster, a DEM gone is said as moved during the run",
+          said.get("local", "").startswith("worker cannot see the DEM") and "(moved or removed during the run?)"
+          in said["local"] and rule not in said["local"], said)
+    check("each is a worker's failure to the driver (task.WORKER_PREFIX), not tinlod's",
+          len(said) == 4 and all(m.startswith(task.WORKER_PREFIX) for m in said.values()), said)
 
 sys.exit(exit_code("task"))

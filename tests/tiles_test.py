@@ -531,6 +531,128 @@ def exact_stop(base, options, work, env):
           and not os.path.exists(os.path.join(work, "x.gpkg")), tile.stderr)
 
 
+class DaskProcess:
+    """`dask scheduler` or `dask worker`, started as a user starts them, ended whatever happens."""
+
+    def __init__(self, args, env=None):
+        self.log = tempfile.TemporaryFile()
+        self.process = subprocess.Popen(["dask"] + args, stdout=self.log, stderr=subprocess.STDOUT, env=env,
+                                        start_new_session=True)
+
+    def said(self, pattern, seconds=60):
+        """The first match of `pattern` in what it printed, waited for; None after `seconds`."""
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline and self.process.poll() is None:
+            self.log.seek(0)
+            found = re.search(pattern, self.log.read().decode(errors="replace"))
+            if found:
+                return found
+            time.sleep(0.2)
+        return None
+
+    def end(self, how=signal.SIGTERM):
+        if self.process.poll() is None:
+            os.killpg(self.process.pid, how)
+        try:
+            self.process.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(self.process.pid, signal.SIGKILL)
+            self.process.wait()
+
+
+def start_scheduler():
+    """A scheduler on a free port of this machine; (process, its address) or (None, None)."""
+    scheduler = DaskProcess(["scheduler", "--host", "127.0.0.1", "--port", "0", "--dashboard-address", ":0"])
+    found = scheduler.said(r"Scheduler at:\s+(tcp://[\d.]+:\d+)")
+    if not found:
+        scheduler.end(signal.SIGKILL)
+        return None, None
+    return scheduler, found.group(1)
+
+
+def thread_logging_tinlod(tinlod, work, log):
+    """A tinlod that notes the TINLOD_THREADS a task gave it (not the driver's -check runs),
+    then runs as tinlod."""
+    path = os.path.join(work, "noting_tinlod")
+    with open(path, "w") as f:
+        f.write('#!/bin/sh\ncase " $* " in *" -check "*) ;; *" -tile "*) echo "threads=${TINLOD_THREADS:-unset}" >> "%s";; '
+                'esac\nexec "%s" "$@"\n' % (log, tinlod))
+    os.chmod(path, 0o755)
+    return path
+
+
+def remote_cluster(tinlod, tiles, dem, work, env):
+    """(j) -scheduler on a scheduler and a worker started as docs/cli/tiles.md says: a scheduler
+    without workers is said, not waited on in silence; the workers keep their own TINLOD_THREADS;
+    a scheduler killed mid-run leaves the unfinished tiles pending (not failed with no message)
+    in one line, and the same command finishes them on a new scheduler."""
+    if shutil.which("dask") is None:
+        print("(j) SKIPPED: no `dask` command (python3-distributed's)")
+        return
+    scheduler, address = start_scheduler()
+    workers = []
+    try:
+        check("(j) `dask scheduler` starts and says its address", address is not None)
+        if address is None:
+            return
+        catalogue = os.path.join(work, "remote.gpkg")
+        args = [tiles, dem, catalogue, "-tile_size", str(TILE_SIZE), "-scheduler", address]
+        quiet = dict(env, TINLOD_TILES_TEST_NO_WORKERS="1")
+        driver = subprocess.Popen(args + ["-tinlod", tinlod], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                  env=quiet)
+        said = []
+        reader = threading.Thread(target=lambda: said.extend(driver.stderr), daemon=True)
+        reader.start()
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not any("has had no worker for" in line for line in said):
+            time.sleep(0.2)
+        driver.send_signal(signal.SIGINT)
+        driver.wait(timeout=30)
+        reader.join(timeout=5)
+        check("(j) a scheduler without workers is said (%s), and Ctrl-C then stops the run (exit %s)"
+              % ("".join(said)[:80], driver.returncode),
+              any(("the Dask scheduler %s has had no worker for 1 s" % address) in line and ("dask worker %s" % address)
+                  in line for line in said) and driver.returncode == 130, "".join(said)[-1500:])
+
+        log = os.path.join(work, "remote_threads.txt")
+        noting = thread_logging_tinlod(tinlod, work, log)
+        workers.append(DaskProcess(["worker", address, "--nthreads", "1", "--no-dashboard"], dict(env, TINLOD_THREADS="1")))
+        finished = run(args + ["-tinlod", noting], dict(env, TINLOD_THREADS="7"))
+        check_complete(catalogue, "(j) -scheduler")
+        threads = set(open(log).read().split()) if os.path.isfile(log) else set()
+        check("(j) the tiles' tinlods keep their worker's TINLOD_THREADS, not the driver's (%s)" % sorted(threads),
+              finished.returncode == 0 and threads == {"threads=1"}, (threads, finished.stderr[-1000:]))
+
+        lost = os.path.join(work, "lost.gpkg")
+        slow = slow_tinlod(tinlod, work, "slow_remote_tinlod", '*" -check "*) ;; *" -tile 0,1 "*) sleep 30;;')
+        driver = subprocess.Popen([tiles, dem, lost, "-tile_size", str(TILE_SIZE), "-scheduler", address, "-tinlod", slow, "-q"],
+                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+        folder = os.path.join(work, "lost_tiles")
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not (os.path.isdir(folder) and any(
+                re.fullmatch(r"tile_\d+_\d+\.survey\.json", n) for n in os.listdir(folder))):
+            time.sleep(0.1)
+        scheduler.end(signal.SIGKILL)
+        _, err = driver.communicate(timeout=60)
+        statuses = sorted(r["status"] for r in rows(lost)[0].values())
+        check("(j) a scheduler killed mid-run: one line, the tiles left pending, none failed (%s)" % statuses,
+              driver.returncode == 1 and ("the Dask scheduler %s stopped running the tiles (its connection was lost)"
+                                          % address) in err and "Traceback" not in err and "failed" not in statuses
+              and "pending" in statuses and len(err.strip().split("\n")) == 1, (statuses, err[-2000:]))
+        for worker in workers:
+            worker.end()
+        scheduler, address = start_scheduler()
+        workers = [DaskProcess(["worker", address, "--nthreads", "1", "--no-dashboard"], env)]
+        again = run([tiles, dem, lost, "-tile_size", str(TILE_SIZE), "-scheduler", address, "-tinlod", tinlod], env)
+        check("(j) the same command on a new scheduler finishes the catalogue", again.returncode == 0, again.stderr[-1500:])
+        check_complete(lost, "(j) after the scheduler was lost")
+    finally:
+        for worker in workers:
+            worker.end()
+        if scheduler:
+            scheduler.end()
+
+
 def point_count(path):
     dataset = ogr.Open(path)  # held: a layer dies with its dataset
     return dataset.GetLayerByName("points").GetFeatureCount()
@@ -616,6 +738,22 @@ def main(tinlod, tiles):
     check("an unreachable -scheduler is an error, and no catalogue is made",
           away.returncode == 1 and "cannot reach the Dask scheduler tcp://127.0.0.1:9" in away.stderr
           and not os.path.exists(os.path.join(work, "away.gpkg")), away.stderr[-1500:])
+    for address, said in (("", "-scheduler '': give the scheduler's address"),  # -scheduler "$UNSET"
+                          ("127.0.0.1:99999", "port 99999 is out of range (1 to 65535)"),
+                          ("http://127.0.0.1:9", "unknown address scheme 'http'")):
+        wrong = run(base + [os.path.join(work, "wrong.gpkg"), "-tile_size", str(TILE_SIZE), "-scheduler", address,
+                            "-tinlod", program])
+        check("-scheduler %r is refused with its reason (%s), and nothing is written" % (address, said),
+              wrong.returncode == 1 and said in wrong.stderr and not os.path.exists(os.path.join(work, "wrong.gpkg")),
+              wrong.stderr[-1500:])
+    on_path = dict(env, PATH=os.path.dirname(os.path.abspath(program)) + os.pathsep + env.get("PATH", ""))
+    named = run(base + [os.path.join(work, "named.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod", "nosuchtinlod"], on_path)
+    check("-tinlod NAME not on PATH says so", named.returncode == 1
+          and "-tinlod nosuchtinlod: no program of that name on PATH; give its path" in named.stderr, named.stderr[-1000:])
+    named = run(base + [os.path.join(work, "named.gpkg"), "-tile_size", str(TILE_SIZE), "-tinlod",
+                        os.path.basename(program), "--", "-threshold", "1e6"], on_path)
+    check("-tinlod NAME is found on PATH, as a shell finds it (the job's own check then runs it)", named.returncode == 1
+          and "-threshold in a tiled run needs -max_levels" in named.stderr, named.stderr[-1000:])
     # A port that takes connections but is no scheduler (another server; a proxy taking them all).
     impostor = socket.socket()
     impostor.bind(("127.0.0.1", 0))
@@ -632,6 +770,30 @@ def main(tinlod, tiles):
     silent = run(base + [os.path.join(work, "silent.gpkg"), "-tile_size", str(TILE_SIZE), "-scheduler", address,
                          "-tinlod", program])
     impostor.close()
+    mute = socket.socket()  # takes connections and holds them, never answering: Dask waits 20 s
+    mute.bind(("127.0.0.1", 0))
+    mute.listen(8)
+    held = []
+
+    def hold():
+        while True:
+            try:
+                held.append(mute.accept()[0])
+            except OSError:  # closed below
+                return
+    threading.Thread(target=hold, daemon=True).start()
+    waiting = subprocess.Popen(base + [os.path.join(work, "silent.gpkg"), "-tile_size", str(TILE_SIZE), "-scheduler",
+                                       "tcp://127.0.0.1:%d" % mute.getsockname()[1], "-tinlod", program],
+                               stderr=subprocess.PIPE, text=True)
+    time.sleep(3)  # past the checks, waiting on the port
+    waiting.send_signal(signal.SIGINT)
+    _, said = waiting.communicate(timeout=30)
+    for connection in held:
+        connection.close()
+    mute.close()
+    check("Ctrl-C while a silent -scheduler port is waited on says nothing was written (no catalogue to resume)",
+          waiting.returncode == 130 and "stopped before the end; nothing was written" in said
+          and not os.path.exists(os.path.join(work, "silent.gpkg")), said[-1000:])
     check("a -scheduler port that answers but not as Dask is an error before anything is written",
           silent.returncode == 1 and ("no Dask scheduler answers at %s" % address) in silent.stderr
           and "Nothing was written" in silent.stderr and not os.path.exists(os.path.join(work, "silent.gpkg"))
@@ -699,6 +861,9 @@ def main(tinlod, tiles):
           alike.returncode == 1 and "tiles failed in the survey pass; they say:" in alike.stderr
           and "the worker's disk is full" in alike.stderr and " and 5 more)" in alike.stderr
           and "every tile failed alike" in alike.stderr and "-overwrite" in alike.stderr, alike.stderr[-2000:])
+    check("what the tiles said is listed without tinlod's ERROR prefix, under the run's own ERROR line",
+          "\n  the worker's disk is full (tile" in alike.stderr and "ERROR: ERROR" not in alike.stderr
+          and "\n  ERROR: " not in alike.stderr, alike.stderr[-2000:])
     with open(failing, "w") as f:  # the same, but the empty tile found empty (tinlod's exit 3)
         f.write('#!/bin/sh\nfor a in "$@"; do [ "$a" = -check ] && exec "%s" "$@"; [ "$a" = %d,%d ] && exit 3; done\n'
                 'echo "ERROR: the worker\'s disk is full" >&2\nexit 1\n' % ((program,) + EMPTY_TILE))
@@ -1168,6 +1333,7 @@ def main(tinlod, tiles):
     ctrl_c_in_survey(tinlod, dem, tiles, work, env)
     ctrl_c_with_tiles_done(tinlod, dem, tiles, work, env)
     stop_warning(tiles, program, work, env)
+    remote_cluster(tinlod, tiles, dem, work, env)
 
     if not failures:
         subprocess.run(["rm", "-rf", work])

@@ -3,6 +3,7 @@
 checked before any work with a message naming the option and the fix."""
 import os
 import re
+import shlex
 import shutil
 import sys
 from dataclasses import dataclass, field
@@ -163,6 +164,20 @@ def check_text(args):
                              "holds UTF-8 text; give it in UTF-8 (a file: rename it, or give a link to it named in UTF-8)" % shown) from None
 
 
+def check_scheduler_address(address):
+    """tcp:// (Dask's default) or no scheme, with a port; another protocol (tls://, ucx://) is the
+    client's to read. An empty address (-scheduler "$UNSET") must not fall back to a local cluster."""
+    if address is None or re.match(r"(?!tcp://)\w+://", address):
+        return
+    match = re.fullmatch(r"(?:tcp://)?\[?[^\]/]+?\]?:(\d+)/?", address)
+    if not match:
+        raise TilesError("-scheduler %s: give the scheduler's address, tcp://host:port or host:port (`dask scheduler` "
+                         "prints it: tcp://host:8786 by default)" % shlex.quote(address))
+    if not 1 <= int(match.group(1)) <= 65535:
+        raise TilesError("-scheduler %s: port %s is out of range (1 to 65535); `dask scheduler` prints its address, "
+                         "tcp://host:8786 by default" % (address, match.group(1)))
+
+
 def parse_run(args):
     check_text(args)
     ours, build_options = (args[: args.index("--")], args[args.index("--") + 1:]) if "--" in args else (args, [])
@@ -178,11 +193,7 @@ def parse_run(args):
     arguments = RunArguments(positionals[0], positionals[1], tile_size(options["-tile_size"], build_block(build_options)),
                              scheduler=options.get("-scheduler"), overwrite="-overwrite" in options,
                              quiet="-q" in options, build_options=absolute_files(build_options))
-    # tcp:// (Dask's default) or none; another protocol (tls://, ucx://) is the client's to read.
-    if arguments.scheduler and not re.match(r"(?!tcp://)\w+://", arguments.scheduler) \
-            and not re.fullmatch(r"(?:tcp://)?\[?[^\]/]+?\]?:\d+/?", arguments.scheduler):
-        raise TilesError("-scheduler %s: give the scheduler's address, tcp://host:port or host:port (`dask scheduler` "
-                         "prints it: tcp://host:8786 by default)" % arguments.scheduler)
+    check_scheduler_address(arguments.scheduler)
     if "-workers" in options:
         arguments.workers = whole_number(options["-workers"], "-workers", 1)
     if "-retries" in options:
@@ -291,6 +302,11 @@ def check_output(path, what):
 def find_tinlod(given):
     """-tinlod, else tinlod beside this program (installed: bin/; build tree: core/), else PATH."""
     if given is not None:
+        if os.sep not in given and not os.path.exists(given):  # a name, as a shell takes it: on PATH
+            found = shutil.which(given)
+            if found is None:
+                raise TilesError("-tinlod %s: no program of that name on PATH; give its path" % given)
+            given = found
         if not (os.path.isfile(given) and os.access(given, os.X_OK)):
             raise TilesError("-tinlod %s is not an executable file" % given)
         return os.path.abspath(given)

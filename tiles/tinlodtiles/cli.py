@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """tinlod-tiles' command line: parse, run, and report a failure once (exit 1, "ERROR: ...")."""
+import os
 import signal
 import subprocess
 import sys
@@ -27,22 +28,31 @@ def main(args):
     # KeyboardInterrupt: caught as tinlod catches it, so that `kill -INT` stops both alike.
     if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
         signal.signal(signal.SIGINT, signal.default_int_handler)
-    merging = args[0] == "merge"
+    merging, arguments = args[0] == "merge", None
     try:
         if merging:
             return merge(parse_merge(args[1:]))
-        return run(parse_run(args))
+        arguments = parse_run(args)
+        return run(arguments)
     except TilesError as e:
         print("ERROR: %s" % e, file=sys.stderr)
         return 1
     except KeyboardInterrupt:  # outside the tiles' loop: a catalogue holds what finished
-        print("ERROR: stopped before the end; %s" % ("nothing was written (OUT is as it was)" if merging else
-                                                      "run again to resume: a catalogue keeps the tiles finished"),
-              file=sys.stderr)
+        print("ERROR: stopped before the end; %s" % what_stays(merging, arguments), file=sys.stderr)
         return STOPPED_EXIT_CODE
     except RuntimeError as e:  # GDAL's own errors
         print("ERROR: %s" % e, file=sys.stderr)
         return 1
+
+
+def what_stays(merging, arguments):
+    """After a stop outside the tiles' loop: a stop during the checks (a -scheduler that does
+    not answer takes 20 s) made no catalogue to resume from."""
+    if merging:
+        return "nothing was written (OUT is as it was)"
+    if arguments is None or not os.path.exists(arguments.catalogue):
+        return "nothing was written"
+    return "run again to resume: the catalogue keeps the tiles finished"
 
 
 def stop_as_ctrl_c(*signals):

@@ -32,6 +32,7 @@ from .survey_store import SurveyStore
 from .tile_file import read_tile_summary
 from .tile_warnings import TileWarnings
 from .tin_crs import predicted_tin_srs
+from .worker_watch import WorkerWatch
 
 
 def run(arguments):
@@ -186,7 +187,7 @@ def job_settings(arguments, dem):
 
 def check_reachable(address):
     """A TCP connection to the scheduler (tcp://host:port, or host:port), or TilesError."""
-    match = re.fullmatch(r"(?:tcp://)?\[?([^\]]+?)\]?:(\d+)/?", address)
+    match = re.fullmatch(r"(?:tcp://)?\[?([^\]/]+?)\]?:(\d+)/?", address)
     if not match:
         return  # another protocol: the client says what it finds
     try:
@@ -450,9 +451,12 @@ class Workers:
     def __enter__(self):
         self.distributed = dask_import.distributed()  # only a run with tiles to build needs Dask
         self.client, self.cluster = start_client(self.distributed, self.arguments)
+        self.watch = WorkerWatch(self.client, self.arguments.scheduler).__enter__() if self.arguments.scheduler else None
         return self
 
     def __exit__(self, *_):
+        if self.watch:
+            self.watch.__exit__()
         stop(self.client, self.cluster)
 
 
@@ -468,6 +472,8 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
     try:
         submit(client, pending, arguments, extra_options, survey, futures)
         for future in distributed.as_completed(list(futures)):
+            if future.status == "cancelled":  # not by this run: its scheduler went away
+                raise scheduler_lost(client, arguments, catalogue)
             tile = futures.pop(future)
             path = survey_path(tiles_folder(arguments.catalogue), tile, survey) if survey else None
             status = (record_survey(catalogue, tile, future, path) if survey
@@ -477,15 +483,25 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
             outcome[status] = outcome.get(status, 0) + 1
             progress.tile(tile.col, tile.row, status)
     except KeyboardInterrupt:
-        client.cancel(list(futures))
+        cancel(client, futures)
         # The catalogue's count: a stop in a survey pass leaves every unbuilt tile pending.
         raise TilesStopped(sum(1 for r in catalogue.rows().values() if r["status"] == "pending")) from None
     except BaseException:  # not retried while the run stops
-        client.cancel(list(futures))
+        cancel(client, futures)
         raise
     finally:
         progress.end()
     return outcome
+
+
+def cancel(client, futures):
+    """The run's tasks cancelled, unless the scheduler is gone: Dask would try to reach it for
+    20 s and raise, hiding why the run stops."""
+    if client.status == "running":
+        try:
+            client.cancel(list(futures))
+        except OSError:  # lost meanwhile
+            pass
 
 
 class TilesStopped(Exception):
@@ -499,6 +515,11 @@ def start_client(distributed, arguments):
     import dask
     ignored = "distributed.diagnostics.computations.ignore-modules"
     dask.config.set({ignored: list(dask.config.get(ignored, [])) + ["tinlodtiles", "__main__"]})
+    # Dask's client logs a lost scheduler as tracebacks, about 100 lines, under its own name
+    # and (log_errors) under its caller's module's, asyncio's event loop: the run says it in
+    # one line (scheduler_lost).
+    for name in ("distributed.client", "distributed.utils", "asyncio.events"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
     if arguments.scheduler:
         try:
             return distributed.Client(arguments.scheduler, timeout="20s"), None
@@ -533,10 +554,13 @@ LOCAL_CLUSTER = {
 
 def worker_threads(arguments):
     """A local cluster's workers share this machine: each tinlod gets its share of the cores,
-    unless TINLOD_THREADS says otherwise; a remote scheduler's workers keep their own."""
+    unless TINLOD_THREADS says otherwise; a remote scheduler's workers keep their own (their
+    machines' TINLOD_THREADS, not the driver's: a batch script's export reached every worker)."""
+    if arguments.scheduler:
+        return None
     if os.environ.get("TINLOD_THREADS"):
         return int(os.environ["TINLOD_THREADS"])
-    return None if arguments.scheduler else max(1, (os.cpu_count() or 1) // arguments.workers)
+    return max(1, (os.cpu_count() or 1) // arguments.workers)
 
 
 def record_survey(catalogue, tile, future, path):
@@ -555,6 +579,19 @@ def record_survey(catalogue, tile, future, path):
     return "surveyed" if status == "done" else status
 
 
+def scheduler_lost(client, arguments, catalogue):
+    """TilesError for the tasks Dask cancelled under the run (the scheduler killed or its
+    connection lost, which Dask says in tracebacks): their tiles stay pending, not failed, and
+    the same command finishes them once the scheduler is back."""
+    where = arguments.scheduler or "of the local cluster"
+    why = "its connection was lost" if client.status != "running" else "it cancelled the tasks (restarted?)"
+    pending = sum(1 for r in catalogue.rows().values() if r["status"] == "pending")
+    again = ("start the scheduler and its workers again, then run the same command" if arguments.scheduler
+             else "run the same command again")
+    return TilesError("the Dask scheduler %s stopped running the tiles (%s): %s stay pending in the catalogue, the "
+                      "finished ones are kept; %s to finish them" % (where, why, n_tiles(pending), again))
+
+
 def submit(client, pending, arguments, extra_options, survey, futures):
     """The tasks, their code shipped by value so that a remote worker needs only tinlod;
     their futures go into `futures` (future: tile)."""
@@ -568,7 +605,7 @@ def submit(client, pending, arguments, extra_options, survey, futures):
              "build_options": list(arguments.build_options) + [o for o in extra_options if o != "-survey"],
              "survey": survey,
              "kill_hook": os.environ.get(task.KILL_HOOK_VARIABLE),
-             "threads": worker_threads(arguments)} for tile in pending]
+             "threads": worker_threads(arguments), "remote": bool(arguments.scheduler)} for tile in pending]
     keys = ["%s-%d-%d-%s" % (survey or "tile", tile.col, tile.row, os.urandom(4).hex()) for tile in pending]
     # One call for all: Dask's bookkeeping is per call (start_client).
     futures.update(zip(client.map(task.run_tile, jobs, key=keys, retries=arguments.retries, pure=False), pending))
@@ -711,6 +748,8 @@ def failure_summary(rows):
     for row in rows:
         if row["status"] == "failed":
             message = without_task_prefix(row["error"] or "no message")
+            if message.startswith(task.ERROR_PREFIX):  # printed after the run's own ERROR line
+                message = message[len(task.ERROR_PREFIX):]
             messages.setdefault(message, []).append("%d,%d" % (row["tile_col"], row["tile_row"]))
     ranked = sorted(messages.items(), key=lambda item: -len(item[1]))
     lines = ["%s (tile %s%s)" % (message, tiles[0], " and %d more" % (len(tiles) - 1) if len(tiles) > 1 else "")
@@ -718,8 +757,13 @@ def failure_summary(rows):
     if len(ranked) > 3:
         lines.append("%d other messages (the catalogue's error field has each)" % (len(ranked) - 3))
     alike = len(ranked) == 1 and all(row["status"] in ("failed", "empty") for row in rows)
-    advice = ("every tile failed alike: if the DEM or the options are wrong, correct them and run again with "
-              "-overwrite (the catalogue keeps the options it was made with)" if alike else "run again to retry them")
+    if all(message.startswith(task.WORKER_PREFIX) for message in messages):  # the workers' paths, not the job
+        advice = "run again to retry them once every worker reaches those paths"
+    elif alike:
+        advice = ("every tile failed alike: if the DEM or the options are wrong, correct them and run again with "
+                  "-overwrite (the catalogue keeps the options it was made with)")
+    else:
+        advice = "run again to retry them"
     failed = sum(len(tiles) for tiles in messages.values())
     return "\n  ".join(["it says:" if failed == 1 else "they say:"] + lines) + "\n" + advice
 

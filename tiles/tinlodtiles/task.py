@@ -8,6 +8,7 @@ same paths to the DEM and the tiles folder.
 import ctypes
 import os
 import signal
+import socket
 import subprocess
 import time
 
@@ -16,6 +17,7 @@ KILL_HOOK_VARIABLE = "TINLOD_TILES_TEST_KILL"  # "C,R:seconds", for the tests on
 _PR_SET_PDEATHSIG = 1
 ERROR_PREFIX = "ERROR: "  # how tinlod starts a failure's message on stderr
 WARNING_PREFIX = "Warning: "  # and a warning's
+WORKER_PREFIX = "worker "  # a failure of the worker's reach (unreachable), not of tinlod's
 
 
 class TileFailed(Exception):
@@ -28,14 +30,21 @@ def run_tile(job):
     and tinlod's warnings; raises TileFailed otherwise."""
     final = os.path.join(job["tiles_dir"], job["name"])
     partial = partial_path(final)
-    attempt = count_attempt(final)
-    remove_if_present(partial)
+    check_reach(job)
+    try:
+        attempt = count_attempt(final)
+        remove_if_present(partial)
+    except OSError as e:
+        raise TileFailed(unreachable(job, "cannot write the tiles folder %s (%s)" % (job["tiles_dir"], e.strerror or e)))
     command = [job["tinlod"], "build", job["dem"], partial, "-tile_size", str(job["tile_size"]),
                "-tile", "%d,%d" % (job["col"], job["row"])] + list(job["build_options"]) + ["-q", "-overwrite"]
     if job.get("survey"):
         command.append("-survey")
     kill_after = kill_hook_seconds(job, attempt)
-    code, seconds, peak_mib, message, warnings = run_measured(command, final + ".log", kill_after, job.get("threads"))
+    try:
+        code, seconds, peak_mib, message, warnings = run_measured(command, final + ".log", kill_after, job.get("threads"))
+    except OSError as e:  # tinlod gone since check_reach, or the log not writable
+        raise TileFailed(unreachable(job, "cannot run %s (%s)" % (job["tinlod"], e.strerror or e))) from None
     if code == EMPTY_EXIT_CODE:
         remove_if_present(partial)
         return {"status": "empty", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt, "warnings": []}
@@ -44,6 +53,39 @@ def run_tile(job):
         raise TileFailed("tile %d,%d (attempt %d): %s" % (job["col"], job["row"], attempt, message))
     publish(partial, final)
     return {"status": "done", "seconds": seconds, "peak_mib": peak_mib, "attempt": attempt, "warnings": warnings}
+
+
+def check_reach(job):
+    """What a worker on another machine may lack: the DEM (a file's path; GDAL's virtual paths
+    are tinlod's to open), the tiles folder, or tinlod, at the driver's paths. Said as such,
+    naming the worker, where tinlod's "cannot open the DEM" blamed the DEM the driver had
+    just read."""
+    dem, tinlod = job["dem"], job["tinlod"]
+    if not dem.startswith("/vsi") and not os.path.exists(dem):
+        raise TileFailed(unreachable(job, "cannot see the DEM %s" % dem))
+    if not os.path.isdir(job["tiles_dir"]):
+        raise TileFailed(unreachable(job, "cannot see the tiles folder %s" % job["tiles_dir"]))
+    if not os.access(tinlod, os.X_OK):
+        raise TileFailed(unreachable(job, "has no tinlod at %s" % tinlod))
+
+
+def unreachable(job, what):
+    """A task's failure for want of the driver's paths on its worker: on a remote scheduler's,
+    most likely a machine without them; on the local cluster, a file moved during the run."""
+    if job.get("remote"):
+        return "%s %s: every worker must reach the DEM, the tiles folder and tinlod by the paths the driver gives " \
+               "(a shared file system, tinlod installed alike)" % (worker_name(), what)
+    return "%s %s (moved or removed during the run?)" % (WORKER_PREFIX.strip(), what)
+
+
+def worker_name():
+    """The worker running this task, "worker ADDRESS (host NAME)", as `dask worker` lists it."""
+    host = socket.gethostname()
+    try:
+        from distributed import get_worker
+        return "%s %s (host %s)" % (WORKER_PREFIX.strip(), get_worker().address, host)
+    except (ImportError, ValueError):  # not on a Dask worker (a test calling run_tile)
+        return "%s on host %s" % (WORKER_PREFIX.strip(), host)
 
 
 def publish(partial, final):
