@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -339,6 +340,25 @@ TEST(NothingLost, AGeoPackageAnotherProgramHoldsIsNotReplaced) {
   const CliRun free = tinlod(rebuild);
   EXPECT_EQ(free.exitCode, 0) << free.err;
   EXPECT_EQ(notesIn(h), 1);  // its other tables kept, as -overwrite promises
+}
+
+TEST(NothingLost, AReaderOfALockedGeoPackageSaysSoInSecondsNotAfterSqlitesTimeouts) {
+  // info waited 10 s and lod 25 s (SQLite's busy timeout at each of their opens) in silence.
+  const std::string dir = builtFolder(), h = dir + "/h.gpkg";
+  OtherProgram script(h);
+  script.run("PRAGMA journal_mode=DELETE; BEGIN EXCLUSIVE; INSERT INTO notes VALUES('pending');");
+  for (const std::string& command : {"info " + h, "lod -q -max_error 5 " + h + " " + dir + "/lod.gpkg"}) {
+    const auto start = std::chrono::steady_clock::now();
+    const CliRun run = tinlod(command);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(run.exitCode, 1) << command;
+    EXPECT_TRUE(has(run.err, "is being written by another program")) << run.err;
+    EXPECT_TRUE(has(run.err, "try again once it is done")) << run.err;
+    EXPECT_LT(seconds, 6.0) << command;  // 2 s of patience, for a commit, then said
+  }
+  script.run("ROLLBACK;");
+  EXPECT_FALSE(fs::exists(dir + "/lod.gpkg"));
+  EXPECT_EQ(tinlod("info " + h).exitCode, 0);  // free again
 }
 
 TEST(NothingLost, ALogLeftByAProgramThatCrashedIsPlayedBackFirst) {

@@ -158,6 +158,7 @@ HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
   GDALAllRegister();
   if (!std::filesystem::exists(path)) throw Error("'" + path + "' does not exist");
   refuseCatalogueLevel(path);
+  refuseLockedForReading(path);
   const char* const gpkgOnly[] = {"GPKG", nullptr};
   const DatasetPtr ds = openReadOnly(path, GDAL_OF_VECTOR, gpkgOnly);
   if (!ds) {

@@ -3,7 +3,11 @@
 
 #include <sqlite3.h>
 
+#include <chrono>
 #include <fstream>
+#include <thread>
+
+#include "tinlod/error.h"
 
 namespace fs = std::filesystem;
 
@@ -54,6 +58,20 @@ bool sqliteFileLocked(const fs::path& file) {
   if (!isSqliteFile(file)) return false;
   const int rc = runOnce(file, SQLITE_OPEN_READONLY, "SELECT count(*) FROM sqlite_master");
   return rc == SQLITE_BUSY || rc == SQLITE_LOCKED;
+}
+
+bool sqliteFileStaysLocked(const fs::path& file, std::chrono::milliseconds patience) {
+  const auto until = std::chrono::steady_clock::now() + patience;
+  while (sqliteFileLocked(file)) {
+    if (std::chrono::steady_clock::now() >= until) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
+void refuseLockedForReading(const std::string& path) {
+  if (sqliteFileStaysLocked(path, std::chrono::seconds(2)))
+    throw Error("'" + path + "' " + lockedFileWords() + ": try again once it is done");
 }
 
 }  // namespace tinlod

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "sqlite_in_use.h"
 #include "tinlod/error.h"
 
 namespace tinlod {
@@ -32,6 +33,7 @@ Dataset openVector(const std::string& path) {
 bool isCatalogue(const std::string& path) {
   const std::filesystem::path p(path);
   if (!std::filesystem::is_regular_file(p)) return false;
+  refuseLockedForReading(path);  // every reader of a TIN file asks this first
   const Dataset ds = openVector(path);
   const char* kind = ds ? ds->GetMetadataItem("TINLOD_KIND") : nullptr;
   return kind && std::string(kind) == "catalogue";
