@@ -956,6 +956,9 @@ def main(tinlod, tiles):
     again = run(base + [catalogue] + options, env)
     check("(c) a tile whose file is gone is built again, alone", "1 tile run, 5 skipped" in again.stdout
           and os.path.isfile(os.path.join(folder, "tile_0_1.gpkg")), again.stdout + again.stderr[-1000:])
+    check("(c) the resumed run's log says it is in the build pass, with the thresholds recorded",
+          "build pass: one importance threshold per level for the whole raster, as the catalogue recorded them"
+          in again.stdout, again.stdout)
     after = file_times(folder)
     after.pop("tile_0_1.gpkg", None)
     check("(c) ... and the others are left as they were", after == before)

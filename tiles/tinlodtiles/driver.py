@@ -229,6 +229,8 @@ def level_thresholds(catalogue, tiles, arguments, workers):
     recorded = catalogue.setting("TINLOD_LEVEL_THRESHOLDS")
     if recorded:
         warn_of_reused_thresholds(catalogue, arguments)
+        if not arguments.quiet:  # a log of a resumed run says which pass it is in, as the first run's does
+            print("build pass: one importance threshold per level for the whole raster, as the catalogue recorded them")
         return recorded
     folder = tiles_folder(arguments.catalogue)
     rows = catalogue.rows()
