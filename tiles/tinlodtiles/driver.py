@@ -488,6 +488,14 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
         cancel(client, futures)
         # The catalogue's count: a stop in a survey pass leaves every unbuilt tile pending.
         raise TilesStopped(sum(1 for r in catalogue.rows().values() if r["status"] == "pending")) from None
+    except (OSError, distributed.utils.CancelledError) as e:
+        # The scheduler lost as a result was fetched (Dask's CommClosedError), or the task
+        # cancelled between its status and its result.
+        cancel(client, futures)
+        lost = isinstance(e, distributed.comm.CommClosedError) or client.status != "running"
+        if lost or isinstance(e, distributed.utils.CancelledError):
+            raise scheduler_lost(client, arguments, catalogue, lost=lost) from None
+        raise  # our own file's error
     except BaseException:  # not retried while the run stops
         cancel(client, futures)
         raise
@@ -581,12 +589,14 @@ def record_survey(catalogue, tile, future, path):
     return "surveyed" if status == "done" else status
 
 
-def scheduler_lost(client, arguments, catalogue):
-    """TilesError for the tasks Dask cancelled under the run (the scheduler killed or its
-    connection lost, which Dask says in tracebacks): their tiles stay pending, not failed, and
-    the same command finishes them once the scheduler is back."""
+def scheduler_lost(client, arguments, catalogue, lost=False):
+    """TilesError for the tasks Dask cancelled under the run, or whose results it could not
+    fetch (`lost`: the scheduler killed or its connection lost, which Dask says in tracebacks):
+    their tiles stay pending, not failed, and the same command finishes them once the
+    scheduler is back."""
     where = arguments.scheduler or "of the local cluster"
-    why = "its connection was lost" if client.status != "running" else "it cancelled the tasks (restarted?)"
+    lost = lost or client.status != "running"
+    why = "its connection was lost" if lost else "it cancelled the tasks (restarted?)"
     pending = sum(1 for r in catalogue.rows().values() if r["status"] == "pending")
     again = ("start the scheduler and its workers again, then run the same command" if arguments.scheduler
              else "run the same command again")

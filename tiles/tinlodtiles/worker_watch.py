@@ -1,8 +1,11 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""A running scheduler without workers: said, where the run would wait for one in silence.
+"""A running scheduler's workers, watched while the run lasts: none, or one that runs several
+tiles at once, is said.
 
 A scheduler started before its workers, workers that failed to start on their machines, or
 all of them lost mid-run leave the tasks queued and the driver waiting for ever with no word.
+A worker started with --nthreads N runs N tiles at once, each tinlod on every core its
+machine's TINLOD_THREADS allows (all by default): N times the threads the machine has.
 """
 import os
 import sys
@@ -17,7 +20,8 @@ POLL_SECONDS = 1.0  # the client refreshes what it knows of the scheduler every 
 
 
 class WorkerWatch:
-    """While the run lasts, warns each time the scheduler has had no worker for QUIET_SECONDS."""
+    """While the run lasts, warns each time the scheduler has had no worker for QUIET_SECONDS,
+    and once of each worker that runs several tiles at once."""
 
     def __init__(self, client, address):
         self.client, self.address = client, address
@@ -35,8 +39,11 @@ class WorkerWatch:
 
     def watch(self):
         since, said = time.monotonic(), False  # since when there has been no worker
-        while not self.stopped.wait(POLL_SECONDS):
-            if self.workers():
+        crowded = set()  # the workers said to run several tiles at once
+        while True:  # looked at once at the start, then every POLL_SECONDS
+            workers = self.workers()
+            self.say_crowded(workers, crowded)
+            if workers:
                 since, said = time.monotonic(), False
             elif not said and time.monotonic() - since >= self.quiet:
                 said = True
@@ -44,9 +51,24 @@ class WorkerWatch:
                       "`dask worker %s` where the DEM, the tiles folder and tinlod are reachable by the same paths "
                       "(Ctrl-C stops the run; the same command resumes it)" % (self.address, self.quiet, self.address),
                       file=sys.stderr, flush=True)
+            if self.stopped.wait(POLL_SECONDS):
+                return
+
+    @staticmethod
+    def say_crowded(workers, crowded):
+        """Once for each worker with more than one thread (the addresses said go into `crowded`)."""
+        for address, worker in workers.items():
+            threads = worker.get("nthreads", 1)
+            if threads > 1 and address not in crowded:
+                crowded.add(address)
+                print("Warning: the Dask worker %s runs %d tiles at once (--nthreads %d), each tinlod on the cores "
+                      "its TINLOD_THREADS allows (every core by default): start workers with --nthreads 1 "
+                      "(--nworkers for more on a machine) and TINLOD_THREADS set to the cores over them"
+                      % (address, threads, threads), file=sys.stderr, flush=True)
 
     def workers(self):
+        """The scheduler's workers as the client last heard of them: {address: info}."""
         try:
-            return len(self.client.scheduler_info().get("workers", {}))
+            return dict(self.client.scheduler_info().get("workers", {}))
         except Exception:  # the client closing meanwhile: nothing to say
-            return 1
+            return {"": {}}
