@@ -85,11 +85,14 @@ QVariantMap LocateAlgorithm::processAlgorithm(const QVariantMap& parameters, Qgs
                          .arg(s.points)
                          .arg(s.unfinishedTiles.empty() ? QString() : QStringLiteral("finished tiles' "))
                          .arg(s.level));
-  // As small dots: thousands of QGIS's default markers would hide the map.
-  if (!writesForALaterStepOnly(parameters, context))
+  // As small dots: thousands of QGIS's default markers would hide the map. Named after the
+  // file, as the TIN layers are: a batch's outputs were all "points with elevation".
+  if (!writesForALaterStepOnly(parameters, context)) {
+    const QString base = outputBaseName(output, QString());
+    const QString name = base.isEmpty() ? QStringLiteral("points with elevation") : base + QStringLiteral(" points");
     context.addLayerToLoadOnCompletion(output + QStringLiteral("|layername=points"),
-                                       placedLayerDetails(QStringLiteral("points with elevation"), context.project(),
-                                                          QStringLiteral("OUTPUT"), new TinLayerStyle));
+                                       placedLayerDetails(name, context.project(), QStringLiteral("OUTPUT"), new TinLayerStyle));
+  }
   QVariantMap outputs;
   outputs.insert(QStringLiteral("OUTPUT"), output);
   outputs.insert(QStringLiteral("POINTS"), static_cast<qlonglong>(s.points));

@@ -458,7 +458,7 @@ TEST(Processing, TemporaryOutputsAreNamedAfterTheToolVerticesHiddenAndOutOfAHier
   EXPECT_EQ(levels->findLayers().size(), 3);
   bool locatedAtTop = false;
   for (QgsLayerTreeNode* child : project.layerTreeRoot()->children())
-    locatedAtTop |= child->name() == QStringLiteral("points with elevation");
+    locatedAtTop |= child->name() == QStringLiteral("peaks_located points");  // named after its file
   EXPECT_TRUE(locatedAtTop);
 }
 
