@@ -1201,7 +1201,7 @@ def main(tinlod, tiles):
         shutil.rmtree(shared)
     partly = run([tiles, "merge", stopped, "-level", "1", os.path.join(work, "partly.gpkg")])
     check("(d) merge of a catalogue stopped before its end: the finished tiles' level, and a warning of the others",
-          partly.returncode == 0 and "1 of the catalogue's 6 tiles are not finished (1 pending)" in partly.stderr
+          partly.returncode == 0 and "1 of the catalogue's 6 tiles is not finished (1 pending)" in partly.stderr
           and level_count(os.path.join(work, "partly.gpkg"), "level_1")
           == sum(level_count(f, "level_1") for f in files if not f.endswith("tile_0_0.gpkg")), partly.stderr)
 
@@ -1293,7 +1293,7 @@ def main(tinlod, tiles):
     partial = run([tinlod, "locate", stopped, points, os.path.join(work, "at_stopped.gpkg")])
     check("(e) locate on a catalogue with a pending tile counts its point outside the finished tiles' TIN",
           partial.returncode == 0 and "Located 1 of 2 points on level 0 (1 outside the finished tiles' TIN or in holes;"
-          in partial.stdout and "1 of the catalogue's 6 tiles are not finished (1 pending)" in partial.stderr
+          in partial.stdout and "1 of the catalogue's 6 tiles is not finished (1 pending)" in partial.stderr
           and point_values(os.path.join(work, "at_stopped.gpkg"))[0][0] is None,
           partial.stdout + partial.stderr[-500:])
     whole_points = run([tinlod, "locate", catalogue, points, os.path.join(work, "at_whole.gpkg")])

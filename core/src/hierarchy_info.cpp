@@ -198,7 +198,8 @@ HierarchyInfo readHierarchyInfo(const std::string& path, bool withTiles) {
     throw Error("'" + path + "' is a tinlod " + kind->second + " output (of tinlod lines or locate), not a TIN or a " +
                 "hierarchy: its layers and metadata are shown by ogrinfo -so, and it opens in QGIS as it is");
   if (!ds->GetLayerByName("triangles") || info.metadata.empty())
-    throw Error("'" + path + "' was not written by tinlod (no tinlod metadata or triangles layer)");
+    throw Error("'" + path + "' was not written by tinlod (no tinlod metadata or triangles layer): give a GeoPackage "
+                "tinlod build, sample or insert wrote, or a tinlod-tiles catalogue");
   info.kind = info.metadata.count("kind") ? info.metadata["kind"] : "tin";
   const OGRSpatialReference* srs = layerCrs(*ds->GetLayerByName("triangles"));
   info.crsName = !srs ? "no CRS" : crsLabel(*srs);

@@ -118,8 +118,8 @@ std::string unfinishedTiles(const std::string& path) {
     if (tile.status != "done" && tile.status != "empty") ++unfinished[tile.status], ++count;
   }
   if (count == 0) return "";
-  return std::to_string(count) + " of the catalogue's " + std::to_string(all) + " tiles are not finished (" +
-         statusCounts(unfinished) + ")";
+  return std::to_string(count) + " of the catalogue's " + std::to_string(all) + " tiles " + (count == 1 ? "is" : "are") +
+         " not finished (" + statusCounts(unfinished) + ")";
 }
 
 std::string addUnfinishedTiles(const std::string& path, std::map<std::string, std::string>& metadata) {

@@ -106,8 +106,9 @@ def unfinished_warning(rows):
             unfinished[r["status"]] = unfinished.get(r["status"], 0) + 1
     if not unfinished:
         return ""
-    return ("%d of the catalogue's %d tiles are not finished (%s): only the finished tiles are read; run tinlod-tiles "
-            "again to finish them" % (sum(unfinished.values()), len(rows),
+    count = sum(unfinished.values())
+    return ("%d of the catalogue's %d tiles %s not finished (%s): only the finished tiles are read; run tinlod-tiles "
+            "again to finish them" % (count, len(rows), "is" if count == 1 else "are",
                                       ", ".join("%d %s" % (n, s) for s, n in sorted(unfinished.items()))))
 
 
