@@ -27,8 +27,8 @@ def stand_in(folder, code):
 def job(tinlod, folder):
     dem = os.path.join(folder, "dem.tif")
     open(dem, "a").close()
-    return {"tinlod": tinlod, "dem": dem, "tiles_dir": folder, "name": "tile_0_0.gpkg", "col": 0, "row": 0,
-            "tile_size": 100, "build_options": []}
+    return {"tinlod": tinlod, "dem": dem, "dem_is_file": True, "tiles_dir": folder, "name": "tile_0_0.gpkg", "col": 0,
+            "row": 0, "tile_size": 100, "build_options": []}
 
 
 synced = []  # (the path synced, whether the final file existed then)
@@ -107,5 +107,9 @@ with tempfile.TemporaryDirectory() as folder:
           in said["local"] and rule not in said["local"], said)
     check("each is a worker's failure to the driver (task.WORKER_PREFIX), not tinlod's",
           len(said) == 4 and all(m.startswith(task.WORKER_PREFIX) for m in said.values()), said)
+    # A DEM the driver did not see as a file (a GDAL connection string, NETCDF:file.nc:var) is
+    # tinlod's to open: not looked for as a file.
+    virtual = task.run_tile(dict(lacking, dem="NETCDF:%s:z" % os.path.join(folder, "not_here.nc"), dem_is_file=False))
+    check("a DEM the driver saw as no file is left to tinlod", virtual["status"] == "done", virtual)
 
 sys.exit(exit_code("task"))

@@ -611,7 +611,8 @@ def submit(client, pending, arguments, extra_options, survey, futures):
 
     cloudpickle.register_pickle_by_value(task)
     folder = os.path.abspath(tiles_folder(arguments.catalogue))
-    jobs = [{"tinlod": arguments.tinlod, "dem": dem_path(arguments.dem), "tiles_dir": folder,
+    dem_is_file = os.path.isfile(dem_path(arguments.dem))  # what a worker must see too (task.check_reach)
+    jobs = [{"tinlod": arguments.tinlod, "dem": dem_path(arguments.dem), "dem_is_file": dem_is_file, "tiles_dir": folder,
              "name": survey_name(tile, survey) if survey else tile.name, "col": tile.col, "row": tile.row,
              "tile_size": arguments.tile_size,
              "build_options": list(arguments.build_options) + [o for o in extra_options if o != "-survey"],

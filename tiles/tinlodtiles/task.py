@@ -56,12 +56,12 @@ def run_tile(job):
 
 
 def check_reach(job):
-    """What a worker on another machine may lack: the DEM (a file's path; GDAL's virtual paths
-    are tinlod's to open), the tiles folder, or tinlod, at the driver's paths. Said as such,
-    naming the worker, where tinlod's "cannot open the DEM" blamed the DEM the driver had
-    just read."""
+    """What a worker on another machine may lack: the DEM (when the driver saw a file there;
+    GDAL's virtual paths and connection strings are tinlod's to open), the tiles folder, or
+    tinlod, at the driver's paths. Said as such, naming the worker, where tinlod's "cannot
+    open the DEM" blamed the DEM the driver had just read."""
     dem, tinlod = job["dem"], job["tinlod"]
-    if not dem.startswith("/vsi") and not os.path.exists(dem):
+    if job.get("dem_is_file") and not os.path.exists(dem):
         raise TileFailed(unreachable(job, "cannot see the DEM %s" % dem))
     if not os.path.isdir(job["tiles_dir"]):
         raise TileFailed(unreachable(job, "cannot see the tiles folder %s" % job["tiles_dir"]))
