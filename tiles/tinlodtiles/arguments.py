@@ -164,18 +164,22 @@ def check_text(args):
                              "holds UTF-8 text; give it in UTF-8 (a file: rename it, or give a link to it named in UTF-8)" % shown) from None
 
 
+# A tcp:// (or scheme-less) scheduler address: host (a bracketed IPv6 one too), then port.
+TCP_ADDRESS = re.compile(r"(?:tcp://)?\[?([^\]/]+?)\]?:(\d+)/?")
+
+
 def check_scheduler_address(address):
     """tcp:// (Dask's default) or no scheme, with a port; another protocol (tls://, ucx://) is the
     client's to read. An empty address (-scheduler "$UNSET") must not fall back to a local cluster."""
     if address is None or re.match(r"(?!tcp://)\w+://", address):
         return
-    match = re.fullmatch(r"(?:tcp://)?\[?[^\]/]+?\]?:(\d+)/?", address)
+    match = TCP_ADDRESS.fullmatch(address)
     if not match:
         raise TilesError("-scheduler %s: give the scheduler's address, tcp://host:port or host:port (`dask scheduler` "
                          "prints it: tcp://host:8786 by default)" % shlex.quote(address))
-    if not 1 <= int(match.group(1)) <= 65535:
+    if not 1 <= int(match.group(2)) <= 65535:
         raise TilesError("-scheduler %s: port %s is out of range (1 to 65535); `dask scheduler` prints its address, "
-                         "tcp://host:8786 by default" % (address, match.group(1)))
+                         "tcp://host:8786 by default" % (address, match.group(2)))
 
 
 def parse_run(args):

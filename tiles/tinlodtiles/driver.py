@@ -21,7 +21,7 @@ from osgeo import gdal
 from . import (agreement, build_check, catalogue_guard, dask_import, fixed_points, line_outline, replace_guard, stop_check,
                task, thresholds)
 from .cell_file import read_cells, write_cells
-from .arguments import build_option
+from .arguments import TCP_ADDRESS, build_option
 from .catalogue import BUILD_SETTINGS, FIXED_STAMP, SOURCE_STAMP, Catalogue, file_stamp, levels_folder, tiles_folder
 from .errors import TilesError
 from .grid import tile_grid
@@ -187,7 +187,7 @@ def job_settings(arguments, dem):
 
 def check_reachable(address):
     """A TCP connection to the scheduler (tcp://host:port, or host:port), or TilesError."""
-    match = re.fullmatch(r"(?:tcp://)?\[?([^\]/]+?)\]?:(\d+)/?", address)
+    match = TCP_ADDRESS.fullmatch(address)
     if not match:
         return  # another protocol: the client says what it finds
     try:
@@ -492,9 +492,9 @@ def run_tiles(catalogue, pending, arguments, workers, extra_options=(), survey=N
         # The scheduler lost as a result was fetched (Dask's CommClosedError), or the task
         # cancelled between its status and its result.
         cancel(client, futures)
-        lost = isinstance(e, distributed.comm.CommClosedError) or client.status != "running"
-        if lost or isinstance(e, distributed.utils.CancelledError):
-            raise scheduler_lost(client, arguments, catalogue, lost=lost) from None
+        comm_lost = isinstance(e, distributed.comm.CommClosedError)
+        if comm_lost or client.status != "running" or isinstance(e, distributed.utils.CancelledError):
+            raise scheduler_lost(client, arguments, catalogue, lost=comm_lost) from None
         raise  # our own file's error
     except BaseException:  # not retried while the run stops
         cancel(client, futures)
